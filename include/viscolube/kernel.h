@@ -1,0 +1,55 @@
+/* viscolube: surface-displacement influence coefficients on a uniform grid.
+ *
+ * Sign convention (MODEL.md section 1 and 3): cylinder frame, rubber moving
+ * at +v0 along x. The surface displacement from a pressure p0(x) is
+ *   w(x) = -(2/(pi Erinf)) \int dx' p0(x') [ log|x-x'|
+ *            + sum_i A_i \int_0^inf ds e^{-s} log|x - x' - b_i s| ],  b_i = v0 tau_i.
+ * With p0 piecewise constant on cells of width delta centred on the nodes,
+ * w(x_i) = -(2/(pi Erinf)) sum_j p_j [ Ke(d) + sum_k A_k Kve(d, b_k) ],
+ * d = x_i - x_j, where
+ *   Ke(d)     = \int_{-delta/2}^{delta/2} log|d - y| dy
+ *   Kve(d, b) = \int_0^inf ds e^{-s} \int_{-delta/2}^{delta/2} log|d - y - b s| dy.
+ * Both are exact closed forms (with exp(z) E1(z) / Ei functions) evaluated
+ * with series or asymptotic branches so that full double precision holds for
+ * b/delta from 1e-12 to 1e12 and for |d|/delta up to 1e6.
+ * Limits: Kve(d, 0) = Ke(d); as b -> inf, Kve(d, b) -> delta (log b - gamma)
+ * + o(1), a constant in d (the glassy response). */
+#ifndef VISCOLUBE_KERNEL_H
+#define VISCOLUBE_KERNEL_H
+
+#include <stddef.h>
+
+#include "viscolube/status.h"
+
+/* Ke(d): elastic coefficient of a cell of width delta at offset d. */
+double vl_kernel_elastic(double d, double delta);
+
+/* Kve(d, b): viscoelastic (memory) coefficient for one Prony term, b = v0*tau >= 0.
+ * b == 0 returns Ke(d). */
+double vl_kernel_viscoelastic(double d, double delta, double b);
+
+/* Toeplitz influence matrix of an n-node grid: coef[k], k = (i - j) + n - 1,
+ * holds the coefficient for offset d = (i - j) delta; 2n-1 values.
+ * total(d) = Ke(d) + sum_k A_k Kve(d, b_k); when n_terms == 0 only Ke. */
+typedef struct {
+  size_t n;
+  double delta;
+  double *coef; /* 2n-1 values, owned */
+} vl_toeplitz;
+
+/* Fills t (allocating coef) for n nodes with spacing delta and Prony terms
+ * (A[k], b[k] = v0 tau_k). Frees nothing on entry; on failure t->coef == NULL. */
+vl_status vl_toeplitz_build(vl_toeplitz *t, size_t n, double delta, const double *A,
+                            const double *b, size_t n_terms, vl_error *err);
+
+/* Refills an already allocated t for new b (same n, delta): no allocation. */
+void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t n_terms);
+
+void vl_toeplitz_free(vl_toeplitz *t);
+
+/* Matrix element (i, j). */
+static inline double vl_toeplitz_at(const vl_toeplitz *t, size_t i, size_t j) {
+  return t->coef[i + t->n - 1 - j];
+}
+
+#endif

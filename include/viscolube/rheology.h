@@ -1,0 +1,54 @@
+/* viscolube: linear viscoelasticity of a rubber from a Prony series.
+ *
+ * Creep form (MODEL.md section 2), e^{-i w t} time convention:
+ *   1/E(w) = (1/Einf) [ 1 + sum_i A_i / (1 - i w tau_i) ],  A_i >= 0, tau_i > 0
+ * so Im E(w) > 0 (loss), E(0) = E0 = Einf/(1 + sum A_i), E(inf) = Einf.
+ * tau_i are retardation (creep) times. All quantities SI. */
+#ifndef VISCOLUBE_RHEOLOGY_H
+#define VISCOLUBE_RHEOLOGY_H
+
+#include <complex.h>
+#include <stddef.h>
+
+#include "viscolube/status.h"
+
+#define VL_PRONY_MAX_TERMS 128
+
+typedef struct {
+  double e_inf_pa;                    /* glassy (high-frequency) modulus */
+  double nu;                          /* Poisson ratio, frequency independent */
+  size_t n_terms;                     /* 0 = purely elastic with E = Einf */
+  double A[VL_PRONY_MAX_TERMS];       /* dimensionless creep strengths */
+  double tau_s[VL_PRONY_MAX_TERMS];   /* retardation times */
+} vl_prony;
+
+/* Checks Einf > 0, 0 <= nu < 0.5 (nu = 0.5 allowed), A_i >= 0, tau_i > 0, all
+ * finite, n_terms <= VL_PRONY_MAX_TERMS. Names the first bad field in err. */
+vl_status vl_prony_validate(const vl_prony *prony, vl_error *err);
+
+/* A single-term "standard linear solid" with relaxed modulus E0 and ratio
+ * Einf/E0 (>= 1), retardation time tau. */
+vl_prony vl_prony_single(double e0_pa, double einf_over_e0, double tau_s, double nu);
+
+double vl_prony_sum_A(const vl_prony *prony);
+double vl_prony_e0(const vl_prony *prony);                 /* relaxed modulus */
+double vl_prony_reduced_factor(const vl_prony *prony);     /* 1/(1 - nu^2) */
+
+double complex vl_prony_compliance(const vl_prony *prony, double omega); /* 1/E(w) */
+double complex vl_prony_modulus(const vl_prony *prony, double omega);    /* E(w) */
+double vl_prony_tan_delta(const vl_prony *prony, double omega);
+
+/* Frequency (rad/s) and height of the loss-tangent maximum, found on a log
+ * grid over the span of the tau_i and refined by golden section. For an
+ * elastic material returns VL_EINPUT. */
+vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak,
+                             double *tan_delta_peak, vl_error *err);
+
+/* Multiplies every tau_i by a_T (time-temperature superposition). */
+void vl_prony_shift(vl_prony *prony, double a_T);
+
+/* WLF: log10 a_T = -C1 (T - Tref) / (C2 + T - Tref). Returns NAN when the
+ * denominator is not positive (outside the WLF domain). */
+double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c);
+
+#endif

@@ -1,0 +1,15 @@
+/* The command line's internal interface: one entry point per noun. */
+#ifndef VL_CLI_H
+#define VL_CLI_H
+
+typedef struct {
+  const char *db_path; /* --db PATH, else $VISCOLUBE_DB, else NULL = default */
+} vl_cli_globals;
+
+/* `compound|surface|fluid VERB ...` (argv[0] is the noun). Returns exit code. */
+int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv);
+
+/* `run SCENE [--out DIR] [--json]` (argv[0] is "run"). Returns exit code. */
+int vl_cli_run(const vl_cli_globals *g, int argc, char **argv);
+
+#endif

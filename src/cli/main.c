@@ -1,0 +1,57 @@
+/* viscolube: the command line, a thin layer over libviscolube. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+static void usage(FILE *out) {
+  fputs("usage: viscolube [--db PATH] NOUN VERB ...\n"
+        "\n"
+        "Predicts the friction of wet rubber contacts (Scaraggi & Persson's mean-field\n"
+        "theory of viscoelastic lubrication) from a material database.\n"
+        "\n"
+        "nouns:\n"
+        "  compound   rubber compounds (Prony series): list, show, add, remove\n"
+        "  surface    roughness power spectra: list, show, add, remove\n"
+        "  fluid      lubricants: list, show, add, remove\n"
+        "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
+        "\n"
+        "options:\n"
+        "  --db PATH  database file (default: $VISCOLUBE_DB, else\n"
+        "             $XDG_DATA_HOME/viscolube/materials.db, else\n"
+        "             ~/.local/share/viscolube/materials.db; created on first use\n"
+        "             from the materials shipped in the program)\n"
+        "  --help     this text; `viscolube NOUN --help` for a noun\n",
+        out);
+}
+
+int main(int argc, char **argv) {
+  vl_cli_globals g = {.db_path = getenv("VISCOLUBE_DB")};
+  int i = 1;
+  for (; i < argc && argv[i][0] == '-'; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      usage(stdout);
+      return 0;
+    } else if (!strcmp(argv[i], "--db")) {
+      if (i + 1 >= argc) {
+        fputs("viscolube: option --db needs a PATH\n", stderr);
+        return 2;
+      }
+      g.db_path = argv[++i];
+    } else {
+      fprintf(stderr, "viscolube: unknown option '%s' (see viscolube --help)\n", argv[i]);
+      return 2;
+    }
+  }
+  if (i >= argc) {
+    usage(stderr);
+    return 2;
+  }
+  const char *noun = argv[i];
+  if (!strcmp(noun, "compound") || !strcmp(noun, "surface") || !strcmp(noun, "fluid"))
+    return vl_cli_materials(&g, argc - i, argv + i);
+  if (!strcmp(noun, "run")) return vl_cli_run(&g, argc - i, argv + i);
+  fprintf(stderr, "viscolube: unknown noun '%s' (see viscolube --help)\n", noun);
+  return 2;
+}

@@ -1,0 +1,119 @@
+#include "viscolube/rheology.h"
+
+#include <math.h>
+
+vl_status vl_prony_validate(const vl_prony *prony, vl_error *err) {
+  if (!(isfinite(prony->e_inf_pa) && prony->e_inf_pa > 0.0)) {
+    vl_error_set(err, "Einf must be a positive finite modulus (got %g Pa)", prony->e_inf_pa);
+    return VL_EINPUT;
+  }
+  if (!(isfinite(prony->nu) && prony->nu >= 0.0 && prony->nu <= 0.5)) {
+    vl_error_set(err, "nu must lie in [0, 0.5] (got %g)", prony->nu);
+    return VL_EINPUT;
+  }
+  if (prony->n_terms > VL_PRONY_MAX_TERMS) {
+    vl_error_set(err, "too many Prony terms (%zu > %d)", prony->n_terms, VL_PRONY_MAX_TERMS);
+    return VL_EINPUT;
+  }
+  for (size_t i = 0; i < prony->n_terms; i++) {
+    if (!(isfinite(prony->A[i]) && prony->A[i] >= 0.0)) {
+      vl_error_set(err, "Prony term %zu: A must be finite and >= 0 (got %g)", i + 1, prony->A[i]);
+      return VL_EINPUT;
+    }
+    if (!(isfinite(prony->tau_s[i]) && prony->tau_s[i] > 0.0)) {
+      vl_error_set(err, "Prony term %zu: tau_s must be finite and > 0 (got %g)", i + 1,
+                   prony->tau_s[i]);
+      return VL_EINPUT;
+    }
+  }
+  return VL_OK;
+}
+
+vl_prony vl_prony_single(double e0_pa, double einf_over_e0, double tau_s, double nu) {
+  vl_prony p = {0};
+  p.e_inf_pa = e0_pa * einf_over_e0;
+  p.nu = nu;
+  if (einf_over_e0 > 1.0) {
+    p.n_terms = 1;
+    p.A[0] = einf_over_e0 - 1.0;
+    p.tau_s[0] = tau_s;
+  }
+  return p;
+}
+
+double vl_prony_sum_A(const vl_prony *prony) {
+  double s = 0.0;
+  for (size_t i = 0; i < prony->n_terms; i++) s += prony->A[i];
+  return s;
+}
+
+double vl_prony_e0(const vl_prony *prony) {
+  return prony->e_inf_pa / (1.0 + vl_prony_sum_A(prony));
+}
+
+double vl_prony_reduced_factor(const vl_prony *prony) {
+  return 1.0 / (1.0 - prony->nu * prony->nu);
+}
+
+double complex vl_prony_compliance(const vl_prony *prony, double omega) {
+  double complex s = 1.0;
+  for (size_t i = 0; i < prony->n_terms; i++)
+    s += prony->A[i] / (1.0 - I * omega * prony->tau_s[i]);
+  return s / prony->e_inf_pa;
+}
+
+double complex vl_prony_modulus(const vl_prony *prony, double omega) {
+  return 1.0 / vl_prony_compliance(prony, omega);
+}
+
+double vl_prony_tan_delta(const vl_prony *prony, double omega) {
+  double complex e = vl_prony_modulus(prony, omega);
+  return cimag(e) / creal(e);
+}
+
+vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak,
+                             double *tan_delta_peak, vl_error *err) {
+  double tmin = INFINITY, tmax = 0.0;
+  for (size_t i = 0; i < prony->n_terms; i++) {
+    if (prony->A[i] <= 0.0) continue;
+    tmin = fmin(tmin, prony->tau_s[i]);
+    tmax = fmax(tmax, prony->tau_s[i]);
+  }
+  if (!(tmax > 0.0)) {
+    vl_error_set(err, "an elastic material has no loss-tangent peak");
+    return VL_EINPUT;
+  }
+  /* The peak of a sum of Debye terms lies within a few decades of 1/tau. */
+  double lo = log(1.0 / tmax) - 3.0 * M_LN10, hi = log(1.0 / tmin) + 3.0 * M_LN10;
+  const int n = 400;
+  double best = lo, best_td = -1.0;
+  for (int k = 0; k <= n; k++) {
+    double lw = lo + (hi - lo) * k / n;
+    double td = vl_prony_tan_delta(prony, exp(lw));
+    if (td > best_td) best_td = td, best = lw;
+  }
+  double step = (hi - lo) / n;
+  double a = best - step, b = best + step;
+  const double g = 0.5 * (sqrt(5.0) - 1.0);
+  for (int it = 0; it < 100 && b - a > 1e-12; it++) {
+    double c = b - g * (b - a), d = a + g * (b - a);
+    if (vl_prony_tan_delta(prony, exp(c)) > vl_prony_tan_delta(prony, exp(d)))
+      b = d;
+    else
+      a = c;
+  }
+  double lw = 0.5 * (a + b);
+  if (omega_peak) *omega_peak = exp(lw);
+  if (tan_delta_peak) *tan_delta_peak = vl_prony_tan_delta(prony, exp(lw));
+  return VL_OK;
+}
+
+void vl_prony_shift(vl_prony *prony, double a_T) {
+  for (size_t i = 0; i < prony->n_terms; i++) prony->tau_s[i] *= a_T;
+}
+
+double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c) {
+  double den = c2_k + t_c - tref_c;
+  if (!(den > 0.0)) return NAN;
+  return -c1 * (t_c - tref_c) / den;
+}

@@ -1,0 +1,55 @@
+#include "viscolube/status.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+void vl_error_set(vl_error *err, const char *fmt, ...) {
+  if (!err) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+  va_end(ap);
+}
+
+void vl_error_prefix(vl_error *err, const char *fmt, ...) {
+  if (!err) return;
+  char prefix[VL_ERROR_MAX];
+  char old[VL_ERROR_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(prefix, sizeof prefix, fmt, ap);
+  va_end(ap);
+  memcpy(old, err->msg, sizeof old);
+  snprintf(err->msg, sizeof err->msg, "%s: %s", prefix, old);
+}
+
+const char *vl_status_name(vl_status status) {
+  switch (status) {
+  case VL_OK: return "ok";
+  case VL_EINPUT: return "input error";
+  case VL_ENOMEM: return "out of memory";
+  case VL_ENOTFOUND: return "not found";
+  case VL_EEXIST: return "already exists";
+  case VL_EDB: return "database error";
+  case VL_EIO: return "I/O error";
+  case VL_ENOCONV: return "not converged";
+  case VL_EINTERNAL: return "internal error";
+  }
+  return "unknown status";
+}
+
+int vl_status_exit_code(vl_status status) {
+  switch (status) {
+  case VL_OK: return 0;
+  case VL_EINPUT: return 2;
+  case VL_ENOTFOUND: return 3;
+  case VL_EEXIST: return 4;
+  case VL_EDB: return 5;
+  case VL_EIO: return 6;
+  case VL_ENOCONV: return 7;
+  case VL_ENOMEM:
+  case VL_EINTERNAL: return 70;
+  }
+  return 1;
+}
