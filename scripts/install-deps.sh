@@ -3,7 +3,7 @@
 # Non-interactive and idempotent: silent and fast when everything is present.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libsundials-dev libgsl-dev libsqlite3-dev
-          libcmocka-dev libinih-dev)
+          libcmocka-dev libinih-dev liblapack-dev libopenblas-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

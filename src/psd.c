@@ -5,6 +5,10 @@
 
 #include "viscolube/roughness.h"
 
+#ifndef M_PI /* strict C17 <math.h> does not define it */
+#define M_PI 3.14159265358979323846
+#endif
+
 /* \int_a^b q^p dq for 0 < a <= b, stable when p ~ -1 (expm1 form). */
 static double power_integral(double p, double a, double b) {
   double l = log(b / a);

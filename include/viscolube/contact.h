@@ -1,0 +1,106 @@
+/* viscolube: one operating point of a rigid smooth cylinder on a (rough)
+ * viscoelastic half-space, solved by KINSOL (Newton, dense Jacobian).
+ *
+ * Frame and signs (MODEL.md section 1): cylinder frame, rubber moving at +v0
+ * along x, inlet at x < 0. Friction components are positive when they resist
+ * the motion.
+ *
+ * Unknowns are dimensionless: x/a0, p/p0, u/(a0^2/R), with a0, p0 the Hertz
+ * half-width and peak pressure of the low-speed (relaxed) modulus.
+ *   smooth, dry: pressure p_i on the grid + rigid approach h0; the contact
+ *                condition p >= 0, u >= 0, p u = 0 by a (slightly smoothed)
+ *                Fischer-Burmeister function;
+ *   rough, dry:  separation u_i + h0, with pc = |Er(wH)| s(u) from Persson.
+ * The rigid approach h0 (the displacement kernel's free constant) is the
+ * load-balance unknown; the separation at the pressure centroid u0 is
+ * reported afterwards (MODEL.md section 3: measured to converge better than
+ * u0 as the unknown). */
+#ifndef VISCOLUBE_CONTACT_H
+#define VISCOLUBE_CONTACT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "viscolube/rheology.h"
+#include "viscolube/roughness.h"
+#include "viscolube/status.h"
+
+typedef enum {
+  VL_LINSOL_LAPACK = 0, /* LAPACK dgetrf/dgetrs on the SUNDIALS dense matrix */
+  VL_LINSOL_SUNDIALS    /* SUNLinSol_Dense (SUNDIALS' own dense LU) */
+} vl_linear_solver;
+
+typedef struct {
+  vl_prony rubber;            /* n_terms = 0: elastic with E = e_inf_pa */
+  double radius_m;
+  double load_n_per_m;
+  double sigma_s_pa;          /* shear stress in the real contact area; 0 = off */
+  const vl_persson *roughness;/* NULL = smooth (hard contact); not owned */
+  size_t grid;                /* nodes (cells) on the domain */
+  double x_min_a0, x_max_a0;  /* domain in units of a0 */
+  double tolerance;           /* scaled residual norm for convergence */
+  int max_iterations;         /* Newton iterations per solve (0 = default 100) */
+  vl_linear_solver linear_solver;
+} vl_contact_config;
+
+/* Fills cfg with the defaults (grid 512, domain [-1.6, 1.4] a0, tolerance 1e-9,
+ * LAPACK) for the given rubber and geometry; the caller sets the rest. */
+void vl_contact_config_defaults(vl_contact_config *cfg);
+
+#define VL_WARN_MAX 256
+
+/* Result of one operating point, SI units. */
+typedef struct {
+  double v0_m_s;
+  bool converged;
+  long iterations;            /* Newton iterations of the final solve */
+  double residual;            /* final scaled residual norm (max norm) */
+  double mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf;
+  double u_min_m, u_central_m;/* min separation; separation at the pressure centroid */
+  double x_centroid_m;        /* pressure centroid (negative: inlet side) */
+  double contact_width_m;     /* extent where pc >= 1% of its maximum */
+  double fluid_load_fraction; /* \int pf / fN */
+  double load_error;          /* |\int p - fN| / fN */
+  double E_wH_pa;             /* |Er(wH)| (rough) or Er of the relaxed state */
+  double a_H_m;               /* Hertz half-width with |Er(wH)| */
+  double Q;                   /* rolling number (wet rough only; else 0) */
+  double peak_pressure_pa, x_peak_m;
+  char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
+} vl_point;
+
+/* Fields on the grid, SI; arrays of length n owned by the caller. */
+typedef struct {
+  size_t n;
+  double *x_m, *p_f_pa, *p_c_pa, *u_m, *area_ratio;
+} vl_fields;
+
+typedef struct vl_contact vl_contact;
+
+/* Allocates the solver (KINSOL, matrices, work) for cfg; no allocation happens
+ * inside the Newton loop afterwards. The initial guess is Hertz (relaxed). */
+vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_error *err);
+void vl_contact_free(vl_contact *c);
+
+/* Solves at sliding speed v0 (m/s) starting from the current state (the
+ * previous solution, or Hertz). On return *pt is always filled; pt->converged
+ * says whether the solve met the tolerance. When it did not, the internal
+ * state is restored to what it was before the call and VL_ENOCONV is
+ * returned (err says why); never NaN. */
+vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err);
+
+/* Resets the internal state to the Hertz (relaxed) guess. */
+void vl_contact_reset(vl_contact *c);
+
+/* Copies the current fields (n = grid) into f (arrays allocated by caller). */
+void vl_contact_fields(const vl_contact *c, vl_fields *f);
+
+size_t vl_contact_grid(const vl_contact *c);
+double vl_contact_a0(const vl_contact *c); /* m */
+double vl_contact_p0(const vl_contact *c); /* Pa */
+
+/* |Er(wH)| and a_H at speed v0 from the fixed point wH = pi v0 / a_H,
+ * a_H^2 = 4 fN R/(pi |Er(wH)|) (MODEL.md section 4). Reduced moduli. */
+void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
+                       double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H);
+
+#endif

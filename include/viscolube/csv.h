@@ -1,0 +1,103 @@
+/* viscolube: a small strict reader of numeric CSV files.
+ *
+ * Used for material tables (Prony terms, tabulated PSDs) and meant to be
+ * reused for measured data (DMA files). The format is deliberately narrow so
+ * that a mistake in a file is reported instead of silently misread:
+ *
+ *   - Lines end in LF or CRLF; a UTF-8 byte-order mark is skipped. Lines that
+ *     are blank or whose first non-blank character is '#' are ignored (they
+ *     still count for line numbers), so a file can carry its provenance.
+ *   - The first other line is the header: comma-separated column names,
+ *     matched exactly (case-sensitive, surrounding blanks and one pair of
+ *     double quotes removed). Every required column must appear once; no
+ *     unknown column is allowed; the order is free.
+ *   - Units row (optional). The line after the header is a units row exactly
+ *     when at least one of its cells is not a number; it is then accepted only
+ *     if every cell is one of the expected spellings of its column's units
+ *     (e.g. "1,s" for A,tau_s or "1/m,m^4" for q_per_m,C_m4). Anything else
+ *     there (e.g. "Pa,s", or a typo in a number) is an error naming the cell
+ *     and the units row the file would need. A row of numbers is data.
+ *   - Every data row has as many cells as the header; every cell is a decimal
+ *     number ([+-]digits[.digits][e[+-]digits]), finite and within double
+ *     range. NaN, Inf, hex floats, empty cells and thousands separators are
+ *     rejected. Per-column sign and ordering constraints are checked here.
+ *   - At least one data row.
+ *
+ * Every error is one sentence of the form
+ *   "FILE:LINE: column 'NAME' (field K): what is wrong (got 'TEXT')"
+ * (file-level errors omit the column). The reader never prints. */
+#ifndef VISCOLUBE_CSV_H
+#define VISCOLUBE_CSV_H
+
+#include <stddef.h>
+
+#include "viscolube/rheology.h"
+#include "viscolube/roughness.h"
+#include "viscolube/status.h"
+
+typedef enum {
+  VL_CSV_ANY = 0,         /* any finite number */
+  VL_CSV_NONNEGATIVE = 1, /* >= 0 */
+  VL_CSV_POSITIVE = 2     /* > 0 */
+} vl_csv_sign;
+
+/* What the caller expects of one column. */
+typedef struct {
+  const char *name;  /* header cell, e.g. "tau_s" */
+  const char *units; /* accepted units-row spellings, '|'-separated, e.g. "1/m|m^-1" */
+  vl_csv_sign sign;  /* constraint on every value */
+  int increasing;    /* nonzero: values must increase strictly down the file */
+  int optional;      /* nonzero: the column may be absent from the header */
+} vl_csv_column;
+
+/* A parsed table. Values are stored in the caller's column order (not the
+ * file's); an absent optional column reads as NAN and present[c] == 0. */
+typedef struct {
+  char *source;          /* the file name used in messages (owned) */
+  size_t n_cols;         /* number of requested columns */
+  size_t n_rows;         /* data rows */
+  double *values;        /* n_rows * n_cols, row-major (owned) */
+  size_t *lines;         /* 1-based source line of each data row (owned) */
+  int *present;          /* n_cols flags (owned) */
+  int has_units_row;     /* the file had a (matching) units row */
+} vl_csv;
+
+/* Reads and checks the CSV file at path against the n_cols column specs.
+ * On success *out owns its arrays (release with vl_csv_free); on failure
+ * *out is left empty (safe to vl_csv_free) and err names file, line and
+ * column. Returns VL_EIO if the file cannot be read, VL_EINPUT for bad
+ * content, VL_ENOMEM. */
+vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols,
+                           vl_csv *out, vl_error *err);
+
+/* As vl_csv_read_file for text[0..len) already in memory; source names it in
+ * messages. The text need not be NUL-terminated and is not modified. */
+vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
+                           const vl_csv_column *cols, size_t n_cols, vl_csv *out,
+                           vl_error *err);
+
+/* Releases what a vl_csv owns and empties it; accepts an empty table. */
+void vl_csv_free(vl_csv *csv);
+
+/* Value of data row `row`, requested column `col` (no bounds check beyond an
+ * assertion-free NAN for out-of-range indices). */
+double vl_csv_value(const vl_csv *csv, size_t row, size_t col);
+
+/* Parses a whole string as a finite decimal number with the reader's rules
+ * (surrounding blanks allowed). Returns VL_OK, or VL_EINPUT with *why set to
+ * a short static reason ("not a number", "NaN and infinity are not allowed",
+ * "outside the range of a double", "empty"). Used for command-line values. */
+vl_status vl_csv_parse_double(const char *text, double *out, const char **why);
+
+/* Prony file: header "A,tau_s" (optional units row "1,s"), one creep term
+ * per row (MODEL.md section 2), A >= 0, tau_s > 0, at most
+ * VL_PRONY_MAX_TERMS rows. Fills prony->n_terms, A and tau_s only (Einf
+ * and nu are left as they were). */
+vl_status vl_csv_read_prony(const char *path, vl_prony *prony, vl_error *err);
+
+/* Tabulated isotropic 2-D PSD: header "q_per_m,C_m4" (optional units row
+ * "1/m,m^4"), q > 0 strictly increasing, C > 0, at least 2 rows. On success
+ * *psd is initialised by vl_psd_init_tabulated (caller vl_psd_free). */
+vl_status vl_csv_read_psd(const char *path, vl_psd *psd, vl_error *err);
+
+#endif

@@ -1,0 +1,177 @@
+/* viscolube: the material database (SQLite).
+ *
+ * One file holds rubber compounds (Prony series, MODEL.md section 2),
+ * roughness power spectra and lubricants. The schema lives in materials/*.sql
+ * (embedded in the program): NNNN_*.sql are forward migrations, applied in
+ * order, each in its own transaction that also sets PRAGMA user_version;
+ * seed_*.sql are the shipped materials, inserted only into a new database.
+ *
+ * Guarantees:
+ *   - Foreign keys are ON; every write runs in one BEGIN IMMEDIATE ... COMMIT
+ *     transaction and is rolled back entirely on any failure, so a failed
+ *     call leaves the database file byte-for-byte as it was.
+ *   - A file whose schema is newer than this program knows, that is not a
+ *     viscolube database, or that is corrupt is refused (VL_EDB) and not
+ *     touched. A file without write permission (by its permission bits, even
+ *     for root) is opened read-only: reads work, writes fail with VL_EDB.
+ *   - Derived columns (surface C0, h_rms, rms slope) are computed by the
+ *     vl_psd_* functions, for shipped and user-added surfaces alike.
+ *
+ * Names are 1..VL_DB_NAME_MAX-1 characters of [A-Za-z0-9._+-], not starting
+ * with '-'. All quantities are SI; temperatures in degrees Celsius. The
+ * library never prints; errors come back as a vl_status and one sentence in
+ * the caller's vl_error. */
+#ifndef VISCOLUBE_DATABASE_H
+#define VISCOLUBE_DATABASE_H
+
+#include <stddef.h>
+
+#include "viscolube/rheology.h"
+#include "viscolube/roughness.h"
+#include "viscolube/status.h"
+
+#define VL_DB_NAME_MAX 64
+#define VL_DB_TEXT_MAX 512
+
+typedef struct vl_db vl_db;
+
+/* A compound as stored: the Prony series and its metadata. */
+typedef struct {
+  char name[VL_DB_NAME_MAX];
+  char class_name[16];               /* model | filled | unfilled | other */
+  char description[VL_DB_TEXT_MAX];  /* free text, including the source */
+  vl_prony prony;                    /* Einf, nu, terms at tref_c */
+  double tref_c;                     /* reference temperature of the series */
+  double wlf_c1, wlf_c2_k;           /* WLF constants, NAN when absent */
+  char source_file[VL_DB_TEXT_MAX];  /* file the terms came from ("" if none) */
+  char method[VL_DB_NAME_MAX];       /* 'prony-csv', 'model', a fit method */
+  double fit_rms_error;              /* NAN when not fitted */
+  char created_at[32];               /* ISO 8601 UTC, set by the database */
+} vl_db_compound;
+
+/* A surface as stored (metadata and derived scalars; the spectrum itself is
+ * returned by vl_db_surface_get). */
+typedef struct {
+  char name[VL_DB_NAME_MAX];
+  vl_psd_kind kind;
+  double hurst;           /* self-affine only (NAN for tabulated) */
+  double q0_per_m;        /* band (tabulated: first and last q) */
+  double q1_per_m;
+  double hrms_m;          /* derived by vl_psd_hrms (equals the input for self-affine) */
+  double c0_m4;           /* self-affine prefactor (NAN for tabulated) */
+  double rms_slope;       /* derived by vl_psd_rms_slope */
+  size_t n_points;        /* tabulated points (0 for self-affine) */
+  char description[VL_DB_TEXT_MAX];
+  char source_file[VL_DB_TEXT_MAX];
+  char created_at[32];
+} vl_db_surface;
+
+/* A Newtonian lubricant. */
+typedef struct {
+  char name[VL_DB_NAME_MAX];
+  double viscosity_pa_s;  /* low-shear viscosity at tref_c */
+  double tref_c;
+  char description[VL_DB_TEXT_MAX];
+  char source_file[VL_DB_TEXT_MAX];
+  char created_at[32];
+} vl_db_fluid;
+
+/* ---- opening ---------------------------------------------------------- */
+
+/* Opens the database at path (NULL = vl_db_default_path, whose directories
+ * are created). A missing file is created, migrated and seeded in one
+ * transaction (and removed again if that fails); an older schema is
+ * migrated forward. On success *out must be closed with vl_db_close; on
+ * failure *out is NULL. Errors: VL_EDB (newer schema, foreign or corrupt
+ * file, read-only file needing an upgrade, SQLite failure), VL_EIO (cannot
+ * create the directory or file), VL_ENOMEM. */
+vl_status vl_db_open(const char *path, vl_db **out, vl_error *err);
+
+/* Closes and frees db (NULL is a no-op). */
+void vl_db_close(vl_db *db);
+
+/* Writes the default path into buf: $VISCOLUBE_DB if set and non-empty, else
+ * $XDG_DATA_HOME/viscolube/materials.db, else
+ * $HOME/.local/share/viscolube/materials.db. VL_EINPUT if none of the
+ * variables is set or buf is too small. Creates nothing. */
+vl_status vl_db_default_path(char *buf, size_t size, vl_error *err);
+
+/* The path the database was opened with (owned by db). */
+const char *vl_db_path(const vl_db *db);
+
+/* Nonzero if db was opened read-only (file without write permission). */
+int vl_db_readonly(const vl_db *db);
+
+/* The schema version this program creates and understands. */
+int vl_db_schema_version(void);
+
+/* ---- compounds -------------------------------------------------------- */
+
+/* The Prony series of compound `name` at its reference temperature.
+ * VL_ENOTFOUND (message names it and suggests close names). */
+vl_status vl_db_compound_get(vl_db *db, const char *name, vl_prony *out, vl_error *err);
+
+/* Everything stored about compound `name`. VL_ENOTFOUND. */
+vl_status vl_db_compound_info(vl_db *db, const char *name, vl_db_compound *out, vl_error *err);
+
+/* Adds a compound. Checks the name, class, texts, vl_prony_validate and the
+ * WLF pair (both or neither, c2 > 0) before touching the file. created_at
+ * is ignored. VL_EINPUT, VL_EEXIST, VL_EDB. */
+vl_status vl_db_compound_add(vl_db *db, const vl_db_compound *compound, vl_error *err);
+
+/* Removes compound `name` and everything that belongs to it (terms,
+ * measurements, shift factors). VL_ENOTFOUND, VL_EDB. */
+vl_status vl_db_compound_remove(vl_db *db, const char *name, vl_error *err);
+
+/* All compounds sorted by name into a malloc'd array (caller free()s
+ * *items; *items is NULL when *n is 0). */
+vl_status vl_db_compound_list(vl_db *db, vl_db_compound **items, size_t *n, vl_error *err);
+
+/* ---- surfaces --------------------------------------------------------- */
+
+/* The PSD of surface `name` (tabulated points included). On success the
+ * caller owns *out and releases it with vl_psd_free. VL_ENOTFOUND. */
+vl_status vl_db_surface_get(vl_db *db, const char *name, vl_psd *out, vl_error *err);
+
+/* Metadata and derived scalars of surface `name`. VL_ENOTFOUND. */
+vl_status vl_db_surface_info(vl_db *db, const char *name, vl_db_surface *out, vl_error *err);
+
+/* Adds surface `name` from psd: self-affine (hurst, q0, q1, hrms_m are
+ * read) or tabulated (n, q, C are read). The PSD is re-initialised through
+ * vl_psd_init_self_affine / vl_psd_init_tabulated, which validate it, and
+ * the derived columns are computed from that copy. description and
+ * source_file may be NULL. VL_EINPUT, VL_EEXIST, VL_EDB. */
+vl_status vl_db_surface_add(vl_db *db, const char *name, const vl_psd *psd,
+                            const char *description, const char *source_file, vl_error *err);
+
+/* Removes surface `name` with its points. VL_ENOTFOUND, VL_EDB. */
+vl_status vl_db_surface_remove(vl_db *db, const char *name, vl_error *err);
+
+/* All surfaces sorted by name (caller free()s *items). */
+vl_status vl_db_surface_list(vl_db *db, vl_db_surface **items, size_t *n, vl_error *err);
+
+/* ---- fluids ----------------------------------------------------------- */
+
+/* Low-shear viscosity (Pa s) of fluid `name` at its reference temperature.
+ * VL_ENOTFOUND. */
+vl_status vl_db_fluid_get(vl_db *db, const char *name, double *eta_pa_s, vl_error *err);
+
+/* Everything stored about fluid `name`. VL_ENOTFOUND. */
+vl_status vl_db_fluid_info(vl_db *db, const char *name, vl_db_fluid *out, vl_error *err);
+
+/* Adds a fluid (viscosity > 0 and finite, tref finite). created_at is
+ * ignored. VL_EINPUT, VL_EEXIST, VL_EDB. */
+vl_status vl_db_fluid_add(vl_db *db, const vl_db_fluid *fluid, vl_error *err);
+
+/* Removes fluid `name`. VL_ENOTFOUND, VL_EDB. */
+vl_status vl_db_fluid_remove(vl_db *db, const char *name, vl_error *err);
+
+/* All fluids sorted by name (caller free()s *items). */
+vl_status vl_db_fluid_list(vl_db *db, vl_db_fluid **items, size_t *n, vl_error *err);
+
+/* ---- helpers ---------------------------------------------------------- */
+
+/* VL_OK if name is a valid material name, else VL_EINPUT saying why. */
+vl_status vl_db_check_name(const char *name, vl_error *err);
+
+#endif

@@ -1,0 +1,67 @@
+/* viscolube: a scene file (INI) names the materials, the operating
+ * conditions, the effects to simulate and the numerics. Only the effects
+ * switched on are built and solved. See README.md for every key. */
+#ifndef VISCOLUBE_SCENE_H
+#define VISCOLUBE_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "viscolube/contact.h"
+#include "viscolube/status.h"
+
+#define VL_NAME_MAX 128
+#define VL_FIELDS_AT_MAX 32
+
+typedef enum {
+  VL_SWEEP_V0 = 0,     /* sliding speed, m/s */
+  VL_SWEEP_V0_ETA,     /* v0 * eta, Pa m */
+  VL_SWEEP_DEBORAH     /* v0 tau / a0, one-term compounds */
+} vl_sweep_quantity;
+
+typedef enum { VL_FLOW_SMOOTH = 0, VL_FLOW_PATIR_CHENG } vl_flow_factor_model;
+
+typedef enum {
+  VL_ELASTIC_RELAXED = 0, /* viscoelastic = off: E = E0 of the compound */
+  VL_ELASTIC_GLASSY,      /* E = Einf */
+  VL_ELASTIC_GIVEN        /* E = elastic_modulus_pa */
+} vl_elastic_choice;
+
+typedef struct {
+  char path[1024];
+  char title[256];
+  /* [materials] */
+  char compound[VL_NAME_MAX], surface[VL_NAME_MAX], fluid[VL_NAME_MAX];
+  vl_elastic_choice elastic;
+  double elastic_modulus_pa;
+  /* [contact] */
+  double radius_m, load_n_per_m, sigma_s_pa;
+  /* [sweep] */
+  vl_sweep_quantity quantity;
+  double from, to;
+  size_t points;
+  size_t n_fields_at;
+  double fields_at[VL_FIELDS_AT_MAX]; /* in the sweep quantity's units */
+  /* [effects] */
+  bool viscoelastic, roughness, fluid, solid_shear, viscous_flattening, temperature;
+  vl_flow_factor_model flow_factors;
+  double temperature_c;
+  /* [numerics] */
+  size_t grid;
+  double domain_min_a0, domain_max_a0;
+  double tolerance;
+  vl_linear_solver linear_solver;
+  size_t persson_table;
+} vl_scene;
+
+/* Parses a scene file. Errors (unknown section or key, missing required key,
+ * bad value, inconsistent effects) name "file:line: [section] key: why". */
+vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err);
+
+/* The same from text (path is used in messages only). */
+vl_status vl_scene_parse(const char *text, const char *path, vl_scene *scene, vl_error *err);
+
+const char *vl_sweep_quantity_name(vl_sweep_quantity q);
+const char *vl_flow_factor_model_name(vl_flow_factor_model m);
+
+#endif

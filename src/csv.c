@@ -1,0 +1,548 @@
+/* A small strict CSV reader for numeric tables (csv.h). */
+#define _POSIX_C_SOURCE 200809L
+
+#include "viscolube/csv.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Guards against reading a stray huge file (a disk image, a log) into memory:
+ * measured tables are kilobytes to a few megabytes. */
+#define CSV_MAX_BYTES ((size_t)256 << 20)
+/* Longest cell we try to read as a number (beyond this it is not data). */
+#define NUMBER_MAX_CHARS 128
+/* Longest excerpt of a bad cell quoted back in a message. */
+#define SHOW_MAX_CHARS 40
+
+typedef struct {
+  const char *p;
+  size_t n;
+} span;
+
+static int is_blank(char c) { return c == ' ' || c == '\t'; }
+
+static span trim(span s) {
+  while (s.n > 0 && is_blank(s.p[0])) s.p++, s.n--;
+  while (s.n > 0 && is_blank(s.p[s.n - 1])) s.n--;
+  return s;
+}
+
+/* Header and units cells may be quoted by spreadsheet exports. */
+static span unquote(span s) {
+  s = trim(s);
+  if (s.n >= 2 && s.p[0] == '"' && s.p[s.n - 1] == '"') {
+    s.p++;
+    s.n -= 2;
+    s = trim(s);
+  }
+  return s;
+}
+
+static int span_eq(span s, const char *t) {
+  size_t n = strlen(t);
+  return s.n == n && memcmp(s.p, t, n) == 0;
+}
+
+/* Copies a cell for quoting in a message: truncated, control bytes as '?'. */
+static void show(span s, char *buf, size_t size) {
+  size_t k = 0;
+  for (size_t i = 0; i < s.n && k + 4 < size && i < SHOW_MAX_CHARS; i++) {
+    unsigned char c = (unsigned char)s.p[i];
+    buf[k++] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
+  }
+  if (s.n > SHOW_MAX_CHARS && k + 4 < size) {
+    memcpy(buf + k, "...", 3);
+    k += 3;
+  }
+  buf[k] = '\0';
+}
+
+/* Splits a line at commas into at most cap cells; returns the total count
+ * (which may exceed cap: only the first cap are stored). */
+static size_t split(span line, span *cells, size_t cap) {
+  size_t count = 0;
+  const char *start = line.p, *end = line.p + line.n;
+  for (const char *c = line.p;; c++) {
+    if (c == end || *c == ',') {
+      if (count < cap) cells[count] = (span){start, (size_t)(c - start)};
+      count++;
+      if (c == end) break;
+      start = c + 1;
+    }
+  }
+  return count;
+}
+
+/* Case-insensitive ASCII comparison of a span with a string. */
+static int span_eq_nocase(span s, const char *t) {
+  size_t n = strlen(t);
+  if (s.n != n) return 0;
+  for (size_t i = 0; i < n; i++) {
+    char a = s.p[i], b = t[i];
+    if (a >= 'A' && a <= 'Z') a = (char)(a - 'A' + 'a');
+    if (b >= 'A' && b <= 'Z') b = (char)(b - 'A' + 'a');
+    if (a != b) return 0;
+  }
+  return 1;
+}
+
+/* Edit distance between a span and a string, capped at 9 (enough to decide
+ * whether a header cell is a misspelling worth suggesting a fix for). */
+static size_t distance(span a, const char *b) {
+  size_t nb = strlen(b);
+  if (a.n > 32 || nb > 32) return 9;
+  size_t prev[33], cur[33];
+  for (size_t j = 0; j <= nb; j++) prev[j] = j;
+  for (size_t i = 1; i <= a.n; i++) {
+    cur[0] = i;
+    for (size_t j = 1; j <= nb; j++) {
+      size_t sub = prev[j - 1] + (a.p[i - 1] != b[j - 1]);
+      size_t del = prev[j] + 1, ins = cur[j - 1] + 1;
+      cur[j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
+    }
+    memcpy(prev, cur, (nb + 1) * sizeof *prev);
+  }
+  return prev[nb] < 9 ? prev[nb] : 9;
+}
+
+/* Strict decimal syntax: [+-]digits[.digits] or [+-].digits, optional
+ * exponent. Rejects what strtod would also take: nan, inf, hex, blanks. */
+static int decimal_syntax(const char *s) {
+  const char *p = s;
+  if (*p == '+' || *p == '-') p++;
+  size_t digits = 0;
+  while (*p >= '0' && *p <= '9') p++, digits++;
+  if (*p == '.') {
+    p++;
+    while (*p >= '0' && *p <= '9') p++, digits++;
+  }
+  if (digits == 0) return 0;
+  if (*p == 'e' || *p == 'E') {
+    p++;
+    if (*p == '+' || *p == '-') p++;
+    if (!(*p >= '0' && *p <= '9')) return 0;
+    while (*p >= '0' && *p <= '9') p++;
+  }
+  return *p == '\0';
+}
+
+static vl_status parse_span(span s, double *out, const char **why) {
+  s = trim(s);
+  char buf[NUMBER_MAX_CHARS + 1];
+  if (s.n == 0) {
+    *why = "empty";
+    return VL_EINPUT;
+  }
+  if (s.n > NUMBER_MAX_CHARS) {
+    *why = "not a number";
+    return VL_EINPUT;
+  }
+  memcpy(buf, s.p, s.n);
+  buf[s.n] = '\0';
+  if (!decimal_syntax(buf)) {
+    const char *b = buf + (buf[0] == '+' || buf[0] == '-');
+    span t = {b, strlen(b)};
+    if (span_eq_nocase(t, "nan") || span_eq_nocase(t, "inf") ||
+        span_eq_nocase(t, "infinity"))
+      *why = "NaN and infinity are not allowed";
+    else
+      *why = "not a number";
+    return VL_EINPUT;
+  }
+  errno = 0;
+  double v = strtod(buf, NULL);
+  /* ERANGE also flags underflow: a value below 1e-308 in a material file is
+   * a unit mistake, not data, so it is refused like an overflow. */
+  if (errno == ERANGE || !isfinite(v)) {
+    *why = "outside the range of a double";
+    return VL_EINPUT;
+  }
+  *out = v;
+  return VL_OK;
+}
+
+vl_status vl_csv_parse_double(const char *text, double *out, const char **why) {
+  const char *dummy;
+  if (!why) why = &dummy;
+  if (!text) {
+    *why = "empty";
+    return VL_EINPUT;
+  }
+  return parse_span((span){text, strlen(text)}, out, why);
+}
+
+void vl_csv_free(vl_csv *csv) {
+  if (!csv) return;
+  free(csv->source);
+  free(csv->values);
+  free(csv->lines);
+  free(csv->present);
+  memset(csv, 0, sizeof *csv);
+}
+
+double vl_csv_value(const vl_csv *csv, size_t row, size_t col) {
+  if (row >= csv->n_rows || col >= csv->n_cols) return NAN;
+  return csv->values[row * csv->n_cols + col];
+}
+
+/* "A,tau_s" for messages; optional columns in brackets. */
+static void expected_header(const vl_csv_column *cols, size_t n_cols, char *buf, size_t size) {
+  size_t k = 0;
+  buf[0] = '\0';
+  for (size_t c = 0; c < n_cols && k < size; c++) {
+    int w = snprintf(buf + k, size - k, "%s%s%s%s", c ? "," : "", cols[c].optional ? "[" : "",
+                     cols[c].name, cols[c].optional ? "]" : "");
+    if (w < 0) break;
+    k += (size_t)w;
+  }
+}
+
+/* Does cell match one of the '|'-separated spellings in units? */
+static int units_match(span cell, const char *units) {
+  if (!units) return 1;
+  const char *p = units;
+  for (;;) {
+    const char *bar = strchr(p, '|');
+    size_t n = bar ? (size_t)(bar - p) : strlen(p);
+    if (cell.n == n && memcmp(cell.p, p, n) == 0) return 1;
+    if (!bar) return 0;
+    p = bar + 1;
+  }
+}
+
+/* The units row the file would need, in the file's column order. */
+static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields,
+                           char *buf, size_t size) {
+  size_t k = 0;
+  buf[0] = '\0';
+  for (size_t f = 0; f < n_fields && k < size; f++) {
+    const char *u = cols[map[f]].units ? cols[map[f]].units : "";
+    size_t n = strcspn(u, "|");
+    int w = snprintf(buf + k, size - k, "%s%.*s", f ? "," : "", (int)n, u);
+    if (w < 0) break;
+    k += (size_t)w;
+  }
+}
+
+static vl_status grow(vl_csv *out, size_t *cap) {
+  size_t ncap = *cap ? 2 * *cap : 64;
+  double *v = realloc(out->values, ncap * out->n_cols * sizeof *v);
+  if (!v) return VL_ENOMEM;
+  out->values = v;
+  size_t *l = realloc(out->lines, ncap * sizeof *l);
+  if (!l) return VL_ENOMEM;
+  out->lines = l;
+  *cap = ncap;
+  return VL_OK;
+}
+
+vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
+                           const vl_csv_column *cols, size_t n_cols, vl_csv *out,
+                           vl_error *err) {
+  vl_status st = VL_OK;
+  span *cells = NULL;
+  size_t *map = NULL;
+  size_t cap = 0, line_no = 0, n_fields = 0, header_line = 0, last_line = 0;
+  enum { HEADER, UNITS, DATA } stage = HEADER;
+  char hdr[512], shown[64];
+  const char *src = source ? source : "<text>";
+
+  memset(out, 0, sizeof *out);
+  if (!cols || n_cols == 0 || (!text && len > 0)) {
+    vl_error_set(err, "%s: no columns requested (a bug in the caller)", src);
+    return VL_EINTERNAL;
+  }
+  expected_header(cols, n_cols, hdr, sizeof hdr);
+  out->source = strdup(src);
+  out->n_cols = n_cols;
+  out->present = calloc(n_cols, sizeof *out->present);
+  cells = malloc((n_cols + 1) * sizeof *cells);
+  map = malloc((n_cols + 1) * sizeof *map);
+  if (!out->source || !out->present || !cells || !map) {
+    st = VL_ENOMEM;
+    vl_error_set(err, "%s: out of memory", src);
+    goto cleanup;
+  }
+
+  size_t pos = 0;
+  if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) pos = 3;
+  while (pos < len) {
+    line_no++;
+    const char *nl = memchr(text + pos, '\n', len - pos);
+    size_t end = nl ? (size_t)(nl - text) : len;
+    span line = {text + pos, end - pos};
+    pos = end + 1;
+    if (line.n > 0 && line.p[line.n - 1] == '\r') line.n--;
+    if (memchr(line.p, '\0', line.n)) {
+      vl_error_set(err, "%s:%zu: contains a NUL byte (not a text file?)", src, line_no);
+      st = VL_EINPUT;
+      goto cleanup;
+    }
+    span t = trim(line);
+    if (t.n == 0 || t.p[0] == '#') continue;
+    last_line = line_no;
+
+    if (stage == HEADER) {
+      size_t count = split(line, cells, n_cols + 1);
+      size_t stored = count < n_cols + 1 ? count : n_cols + 1;
+      int all_numbers = 1;
+      for (size_t f = 0; f < stored && all_numbers; f++) {
+        double v;
+        const char *why;
+        if (parse_span(cells[f], &v, &why) != VL_OK) all_numbers = 0;
+      }
+      if (all_numbers) {
+        vl_error_set(err, "%s:%zu: missing header: expected the column names '%s' before the numbers",
+                     src, line_no, hdr);
+        st = VL_EINPUT;
+        goto cleanup;
+      }
+      for (size_t f = 0; f < stored; f++) {
+        span name = unquote(cells[f]);
+        show(name, shown, sizeof shown);
+        if (name.n == 0) {
+          vl_error_set(err, "%s:%zu: header field %zu is empty (expected the header '%s')", src,
+                       line_no, f + 1, hdr);
+          st = VL_EINPUT;
+          goto cleanup;
+        }
+        size_t c = 0;
+        while (c < n_cols && !span_eq(name, cols[c].name)) c++;
+        if (c == n_cols) {
+          size_t best = n_cols, best_d = 9;
+          for (size_t k = 0; k < n_cols; k++) {
+            size_t d = span_eq_nocase(name, cols[k].name) ? 0 : distance(name, cols[k].name);
+            if (d < best_d) best_d = d, best = k;
+          }
+          if (best < n_cols && best_d <= 2)
+            vl_error_set(err,
+                         "%s:%zu: header field %zu: unknown column '%s' (did you mean '%s'? "
+                         "expected the header '%s')",
+                         src, line_no, f + 1, shown, cols[best].name, hdr);
+          else
+            vl_error_set(err, "%s:%zu: header field %zu: unknown column '%s' (expected the header '%s')",
+                         src, line_no, f + 1, shown, hdr);
+          st = VL_EINPUT;
+          goto cleanup;
+        }
+        if (out->present[c]) {
+          vl_error_set(err, "%s:%zu: header field %zu: column '%s' appears twice", src, line_no,
+                       f + 1, cols[c].name);
+          st = VL_EINPUT;
+          goto cleanup;
+        }
+        out->present[c] = 1;
+        map[f] = c;
+      }
+      for (size_t c = 0; c < n_cols; c++) {
+        if (!out->present[c] && !cols[c].optional) {
+          vl_error_set(err, "%s:%zu: the header lacks column '%s' (expected the header '%s')", src,
+                       line_no, cols[c].name, hdr);
+          st = VL_EINPUT;
+          goto cleanup;
+        }
+      }
+      n_fields = count;
+      header_line = line_no;
+      stage = UNITS;
+      continue;
+    }
+
+    size_t count = split(line, cells, n_fields);
+    if (count != n_fields) {
+      vl_error_set(err, "%s:%zu: expected %zu comma-separated fields like the header, found %zu",
+                   src, line_no, n_fields, count);
+      st = VL_EINPUT;
+      goto cleanup;
+    }
+
+    if (stage == UNITS) {
+      stage = DATA;
+      int any_text = 0;
+      for (size_t f = 0; f < n_fields && !any_text; f++) {
+        double v;
+        const char *why;
+        if (parse_span(cells[f], &v, &why) != VL_OK) any_text = 1;
+      }
+      if (any_text) {
+        char units[256];
+        expected_units(cols, map, n_fields, units, sizeof units);
+        for (size_t f = 0; f < n_fields; f++) {
+          span u = unquote(cells[f]);
+          if (!units_match(u, cols[map[f]].units)) {
+            show(u, shown, sizeof shown);
+            vl_error_set(err,
+                         "%s:%zu: column '%s' (field %zu): '%s' is neither a number nor the "
+                         "expected unit (an optional units row after the header must read '%s')",
+                         src, line_no, cols[map[f]].name, f + 1, shown, units);
+            st = VL_EINPUT;
+            goto cleanup;
+          }
+        }
+        out->has_units_row = 1;
+        continue;
+      }
+    }
+
+    if (out->n_rows == cap && (st = grow(out, &cap)) != VL_OK) {
+      vl_error_set(err, "%s:%zu: out of memory", src, line_no);
+      goto cleanup;
+    }
+    double *row = out->values + out->n_rows * n_cols;
+    for (size_t c = 0; c < n_cols; c++) row[c] = NAN;
+    for (size_t f = 0; f < n_fields; f++) {
+      const vl_csv_column *col = &cols[map[f]];
+      double v = 0.0;
+      const char *why = NULL;
+      span cell = trim(cells[f]);
+      show(cell, shown, sizeof shown);
+      if (parse_span(cell, &v, &why) != VL_OK) {
+        vl_error_set(err, "%s:%zu: column '%s' (field %zu): %s (got '%s')", src, line_no,
+                     col->name, f + 1, why, shown);
+        st = VL_EINPUT;
+        goto cleanup;
+      }
+      if ((col->sign == VL_CSV_POSITIVE && !(v > 0.0)) ||
+          (col->sign == VL_CSV_NONNEGATIVE && !(v >= 0.0))) {
+        vl_error_set(err, "%s:%zu: column '%s' (field %zu): must be %s (got '%s')", src, line_no,
+                     col->name, f + 1, col->sign == VL_CSV_POSITIVE ? "> 0" : ">= 0", shown);
+        st = VL_EINPUT;
+        goto cleanup;
+      }
+      if (col->increasing && out->n_rows > 0) {
+        double prev = out->values[(out->n_rows - 1) * n_cols + map[f]];
+        if (!(v > prev)) {
+          vl_error_set(err,
+                       "%s:%zu: column '%s' (field %zu): values must increase strictly down the "
+                       "file (got %.17g after %.17g on line %zu)",
+                       src, line_no, col->name, f + 1, v, prev, out->lines[out->n_rows - 1]);
+          st = VL_EINPUT;
+          goto cleanup;
+        }
+      }
+      row[map[f]] = v;
+    }
+    out->lines[out->n_rows++] = line_no;
+  }
+
+  if (stage == HEADER) {
+    vl_error_set(err, "%s:%zu: empty file (expected the header '%s' and data rows)", src,
+                 line_no ? line_no : 1, hdr);
+    st = VL_EINPUT;
+  } else if (out->n_rows == 0) {
+    vl_error_set(err, "%s:%zu: no data rows after the header on line %zu", src, last_line,
+                 header_line);
+    st = VL_EINPUT;
+  }
+
+cleanup:
+  free(cells);
+  free(map);
+  if (st != VL_OK) vl_csv_free(out);
+  return st;
+}
+
+vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols,
+                           vl_csv *out, vl_error *err) {
+  vl_status st = VL_OK;
+  char *buf = NULL;
+  size_t len = 0, cap = 0;
+  memset(out, 0, sizeof *out);
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    vl_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    return VL_EIO;
+  }
+  for (;;) {
+    if (len == cap) {
+      if (cap >= CSV_MAX_BYTES) {
+        vl_error_set(err, "%s: larger than %zu MiB: not a material table", path,
+                     CSV_MAX_BYTES >> 20);
+        st = VL_EINPUT;
+        goto cleanup;
+      }
+      size_t ncap = cap ? 2 * cap : 65536;
+      char *nb = realloc(buf, ncap);
+      if (!nb) {
+        vl_error_set(err, "%s: out of memory", path);
+        st = VL_ENOMEM;
+        goto cleanup;
+      }
+      buf = nb;
+      cap = ncap;
+    }
+    size_t got = fread(buf + len, 1, cap - len, f);
+    len += got;
+    if (got == 0) break;
+  }
+  if (ferror(f)) {
+    vl_error_set(err, "%s: cannot read: %s", path, strerror(errno));
+    st = VL_EIO;
+    goto cleanup;
+  }
+  st = vl_csv_read_text(buf, len, path, cols, n_cols, out, err);
+
+cleanup:
+  free(buf);
+  fclose(f);
+  return st;
+}
+
+vl_status vl_csv_read_prony(const char *path, vl_prony *prony, vl_error *err) {
+  static const vl_csv_column cols[] = {
+      {.name = "A", .units = "1|-", .sign = VL_CSV_NONNEGATIVE},
+      {.name = "tau_s", .units = "s", .sign = VL_CSV_POSITIVE},
+  };
+  vl_csv csv;
+  vl_status st = vl_csv_read_file(path, cols, 2, &csv, err);
+  if (st != VL_OK) return st;
+  if (csv.n_rows > VL_PRONY_MAX_TERMS) {
+    vl_error_set(err, "%s:%zu: too many Prony terms (at most %d)", path,
+                 csv.lines[VL_PRONY_MAX_TERMS], VL_PRONY_MAX_TERMS);
+    vl_csv_free(&csv);
+    return VL_EINPUT;
+  }
+  prony->n_terms = csv.n_rows;
+  for (size_t i = 0; i < csv.n_rows; i++) {
+    prony->A[i] = vl_csv_value(&csv, i, 0);
+    prony->tau_s[i] = vl_csv_value(&csv, i, 1);
+  }
+  vl_csv_free(&csv);
+  return VL_OK;
+}
+
+vl_status vl_csv_read_psd(const char *path, vl_psd *psd, vl_error *err) {
+  static const vl_csv_column cols[] = {
+      {.name = "q_per_m", .units = "1/m|m^-1", .sign = VL_CSV_POSITIVE, .increasing = 1},
+      {.name = "C_m4", .units = "m^4|m4", .sign = VL_CSV_POSITIVE},
+  };
+  vl_csv csv;
+  memset(psd, 0, sizeof *psd);
+  vl_status st = vl_csv_read_file(path, cols, 2, &csv, err);
+  if (st != VL_OK) return st;
+  if (csv.n_rows < 2) {
+    vl_error_set(err, "%s:%zu: a tabulated PSD needs at least 2 points (found %zu)", path,
+                 csv.lines[csv.n_rows - 1], csv.n_rows);
+    vl_csv_free(&csv);
+    return VL_EINPUT;
+  }
+  double *q = malloc(csv.n_rows * sizeof *q), *C = malloc(csv.n_rows * sizeof *C);
+  if (!q || !C) {
+    vl_error_set(err, "%s: out of memory", path);
+    st = VL_ENOMEM;
+  } else {
+    for (size_t k = 0; k < csv.n_rows; k++) {
+      q[k] = vl_csv_value(&csv, k, 0);
+      C[k] = vl_csv_value(&csv, k, 1);
+    }
+    st = vl_psd_init_tabulated(psd, csv.n_rows, q, C, err);
+    if (st != VL_OK) vl_error_prefix(err, "%s", path);
+  }
+  free(q);
+  free(C);
+  vl_csv_free(&csv);
+  return st;
+}

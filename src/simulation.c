@@ -1,0 +1,160 @@
+/* Scene -> solver (simulation.h). */
+#include "viscolube/simulation.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct vl_simulation {
+  vl_scene scene;
+  vl_prony rubber;
+  bool have_psd;
+  vl_psd psd;
+  vl_persson *table;
+  double eta_pa_s;
+  vl_contact *contact;
+  size_t n;
+  double *v0;
+  bool *fields;
+};
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* Speed (m/s) for a value of the sweep quantity. */
+static double speed_of(const vl_simulation *sim, double value) {
+  switch (sim->scene.quantity) {
+  case VL_SWEEP_V0: return value;
+  case VL_SWEEP_V0_ETA: return value / sim->eta_pa_s;
+  case VL_SWEEP_DEBORAH: return value * vl_contact_a0(sim->contact) / sim->rubber.tau_s[0];
+  }
+  return value;
+}
+
+static vl_status build_speeds(vl_simulation *sim, vl_error *err) {
+  const vl_scene *sc = &sim->scene;
+  size_t n = sc->points + sc->n_fields_at;
+  sim->v0 = malloc(n * sizeof *sim->v0);
+  double *fv = malloc((sc->n_fields_at + 1) * sizeof *fv);
+  sim->fields = calloc(n, sizeof *sim->fields);
+  if (!sim->v0 || !fv || !sim->fields) {
+    free(fv);
+    vl_error_set(err, "out of memory for %zu sweep points", n);
+    return VL_ENOMEM;
+  }
+  for (size_t i = 0; i < sc->points; i++) {
+    double t = sc->points > 1 ? (double)i / (double)(sc->points - 1) : 0.0;
+    sim->v0[i] = speed_of(sim, sc->from * pow(sc->to / sc->from, t));
+  }
+  for (size_t k = 0; k < sc->n_fields_at; k++) fv[k] = speed_of(sim, sc->fields_at[k]);
+  /* merge: a fields_at value within 1e-9 relative of a sweep point uses it */
+  size_t m = sc->points;
+  for (size_t k = 0; k < sc->n_fields_at; k++) {
+    bool found = false;
+    for (size_t i = 0; i < m; i++)
+      if (fabs(sim->v0[i] - fv[k]) <= 1e-9 * fv[k]) found = true;
+    if (!found) sim->v0[m++] = fv[k];
+  }
+  qsort(sim->v0, m, sizeof *sim->v0, cmp_double);
+  for (size_t k = 0; k < sc->n_fields_at; k++)
+    for (size_t i = 0; i < m; i++)
+      if (fabs(sim->v0[i] - fv[k]) <= 1e-9 * fv[k]) sim->fields[i] = true;
+  sim->n = m;
+  free(fv);
+  return VL_OK;
+}
+
+vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation **out,
+                               vl_error *err) {
+  *out = NULL;
+  vl_simulation *sim = calloc(1, sizeof *sim);
+  if (!sim) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  sim->scene = *scene;
+  vl_status st = vl_db_compound_get(db, scene->compound, &sim->rubber, err);
+  if (st != VL_OK) goto fail;
+  if (scene->quantity == VL_SWEEP_DEBORAH && sim->rubber.n_terms != 1) {
+    vl_error_set(err, "%s: [sweep] quantity = deborah needs a one-term compound; '%s' has %zu terms",
+                 scene->path, scene->compound, sim->rubber.n_terms);
+    st = VL_EINPUT;
+    goto fail;
+  }
+  if (scene->fluid[0]) {
+    st = vl_db_fluid_get(db, scene->fluid, &sim->eta_pa_s, err);
+    if (st != VL_OK) goto fail;
+  }
+  if (scene->roughness) {
+    st = vl_db_surface_get(db, scene->surface, &sim->psd, err);
+    if (st != VL_OK) goto fail;
+    sim->have_psd = true;
+    st = vl_persson_build(&sim->psd, scene->persson_table, &sim->table, err);
+    if (st != VL_OK) goto fail;
+  }
+  vl_contact_config cfg;
+  vl_contact_config_defaults(&cfg);
+  cfg.rubber = sim->rubber;
+  if (!scene->viscoelastic) {
+    /* Elastic: no Prony kernels are built or evaluated. */
+    double e = scene->elastic == VL_ELASTIC_GLASSY  ? sim->rubber.e_inf_pa
+               : scene->elastic == VL_ELASTIC_GIVEN ? scene->elastic_modulus_pa
+                                                    : vl_prony_e0(&sim->rubber);
+    cfg.rubber.n_terms = 0;
+    cfg.rubber.e_inf_pa = e;
+  }
+  cfg.radius_m = scene->radius_m;
+  cfg.load_n_per_m = scene->load_n_per_m;
+  cfg.sigma_s_pa = scene->solid_shear ? scene->sigma_s_pa : 0.0;
+  cfg.roughness = sim->table;
+  cfg.grid = scene->grid;
+  cfg.x_min_a0 = scene->domain_min_a0;
+  cfg.x_max_a0 = scene->domain_max_a0;
+  cfg.tolerance = scene->tolerance;
+  cfg.linear_solver = scene->linear_solver;
+  st = vl_contact_create(&cfg, &sim->contact, err);
+  if (st != VL_OK) {
+    vl_error_prefix(err, "%s", scene->path);
+    goto fail;
+  }
+  st = build_speeds(sim, err);
+  if (st != VL_OK) goto fail;
+  *out = sim;
+  return VL_OK;
+fail:
+  vl_simulation_free(sim);
+  return st;
+}
+
+void vl_simulation_free(vl_simulation *sim) {
+  if (!sim) return;
+  vl_contact_free(sim->contact);
+  vl_persson_free(sim->table);
+  if (sim->have_psd) vl_psd_free(&sim->psd);
+  free(sim->v0);
+  free(sim->fields);
+  free(sim);
+}
+
+size_t vl_simulation_points(const vl_simulation *sim) { return sim->n; }
+const double *vl_simulation_speeds(const vl_simulation *sim) { return sim->v0; }
+bool vl_simulation_wants_fields(const vl_simulation *sim, size_t i) {
+  return i < sim->n && sim->fields[i];
+}
+vl_contact *vl_simulation_contact(vl_simulation *sim) { return sim->contact; }
+const vl_scene *vl_simulation_scene(const vl_simulation *sim) { return &sim->scene; }
+double vl_simulation_eta(const vl_simulation *sim) { return sim->eta_pa_s; }
+double vl_simulation_tau(const vl_simulation *sim) {
+  return sim->rubber.n_terms == 1 ? sim->rubber.tau_s[0] : 0.0;
+}
+const vl_prony *vl_simulation_rubber(const vl_simulation *sim) { return &sim->rubber; }
+const vl_psd *vl_simulation_psd(const vl_simulation *sim) {
+  return sim->have_psd ? &sim->psd : NULL;
+}
+
+vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
+                            vl_sweep_stats *stats, vl_error *err) {
+  return vl_sweep_run(sim->contact, sim->n, sim->v0, NULL, out, cb, user, stats, err);
+}
