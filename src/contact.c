@@ -457,6 +457,40 @@ void vl_contact_fields(const vl_contact *c, vl_fields *f) {
   }
 }
 
+double vl_contact_jacobian_check(vl_contact *c, double v0_m_s) {
+  contact_set_speed(c, v0_m_s);
+  size_t m = c->nunk;
+  SUNMatrix J = SUNDenseMatrix((sunindextype)m, (sunindextype)m, c->ctx);
+  N_Vector yp = N_VClone(c->y), fp = N_VClone(c->y), fm = N_VClone(c->y);
+  if (!J || !yp || !fp || !fm) {
+    if (J) SUNMatDestroy(J);
+    if (yp) N_VDestroy(yp);
+    if (fp) N_VDestroy(fp);
+    if (fm) N_VDestroy(fm);
+    return -1.0;
+  }
+  jacobian_fn(c->y, c->fwork, J, c, NULL, NULL);
+  double *Jd = SUNDenseMatrix_Data(J), jmax = 0.0, dmax = 0.0;
+  for (size_t k = 0; k < m * m; k++) jmax = fmax(jmax, fabs(Jd[k]));
+  double *y = N_VGetArrayPointer(yp);
+  for (size_t j = 0; j < m; j++) {
+    N_VScale(1.0, c->y, yp);
+    double h = 1e-6 * fmax(fabs(y[j]), 1e-3);
+    y[j] += h;
+    residual_fn(yp, fp, c);
+    y[j] -= 2.0 * h;
+    residual_fn(yp, fm, c);
+    const double *a = N_VGetArrayPointer(fp), *b = N_VGetArrayPointer(fm);
+    for (size_t i = 0; i < m; i++)
+      dmax = fmax(dmax, fabs((a[i] - b[i]) / (2.0 * h) - Jd[j * m + i]));
+  }
+  SUNMatDestroy(J);
+  N_VDestroy(yp);
+  N_VDestroy(fp);
+  N_VDestroy(fm);
+  return dmax / jmax;
+}
+
 size_t vl_contact_grid(const vl_contact *c) { return c->n; }
 double vl_contact_a0(const vl_contact *c) { return c->a0; }
 double vl_contact_p0(const vl_contact *c) { return c->p0; }

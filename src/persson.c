@@ -45,6 +45,9 @@
 #define GL_ORDER 8        /* Gauss-Legendre points per panel */
 #define PANEL_DT 0.25     /* largest panel width in t = ln q */
 #define PANEL_RATIO 2.0   /* geometric growth of panels near q0 (in sigma) */
+#define MONITOR_X0 2.0    /* x = ln(expm1(u/u*)) beyond which y(x) is ~linear */
+#define MONITOR_FLOOR 0.1
+#define PILOT_DMU 0.25    /* pilot step in monitor units */
 #define EULER_GAMMA 0.57721566490153286061
 
 struct vl_persson {
@@ -368,6 +371,83 @@ static vl_status copy_psd(vl_psd *dst, const vl_psd *src, vl_error *err) {
   return vl_psd_init_tabulated(dst, src->n, src->q, src->C, err);
 }
 
+/* Node density per unit ln s (the monitor): arc length in the (ln s, x)
+ * plane, damped where y(x) is nearly linear (large x: the deviation from
+ * the asymptote decays like s ~ e^{-x}, so the cubic's error h^4 y^(4)
+ * allows steps growing like e^{x/4}), with a floor so steps stay bounded. */
+static double monitor(double x, double dxdlns) {
+  double damp = exp(-fmax(0.0, x - MONITOR_X0) / 4.0);
+  return sqrt(1.0 + dxdlns * dxdlns) * fmax(damp, MONITOR_FLOOR);
+}
+
+/* Evaluates the rule at ln s: u, x and dx/d ln s. */
+static int eval_node(const vl_persson *t, const rule *r, double lns, double *u, double *x,
+                     double *dxdlns) {
+  double dlns, dxdu;
+  *u = rule_u(r, exp(lns), &dlns);
+  if (!(*u > 0.0 && isfinite(*u) && dlns < 0.0 && isfinite(dlns))) return 0;
+  *x = x_of_u(t, *u, &dxdu);
+  *dxdlns = dxdu * dlns;
+  return 1;
+}
+
+/* Places n nodes between lns_min and lns_max equidistributing the monitor.
+ * A pilot march (steps of about PILOT_DMU in monitor units) measures the
+ * cumulative monitor; nodes are then uniform in it. */
+static vl_status place_nodes(vl_persson *t, const rule *r, double lns_min, double lns_max,
+                             vl_error *err) {
+  vl_status st = VL_OK;
+  size_t cap = 64, m = 0;
+  double *pl = malloc(cap * sizeof *pl), *pmu = malloc(cap * sizeof *pmu);
+  double lns = lns_max, u, x, dxl, rho_prev = 0.0;
+  if (!pl || !pmu) goto nomem;
+  while (1) {
+    if (!eval_node(t, r, lns, &u, &x, &dxl)) goto bad;
+    double rho = monitor(x, dxl);
+    if (m == cap) {
+      cap *= 2;
+      double *a = realloc(pl, cap * sizeof *pl);
+      if (a) pl = a;
+      double *b = a ? realloc(pmu, cap * sizeof *pmu) : NULL;
+      if (b) pmu = b;
+      if (!a || !b) goto nomem;
+    }
+    pl[m] = lns;
+    pmu[m] = m ? pmu[m - 1] + 0.5 * (rho + rho_prev) * (pl[m - 1] - lns) : 0.0;
+    m++;
+    rho_prev = rho;
+    if (lns <= lns_min) break;
+    lns = fmax(lns_min, lns - PILOT_DMU / rho);
+  }
+  /* pl decreasing, pmu increasing: node j (u increasing) sits at
+   * mu = pmu_end j/(n-1), ln s by linear interpolation. */
+  size_t seg = 0;
+  for (size_t j = 0; j < t->n; j++) {
+    double mu = pmu[m - 1] * (double)j / (double)(t->n - 1);
+    while (seg + 2 < m && pmu[seg + 1] < mu) seg++;
+    double f = (pmu[seg + 1] > pmu[seg]) ? (mu - pmu[seg]) / (pmu[seg + 1] - pmu[seg]) : 0.0;
+    f = fmin(1.0, fmax(0.0, f));
+    lns = j == 0 ? lns_max : j + 1 == t->n ? lns_min : pl[seg] + f * (pl[seg + 1] - pl[seg]);
+    if (!eval_node(t, r, lns, &u, &x, &dxl)) goto bad;
+    t->u[j] = u;
+    t->x[j] = x;
+    t->y[j] = lns;
+    t->d[j] = 1.0 / dxl;
+  }
+  goto cleanup;
+nomem:
+  vl_error_set(err, "out of memory while placing Persson table nodes");
+  st = VL_ENOMEM;
+  goto cleanup;
+bad:
+  vl_error_set(err, "Persson table: u(s) not positive and finite at s = %g", exp(lns));
+  st = VL_EINTERNAL;
+cleanup:
+  free(pl);
+  free(pmu);
+  return st;
+}
+
 void vl_persson_free(vl_persson *table) {
   if (!table) return;
   vl_psd_free(&table->psd);
@@ -427,33 +507,10 @@ vl_status vl_persson_build(const vl_psd *psd, size_t n_table, vl_persson **out, 
   }
 
   /* Range in ln s, from the asymptotes, refined by Newton. */
-  double four_g = 4.0 * t->g;
-  double lns_max = solve_lns(&r, U_MIN_HRMS * t->hrms, 0.5 * log(four_g));
+  double lns_max = solve_lns(&r, U_MIN_HRMS * t->hrms, 0.5 * log(4.0 * t->g));
   double lns_min = solve_lns(&r, U_MAX_HRMS * t->hrms, -U_MAX_HRMS * t->hrms / t->ustar);
-  double z_min = lns_min + exp(2.0 * lns_min) / four_g;
-  double z_max = lns_max + exp(2.0 * lns_max) / four_g;
-  double lns = lns_min;
-  for (size_t k = 0; k < n_table; k++) {
-    double z = z_min + (z_max - z_min) * (double)k / (double)(n_table - 1);
-    for (int it = 0; it < 100; it++) { /* z(ln s) is convex and increasing */
-      double e = exp(2.0 * lns) / four_g;
-      double step = (z - lns - e) / (1.0 + 2.0 * e);
-      lns += step;
-      if (fabs(step) < 1e-14 * fmax(1.0, fabs(lns))) break;
-    }
-    double dlns, u = rule_u(&r, exp(lns), &dlns);
-    size_t j = n_table - 1 - k; /* u increasing with j */
-    double dxdu;
-    if (!(u > 0.0 && isfinite(u) && dlns < 0.0)) {
-      vl_error_set(err, "Persson table: u(s) not positive and finite at s = %g", exp(lns));
-      st = VL_EINTERNAL;
-      goto cleanup;
-    }
-    t->u[j] = u;
-    t->y[j] = lns;
-    t->x[j] = x_of_u(t, u, &dxdu);
-    t->d[j] = 1.0 / (dlns * dxdu);
-  }
+  st = place_nodes(t, &r, lns_min, lns_max, err);
+  if (st != VL_OK) goto cleanup;
   for (size_t j = 0; j + 1 < n_table; j++) {
     if (!(t->x[j + 1] > t->x[j])) {
       vl_error_set(err, "Persson table: u(s) not strictly decreasing near s = %g", exp(t->y[j]));
@@ -532,6 +589,11 @@ double vl_persson_separation(const vl_persson *t, double s) {
   return u_of_x(t, t->x[lo] + h * dx);
 }
 
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
 /* Adaptive integrand for the exact u(s). */
 typedef struct {
   const vl_psd *psd;
@@ -551,14 +613,30 @@ double vl_persson_separation_exact(const vl_persson *t, double s) {
   gsl_set_error_handler_off();
   const vl_psd *psd = &t->psd;
   double sigma_end = sigma_of_dt(log(psd->q1 / psd->q0));
+  /* Near sigma = 0 the integrand is ~ c E1(b^2/sigma^2), b ~ s: a
+   * log-like feature of width b that an adaptive rule sampling [0, 1] would
+   * miss. Breakpoints at b/4, b, 4b and at every decade down to b/10 expose
+   * it (below 1e-20 the integrand's share is ~1e-20 |ln s|: negligible). */
+  double bb = s / (sqrt(M_PI) * psd->q0 * psd->q0 * sqrt(vl_psd_value(psd, psd->q0)));
   size_t nkk = kinks(psd, sigma_end, NULL);
-  double *pts = malloc((nkk + 1) * sizeof *pts);
+  double *pts = malloc((nkk + 40) * sizeof *pts);
   gsl_integration_workspace *ws = gsl_integration_workspace_alloc(4000);
   double result = NAN, abserr;
   if (!pts || !ws) goto cleanup;
-  pts[0] = 0.0;
+  size_t np = 0;
+  pts[np++] = 0.0;
   kinks(psd, sigma_end, pts + 1);
-  size_t np = nkk + 1;
+  np += nkk;
+  double extra[3] = {0.25 * bb, bb, 4.0 * bb};
+  for (int k = 0; k < 3; k++)
+    if (extra[k] > 1e-20 && extra[k] < sigma_end) pts[np++] = extra[k];
+  for (double dec = 0.1; dec > fmax(0.1 * bb, 1e-20) && np < nkk + 40; dec *= 0.1)
+    if (dec < sigma_end) pts[np++] = dec;
+  qsort(pts, np, sizeof *pts, cmp_double);
+  size_t m = 1; /* drop near-duplicates: qagp needs increasing points */
+  for (size_t k = 1; k < np; k++)
+    if (pts[k] > pts[m - 1] * (1.0 + 1e-9)) pts[m++] = pts[k];
+  np = m;
   exact_ctx ctx = {psd, s};
   gsl_function f = {exact_integrand, &ctx};
   int status = gsl_integration_qagp(&f, pts, np, 0.0, 1e-12, 4000, ws, &result, &abserr);

@@ -173,24 +173,24 @@ static int handler(void *user, const char *section, const char *key, const char 
     }
   } else if (!strcmp(section, "effects")) {
     bool *sw = NULL;
-    if (!strcmp(key, "viscoelastic")) sw = &sc->viscoelastic;
-    else if (!strcmp(key, "roughness")) sw = &sc->roughness;
-    else if (!strcmp(key, "fluid")) sw = &sc->fluid;
-    else if (!strcmp(key, "solid_shear")) sw = &sc->solid_shear;
-    else if (!strcmp(key, "viscous_flattening")) sw = &sc->viscous_flattening;
-    else if (!strcmp(key, "temperature")) sw = &sc->temperature;
+    if (!strcmp(key, "viscoelastic")) sw = &sc->effects.viscoelastic;
+    else if (!strcmp(key, "roughness")) sw = &sc->effects.roughness;
+    else if (!strcmp(key, "fluid")) sw = &sc->effects.fluid;
+    else if (!strcmp(key, "solid_shear")) sw = &sc->effects.solid_shear;
+    else if (!strcmp(key, "viscous_flattening")) sw = &sc->effects.viscous_flattening;
+    else if (!strcmp(key, "temperature")) sw = &sc->effects.temperature;
     if (sw) {
       if (!parse_switch(value, sw)) return fail(ps, section, key, "expected on or off, got '%s'", value);
       return 1;
     }
     if (!strcmp(key, "flow_factors")) {
-      if (!strcmp(value, "smooth")) sc->flow_factors = VL_FLOW_SMOOTH;
-      else if (!strcmp(value, "patir-cheng")) sc->flow_factors = VL_FLOW_PATIR_CHENG;
+      if (!strcmp(value, "smooth")) sc->effects.flow_factors = VL_FLOW_SMOOTH;
+      else if (!strcmp(value, "patir-cheng")) sc->effects.flow_factors = VL_FLOW_PATIR_CHENG;
       else return fail(ps, section, key, "expected smooth or patir-cheng, got '%s'", value);
       return 1;
     }
     if (!strcmp(key, "temperature_c")) {
-      if (!parse_double(value, &sc->temperature_c) || sc->temperature_c < -273.15)
+      if (!parse_double(value, &sc->effects.temperature_c) || sc->effects.temperature_c < -273.15)
         return fail(ps, section, key, "expected a temperature in C, got '%s'", value);
       return 1;
     }
@@ -251,9 +251,9 @@ static char *reader(char *str, int num, void *stream) {
 
 static void scene_defaults(vl_scene *sc) {
   memset(sc, 0, sizeof *sc);
-  sc->viscoelastic = true;
+  sc->effects.viscoelastic = true;
   sc->elastic = VL_ELASTIC_RELAXED;
-  sc->temperature_c = NAN;
+  sc->effects.temperature_c = NAN;
   sc->grid = 512;
   sc->domain_min_a0 = -1.6;
   sc->domain_max_a0 = 1.4;
@@ -276,32 +276,32 @@ static vl_status scene_check(parse_state *ps) {
       return VL_EINPUT;
     }
   }
-  if (sc->roughness && !sc->surface[0]) {
+  if (sc->effects.roughness && !sc->surface[0]) {
     vl_error_set(ps->err, "%s: [effects] roughness = on needs [materials] surface", ps->path);
     return VL_EINPUT;
   }
-  if (sc->fluid && !sc->fluid[0]) {
+  if (sc->effects.fluid && !sc->fluid[0]) {
     vl_error_set(ps->err, "%s: [effects] fluid = on needs [materials] fluid", ps->path);
     return VL_EINPUT;
   }
-  if (sc->quantity == VL_SWEEP_V0_ETA && !sc->fluid) {
+  if (sc->quantity == VL_SWEEP_V0_ETA && !sc->effects.fluid) {
     vl_error_set(ps->err, "%s: [sweep] quantity = v0_eta needs [effects] fluid = on", ps->path);
     return VL_EINPUT;
   }
-  if (sc->quantity == VL_SWEEP_DEBORAH && !sc->viscoelastic) {
+  if (sc->quantity == VL_SWEEP_DEBORAH && !sc->effects.viscoelastic) {
     vl_error_set(ps->err, "%s: [sweep] quantity = deborah needs [effects] viscoelastic = on",
                  ps->path);
     return VL_EINPUT;
   }
-  if (sc->solid_shear && !(sc->sigma_s_pa > 0.0)) {
+  if (sc->effects.solid_shear && !(sc->sigma_s_pa > 0.0)) {
     vl_error_set(ps->err, "%s: [effects] solid_shear = on needs [contact] sigma_s_pa > 0",
                  ps->path);
     return VL_EINPUT;
   }
-  if (!sc->solid_shear) sc->sigma_s_pa = 0.0;
-  if (sc->flow_factors != VL_FLOW_SMOOTH && !sc->roughness) {
+  if (!sc->effects.solid_shear) sc->sigma_s_pa = 0.0;
+  if (sc->effects.flow_factors != VL_FLOW_SMOOTH && !sc->effects.roughness) {
     vl_error_set(ps->err, "%s: [effects] flow_factors = %s needs roughness = on", ps->path,
-                 vl_flow_factor_model_name(sc->flow_factors));
+                 vl_flow_factor_model_name(sc->effects.flow_factors));
     return VL_EINPUT;
   }
   if (sc->points > 1 && !(sc->to > sc->from)) {
@@ -316,9 +316,9 @@ static vl_status scene_check(parse_state *ps) {
     }
   }
   /* Effects of later issues: refuse rather than silently ignore them. */
-  if (sc->fluid || sc->viscous_flattening || sc->temperature) {
+  if (sc->effects.fluid || sc->effects.viscous_flattening || sc->effects.temperature) {
     vl_error_set(ps->err, "%s: [effects] %s = on is not available in this version", ps->path,
-                 sc->fluid ? "fluid" : sc->viscous_flattening ? "viscous_flattening" : "temperature");
+                 sc->effects.fluid ? "fluid" : sc->effects.viscous_flattening ? "viscous_flattening" : "temperature");
     return VL_EINPUT;
   }
   return VL_OK;

@@ -87,7 +87,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     st = vl_db_fluid_get(db, scene->fluid, &sim->eta_pa_s, err);
     if (st != VL_OK) goto fail;
   }
-  if (scene->roughness) {
+  if (scene->effects.roughness) {
     st = vl_db_surface_get(db, scene->surface, &sim->psd, err);
     if (st != VL_OK) goto fail;
     sim->have_psd = true;
@@ -97,7 +97,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   vl_contact_config cfg;
   vl_contact_config_defaults(&cfg);
   cfg.rubber = sim->rubber;
-  if (!scene->viscoelastic) {
+  if (!scene->effects.viscoelastic) {
     /* Elastic: no Prony kernels are built or evaluated. */
     double e = scene->elastic == VL_ELASTIC_GLASSY  ? sim->rubber.e_inf_pa
                : scene->elastic == VL_ELASTIC_GIVEN ? scene->elastic_modulus_pa
@@ -107,7 +107,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   }
   cfg.radius_m = scene->radius_m;
   cfg.load_n_per_m = scene->load_n_per_m;
-  cfg.sigma_s_pa = scene->solid_shear ? scene->sigma_s_pa : 0.0;
+  cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
   cfg.roughness = sim->table;
   cfg.grid = scene->grid;
   cfg.x_min_a0 = scene->domain_min_a0;

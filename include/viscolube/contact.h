@@ -94,6 +94,12 @@ void vl_contact_reset(vl_contact *c);
 /* Copies the current fields (n = grid) into f (arrays allocated by caller). */
 void vl_contact_fields(const vl_contact *c, vl_fields *f);
 
+/* Test aid: compares the analytic Jacobian at the current state (speed v0)
+ * with central finite differences of the residual; returns the largest
+ * |J_fd - J| over all entries divided by the largest |J|, or a negative
+ * value on allocation failure. Leaves the state unchanged. */
+double vl_contact_jacobian_check(vl_contact *c, double v0_m_s);
+
 size_t vl_contact_grid(const vl_contact *c);
 double vl_contact_a0(const vl_contact *c); /* m */
 double vl_contact_p0(const vl_contact *c); /* Pa */

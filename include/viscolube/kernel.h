@@ -12,8 +12,10 @@
  * Both are exact closed forms (with exp(z) E1(z) / Ei functions) evaluated
  * with series or asymptotic branches so that full double precision holds for
  * b/delta from 1e-12 to 1e12 and for |d|/delta up to 1e6.
- * Limits: Kve(d, 0) = Ke(d); as b -> inf, Kve(d, b) -> delta (log b - gamma)
- * + o(1), a constant in d (the glassy response). */
+ * Limits: Kve(d, 0) = Ke(d); as b -> inf,
+ *   Kve(d, b) = delta (log b - gamma) + O((|d| + delta)/b * log(b/delta)),
+ * a constant in d (the glassy response; gamma = Euler's constant). The closed
+ * form and its branches are derived at the top of src/kernel.c. */
 #ifndef VISCOLUBE_KERNEL_H
 #define VISCOLUBE_KERNEL_H
 
@@ -21,11 +23,21 @@
 
 #include "viscolube/status.h"
 
-/* Ke(d): elastic coefficient of a cell of width delta at offset d. */
+/* Branch switches of the evaluation (in units of delta), exposed so that tests
+ * can probe continuity across them: b/delta <= VL_KERNEL_BETA_SWITCH uses the
+ * closed form directly; above it, |d|/delta < VL_KERNEL_X_SWITCH uses a power
+ * series and |d|/delta >= VL_KERNEL_X_SWITCH a cell-midpoint Taylor series. */
+#define VL_KERNEL_BETA_SWITCH 8.0
+#define VL_KERNEL_X_SWITCH 8.0
+
+/* Ke(d): elastic coefficient of a cell of width delta > 0 at offset d (any
+ * finite d, including the cell edges d = +-delta/2). NaN if delta <= 0. */
 double vl_kernel_elastic(double d, double delta);
 
-/* Kve(d, b): viscoelastic (memory) coefficient for one Prony term, b = v0*tau >= 0.
- * b == 0 returns Ke(d). */
+/* Kve(d, b): viscoelastic (memory) coefficient for one Prony term, b = v0*tau >= 0
+ * (same length unit as d and delta). b == 0 returns Ke(d). Accurate to a few
+ * ulps of max(|Kve|, delta) for b/delta in [1e-12, 1e12], |d|/delta <= 1e6.
+ * NaN if delta <= 0 or b < 0. Turns GSL's abort handler off. */
 double vl_kernel_viscoelastic(double d, double delta, double b);
 
 /* Toeplitz influence matrix of an n-node grid: coef[k], k = (i - j) + n - 1,
@@ -37,14 +49,21 @@ typedef struct {
   double *coef; /* 2n-1 values, owned */
 } vl_toeplitz;
 
-/* Fills t (allocating coef) for n nodes with spacing delta and Prony terms
- * (A[k], b[k] = v0 tau_k). Frees nothing on entry; on failure t->coef == NULL. */
+/* Fills t (allocating coef) for n >= 1 nodes with spacing delta > 0 and Prony
+ * terms (A[k] finite, b[k] = v0 tau_k >= 0 finite, same length unit as delta).
+ * Frees nothing on entry; on failure t->coef == NULL and err says why
+ * (VL_EINPUT, VL_ENOMEM). The caller releases t with vl_toeplitz_free.
+ * Cost: about one exponential-integral evaluation per offset and term
+ * (~2e7 per second). Turns GSL's abort handler off. */
 vl_status vl_toeplitz_build(vl_toeplitz *t, size_t n, double delta, const double *A,
                             const double *b, size_t n_terms, vl_error *err);
 
-/* Refills an already allocated t for new b (same n, delta): no allocation. */
+/* Refills an already built t for new A, b (same n, delta): no allocation.
+ * The inputs must satisfy vl_toeplitz_build's conditions (not rechecked).
+ * Gives bit-for-bit the coefficients vl_toeplitz_build would give. */
 void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t n_terms);
 
+/* Releases t->coef (t may be NULL; safe to call twice). */
 void vl_toeplitz_free(vl_toeplitz *t);
 
 /* Matrix element (i, j). */

@@ -42,10 +42,12 @@ typedef struct {
   size_t points;
   size_t n_fields_at;
   double fields_at[VL_FIELDS_AT_MAX]; /* in the sweep quantity's units */
-  /* [effects] */
-  bool viscoelastic, roughness, fluid, solid_shear, viscous_flattening, temperature;
-  vl_flow_factor_model flow_factors;
-  double temperature_c;
+  /* [effects]: only those on are built and solved */
+  struct {
+    bool viscoelastic, roughness, fluid, solid_shear, viscous_flattening, temperature;
+    vl_flow_factor_model flow_factors;
+    double temperature_c;
+  } effects;
   /* [numerics] */
   size_t grid;
   double domain_min_a0, domain_max_a0;

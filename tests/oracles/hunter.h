@@ -51,10 +51,22 @@ typedef struct {
 int vl_oracle_hunter_solve(double deborah, double einf_over_e0,
                            vl_oracle_hunter_solution *out);
 
+/* Pressure series of a solution, precomputed for fast repeated evaluation. */
+typedef struct vl_oracle_hunter_profile vl_oracle_hunter_profile;
+
+/* Builds the profile of a converged solution; NULL on failure (allocation,
+ * GSL, or s not converged). Free with vl_oracle_hunter_profile_free. */
+vl_oracle_hunter_profile *vl_oracle_hunter_profile_new(const vl_oracle_hunter_solution *s);
+
+/* p/p0 at x/a0 (0 outside the contact). O(number of Bessel terms). */
+double vl_oracle_hunter_profile_pressure(const vl_oracle_hunter_profile *pr, double x_over_a0);
+
+/* Frees a profile (NULL allowed). */
+void vl_oracle_hunter_profile_free(vl_oracle_hunter_profile *pr);
+
 /* p/p0 at x/a0 for a solution returned by vl_oracle_hunter_solve (0 outside
- * the contact). Recomputes the Bessel coefficients on each call: use the
- * array form for many points. Returns NAN if the coefficients cannot be
- * computed. */
+ * the contact). Rebuilds the profile on each call: use a profile or the
+ * array form for many points. Returns NAN on failure. */
 double vl_oracle_hunter_pressure(const vl_oracle_hunter_solution *s,
                                  double x_over_a0);
 

@@ -1,0 +1,323 @@
+/* viscolube: surface-displacement influence coefficients (kernel.h).
+ *
+ * Closed form (derived for the convention of MODEL.md section 1; the paper's
+ * Appendix A uses x + v0 t, i.e. the mirror image, and has typos).
+ *
+ * Everything is written in units of the cell width delta: x = d/delta,
+ * beta = b/delta, a+- = x +- 1/2, z+- = a+-/beta. Because
+ * log|delta u| = log(delta) + log|u|,
+ *   Ke(d)     = delta [ log(delta) + k(x) ],
+ *   Kve(d, b) = delta [ log(delta) + kve(x, beta) ].
+ *
+ * Elastic cell:  k(x) = F(a+) - F(a-),  F(y) = y log|y| - y  (F(0) = 0), i.e.
+ *   k(x) = x log|a+/a-| + (1/2) log|x^2 - 1/4| - 1.
+ *
+ * Memory term. With L(a, beta) = \int_0^inf e^{-s} log|a - beta s| ds,
+ *   L(a, beta) = log(beta) + m(a/beta),   m(z) = log|z| - e^{-z} Ei(z),
+ * (for z < 0, -e^{-z} Ei(z) = e^{|z|} E1(|z|); for z > 0 the principal value
+ * gives -e^{-z} Ei(z)), m is continuous with m(0) = -gamma. Integrating by
+ * parts, \int_0^inf e^{-s} F(a - beta s) ds = F(a) - beta L(a, beta), so
+ *   kve(x, beta) = k(x) - beta [ m(z+) - m(z-) ]                          (I)
+ *                = log(beta) + (1/w) \int_{z-}^{z+} m(z) dz,  w = 1/beta.   (II)
+ * With g(z) = -e^{-z} Ei(z) (so m = log|z| + g), for |x| > 1/2
+ *   m(z+) - m(z-) = log|a+/a-| + g(z+) - g(z-),  log|a+/a-| = 2 atanh(1/(2x)).
+ *
+ * Limits: beta -> 0: kve = k(x) - beta log|a+/a-| + O(beta^2).
+ * beta -> inf:
+ *   kve = log(beta) - gamma - (x/beta)(log(beta) - gamma + 3/2)
+ *         + [a+^2 log|a+| - a-^2 log|a-|] / (2 beta) + O(x^2 log(beta)/beta^2),
+ * so Kve(d, b) - delta (log b - gamma) -> 0 like (|d| + delta)/b * log(b/delta).
+ *
+ * Numerical branches (each accurate to a few ulps of max(|kve|, 1)):
+ *  - beta <= VL_KERNEL_BETA_SWITCH: form (I). Its rounding error is about
+ *    eps * beta * |g|, small while beta is O(1).
+ *  - beta > switch, |x| < VL_KERNEL_X_SWITCH: form (II) with the convergent
+ *    series m(z) = log|z| (1 - e^{-z}) - gamma e^{-z} - Q(z), where
+ *    Q(z) = e^{-z} sum_{n>=1} z^n/(n n!) = sum c_n z^n,
+ *    (n+1) c_{n+1} = -c_n + (-1)^n/(n+1)!, c_0 = 0, integrated term by term
+ *    (|z| <= ~1 here). Cell averages of z^n log|z| are formed without the
+ *    difference of nearly equal antiderivatives.
+ *  - beta > switch, |x| >= switch: form (II) as a midpoint (Taylor) series,
+ *    kve = sum_k L^(2k)(x) / (4^k (2k+1)!), with the derivatives
+ *    L^(n)(x) = beta^{-n} (-1)^n [ g(z) + sum_{j=1}^{n-1} (j-1)!/z^j ], z = x/beta,
+ *    computed by T_1 = g(z)/beta, T_{n+1} = (T_n + (n-1)!/x^n)/beta. The series
+ *    converges like (2|x|)^{-2k} (the only singularity of L is at a = 0). */
+#include "viscolube/kernel.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_sf_expint.h>
+
+#define EULER_GAMMA 0.57721566490153286060651209008240243
+
+/* g(z) = -e^{-z} Ei(z) for z != 0 (log-singular at 0). NaN if GSL fails,
+ * which cannot happen for finite nonzero z; the error handler must be off. */
+static double g_fn(double z) {
+  gsl_sf_result r;
+  int st;
+  if (z < 0.0) {
+    st = gsl_sf_expint_E1_scaled_e(-z, &r);
+    return st == GSL_SUCCESS ? r.val : NAN;
+  }
+  st = gsl_sf_expint_Ei_scaled_e(z, &r);
+  return st == GSL_SUCCESS ? -r.val : NAN;
+}
+
+/* log|a+/a-| for |x| > 1/2. For large |x|, 2 atanh(1/(2x)) avoids the
+ * cancellation of two close logs; near the cell edge atanh(u -> 1) would
+ * amplify the rounding of 1/(2x), while |x| - 1/2 is exact there (Sterbenz). */
+static double dlog_fn(double x) {
+  double ax = fabs(x);
+  if (ax < 2.0) return copysign(log(ax + 0.5) - log(ax - 0.5), x);
+  return 2.0 * atanh(0.5 / x);
+}
+
+/* k(x) = Ke/delta - log(delta): integral of log|x - y| over |y| < 1/2. */
+static double cell_log(double x) {
+  double ax = fabs(x);
+  if (ax >= 2.0) {
+    /* k = log|x| - sum_{n>=1} u^{2n} / (2n (2n+1)), u = 1/(2x): avoids the
+     * cancellation of x log|a+/a-| against 1 when x is large. */
+    double u2 = 0.25 / (x * x), p = u2, s = 0.0;
+    for (int n = 1; n < 40; n++) {
+      double t = p / (double)(2 * n * (2 * n + 1));
+      s += t;
+      if (t < 1e-18 * s) break;
+      p *= u2;
+    }
+    return log(ax) - s;
+  }
+  if (ax > 0.5) return x * dlog_fn(x) + 0.5 * (log(ax - 0.5) + log(ax + 0.5)) - 1.0;
+  double ap = x + 0.5, am = x - 0.5;
+  double fp = ap > 0.0 ? ap * log(ap) - ap : 0.0;
+  double fm = am < 0.0 ? am * log(-am) - am : 0.0;
+  return fp - fm;
+}
+
+/* Coefficients of m(z) = log|z| A(z) + B(z): A = 1 - e^{-z} = sum alpha_n z^n,
+ * B = -gamma e^{-z} - Q(z) = sum b_n z^n. Advances (n -> n+1) in place. */
+typedef struct {
+  int n;
+  double inv_fact; /* 1/n! */
+  double c;        /* c_n of Q */
+} m_coef;
+
+static double m_alpha(const m_coef *mc) {
+  return mc->n == 0 ? 0.0 : ((mc->n & 1) ? mc->inv_fact : -mc->inv_fact);
+}
+static double m_b(const m_coef *mc) {
+  double e = (mc->n & 1) ? -mc->inv_fact : mc->inv_fact; /* (-1)^n / n! */
+  return -EULER_GAMMA * e - mc->c;
+}
+static void m_next(m_coef *mc) {
+  /* (n+1) c_{n+1} = -c_n + (-1)^n/(n+1)! */
+  double np1 = (double)(mc->n + 1);
+  double sgn_if = ((mc->n & 1) ? -1.0 : 1.0) * mc->inv_fact / np1;
+  mc->c = (-mc->c + sgn_if) / np1;
+  mc->inv_fact /= np1;
+  mc->n++;
+}
+
+/* m(z) by its power series; accurate for |z| <~ 1. m(0) = -gamma. */
+static double m_series(double z) {
+  if (z == 0.0) return -EULER_GAMMA;
+  /* A(z) = -expm1(-z) is exact; only B needs the series. */
+  m_coef mc = {0, 1.0, 0.0};
+  double zn = 1.0, sb = 0.0;
+  int small = 0;
+  for (int n = 0; n < 60; n++) {
+    double tb = m_b(&mc) * zn;
+    sb += tb;
+    /* two small terms in a row: a single one can vanish by accident */
+    small = fabs(tb) < 1e-18 * fabs(sb) ? small + 1 : 0;
+    if (small == 2) break;
+    zn *= z;
+    m_next(&mc);
+  }
+  return log(fabs(z)) * -expm1(-z) + sb;
+}
+
+/* m(z) = log|z| + g(z), switching to the series near 0 (log cancellation). */
+static double m_fn(double z) {
+  if (fabs(z) < 0.5) return m_series(z);
+  return log(fabs(z)) + g_fn(z);
+}
+
+/* Branch (I): kve - k = -beta [m(z+) - m(z-)]. */
+static double kve_minus_k_small(double x, double beta) {
+  double zp = (x + 0.5) / beta, zm = (x - 0.5) / beta;
+  double dm;
+  /* log|a+/a-| + g(z+) - g(z-) keeps the large-|x| accuracy, but when a cell
+   * edge is near (|z| < 1/2) log|z| and g(z) nearly cancel: use m's series. */
+  if (fabs(x) > 0.5 && fmin(fabs(zp), fabs(zm)) >= 0.5)
+    dm = dlog_fn(x) + (g_fn(zp) - g_fn(zm));
+  else
+    dm = m_fn(zp) - m_fn(zm);
+  return -beta * dm;
+}
+
+/* Branch (II), |x| small: log(beta) + cell average of m over [z-, z+] by the
+ * term-by-term integrated power series. */
+static double kve_series(double x, double beta) {
+  double q = (x + 0.5) / beta, p = (x - 0.5) / beta;
+  int same_sign = fabs(x) > 0.5;
+  double lq = q != 0.0 ? log(fabs(q)) : 0.0, lp = p != 0.0 ? log(fabs(p)) : 0.0;
+  /* (log|q| - log|p|)/(q - p) = beta log|a+/a-| (stable for close p, q). */
+  double lr = same_sign ? beta * dlog_fn(x) : 0.0;
+  m_coef mc = {0, 1.0, 0.0};
+  double s = 1.0;      /* S_n = (q^{n+1} - p^{n+1})/(q - p) = sum_j q^j p^{n-j} */
+  double pn = 1.0;     /* p^n */
+  double qn1 = q, pn1 = p; /* q^{n+1}, p^{n+1} */
+  double sum = 0.0;
+  int small = 0;
+  for (int n = 0; n < 80; n++) {
+    double np1 = (double)(n + 1);
+    double avg_z = s / np1;
+    double avg_zl;
+    if (same_sign)
+      avg_zl = (lq * s + pn1 * lr) / np1 - s / (np1 * np1);
+    else
+      avg_zl = beta * (qn1 * (lq - 1.0 / np1) - pn1 * (lp - 1.0 / np1)) / np1;
+    double t = m_alpha(&mc) * avg_zl + m_b(&mc) * avg_z;
+    sum += t;
+    /* On a cell symmetric about z = 0 every odd term vanishes: require two
+     * small terms in a row. */
+    small = fabs(t) < 1e-18 * fabs(sum) ? small + 1 : 0;
+    if (small == 2) break;
+    m_next(&mc);
+    pn *= p;
+    s = q * s + pn;
+    qn1 *= q;
+    pn1 *= p;
+  }
+  return log(beta) + sum;
+}
+
+/* Branch (II), |x| large: midpoint Taylor series of the cell average of L. */
+static double kve_far(double x, double beta) {
+  double z = x / beta;
+  double gz = g_fn(z);
+  double sum = fabs(z) < 0.5 ? log(beta) + m_series(z) : log(fabs(x)) + gz;
+  double t = gz / beta; /* T_1 = L'(x) */
+  double r = 1.0 / x;   /* (n-1)!/x^n at n = 1 */
+  double c = 1.0;       /* 1/(4^k (2k+1)!) */
+  for (int n = 1; n < 40; n++) {
+    t = (t + r) / beta; /* T_{n+1} = L^{(n+1)}(x) (-1)^{n+1} */
+    r *= (double)n / x;
+    if ((n + 1) % 2 == 0) {
+      int kk = (n + 1) / 2;
+      c /= 4.0 * (double)(2 * kk) * (double)(2 * kk + 1);
+      double term = c * t;
+      sum += term;
+      if (fabs(term) < 1e-18 * fabs(sum)) break;
+    }
+  }
+  return sum;
+}
+
+/* kve(x, beta) for beta > VL_KERNEL_BETA_SWITCH. */
+static double kve_large(double x, double beta) {
+  if (fabs(x) < VL_KERNEL_X_SWITCH) return kve_series(x, beta);
+  return kve_far(x, beta);
+}
+
+double vl_kernel_elastic(double d, double delta) {
+  if (!(delta > 0.0)) return NAN;
+  return delta * (log(delta) + cell_log(d / delta));
+}
+
+double vl_kernel_viscoelastic(double d, double delta, double b) {
+  if (!(delta > 0.0) || !(b >= 0.0)) return NAN;
+  double x = d / delta, beta = b / delta;
+  if (beta == 0.0) return vl_kernel_elastic(d, delta);
+  gsl_set_error_handler_off();
+  double kve;
+  if (beta <= VL_KERNEL_BETA_SWITCH)
+    kve = cell_log(x) + kve_minus_k_small(x, beta);
+  else
+    kve = kve_large(x, beta);
+  return delta * (log(delta) + kve);
+}
+
+void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t n_terms) {
+  size_t n = t->n, m = 2 * n - 1;
+  double delta = t->delta, ld = log(delta);
+  double *coef = t->coef;
+  gsl_set_error_handler_off();
+
+  /* total = delta [ (1 + sum A) (log delta + k) + sum_k A_k (kve_k - k) ].
+   * In branch (I), kve - k = -beta (log|a+/a-| + g(z+) - g(z-)): the log part
+   * is common to all those terms, so it is applied once with S = sum A beta. */
+  double sum_a = 0.0, s_small = 0.0;
+  for (size_t k = 0; k < n_terms; k++) {
+    sum_a += A[k];
+    double beta = b[k] / delta;
+    if (beta > 0.0 && beta <= VL_KERNEL_BETA_SWITCH) s_small += A[k] * beta;
+  }
+  for (size_t i = 0; i < m; i++) {
+    double x = (double)i - (double)(n - 1);
+    double dl = x != 0.0 ? dlog_fn(x) : 0.0; /* log|a+/a-| = 0 at x = 0 */
+    coef[i] = delta * ((1.0 + sum_a) * (ld + cell_log(x)) - s_small * dl);
+  }
+  for (size_t k = 0; k < n_terms; k++) {
+    double beta = b[k] / delta;
+    if (A[k] == 0.0 || beta == 0.0) continue;
+    if (beta <= VL_KERNEL_BETA_SWITCH) {
+      /* Neighbouring offsets share a half-integer point: one g per offset. */
+      double fac = delta * A[k] * beta;
+      double g_lo = g_fn((-(double)(n - 1) - 0.5) / beta);
+      for (size_t i = 0; i < m; i++) {
+        double x = (double)i - (double)(n - 1);
+        double g_hi = g_fn((x + 0.5) / beta);
+        coef[i] -= fac * (g_hi - g_lo);
+        g_lo = g_hi;
+      }
+    } else {
+      double fac = delta * A[k];
+      for (size_t i = 0; i < m; i++) {
+        double x = (double)i - (double)(n - 1);
+        coef[i] += fac * (kve_large(x, beta) - cell_log(x));
+      }
+    }
+  }
+}
+
+vl_status vl_toeplitz_build(vl_toeplitz *t, size_t n, double delta, const double *A,
+                            const double *b, size_t n_terms, vl_error *err) {
+  t->coef = NULL;
+  t->n = n;
+  t->delta = delta;
+  if (n == 0) {
+    vl_error_set(err, "influence matrix needs at least one node");
+    return VL_EINPUT;
+  }
+  if (!(isfinite(delta) && delta > 0.0)) {
+    vl_error_set(err, "grid spacing must be positive and finite (got %g)", delta);
+    return VL_EINPUT;
+  }
+  for (size_t k = 0; k < n_terms; k++) {
+    if (!isfinite(A[k])) {
+      vl_error_set(err, "Prony term %zu: A is not finite", k + 1);
+      return VL_EINPUT;
+    }
+    if (!(isfinite(b[k]) && b[k] >= 0.0)) {
+      vl_error_set(err, "Prony term %zu: v0*tau must be finite and >= 0 (got %g)", k + 1, b[k]);
+      return VL_EINPUT;
+    }
+  }
+  t->coef = malloc((2 * n - 1) * sizeof *t->coef);
+  if (!t->coef) {
+    vl_error_set(err, "out of memory for a %zu-node influence matrix", n);
+    return VL_ENOMEM;
+  }
+  vl_toeplitz_refill(t, A, b, n_terms);
+  return VL_OK;
+}
+
+void vl_toeplitz_free(vl_toeplitz *t) {
+  if (!t) return;
+  free(t->coef);
+  t->coef = NULL;
+}
