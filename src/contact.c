@@ -23,12 +23,14 @@
 
 struct vl_contact {
   vl_contact_config cfg;
-  bool rough;
+  bool rough, wet;
   size_t n;        /* grid nodes */
-  size_t nunk;     /* unknowns: n field values + rigid approach */
+  size_t nf;       /* fluid unknowns (n when wet, else 0) */
+  size_t nunk;     /* unknowns: n contact + nf fluid + rigid approach */
   double er_ref;   /* reduced modulus defining a0 (relaxed, or the elastic one) */
   double er_inf;   /* reduced glassy modulus (kernel prefactor) */
   double a0, p0, uscale, dxi, kfac;
+  double hrms;     /* rms roughness (m), 0 when smooth */
   double *xi;      /* node positions x/a0 */
   double *A, *beta;/* Prony strengths and v0 tau_k / a0 */
   vl_toeplitz kern;
@@ -36,13 +38,34 @@ struct vl_contact {
   double v0;       /* speed the kernel is built for (NAN: not yet) */
   bool kernel_ready;
   double e_abs, a_h, omega_h, sfac; /* asperity state; P = sfac * s(u) */
-  double *P, *U, *dPdU;             /* work: pressure, gap, dP/dU on the grid */
+  /* fluid scales of the current solve: pf = kappa p0 Pf; Reynolds rows are
+   * divided by the Couette flux v0 u_ref / 2 */
+  double kappa, lambda, rscale, u_ref;
+  double v_state;     /* speed at which y was last converged (0: initial guess) */
+  double q_rolling;   /* rolling number (wet, rough, viscoelastic), else 0 */
+  double *P, *dPdU;   /* contact pressure (p0) and dP/dU on the grid */
+  double *F;          /* fluid pressure (p0) */
+  double *U;          /* separation (a0^2/R) */
+  double *g, *dg, *cf, *dcf; /* conductance u^3 phi_p and Couette film u + h phi_s, /us^3, /us */
+  double *Jf;         /* face fluxes, n + 1 */
+  double *D;          /* rough: elasticity residual U - G */
+  double *theta;      /* film fraction (report only) */
   SUNContext ctx;
   N_Vector y, y_saved, ones, fwork;
   SUNMatrix J;
   SUNLinearSolver LS;
   void *kmem;
 };
+
+const char *vl_regime_name(int regime) {
+  switch (regime) {
+  case VL_REGIME_DRY: return "dry";
+  case VL_REGIME_BOUNDARY: return "boundary";
+  case VL_REGIME_MIXED: return "mixed";
+  case VL_REGIME_HYDRODYNAMIC: return "hydrodynamic";
+  }
+  return "?";
+}
 
 void vl_contact_config_defaults(vl_contact_config *cfg) {
   memset(cfg, 0, sizeof *cfg);
@@ -77,57 +100,112 @@ void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radiu
   if (omega_H) *omega_H = M_PI * v0_m_s / a;
 }
 
-/* Pressure P (dimensionless) and dP/dU from the unknowns. */
-static void contact_pressure(vl_contact *c, const double *y) {
-  size_t n = c->n;
-  if (!c->rough) {
-    memcpy(c->P, y, n * sizeof *c->P);
-    return;
-  }
-  for (size_t i = 0; i < n; i++) {
-    double dsdu;
-    double s = vl_persson_pressure(c->cfg.roughness, y[i] * c->uscale, &dsdu);
-    c->P[i] = c->sfac * s;
-    c->dPdU[i] = c->sfac * dsdu * c->uscale;
-  }
+/* Fischer-Burmeister complementarity a >= 0, b >= 0, a b = 0 (smoothed), with
+ * its partial derivatives. */
+static double fb(double a, double b, double *da, double *db) {
+  double r = sqrt(a * a + b * b + FB_EPS);
+  if (da) *da = 1.0 - a / r;
+  if (db) *db = 1.0 - b / r;
+  return a + b - r;
 }
 
-/* U_i = h0 + xi_i^2/2 + sum_j M_ij P_j (the elastic/viscoelastic gap). */
-static void contact_gap(vl_contact *c, double h0) {
+/* Everything the residual needs from the unknowns y: contact pressure P (and
+ * dP/dU), fluid pressure F, separation U, flow quantities and face fluxes. */
+static void eval_state(vl_contact *c, const double *y) {
   size_t n = c->n;
+  double h0 = y[n + c->nf];
+  if (c->rough) {
+    for (size_t i = 0; i < n; i++) {
+      double dsdu;
+      double s = vl_persson_pressure(c->cfg.roughness, y[i] * c->uscale, &dsdu);
+      c->P[i] = c->sfac * s;
+      c->dPdU[i] = c->sfac * dsdu * c->uscale;
+    }
+  } else {
+    memcpy(c->P, y, n * sizeof *c->P);
+  }
+  for (size_t i = 0; i < n; i++) c->F[i] = c->wet ? c->kappa * y[n + i] : 0.0;
+  /* elastic/viscoelastic gap: h0 + xi^2/2 + sum_j M_ij (P_j + F_j); for a
+   * rough surface it is stored in D (the residual compares it with U) */
+  double *G = c->rough ? c->D : c->U;
   for (size_t i = 0; i < n; i++) {
     const double *row = c->M + i * n;
-    double s = 0.0;
-    for (size_t j = 0; j < n; j++) s += row[j] * c->P[j];
-    c->U[i] = h0 + 0.5 * c->xi[i] * c->xi[i] + s;
+    double acc = 0.0;
+    for (size_t j = 0; j < n; j++) acc += row[j] * (c->P[j] + c->F[j]);
+    G[i] = h0 + 0.5 * c->xi[i] * c->xi[i] + acc;
   }
+  if (c->rough) {
+    for (size_t i = 0; i < n; i++) {
+      c->U[i] = y[i];
+      c->D[i] = y[i] - c->D[i]; /* elasticity residual U - G */
+    }
+  }
+  if (!c->wet) return;
+  /* flow: conductance g = u^3 phi_p and Couette film c = u + h phi_s, with a
+   * conductance floor so that a fully contacted (or closed) cell still fixes
+   * its pressure (a leak far below any physical flow) */
+  double us = c->uscale, floor_g = 1e-12 * pow(fmax(c->hrms, 1e-3 * c->u_ref) / us, 3.0);
+  for (size_t i = 0; i < n; i++) {
+    double u = c->U[i] * us;
+    vl_flow_factor_values v, d;
+    vl_flow_factors_eval(c->cfg.flow_factors, u, c->hrms, &v, &d);
+    double u3 = u * u * u;
+    c->g[i] = u3 * v.phi_p / (us * us * us) + floor_g;
+    c->dg[i] = (3.0 * u * u * v.phi_p + u3 * d.phi_p) / (us * us);
+    c->cf[i] = (u + c->hrms * v.phi_s) / us;
+    c->dcf[i] = 1.0 + c->hrms * d.phi_s;
+  }
+  /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + c (upwind: the fluid
+   * crossing a face carries the film of the cell it leaves); pf = 0 beyond
+   * both ends of the domain (half-cell distance) */
+  const double *pf = y + n;
+  double L = c->lambda, dx = c->dxi;
+  c->Jf[0] = -L * c->g[0] * pf[0] / (0.5 * dx) + c->cf[0];
+  for (size_t i = 0; i + 1 < n; i++)
+    c->Jf[i + 1] = -L * 0.5 * (c->g[i] + c->g[i + 1]) * (pf[i + 1] - pf[i]) / dx + c->cf[i];
+  c->Jf[n] = L * c->g[n - 1] * pf[n - 1] / (0.5 * dx) + c->cf[n - 1];
 }
 
 static double load_sum(const vl_contact *c) {
   double s = 0.0;
-  for (size_t i = 0; i < c->n; i++) s += c->P[i];
+  for (size_t i = 0; i < c->n; i++) s += c->P[i] + c->F[i];
   return s * c->dxi / (0.5 * M_PI);
+}
+
+/* Reynolds row i before complementarity: (J_{i+1/2} - J_{i-1/2}) / dxi, in
+ * units of the Couette flux at the reference film. */
+static double reynolds_residual(const vl_contact *c, size_t i) {
+  return c->rscale * (c->Jf[i + 1] - c->Jf[i]) / c->dxi;
 }
 
 static int residual_fn(N_Vector yv, N_Vector fv, void *user) {
   vl_contact *c = user;
   const double *y = N_VGetArrayPointer(yv);
   double *f = N_VGetArrayPointer(fv);
-  size_t n = c->n;
-  contact_pressure(c, y);
-  contact_gap(c, y[n]);
-  if (!c->rough) {
-    for (size_t i = 0; i < n; i++) {
-      double p = c->P[i], u = c->U[i];
-      f[i] = p + u - sqrt(p * p + u * u + FB_EPS);
-    }
-  } else {
-    for (size_t i = 0; i < n; i++) f[i] = y[i] - c->U[i];
-  }
-  f[n] = load_sum(c) - 1.0;
-  for (size_t i = 0; i <= n; i++)
+  size_t n = c->n, nf = c->nf;
+  eval_state(c, y);
+  for (size_t i = 0; i < n; i++)
+    f[i] = c->rough ? c->D[i] : fb(c->P[i], c->U[i], NULL, NULL);
+  for (size_t i = 0; i < nf; i++) f[n + i] = fb(y[n + i], reynolds_residual(c, i), NULL, NULL);
+  f[n + nf] = load_sum(c) - 1.0;
+  for (size_t i = 0; i < c->nunk; i++)
     if (!isfinite(f[i])) return 1; /* recoverable: KINSOL shortens the step */
   return 0;
+}
+
+/* Adds w * d(U_k)/d(y_j) for all j to column-major row `row` of J: U depends
+ * on y through the gap (smooth) or is the unknown itself (rough). */
+static void add_dU(vl_contact *c, double *Jd, size_t ld, size_t row, size_t k, double w) {
+  size_t n = c->n;
+  if (w == 0.0) return;
+  if (c->rough) {
+    Jd[k * ld + row] += w;
+    return;
+  }
+  const double *mrow = c->M + k * n;
+  for (size_t j = 0; j < n; j++) Jd[j * ld + row] += w * mrow[j];
+  for (size_t j = 0; j < c->nf; j++) Jd[(n + j) * ld + row] += w * c->kappa * mrow[j];
+  Jd[(n + c->nf) * ld + row] += w;
 }
 
 static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vector t1,
@@ -135,33 +213,62 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
   (void)fv, (void)t1, (void)t2;
   vl_contact *c = user;
   const double *y = N_VGetArrayPointer(yv);
-  size_t n = c->n;
+  size_t n = c->n, nf = c->nf, ld = c->nunk, ih = n + nf;
   double *Jd = SUNDenseMatrix_Data(J);
-  size_t ld = n + 1;
-  contact_pressure(c, y);
-  contact_gap(c, y[n]);
-  double lw = c->dxi / (0.5 * M_PI);
-  if (!c->rough) {
-    for (size_t i = 0; i < n; i++) {
-      double p = c->P[i], u = c->U[i];
-      double r = sqrt(p * p + u * u + FB_EPS);
-      double dfdp = 1.0 - p / r, dfdu = 1.0 - u / r;
-      const double *row = c->M + i * n;
-      for (size_t j = 0; j < n; j++) Jd[j * ld + i] = dfdu * row[j];
+  memset(Jd, 0, ld * ld * sizeof *Jd);
+  eval_state(c, y);
+  /* contact / elasticity rows */
+  for (size_t i = 0; i < n; i++) {
+    const double *row = c->M + i * n;
+    if (!c->rough) {
+      double dfdp, dfdu;
+      fb(c->P[i], c->U[i], &dfdp, &dfdu);
+      add_dU(c, Jd, ld, i, i, dfdu);
       Jd[i * ld + i] += dfdp;
-      Jd[n * ld + i] = dfdu;
-    }
-    for (size_t j = 0; j < n; j++) Jd[j * ld + n] = lw;
-  } else {
-    for (size_t i = 0; i < n; i++) {
-      const double *row = c->M + i * n;
+    } else {
       for (size_t j = 0; j < n; j++) Jd[j * ld + i] = -row[j] * c->dPdU[j];
+      for (size_t j = 0; j < nf; j++) Jd[(n + j) * ld + i] = -row[j] * c->kappa;
       Jd[i * ld + i] += 1.0;
-      Jd[n * ld + i] = -1.0;
+      Jd[ih * ld + i] = -1.0;
     }
-    for (size_t j = 0; j < n; j++) Jd[j * ld + n] = lw * c->dPdU[j];
   }
-  Jd[n * ld + n] = 0.0;
+  /* Reynolds rows: the fluxes of faces i-1/2 and i+1/2 depend on pf and u
+   * of the cells i-1, i, i+1 */
+  const double *pf = y + n;
+  double L = c->lambda, dx = c->dxi, w = c->rscale / dx;
+  for (size_t i = 0; i < nf; i++) {
+    size_t row = n + i;
+    double da, db;
+    fb(pf[i], reynolds_residual(c, i), &da, &db);
+    Jd[row * ld + row] += da;
+    double s = db * w; /* d(row)/d(J_{i+1/2}) = s, d(row)/d(J_{i-1/2}) = -s */
+    /* face i+1/2 */
+    if (i + 1 < n) {
+      double gf = 0.5 * (c->g[i] + c->g[i + 1]), dp = (pf[i + 1] - pf[i]) / dx;
+      Jd[(n + i + 1) * ld + row] += s * (-L * gf / dx);
+      Jd[(n + i) * ld + row] += s * (L * gf / dx);
+      add_dU(c, Jd, ld, row, i, s * (-L * 0.5 * c->dg[i] * dp + c->dcf[i]));
+      add_dU(c, Jd, ld, row, i + 1, s * (-L * 0.5 * c->dg[i + 1] * dp));
+    } else {
+      Jd[(n + i) * ld + row] += s * (L * c->g[i] / (0.5 * dx));
+      add_dU(c, Jd, ld, row, i, s * (L * c->dg[i] * pf[i] / (0.5 * dx) + c->dcf[i]));
+    }
+    /* face i-1/2 */
+    if (i > 0) {
+      double gf = 0.5 * (c->g[i - 1] + c->g[i]), dp = (pf[i] - pf[i - 1]) / dx;
+      Jd[(n + i) * ld + row] -= s * (-L * gf / dx);
+      Jd[(n + i - 1) * ld + row] -= s * (L * gf / dx);
+      add_dU(c, Jd, ld, row, i - 1, -s * (-L * 0.5 * c->dg[i - 1] * dp + c->dcf[i - 1]));
+      add_dU(c, Jd, ld, row, i, -s * (-L * 0.5 * c->dg[i] * dp));
+    } else {
+      Jd[(n + i) * ld + row] -= s * (-L * c->g[0] / (0.5 * dx));
+      add_dU(c, Jd, ld, row, 0, -s * (-L * c->dg[0] * pf[0] / (0.5 * dx) + c->dcf[0]));
+    }
+  }
+  /* load balance */
+  double lw = c->dxi / (0.5 * M_PI);
+  for (size_t j = 0; j < n; j++) Jd[j * ld + ih] = lw * (c->rough ? c->dPdU[j] : 1.0);
+  for (size_t j = 0; j < nf; j++) Jd[(n + j) * ld + ih] = lw * c->kappa;
   return 0;
 }
 
@@ -203,23 +310,32 @@ void vl_contact_reset(vl_contact *c) {
       /* Separation of the rough contact under the Hertz pressure, plus the
        * Hertz gap outside. */
       double s = p * c->p0 / c->e_abs;
-      double u = s > 0.0 ? vl_persson_separation(c->cfg.roughness, s) : 0.0;
-      if (s <= 0.0) u = vl_persson_separation(c->cfg.roughness, 1e-12);
+      double u = vl_persson_separation(c->cfg.roughness, s > 0.0 ? s : 1e-12);
       y[i] = u / c->uscale + hertz_gap(x);
     }
   }
-  /* h0 that best satisfies the gap equation inside the contact. */
-  contact_pressure(c, y);
-  contact_gap(c, 0.0);
+  for (size_t i = 0; i < c->nf; i++) y[n + i] = 0.0;
+  c->kappa = 1.0;
+  c->v_state = 0.0;
+  /* h0 that best satisfies the gap equation inside the contact */
+  y[n + c->nf] = 0.0;
+  eval_state(c, y);
   double sum = 0.0;
   size_t cnt = 0;
   for (size_t i = 0; i < n; i++) {
     if (fabs(c->xi[i]) < 1.0) {
-      sum += (c->rough ? y[i] : 0.0) - c->U[i];
+      sum += c->rough ? c->D[i] : -c->U[i];
       cnt++;
     }
   }
-  y[n] = cnt ? sum / (double)cnt : 0.0;
+  y[n + c->nf] = cnt ? sum / (double)cnt : 0.0;
+}
+
+/* The library never prints: KINSOL's messages are dropped, its return flags
+ * reported in vl_error instead. */
+static void silent_error_handler(int code, const char *module, const char *function, char *msg,
+                                 void *user) {
+  (void)code, (void)module, (void)function, (void)msg, (void)user;
 }
 
 vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_error *err) {
@@ -251,13 +367,22 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
     vl_error_set(err, "tolerance must lie in (0, 1) (got %g)", cfg->tolerance);
     return VL_EINPUT;
   }
+  if (!(cfg->eta_pa_s >= 0.0 && isfinite(cfg->eta_pa_s))) {
+    vl_error_set(err, "viscosity must be >= 0 (got %g Pa s)", cfg->eta_pa_s);
+    return VL_EINPUT;
+  }
   vl_contact *c = calloc(1, sizeof *c);
   if (!c) goto nomem;
   c->cfg = *cfg;
   if (c->cfg.max_iterations <= 0) c->cfg.max_iterations = 100;
   c->rough = cfg->roughness != NULL;
+  c->wet = cfg->eta_pa_s > 0.0;
+  /* flow factors only make sense for a rough surface */
+  if (!c->rough) c->cfg.flow_factors = VL_FLOW_FACTORS_SMOOTH;
+  c->hrms = c->rough ? vl_persson_hrms(cfg->roughness) : 0.0;
   c->n = cfg->grid;
-  c->nunk = c->n + 1;
+  c->nf = c->wet ? c->n : 0;
+  c->nunk = c->n + c->nf + 1;
   double red = vl_prony_reduced_factor(&cfg->rubber);
   c->er_ref = vl_prony_e0(&cfg->rubber) * red;
   c->er_inf = cfg->rubber.e_inf_pa * red;
@@ -276,7 +401,28 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->P = calloc(n, sizeof *c->P);
   c->U = calloc(n, sizeof *c->U);
   c->dPdU = calloc(n, sizeof *c->dPdU);
-  if (!c->xi || !c->A || !c->beta || !c->M || !c->P || !c->U || !c->dPdU) goto nomem;
+  c->F = calloc(n, sizeof *c->F);
+  c->D = calloc(n, sizeof *c->D);
+  c->theta = calloc(n, sizeof *c->theta);
+  c->g = calloc(4 * n, sizeof *c->g);
+  c->Jf = calloc(n + 1, sizeof *c->Jf);
+  if (!c->xi || !c->A || !c->beta || !c->M || !c->P || !c->U || !c->dPdU || !c->F || !c->D || !c->theta ||
+      !c->g || !c->Jf)
+    goto nomem;
+  c->dg = c->g + n;
+  c->cf = c->g + 2 * n;
+  c->dcf = c->g + 3 * n;
+  c->u_ref = 1.0;
+  c->kappa = 1.0;
+  if (c->wet && c->rough && nt > 0) {
+    /* Q = v_GT / v_ML: v_GT = (loss-peak frequency) x (relaxed Hertz width
+     * 2 a0), v_ML = 10 h_rms^2 Er0 / (R eta) (MODEL.md section 8) */
+    double wpk = 0.0;
+    if (vl_prony_loss_peak(&cfg->rubber, &wpk, NULL, NULL) == VL_OK) {
+      double v_ml = 10.0 * c->hrms * c->hrms * c->er_ref / (cfg->radius_m * cfg->eta_pa_s);
+      c->q_rolling = wpk * 2.0 * c->a0 / v_ml;
+    }
+  }
   for (size_t i = 0; i < n; i++) c->xi[i] = cfg->x_min_a0 + ((double)i + 0.5) * c->dxi;
   for (size_t k = 0; k < nt; k++) c->A[k] = cfg->rubber.A[k];
   st = vl_toeplitz_build(&c->kern, n, c->dxi, c->A, c->beta, nt, err);
@@ -308,7 +454,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
     st = VL_EINTERNAL;
     goto fail;
   }
-  KINSetErrHandlerFn(c->kmem, NULL, NULL);
+  KINSetErrHandlerFn(c->kmem, silent_error_handler, NULL);
   contact_set_speed(c, 0.0);
   vl_contact_reset(c);
   *out = c;
@@ -339,6 +485,11 @@ void vl_contact_free(vl_contact *c) {
   free(c->P);
   free(c->U);
   free(c->dPdU);
+  free(c->F);
+  free(c->D);
+  free(c->theta);
+  free(c->g);
+  free(c->Jf);
   free(c);
 }
 
@@ -347,37 +498,71 @@ static void add_warning(vl_point *pt, const char *w) {
   snprintf(pt->warnings + len, sizeof pt->warnings - len, "%s%s", len ? ";" : "", w);
 }
 
-/* Fills the derived quantities of pt from the current fields. */
+/* Film fraction theta per node (1 in the full film): downstream of film
+ * rupture the flux stays that of the last full-film face while the
+ * full-film Couette flux grows, so the gap is only partly filled (mass
+ * conservation). Needs eval_state. */
+static void film_fraction(const vl_contact *c, const double *y, double *theta) {
+  size_t n = c->n;
+  double jcur = c->Jf[0];
+  for (size_t i = 0; i < n; i++) {
+    bool cavitated = c->wet && y[n + i] <= 1e-12 && reynolds_residual(c, i) > c->cfg.tolerance;
+    if (!cavitated) {
+      theta[i] = 1.0;
+      jcur = c->Jf[i + 1];
+    } else {
+      theta[i] = c->cf[i] > 0.0 ? fmin(1.0, fmax(jcur, 0.0) / c->cf[i]) : 1.0;
+    }
+  }
+}
+
+/* Fills the derived quantities of pt from the current state. */
 static void contact_report(vl_contact *c, vl_point *pt) {
   size_t n = c->n;
   const double *y = N_VGetArrayPointer(c->y);
-  contact_pressure(c, y);
-  contact_gap(c, y[n]);
-  if (c->rough)
-    for (size_t i = 0; i < n; i++) c->U[i] = y[i];
+  eval_state(c, y);
   const vl_contact_config *cfg = &c->cfg;
-  double fN = cfg->load_n_per_m, dx = c->dxi * c->a0;
-  double sum_px = 0.0, sum_area = 0.0, pmax = 0.0, umin = INFINITY;
-  size_t imax = 0;
+  double fN = cfg->load_n_per_m, dx = c->dxi * c->a0, R = cfg->radius_m;
+  double sum_pcx = 0.0, sum_pfx = 0.0, sum_pf = 0.0, sum_area = 0.0;
+  double pmax = 0.0, pfmax = 0.0, umin = INFINITY, couette = 0.0, poiseuille = 0.0;
+  size_t imax = 0, iumin = 0;
+  double *theta = c->theta;
+  if (c->wet) film_fraction(c, y, theta);
   for (size_t i = 0; i < n; i++) {
-    double p = c->P[i] * c->p0, x = c->xi[i] * c->a0;
-    sum_px += p * x * dx;
-    double area;
-    if (c->rough)
-      area = vl_persson_area_ratio(cfg->roughness, c->P[i] / c->sfac, NULL);
-    else
-      area = c->P[i] > 1e-9 ? 1.0 : 0.0;
+    double pc = c->P[i] * c->p0, pf = c->F[i] * c->p0, x = c->xi[i] * c->a0;
+    sum_pcx += pc * x * dx;
+    sum_pfx += pf * x * dx;
+    sum_pf += pf * dx;
+    double area = c->rough ? vl_persson_area_ratio(cfg->roughness, c->P[i] / c->sfac, NULL)
+                           : (c->P[i] > 1e-9 ? 1.0 : 0.0);
     sum_area += area * dx;
-    if (p > pmax) pmax = p, imax = i;
-    if (c->U[i] < umin) umin = c->U[i];
+    if (pc + pf > pmax) pmax = pc + pf, imax = i;
+    pfmax = fmax(pfmax, pf);
+    if (c->U[i] < umin) umin = c->U[i], iumin = i;
+    if (c->wet) {
+      double u = fmax(c->U[i], 0.0) * c->uscale;
+      vl_flow_factor_values v;
+      vl_flow_factors_eval(cfg->flow_factors, u, c->hrms, &v, NULL);
+      /* node gradient: mean of the two face gradients (pf = 0 beyond the ends) */
+      double left = i > 0 ? (c->F[i] - c->F[i - 1]) / dx : c->F[i] / (0.5 * dx);
+      double right = i + 1 < n ? (c->F[i + 1] - c->F[i]) / dx : -c->F[i] / (0.5 * dx);
+      double dpdx = 0.5 * (left + right) * c->p0;
+      /* a smooth hard contact (u = 0) carries no fluid shear: sigma_s acts there */
+      if (!(!c->rough && area > 0.0) && u > 0.0)
+        couette += theta[i] * (v.phi_f + v.phi_fs) * cfg->eta_pa_s * c->v0 / u * dx;
+      poiseuille += -v.phi_fp * 0.5 * u * dpdx * dx;
+    }
   }
-  pt->x_centroid_m = sum_px / fN;
-  pt->mu_Rc = -sum_px / (fN * cfg->radius_m);
-  pt->mu_Rf = 0.0;
+  pt->x_centroid_m = (sum_pcx + sum_pfx) / fN;
+  pt->mu_Rc = -sum_pcx / (fN * R);
+  pt->mu_Rf = -sum_pfx / (fN * R);
   pt->mu_Sc = cfg->sigma_s_pa * sum_area / fN;
-  pt->mu_Sf = 0.0;
+  pt->mu_Sf_couette = couette / fN;
+  pt->mu_Sf_poiseuille = poiseuille / fN;
+  pt->mu_Sf = pt->mu_Sf_couette + pt->mu_Sf_poiseuille;
   pt->mu = pt->mu_Rc + pt->mu_Rf + pt->mu_Sc + pt->mu_Sf;
   pt->u_min_m = fmax(umin, 0.0) * c->uscale;
+  pt->x_min_film_m = c->xi[iumin] * c->a0;
   /* separation at the pressure centroid (linear interpolation on nodes) */
   double xc = pt->x_centroid_m / c->a0;
   double t = (xc - c->xi[0]) / c->dxi;
@@ -385,35 +570,79 @@ static void contact_report(vl_contact *c, vl_point *pt) {
   if (k >= n - 1) k = n - 2;
   double w = fmin(fmax(t - (double)k, 0.0), 1.0);
   pt->u_central_m = fmax((1 - w) * c->U[k] + w * c->U[k + 1], 0.0) * c->uscale;
-  /* contact extent where p >= 1% of its peak, interpolated between nodes */
+  /* contact extent where the total pressure >= 1% of its peak, interpolated */
   double thr = 0.01 * pmax / c->p0;
+#define PTOT(j) (c->P[j] + c->F[j])
   size_t lo = imax, hi = imax;
-  while (lo > 0 && c->P[lo - 1] >= thr) lo--;
-  while (hi + 1 < n && c->P[hi + 1] >= thr) hi++;
+  while (lo > 0 && PTOT(lo - 1) >= thr) lo--;
+  while (hi + 1 < n && PTOT(hi + 1) >= thr) hi++;
   double xl = c->xi[lo], xr = c->xi[hi];
-  if (lo > 0) xl -= c->dxi * (c->P[lo] - thr) / (c->P[lo] - c->P[lo - 1]);
-  if (hi + 1 < n) xr += c->dxi * (c->P[hi] - thr) / (c->P[hi] - c->P[hi + 1]);
+  if (lo > 0) xl -= c->dxi * (PTOT(lo) - thr) / (PTOT(lo) - PTOT(lo - 1));
+  if (hi + 1 < n) xr += c->dxi * (PTOT(hi) - thr) / (PTOT(hi) - PTOT(hi + 1));
   pt->contact_width_m = pmax > 0 ? (xr - xl) * c->a0 : 0.0;
-  pt->fluid_load_fraction = 0.0;
+  pt->fluid_load_fraction = sum_pf / fN;
   pt->load_error = fabs(load_sum(c) - 1.0);
   pt->E_wH_pa = c->e_abs;
   pt->a_H_m = c->a_h;
-  pt->Q = 0.0;
+  pt->Q = c->q_rolling;
   pt->peak_pressure_pa = pmax;
   pt->x_peak_m = c->xi[imax] * c->a0;
-  if (pmax > 0 && (c->P[0] > 1e-3 * pmax / c->p0 || c->P[n - 1] > 1e-3 * pmax / c->p0))
-    add_warning(pt, "contact reaches the domain edge");
+  pt->regime = !c->wet                          ? VL_REGIME_DRY
+               : pt->fluid_load_fraction < 0.05 ? VL_REGIME_BOUNDARY
+               : pt->fluid_load_fraction > 0.95 ? VL_REGIME_HYDRODYNAMIC
+                                                : VL_REGIME_MIXED;
+  if (pmax > 0 && (PTOT(0) > 1e-3 * pmax / c->p0 || PTOT(n - 1) > 1e-3 * pmax / c->p0))
+    add_warning(pt, "pressure reaches the domain edge (domain too short)");
+#undef PTOT
+  (void)pfmax;
+}
+
+/* Scales of the fluid unknowns for a solve at v0, from the current state:
+ * pf by its expected magnitude (extrapolated linearly in speed from the last
+ * converged state: pf ~ eta v0 in the boundary regime), Reynolds rows by the
+ * Couette flux at the current minimum film. Rescales y accordingly. */
+static void fluid_scales(vl_contact *c, double v0) {
+  if (!c->wet) return;
+  size_t n = c->n;
+  double *y = N_VGetArrayPointer(c->y);
+  eval_state(c, y);
+  double umin = INFINITY, fmax_p0 = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    umin = fmin(umin, c->U[i]);
+    fmax_p0 = fmax(fmax_p0, c->F[i]);
+  }
+  double us = c->uscale, eta = c->cfg.eta_pa_s;
+  /* the film cannot be thinner than a rigid cylinder's (Martin) nor, on a
+   * rough surface, than a fraction of the roughness */
+  double h_martin = 2.447 * eta * v0 * c->cfg.radius_m / c->cfg.load_n_per_m;
+  c->u_ref = fmax(umin, fmax(1e-3 * c->hrms, h_martin) / us);
+  double kappa;
+  if (fmax_p0 > 0.0 && c->v_state > 0.0) {
+    kappa = fmax_p0 * v0 / c->v_state;
+  } else {
+    /* hydrodynamic estimate 6 eta v0 a0 / u^2, at most p0 */
+    double u = c->u_ref * us;
+    kappa = 6.0 * eta * v0 * c->a0 / (u * u) / c->p0;
+  }
+  kappa = fmin(fmax(kappa, 1e-300), 10.0);
+  for (size_t i = 0; i < c->nf; i++) y[n + i] *= c->kappa / kappa;
+  c->kappa = kappa;
+  c->lambda = us * us * c->p0 * kappa / (6.0 * eta * v0 * c->a0);
+  c->rscale = 1.0 / c->u_ref;
 }
 
 vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
   memset(pt, 0, sizeof *pt);
   pt->v0_m_s = v0_m_s;
-  if (!(v0_m_s >= 0.0 && isfinite(v0_m_s))) {
-    vl_error_set(err, "speed must be finite and >= 0 (got %g m/s)", v0_m_s);
+  if (!(v0_m_s >= 0.0 && isfinite(v0_m_s)) || (c->wet && !(v0_m_s > 0.0))) {
+    vl_error_set(err, "speed must be finite and %s 0 (got %g m/s)", c->wet ? ">" : ">=", v0_m_s);
     return VL_EINPUT;
   }
   N_VScale(1.0, c->y, c->y_saved);
+  double saved_kappa = c->kappa, saved_lambda = c->lambda, saved_rscale = c->rscale,
+         saved_uref = c->u_ref, saved_v = c->v0;
   contact_set_speed(c, v0_m_s);
+  fluid_scales(c, v0_m_s);
   int flag = KINSol(c->kmem, c->y, KIN_LINESEARCH, c->ones, c->ones);
   long nni = 0;
   KINGetNumNonlinSolvIters(c->kmem, &nni);
@@ -428,14 +657,20 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
     vl_error_set(err, "no convergence at v0 = %g m/s: KINSOL flag %d (%s), %ld iterations, "
                       "residual %.3g",
                  v0_m_s, flag, KINGetReturnFlagName(flag), nni, fnorm);
+    /* back to the last converged state, its speed and scales */
     N_VScale(1.0, c->y_saved, c->y);
-    contact_report(c, pt);
+    if (saved_v == saved_v) contact_set_speed(c, saved_v);
+    c->kappa = saved_kappa, c->lambda = saved_lambda, c->rscale = saved_rscale;
+    c->u_ref = saved_uref;
+    memset(pt, 0, sizeof *pt);
     pt->v0_m_s = v0_m_s;
     pt->converged = false;
     pt->iterations = nni;
     pt->residual = isfinite(fnorm) ? fnorm : DBL_MAX;
+    pt->regime = c->wet ? VL_REGIME_BOUNDARY : VL_REGIME_DRY;
     return VL_ENOCONV;
   }
+  c->v_state = v0_m_s;
   contact_report(c, pt);
   return VL_OK;
 }
@@ -444,16 +679,17 @@ void vl_contact_fields(const vl_contact *c, vl_fields *f) {
   size_t n = c->n;
   const double *y = N_VGetArrayPointer(c->y);
   vl_contact *mc = (vl_contact *)c; /* work arrays only */
-  contact_pressure(mc, y);
-  contact_gap(mc, y[n]);
+  eval_state(mc, y);
+  double *theta = mc->theta;
+  if (c->wet) film_fraction(c, y, theta);
   for (size_t i = 0; i < n && i < f->n; i++) {
-    double u = c->rough ? y[i] : c->U[i];
     f->x_m[i] = c->xi[i] * c->a0;
     f->p_c_pa[i] = c->P[i] * c->p0;
-    f->p_f_pa[i] = 0.0;
-    f->u_m[i] = fmax(u, 0.0) * c->uscale;
+    f->p_f_pa[i] = c->F[i] * c->p0;
+    f->u_m[i] = fmax(c->U[i], 0.0) * c->uscale;
     f->area_ratio[i] = c->rough ? vl_persson_area_ratio(c->cfg.roughness, c->P[i] / c->sfac, NULL)
                                 : (c->P[i] > 1e-9 ? 1.0 : 0.0);
+    if (f->film_fraction) f->film_fraction[i] = c->wet ? theta[i] : 1.0;
   }
 }
 

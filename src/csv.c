@@ -133,7 +133,7 @@ static vl_status parse_span(span s, double *out, const char **why) {
   s = trim(s);
   char buf[NUMBER_MAX_CHARS + 1];
   if (s.n == 0) {
-    *why = "empty";
+    *why = "empty cell";
     return VL_EINPUT;
   }
   if (s.n > NUMBER_MAX_CHARS) {
@@ -168,7 +168,7 @@ vl_status vl_csv_parse_double(const char *text, double *out, const char **why) {
   const char *dummy;
   if (!why) why = &dummy;
   if (!text) {
-    *why = "empty";
+    *why = "empty cell";
     return VL_EINPUT;
   }
   return parse_span((span){text, strlen(text)}, out, why);
@@ -247,7 +247,7 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
   size_t *map = NULL;
   size_t cap = 0, line_no = 0, n_fields = 0, header_line = 0, last_line = 0;
   enum { HEADER, UNITS, DATA } stage = HEADER;
-  char hdr[512], shown[64];
+  char hdr[512], shown[64], units_row[256] = "";
   const char *src = source ? source : "<text>";
 
   memset(out, 0, sizeof *out);
@@ -347,6 +347,7 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
       }
       n_fields = count;
       header_line = line_no;
+      expected_units(cols, map, n_fields, units_row, sizeof units_row);
       stage = UNITS;
       continue;
     }
@@ -359,25 +360,27 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
       goto cleanup;
     }
 
+    int first_row = stage == UNITS;
     if (stage == UNITS) {
       stage = DATA;
-      int any_text = 0;
-      for (size_t f = 0; f < n_fields && !any_text; f++) {
+      /* A units row is recognised by a non-numeric cell that spells its
+       * column's unit; then every cell must. Otherwise the row is data. */
+      int is_units = 0;
+      for (size_t f = 0; f < n_fields && !is_units; f++) {
         double v;
         const char *why;
-        if (parse_span(cells[f], &v, &why) != VL_OK) any_text = 1;
+        span u = unquote(cells[f]);
+        if (parse_span(u, &v, &why) != VL_OK && units_match(u, cols[map[f]].units)) is_units = 1;
       }
-      if (any_text) {
-        char units[256];
-        expected_units(cols, map, n_fields, units, sizeof units);
+      if (is_units) {
         for (size_t f = 0; f < n_fields; f++) {
           span u = unquote(cells[f]);
           if (!units_match(u, cols[map[f]].units)) {
             show(u, shown, sizeof shown);
             vl_error_set(err,
-                         "%s:%zu: column '%s' (field %zu): '%s' is neither a number nor the "
-                         "expected unit (an optional units row after the header must read '%s')",
-                         src, line_no, cols[map[f]].name, f + 1, shown, units);
+                         "%s:%zu: column '%s' (field %zu): '%s' is not the expected unit (the "
+                         "optional units row after the header must read '%s')",
+                         src, line_no, cols[map[f]].name, f + 1, shown, units_row);
             st = VL_EINPUT;
             goto cleanup;
           }
@@ -400,8 +403,12 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
       span cell = trim(cells[f]);
       show(cell, shown, sizeof shown);
       if (parse_span(cell, &v, &why) != VL_OK) {
-        vl_error_set(err, "%s:%zu: column '%s' (field %zu): %s (got '%s')", src, line_no,
-                     col->name, f + 1, why, shown);
+        /* A misspelt units row reads as a bad first data row: say so. */
+        int hint = first_row && !strcmp(why, "not a number");
+        vl_error_set(err, "%s:%zu: column '%s' (field %zu): %s (got '%s')%s%s%s", src, line_no,
+                     col->name, f + 1, why, shown,
+                     hint ? "; an optional units row after the header must read '" : "",
+                     hint ? units_row : "", hint ? "'" : "");
         st = VL_EINPUT;
         goto cleanup;
       }

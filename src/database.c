@@ -13,8 +13,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* materials/*.sql, embedded by scripts/embed_materials.cmake, sorted by name
- * and terminated by {NULL, NULL}. */
+/* The .sql files of materials/, embedded by scripts/embed_materials.cmake,
+ * sorted by name and terminated by {NULL, NULL}. */
 struct vl_embedded_file {
   const char *name;
   const char *text;
@@ -192,28 +192,34 @@ static size_t edit_distance(const char *a, const char *b) {
   return prev[nb];
 }
 
-/* VL_ENOTFOUND with a message naming `name` and up to three close names of
- * the same kind (small edit distance, or one name containing the other). */
+/* VL_ENOTFOUND with a message naming `name` and the closest names of the
+ * same kind (up to three ties): a small edit distance, or one name
+ * containing the other, counts as close. */
 static vl_status not_found(vl_db *db, const char *table, const char *name, vl_error *err) {
   char sql[128], hint[VL_ERROR_MAX / 2] = "";
+  char best[3][VL_DB_NAME_MAX];
+  size_t n_best = 0, best_score = (size_t)-1;
+  size_t limit = strlen(name) / 3 > 2 ? strlen(name) / 3 : 2;
   snprintf(sql, sizeof sql, "SELECT name FROM %s ORDER BY name", table);
   sqlite3_stmt *st = NULL;
   if (sqlite3_prepare_v2(db->h, sql, -1, &st, NULL) == SQLITE_OK) {
-    size_t found = 0, len = 0;
-    size_t limit = strlen(name) / 3 > 2 ? strlen(name) / 3 : 2;
-    while (found < 3 && sqlite3_step(st) == SQLITE_ROW) {
+    while (sqlite3_step(st) == SQLITE_ROW) {
       const char *cand = (const char *)sqlite3_column_text(st, 0);
       if (!cand) continue;
-      int close = edit_distance(name, cand) <= limit ||
-                  (strlen(name) >= 3 && (strstr(cand, name) || strstr(name, cand)));
-      if (!close) continue;
-      int w = snprintf(hint + len, sizeof hint - len, "%s'%s'", found ? " or " : "", cand);
-      if (w < 0 || (size_t)w >= sizeof hint - len) break;
-      len += (size_t)w;
-      found++;
+      size_t score = edit_distance(name, cand);
+      if (score > limit && strlen(name) >= 3 && (strstr(cand, name) || strstr(name, cand)))
+        score = limit;
+      if (score > limit || score > best_score) continue;
+      if (score < best_score) best_score = score, n_best = 0;
+      if (n_best < 3) snprintf(best[n_best++], VL_DB_NAME_MAX, "%s", cand);
     }
   }
   sqlite3_finalize(st);
+  for (size_t i = 0, len = 0; i < n_best; i++) {
+    int w = snprintf(hint + len, sizeof hint - len, "%s'%s'", i ? " or " : "", best[i]);
+    if (w < 0 || (size_t)w >= sizeof hint - len) break;
+    len += (size_t)w;
+  }
   if (hint[0])
     vl_error_set(err, "no %s named '%s' in %s (did you mean %s?)", table, name, db->path, hint);
   else

@@ -52,6 +52,10 @@
 
 #define EULER_GAMMA 0.57721566490153286060651209008240243
 
+/* Below this b/delta the memory correction (~beta log) is under 1e-190 of
+ * Ke, and (x +- 1/2)/beta could overflow: treat the term as relaxed. */
+#define BETA_NEGLIGIBLE 1e-200
+
 /* g(z) = -e^{-z} Ei(z) for z != 0 (log-singular at 0). NaN if GSL fails,
  * which cannot happen for finite nonzero z; the error handler must be off. */
 static double g_fn(double z) {
@@ -167,8 +171,8 @@ static double kve_series(double x, double beta) {
   /* (log|q| - log|p|)/(q - p) = beta log|a+/a-| (stable for close p, q). */
   double lr = same_sign ? beta * dlog_fn(x) : 0.0;
   m_coef mc = {0, 1.0, 0.0};
-  double s = 1.0;      /* S_n = (q^{n+1} - p^{n+1})/(q - p) = sum_j q^j p^{n-j} */
-  double pn = 1.0;     /* p^n */
+  double s = 1.0;          /* S_n = (q^{n+1} - p^{n+1})/(q - p) = sum_j q^j p^{n-j} */
+  double pn = 1.0;         /* p^n */
   double qn1 = q, pn1 = p; /* q^{n+1}, p^{n+1} */
   double sum = 0.0;
   int small = 0;
@@ -231,7 +235,7 @@ double vl_kernel_elastic(double d, double delta) {
 double vl_kernel_viscoelastic(double d, double delta, double b) {
   if (!(delta > 0.0) || !(b >= 0.0)) return NAN;
   double x = d / delta, beta = b / delta;
-  if (beta == 0.0) return vl_kernel_elastic(d, delta);
+  if (beta < BETA_NEGLIGIBLE) return vl_kernel_elastic(d, delta);
   gsl_set_error_handler_off();
   double kve;
   if (beta <= VL_KERNEL_BETA_SWITCH)
@@ -254,7 +258,7 @@ void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t
   for (size_t k = 0; k < n_terms; k++) {
     sum_a += A[k];
     double beta = b[k] / delta;
-    if (beta > 0.0 && beta <= VL_KERNEL_BETA_SWITCH) s_small += A[k] * beta;
+    if (beta >= BETA_NEGLIGIBLE && beta <= VL_KERNEL_BETA_SWITCH) s_small += A[k] * beta;
   }
   for (size_t i = 0; i < m; i++) {
     double x = (double)i - (double)(n - 1);
@@ -263,7 +267,7 @@ void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t
   }
   for (size_t k = 0; k < n_terms; k++) {
     double beta = b[k] / delta;
-    if (A[k] == 0.0 || beta == 0.0) continue;
+    if (A[k] == 0.0 || beta < BETA_NEGLIGIBLE) continue;
     if (beta <= VL_KERNEL_BETA_SWITCH) {
       /* Neighbouring offsets share a half-integer point: one g per offset. */
       double fac = delta * A[k] * beta;

@@ -57,8 +57,9 @@ double vl_prony_reduced_factor(const vl_prony *prony) {
 
 double complex vl_prony_compliance(const vl_prony *prony, double omega) {
   double complex s = 1.0;
+  /* conjugate of the creep form: J' - i J'' (see rheology.h) */
   for (size_t i = 0; i < prony->n_terms; i++)
-    s += prony->A[i] / (1.0 - I * omega * prony->tau_s[i]);
+    s += prony->A[i] / (1.0 + I * omega * prony->tau_s[i]);
   return s / prony->e_inf_pa;
 }
 

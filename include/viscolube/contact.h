@@ -11,6 +11,11 @@
  *                condition p >= 0, u >= 0, p u = 0 by a (slightly smoothed)
  *                Fischer-Burmeister function;
  *   rough, dry:  separation u_i + h0, with pc = |Er(wH)| s(u) from Persson.
+ *   wet (either): plus the fluid pressure pf_i, scaled by its current
+ *                magnitude; the averaged Reynolds equation in conservative
+ *                finite-volume form (upwind Couette flux), pf = 0 at both
+ *                ends of the domain, and the Reynolds cavitation condition
+ *                pf >= 0, dJ/dx >= 0, pf dJ/dx = 0 by Fischer-Burmeister.
  * The rigid approach h0 (the displacement kernel's free constant) is the
  * load-balance unknown; the separation at the pressure centroid u0 is
  * reported afterwards (MODEL.md section 3: measured to converge better than
@@ -21,6 +26,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "viscolube/flow_factors.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
 #include "viscolube/status.h"
@@ -36,6 +42,8 @@ typedef struct {
   double load_n_per_m;
   double sigma_s_pa;          /* shear stress in the real contact area; 0 = off */
   const vl_persson *roughness;/* NULL = smooth (hard contact); not owned */
+  double eta_pa_s;            /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
+  vl_flow_factor_kind flow_factors; /* with roughness; smooth surfaces use smooth */
   size_t grid;                /* nodes (cells) on the domain */
   double x_min_a0, x_max_a0;  /* domain in units of a0 */
   double tolerance;           /* scaled residual norm for convergence */
@@ -65,13 +73,26 @@ typedef struct {
   double a_H_m;               /* Hertz half-width with |Er(wH)| */
   double Q;                   /* rolling number (wet rough only; else 0) */
   double peak_pressure_pa, x_peak_m;
+  double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
+  double x_min_film_m;        /* where u is smallest */
+  int regime;                 /* vl_regime */
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
 } vl_point;
+
+/* Lubrication regime by the share of the load carried by the fluid. */
+typedef enum {
+  VL_REGIME_DRY = 0,     /* no fluid */
+  VL_REGIME_BOUNDARY,    /* fluid carries < 5 % of the load */
+  VL_REGIME_MIXED,       /* 5 % ... 95 % */
+  VL_REGIME_HYDRODYNAMIC /* > 95 % */
+} vl_regime;
+const char *vl_regime_name(int regime);
 
 /* Fields on the grid, SI; arrays of length n owned by the caller. */
 typedef struct {
   size_t n;
   double *x_m, *p_f_pa, *p_c_pa, *u_m, *area_ratio;
+  double *film_fraction; /* theta: 1 in the full film, < 1 where cavitated; may be NULL */
 } vl_fields;
 
 typedef struct vl_contact vl_contact;

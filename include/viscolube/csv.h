@@ -86,7 +86,7 @@ double vl_csv_value(const vl_csv *csv, size_t row, size_t col);
 /* Parses a whole string as a finite decimal number with the reader's rules
  * (surrounding blanks allowed). Returns VL_OK, or VL_EINPUT with *why set to
  * a short static reason ("not a number", "NaN and infinity are not allowed",
- * "outside the range of a double", "empty"). Used for command-line values. */
+ * "outside the range of a double", "empty cell"). Used for command-line values. */
 vl_status vl_csv_parse_double(const char *text, double *out, const char **why);
 
 /* Prony file: header "A,tau_s" (optional units row "1,s"), one creep term

@@ -1,10 +1,11 @@
 /* viscolube: the material database (SQLite).
  *
  * One file holds rubber compounds (Prony series, MODEL.md section 2),
- * roughness power spectra and lubricants. The schema lives in materials/*.sql
- * (embedded in the program): NNNN_*.sql are forward migrations, applied in
- * order, each in its own transaction that also sets PRAGMA user_version;
- * seed_*.sql are the shipped materials, inserted only into a new database.
+ * roughness power spectra and lubricants. The schema lives in the .sql
+ * files of materials/ (embedded in the program): NNNN_*.sql are forward
+ * migrations, applied in order, each in its own transaction that also sets
+ * PRAGMA user_version; seed_*.sql are the shipped materials, inserted only
+ * into a new database.
  *
  * Guarantees:
  *   - Foreign keys are ON; every write runs in one BEGIN IMMEDIATE ... COMMIT

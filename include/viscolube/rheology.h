@@ -1,9 +1,16 @@
 /* viscolube: linear viscoelasticity of a rubber from a Prony series.
  *
- * Creep form (MODEL.md section 2), e^{-i w t} time convention:
- *   1/E(w) = (1/Einf) [ 1 + sum_i A_i / (1 - i w tau_i) ],  A_i >= 0, tau_i > 0
- * so Im E(w) > 0 (loss), E(0) = E0 = Einf/(1 + sum A_i), E(inf) = Einf.
- * tau_i are retardation (creep) times. All quantities SI. */
+ * Creep form (MODEL.md section 2):
+ *   1/E(w) = (1/Einf) [ 1 + sum_i A_i / (1 - i w tau_i) ],  A_i >= 0, tau_i > 0,
+ * E(0) = E0 = Einf/(1 + sum A_i), E(inf) = Einf; tau_i are retardation
+ * (creep) times. All quantities SI.
+ *
+ * Sign of the imaginary part: with MODEL.md's e^{-i w t} convention this form
+ * gives Im E < 0 (MODEL.md's "tan delta = Im E / Re E" would then be
+ * negative: the doc is wrong there). The functions below return the DMA
+ * convention instead, E = E' + i E'' and 1/E = J' - i J'' with the loss
+ * moduli E'', J'' >= 0, i.e. the complex conjugate of the creep form above;
+ * |E| and tan delta = E''/E' are the same in both conventions. */
 #ifndef VISCOLUBE_RHEOLOGY_H
 #define VISCOLUBE_RHEOLOGY_H
 
@@ -34,8 +41,8 @@ double vl_prony_sum_A(const vl_prony *prony);
 double vl_prony_e0(const vl_prony *prony);                 /* relaxed modulus */
 double vl_prony_reduced_factor(const vl_prony *prony);     /* 1/(1 - nu^2) */
 
-double complex vl_prony_compliance(const vl_prony *prony, double omega); /* 1/E(w) */
-double complex vl_prony_modulus(const vl_prony *prony, double omega);    /* E(w) */
+double complex vl_prony_compliance(const vl_prony *prony, double omega); /* J' - i J'' */
+double complex vl_prony_modulus(const vl_prony *prony, double omega);    /* E' + i E'' */
 double vl_prony_tan_delta(const vl_prony *prony, double omega);
 
 /* Frequency (rad/s) and height of the loss-tangent maximum, found on a log

@@ -59,6 +59,7 @@ typedef struct {
   int n;                         /* Ib[0..n] valid */
   int cap;
   double *Ib;                    /* scaled Bessel I_m(kappa) e^{-kappa} */
+  double *tail;                  /* tail[m] = sum_{k>=m} Ib[k] */
   gsl_integration_workspace *ws;
   int err;                       /* first GSL failure seen in a callback */
 } hunter_ctx;
@@ -79,6 +80,9 @@ static int ctx_bessel(hunter_ctx *x, double kappa) {
     double *p = realloc(x->Ib, (size_t)(n + 1) * sizeof *p);
     if (!p) return -1;
     x->Ib = p;
+    p = realloc(x->tail, (size_t)(n + 2) * sizeof *p);
+    if (!p) return -1;
+    x->tail = p;
     x->cap = n + 1;
   }
   int st = gsl_sf_bessel_In_scaled_array(0, n, kappa, x->Ib);
@@ -93,6 +97,8 @@ static int ctx_bessel(hunter_ctx *x, double kappa) {
     }
   }
   x->n = n;
+  x->tail[n + 1] = 0.0;
+  for (int m = n; m >= 0; m--) x->tail[m] = x->tail[m + 1] + x->Ib[m]; /* small terms first */
   return 0;
 }
 
@@ -121,6 +127,10 @@ static double dh_integrand(double u, void *params) {
   if (x->Chat != 0.0) {
     sum = x->Ib[1] * e;
     for (int m = 2; m <= x->n; m++) {
+      if (rn < 1e-18) { /* 1 - r^k = 1 from here on: add the tail at once */
+        sum += x->tail[m];
+        break;
+      }
       e += rn * one_minus_r;
       rn *= r;
       sum += x->Ib[m] * e;
@@ -300,6 +310,7 @@ int vl_oracle_hunter_solve(double deborah, double einf_over_e0,
 cleanup:
   free(a);
   free(x.Ib);
+  free(x.tail);
   if (solver) gsl_root_fsolver_free(solver);
   if (x.ws) gsl_integration_workspace_free(x.ws);
   return rc;
@@ -328,9 +339,11 @@ vl_oracle_hunter_profile *vl_oracle_hunter_profile_new(const vl_oracle_hunter_so
   pr->h = x.h;
   pr->m = x.n - 1;
   free(x.Ib);
+  free(x.tail);
   return pr;
 fail:
   free(x.Ib);
+  free(x.tail);
   vl_oracle_hunter_profile_free(pr);
   return NULL;
 }

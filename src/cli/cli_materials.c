@@ -1,0 +1,827 @@
+/* `viscolube compound|surface|fluid VERB ...`: the material commands.
+ *
+ * A thin layer over database.h and csv.h: parse the command line, read and
+ * check every input file, and only then open the database, so a bad input
+ * never creates or touches it. Messages go to stderr as one line each;
+ * results to stdout (text, or JSON with --json). */
+#define _POSIX_C_SOURCE 200809L
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "viscolube/csv.h"
+#include "viscolube/database.h"
+#include "viscolube/rheology.h"
+#include "viscolube/roughness.h"
+
+#define TWO_PI 6.283185307179586476925287
+
+typedef enum { NOUN_COMPOUND, NOUN_SURFACE, NOUN_FLUID } noun_kind;
+
+typedef struct {
+  noun_kind kind;
+  const char *noun; /* "compound" */
+  const char *verb; /* "add", for messages */
+} context;
+
+/* ---- messages and help ------------------------------------------------ */
+
+static int fail(const context *cx, vl_status st, const char *msg) {
+  if (cx->verb)
+    fprintf(stderr, "viscolube %s %s: %s\n", cx->noun, cx->verb, msg);
+  else
+    fprintf(stderr, "viscolube %s: %s\n", cx->noun, msg);
+  return vl_status_exit_code(st);
+}
+
+static int failf(const context *cx, vl_status st, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static int failf(const context *cx, vl_status st, const char *fmt, ...) {
+  char buf[VL_ERROR_MAX];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(buf, sizeof buf, fmt, ap);
+  va_end(ap);
+  return fail(cx, st, buf);
+}
+
+static const char *const noun_help[] = {
+    [NOUN_COMPOUND] =
+        "usage: viscolube [--db PATH] compound VERB ...\n"
+        "\n"
+        "Rubber compounds: a creep-form Prony series (MODEL.md section 2)\n"
+        "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]\n"
+        "\n"
+        "verbs:\n"
+        "  list [--json]          one line per compound: name, class, E0, Einf, nu, loss peak\n"
+        "  show NAME [--json]     E0, Einf, nu, loss-tangent peak, Prony terms\n"
+        "  add NAME --prony FILE --e-inf PA --nu NU [--class CLASS] [--description TEXT]\n"
+        "                         register a compound (see `compound add --help`)\n"
+        "  remove NAME            delete a compound and its data\n"
+        "\n"
+        "`viscolube compound VERB --help` describes a verb.\n",
+    [NOUN_SURFACE] =
+        "usage: viscolube [--db PATH] surface VERB ...\n"
+        "\n"
+        "Surface roughness: an isotropic 2-D power spectrum C(q), self-affine or tabulated.\n"
+        "\n"
+        "verbs:\n"
+        "  list [--json]          one line per surface: name, kind, h_rms, rms slope, band\n"
+        "  show NAME [--json]     h_rms, rms slope, C0, q0, q1, H or point count\n"
+        "  add NAME --self-affine --hurst H --q0 PER_M --q1 PER_M --hrms M\n"
+        "  add NAME --psd FILE    register a surface (see `surface add --help`)\n"
+        "  remove NAME            delete a surface\n"
+        "\n"
+        "`viscolube surface VERB --help` describes a verb.\n",
+    [NOUN_FLUID] =
+        "usage: viscolube [--db PATH] fluid VERB ...\n"
+        "\n"
+        "Newtonian lubricants: low-shear viscosity at a reference temperature.\n"
+        "\n"
+        "verbs:\n"
+        "  list [--json]          one line per fluid: name, viscosity\n"
+        "  show NAME [--json]     viscosity, reference temperature, description\n"
+        "  add NAME --viscosity PA_S [--tref C] [--description TEXT]\n"
+        "  remove NAME            delete a fluid\n"
+        "\n"
+        "`viscolube fluid VERB --help` describes a verb.\n",
+};
+
+static void verb_help(noun_kind kind, const char *verb, FILE *out) {
+  const char *noun = kind == NOUN_COMPOUND ? "compound" : kind == NOUN_SURFACE ? "surface" : "fluid";
+  if (!strcmp(verb, "list")) {
+    fprintf(out,
+            "usage: viscolube [--db PATH] %s list [--json]\n"
+            "\n"
+            "Lists every %s, one per line, sorted by name.\n"
+            "  --json   print a JSON array of objects instead (the fields of `%s show --json`)\n",
+            noun, noun, noun);
+  } else if (!strcmp(verb, "show")) {
+    fprintf(out,
+            "usage: viscolube [--db PATH] %s show NAME [--json]\n"
+            "\n"
+            "Prints what is stored about %s NAME and the quantities derived from it.\n"
+            "  --json   print one JSON object instead\n",
+            noun, noun);
+  } else if (!strcmp(verb, "remove")) {
+    fprintf(out,
+            "usage: viscolube [--db PATH] %s remove NAME\n"
+            "\n"
+            "Deletes %s NAME (and everything that belongs to it) in one transaction.\n",
+            noun, noun);
+  } else if (kind == NOUN_COMPOUND) {
+    fputs("usage: viscolube [--db PATH] compound add NAME --prony FILE --e-inf PA --nu NU\n"
+          "                 [--class model|filled|unfilled|other] [--description TEXT]\n"
+          "                 [--tref C] [--wlf-c1 C1 --wlf-c2 C2_K]\n"
+          "\n"
+          "Registers a rubber compound from its creep-form Prony series\n"
+          "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]  (MODEL.md section 2)\n"
+          "\n"
+          "  NAME            1-63 characters of A-Z a-z 0-9 . _ + -\n"
+          "  --prony FILE    CSV with the header line 'A,tau_s' and one term per row:\n"
+          "                  A >= 0 (dimensionless), tau_s > 0 (retardation time, s).\n"
+          "                  An optional units row '1,s' may follow the header; lines\n"
+          "                  starting with '#' are comments. At most 128 terms.\n"
+          "  --e-inf PA      glassy (high-frequency) modulus Einf > 0, Pa\n"
+          "  --nu NU         Poisson ratio, 0 <= nu <= 0.5\n"
+          "  --class CLASS   model, filled, unfilled or other (default other)\n"
+          "  --description TEXT  free text; note the source of the data here\n"
+          "  --tref C        reference temperature of the series, Celsius (default 20)\n"
+          "  --wlf-c1 C1, --wlf-c2 C2_K  WLF constants of the compound (both or neither)\n"
+          "\n"
+          "The relaxed modulus is E0 = Einf / (1 + sum A_i).\n",
+          out);
+  } else if (kind == NOUN_SURFACE) {
+    fputs("usage: viscolube [--db PATH] surface add NAME --self-affine --hurst H --q0 PER_M\n"
+          "                 --q1 PER_M --hrms M [--description TEXT]\n"
+          "       viscolube [--db PATH] surface add NAME --psd FILE [--description TEXT]\n"
+          "\n"
+          "Registers an isotropic roughness power spectrum C(q) (m^4), with\n"
+          "h_rms^2 = 2 pi \\int q C(q) dq.\n"
+          "\n"
+          "  --self-affine   C(q) = C0 (q/q0)^(-2(1+H)) for q0 <= q <= q1; C0 follows\n"
+          "                  from h_rms. Needs all of:\n"
+          "    --hurst H     Hurst exponent, 0 < H <= 1 (fractal dimension 3 - H)\n"
+          "    --q0 PER_M    low wavevector cut-off, 1/m (> 0)\n"
+          "    --q1 PER_M    high wavevector cut-off, 1/m (> q0)\n"
+          "    --hrms M      rms roughness, m (> 0)\n"
+          "  --psd FILE      tabulated spectrum: CSV with the header line 'q_per_m,C_m4',\n"
+          "                  q > 0 strictly increasing, C > 0, at least 2 rows; an optional\n"
+          "                  units row '1/m,m^4' may follow the header. Interpolated as a\n"
+          "                  power law between points, zero outside.\n"
+          "  --description TEXT  free text; note the source of the data here\n",
+          out);
+  } else {
+    fputs("usage: viscolube [--db PATH] fluid add NAME --viscosity PA_S [--tref C]\n"
+          "                 [--description TEXT]\n"
+          "\n"
+          "Registers a Newtonian lubricant.\n"
+          "  --viscosity PA_S   low-shear viscosity > 0, Pa s (water at 20 C: 1.0e-3)\n"
+          "  --tref C           temperature the viscosity was measured at, Celsius\n"
+          "                     (default 20)\n"
+          "  --description TEXT free text; note the source of the data here\n",
+          out);
+  }
+}
+
+/* ---- option parsing --------------------------------------------------- */
+
+typedef struct {
+  const char *name;    /* "--e-inf" */
+  const char *metavar; /* "PA"; NULL for a flag */
+  const char *value;   /* set by parse_args: the value, or "" for a flag */
+} option;
+
+/* Parses argv[first..argc) into options and at most max_pos positional
+ * arguments. Returns -1 on success, else the exit code after printing the
+ * one error message. */
+static int parse_args(const context *cx, int argc, char **argv, int first, option *opts,
+                      size_t n_opts, const char **pos, size_t max_pos, size_t *n_pos) {
+  *n_pos = 0;
+  for (int i = first; i < argc; i++) {
+    const char *a = argv[i];
+    if (a[0] == '-' && a[1] == '-' && a[2] != '\0') {
+      const char *eq = strchr(a, '=');
+      size_t len = eq ? (size_t)(eq - a) : strlen(a);
+      option *o = NULL;
+      for (size_t k = 0; k < n_opts; k++)
+        if (strlen(opts[k].name) == len && !strncmp(opts[k].name, a, len)) o = &opts[k];
+      if (!o)
+        return failf(cx, VL_EINPUT, "unknown option '%.*s' (see viscolube %s %s --help)",
+                     (int)len, a, cx->noun, cx->verb);
+      if (o->value)
+        return failf(cx, VL_EINPUT, "option %s is given twice", o->name);
+      if (!o->metavar) {
+        if (eq) return failf(cx, VL_EINPUT, "option %s takes no value", o->name);
+        o->value = "";
+      } else if (eq) {
+        o->value = eq + 1;
+      } else {
+        /* A following "--x" is another option, not this one's value; a
+         * negative number ("-0.3") is a value, so that it can be checked. */
+        if (i + 1 >= argc || (argv[i + 1][0] == '-' && argv[i + 1][1] == '-'))
+          return failf(cx, VL_EINPUT, "option %s needs a value (%s)", o->name, o->metavar);
+        o->value = argv[++i];
+      }
+      if (o->metavar && o->value[0] == '\0')
+        return failf(cx, VL_EINPUT, "option %s needs a non-empty value (%s)", o->name,
+                     o->metavar);
+    } else if (a[0] == '-' && a[1] != '\0' && !(a[1] >= '0' && a[1] <= '9') && a[1] != '.') {
+      return failf(cx, VL_EINPUT, "unknown option '%s' (see viscolube %s %s --help)", a, cx->noun,
+                   cx->verb);
+    } else {
+      if (*n_pos == max_pos)
+        return failf(cx, VL_EINPUT, "unexpected argument '%s' (see viscolube %s %s --help)", a,
+                     cx->noun, cx->verb);
+      pos[(*n_pos)++] = a;
+    }
+  }
+  return -1;
+}
+
+static option *find_opt(option *opts, size_t n, const char *name) {
+  for (size_t k = 0; k < n; k++)
+    if (!strcmp(opts[k].name, name)) return &opts[k];
+  return NULL;
+}
+
+/* Parses a numeric option value with the CSV reader's strict rules. */
+static int number_opt(const context *cx, const option *o, double *out) {
+  const char *why;
+  if (vl_csv_parse_double(o->value, out, &why) != VL_OK)
+    return failf(cx, VL_EINPUT, "option %s: %s (got '%s')", o->name, why, o->value);
+  return -1;
+}
+
+/* The NAME positional of show/add/remove, checked. */
+static int need_name(const context *cx, const char **pos, size_t n_pos, const char **name) {
+  if (n_pos < 1)
+    return failf(cx, VL_EINPUT, "missing NAME (see viscolube %s %s --help)", cx->noun, cx->verb);
+  vl_error err;
+  if (vl_db_check_name(pos[0], &err) != VL_OK) return fail(cx, VL_EINPUT, err.msg);
+  *name = pos[0];
+  return -1;
+}
+
+static int open_db(const context *cx, const vl_cli_globals *g, vl_db **db) {
+  vl_error err;
+  vl_status st = vl_db_open(g->db_path, db, &err);
+  if (st != VL_OK) return fail(cx, st, err.msg);
+  return -1;
+}
+
+/* ---- JSON output ------------------------------------------------------ */
+
+static void json_str(FILE *out, const char *s) {
+  fputc('"', out);
+  for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
+    if (*p == '"' || *p == '\\')
+      fprintf(out, "\\%c", *p);
+    else if (*p == '\n')
+      fputs("\\n", out);
+    else if (*p == '\t')
+      fputs("\\t", out);
+    else if (*p < 0x20 || *p == 0x7f)
+      fprintf(out, "\\u%04x", *p);
+    else
+      fputc(*p, out);
+  }
+  fputc('"', out);
+}
+
+/* Shortest of %.15g / %.17g that reads back exactly; NaN/Inf as null. */
+static void json_num(FILE *out, double v) {
+  if (!isfinite(v)) {
+    fputs("null", out);
+    return;
+  }
+  char buf[40];
+  snprintf(buf, sizeof buf, "%.15g", v);
+  if (strtod(buf, NULL) != v) snprintf(buf, sizeof buf, "%.17g", v);
+  fputs(buf, out);
+}
+
+static void json_key(FILE *out, int *first, const char *key) {
+  fputs(*first ? "{" : ", ", out);
+  *first = 0;
+  json_str(out, key);
+  fputs(": ", out);
+}
+
+static void json_key_str(FILE *out, int *first, const char *key, const char *v, int null_if_empty) {
+  json_key(out, first, key);
+  if (null_if_empty && (!v || !*v))
+    fputs("null", out);
+  else
+    json_str(out, v);
+}
+
+static void json_key_num(FILE *out, int *first, const char *key, double v) {
+  json_key(out, first, key);
+  json_num(out, v);
+}
+
+/* ---- compounds -------------------------------------------------------- */
+
+typedef struct {
+  double e0_pa;
+  int has_peak;
+  double omega_peak, tan_peak;
+} compound_derived;
+
+static compound_derived compound_derive(const vl_db_compound *c) {
+  compound_derived d = {.e0_pa = vl_prony_e0(&c->prony)};
+  d.has_peak = vl_prony_loss_peak(&c->prony, &d.omega_peak, &d.tan_peak, NULL) == VL_OK;
+  return d;
+}
+
+static void compound_json(FILE *out, const vl_db_compound *c) {
+  compound_derived d = compound_derive(c);
+  int first = 1;
+  json_key_str(out, &first, "name", c->name, 0);
+  json_key_str(out, &first, "class", c->class_name, 0);
+  json_key_str(out, &first, "description", c->description, 0);
+  json_key_num(out, &first, "e0_pa", d.e0_pa);
+  json_key_num(out, &first, "e_inf_pa", c->prony.e_inf_pa);
+  json_key_num(out, &first, "nu", c->prony.nu);
+  json_key(out, &first, "loss_peak");
+  if (d.has_peak) {
+    int f2 = 1;
+    json_key_num(out, &f2, "omega_rad_s", d.omega_peak);
+    json_key_num(out, &f2, "frequency_hz", d.omega_peak / TWO_PI);
+    json_key_num(out, &f2, "tan_delta", d.tan_peak);
+    fputc('}', out);
+  } else {
+    fputs("null", out);
+  }
+  json_key_num(out, &first, "tref_c", c->tref_c);
+  json_key_num(out, &first, "wlf_c1", c->wlf_c1);
+  json_key_num(out, &first, "wlf_c2_k", c->wlf_c2_k);
+  json_key_str(out, &first, "source_file", c->source_file, 1);
+  json_key_str(out, &first, "method", c->method, 0);
+  json_key_num(out, &first, "fit_rms_error", c->fit_rms_error);
+  json_key_str(out, &first, "created_at", c->created_at, 0);
+  json_key(out, &first, "prony");
+  fputc('[', out);
+  for (size_t i = 0; i < c->prony.n_terms; i++) {
+    int f2 = 1;
+    if (i) fputs(", ", out);
+    json_key_num(out, &f2, "A", c->prony.A[i]);
+    json_key_num(out, &f2, "tau_s", c->prony.tau_s[i]);
+    fputc('}', out);
+  }
+  fputs("]}", out);
+}
+
+static void compound_text(FILE *out, const vl_db_compound *c) {
+  compound_derived d = compound_derive(c);
+  fprintf(out, "compound %s (%s)\n", c->name, c->class_name);
+  if (c->description[0]) fprintf(out, "  description   %s\n", c->description);
+  fprintf(out, "  E0            %.6g Pa   (relaxed, Einf / (1 + sum A))\n", d.e0_pa);
+  fprintf(out, "  Einf          %.6g Pa   (glassy)\n", c->prony.e_inf_pa);
+  fprintf(out, "  nu            %.6g\n", c->prony.nu);
+  if (d.has_peak)
+    fprintf(out, "  tan delta max %.6g at %.6g rad/s (%.6g Hz)\n", d.tan_peak, d.omega_peak,
+            d.omega_peak / TWO_PI);
+  else
+    fprintf(out, "  tan delta max none (elastic)\n");
+  fprintf(out, "  tref          %.6g C\n", c->tref_c);
+  if (!isnan(c->wlf_c1)) fprintf(out, "  WLF           C1 %.6g, C2 %.6g K\n", c->wlf_c1, c->wlf_c2_k);
+  fprintf(out, "  method        %s\n", c->method);
+  if (c->source_file[0]) fprintf(out, "  source file   %s\n", c->source_file);
+  if (!isnan(c->fit_rms_error)) fprintf(out, "  fit rms error %.6g\n", c->fit_rms_error);
+  fprintf(out, "  created       %s\n", c->created_at);
+  fprintf(out, "  Prony terms (1/E = (1/Einf) [1 + sum A_i / (1 - i w tau_i)]):\n");
+  fprintf(out, "  %5s %14s %14s\n", "i", "A", "tau_s");
+  for (size_t i = 0; i < c->prony.n_terms; i++)
+    fprintf(out, "  %5zu %14.6g %14.6g\n", i + 1, c->prony.A[i], c->prony.tau_s[i]);
+}
+
+static void compound_line(FILE *out, const vl_db_compound *c) {
+  compound_derived d = compound_derive(c);
+  fprintf(out, "%-20s %-8s E0 %-10.4g Pa  Einf %-10.4g Pa  nu %-5.3g terms %-3zu", c->name,
+          c->class_name, d.e0_pa, c->prony.e_inf_pa, c->prony.nu, c->prony.n_terms);
+  if (d.has_peak) fprintf(out, "  tan delta max %.3g at %.4g rad/s", d.tan_peak, d.omega_peak);
+  fputc('\n', out);
+}
+
+static int compound_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
+  option opts[] = {{"--prony", "FILE", NULL},       {"--e-inf", "PA", NULL},
+                   {"--nu", "NU", NULL},            {"--class", "CLASS", NULL},
+                   {"--description", "TEXT", NULL}, {"--tref", "C", NULL},
+                   {"--wlf-c1", "C1", NULL},        {"--wlf-c2", "C2_K", NULL}};
+  const size_t n_opts = sizeof opts / sizeof *opts;
+  const char *pos[1], *name = NULL;
+  size_t n_pos;
+  int rc;
+  if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
+  if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  const char *required[] = {"--prony", "--e-inf", "--nu"};
+  for (size_t k = 0; k < 3; k++) {
+    option *o = find_opt(opts, n_opts, required[k]);
+    if (!o->value) return failf(cx, VL_EINPUT, "option %s %s is required", o->name, o->metavar);
+  }
+  option *file = find_opt(opts, n_opts, "--prony"), *einf = find_opt(opts, n_opts, "--e-inf");
+  option *nu = find_opt(opts, n_opts, "--nu"), *cls = find_opt(opts, n_opts, "--class");
+  option *desc = find_opt(opts, n_opts, "--description"), *tref = find_opt(opts, n_opts, "--tref");
+  option *c1 = find_opt(opts, n_opts, "--wlf-c1"), *c2 = find_opt(opts, n_opts, "--wlf-c2");
+  double e_inf_pa, nu_v, tref_c = 20.0, wlf_c1 = NAN, wlf_c2_k = NAN;
+  if ((rc = number_opt(cx, einf, &e_inf_pa)) >= 0) return rc;
+  if (!(e_inf_pa > 0.0))
+    return failf(cx, VL_EINPUT, "option --e-inf: the glassy modulus must be > 0 Pa (got '%s')",
+                 einf->value);
+  if ((rc = number_opt(cx, nu, &nu_v)) >= 0) return rc;
+  if (!(nu_v >= 0.0 && nu_v <= 0.5))
+    return failf(cx, VL_EINPUT, "option --nu: the Poisson ratio must lie in [0, 0.5] (got '%s')",
+                 nu->value);
+  if (cls->value && strcmp(cls->value, "model") && strcmp(cls->value, "filled") &&
+      strcmp(cls->value, "unfilled") && strcmp(cls->value, "other"))
+    return failf(cx, VL_EINPUT, "option --class: '%s' is not one of model, filled, unfilled, other",
+                 cls->value);
+  if (desc->value && strlen(desc->value) >= VL_DB_TEXT_MAX)
+    return failf(cx, VL_EINPUT, "option --description: longer than %d characters",
+                 VL_DB_TEXT_MAX - 1);
+  if (strlen(file->value) >= VL_DB_TEXT_MAX)
+    return failf(cx, VL_EINPUT, "option --prony: file name longer than %d characters",
+                 VL_DB_TEXT_MAX - 1);
+  if (tref->value) {
+    if ((rc = number_opt(cx, tref, &tref_c)) >= 0) return rc;
+    if (tref_c < -273.15)
+      return failf(cx, VL_EINPUT, "option --tref: below absolute zero (got '%s')", tref->value);
+  }
+  if ((!c1->value) != (!c2->value))
+    return fail(cx, VL_EINPUT, "options --wlf-c1 and --wlf-c2 go together (give both or neither)");
+  if (c1->value) {
+    if ((rc = number_opt(cx, c1, &wlf_c1)) >= 0) return rc;
+    if ((rc = number_opt(cx, c2, &wlf_c2_k)) >= 0) return rc;
+    if (!(wlf_c2_k > 0.0))
+      return failf(cx, VL_EINPUT, "option --wlf-c2: C2 must be > 0 K (got '%s')", c2->value);
+  }
+
+  vl_db_compound *c = calloc(1, sizeof *c);
+  if (!c) return fail(cx, VL_ENOMEM, "out of memory");
+  snprintf(c->name, sizeof c->name, "%s", name);
+  snprintf(c->class_name, sizeof c->class_name, "%s", cls->value ? cls->value : "other");
+  snprintf(c->description, sizeof c->description, "%s", desc->value ? desc->value : "");
+  snprintf(c->source_file, sizeof c->source_file, "%s", file->value);
+  snprintf(c->method, sizeof c->method, "prony-csv");
+  c->prony.e_inf_pa = e_inf_pa;
+  c->prony.nu = nu_v;
+  c->tref_c = tref_c;
+  c->wlf_c1 = wlf_c1;
+  c->wlf_c2_k = wlf_c2_k;
+  c->fit_rms_error = NAN;
+
+  vl_error err;
+  vl_db *db = NULL;
+  vl_status st = vl_csv_read_prony(file->value, &c->prony, &err);
+  if (st == VL_OK) st = vl_prony_validate(&c->prony, &err);
+  if (st != VL_OK) {
+    rc = fail(cx, st, err.msg);
+  } else if ((rc = open_db(cx, g, &db)) < 0) {
+    st = vl_db_compound_add(db, c, &err);
+    if (st != VL_OK) {
+      rc = fail(cx, st, err.msg);
+    } else {
+      printf("added compound '%s' to %s: %zu Prony terms, E0 %.6g Pa, Einf %.6g Pa, nu %.6g\n",
+             c->name, vl_db_path(db), c->prony.n_terms, vl_prony_e0(&c->prony),
+             c->prony.e_inf_pa, c->prony.nu);
+      rc = 0;
+    }
+  }
+  vl_db_close(db);
+  free(c);
+  return rc;
+}
+
+/* ---- surfaces --------------------------------------------------------- */
+
+static void surface_json(FILE *out, const vl_db_surface *s) {
+  int first = 1, tab = s->kind == VL_PSD_TABULATED;
+  json_key_str(out, &first, "name", s->name, 0);
+  json_key_str(out, &first, "kind", tab ? "tabulated" : "self-affine", 0);
+  json_key_str(out, &first, "description", s->description, 0);
+  json_key_num(out, &first, "hrms_m", s->hrms_m);
+  json_key_num(out, &first, "rms_slope", s->rms_slope);
+  json_key_num(out, &first, "c0_m4", tab ? NAN : s->c0_m4);
+  json_key_num(out, &first, "q0_per_m", s->q0_per_m);
+  json_key_num(out, &first, "q1_per_m", s->q1_per_m);
+  json_key_num(out, &first, "hurst", tab ? NAN : s->hurst);
+  json_key(out, &first, "n_points");
+  fprintf(out, "%zu", s->n_points);
+  json_key_str(out, &first, "source_file", s->source_file, 1);
+  json_key_str(out, &first, "created_at", s->created_at, 0);
+  fputc('}', out);
+}
+
+static void surface_text(FILE *out, const vl_db_surface *s) {
+  int tab = s->kind == VL_PSD_TABULATED;
+  fprintf(out, "surface %s (%s)\n", s->name, tab ? "tabulated" : "self-affine");
+  if (s->description[0]) fprintf(out, "  description   %s\n", s->description);
+  fprintf(out, "  h_rms         %.6g m\n", s->hrms_m);
+  fprintf(out, "  rms slope     %.6g\n", s->rms_slope);
+  if (!tab) {
+    fprintf(out, "  C0            %.6g m^4\n", s->c0_m4);
+    fprintf(out, "  H             %.6g (fractal dimension %.6g)\n", s->hurst, 3.0 - s->hurst);
+  }
+  fprintf(out, "  q0            %.6g 1/m\n", s->q0_per_m);
+  fprintf(out, "  q1            %.6g 1/m\n", s->q1_per_m);
+  if (tab) fprintf(out, "  points        %zu\n", s->n_points);
+  if (s->source_file[0]) fprintf(out, "  source file   %s\n", s->source_file);
+  fprintf(out, "  created       %s\n", s->created_at);
+}
+
+static void surface_line(FILE *out, const vl_db_surface *s) {
+  int tab = s->kind == VL_PSD_TABULATED;
+  fprintf(out, "%-20s %-11s h_rms %-10.4g m  rms slope %-9.4g q0 %-9.4g q1 %-9.4g 1/m  ", s->name,
+          tab ? "tabulated" : "self-affine", s->hrms_m, s->rms_slope, s->q0_per_m, s->q1_per_m);
+  if (tab)
+    fprintf(out, "%zu points\n", s->n_points);
+  else
+    fprintf(out, "H %.4g\n", s->hurst);
+}
+
+static int surface_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
+  option opts[] = {{"--self-affine", NULL, NULL}, {"--hurst", "H", NULL},
+                   {"--q0", "PER_M", NULL},       {"--q1", "PER_M", NULL},
+                   {"--hrms", "M", NULL},         {"--psd", "FILE", NULL},
+                   {"--description", "TEXT", NULL}};
+  const size_t n_opts = sizeof opts / sizeof *opts;
+  const char *pos[1], *name = NULL;
+  size_t n_pos;
+  int rc;
+  if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
+  if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  option *sa = find_opt(opts, n_opts, "--self-affine"), *psd_opt = find_opt(opts, n_opts, "--psd");
+  option *desc = find_opt(opts, n_opts, "--description");
+  const char *sa_opts[] = {"--hurst", "--q0", "--q1", "--hrms"};
+  if (sa->value && psd_opt->value)
+    return fail(cx, VL_EINPUT, "give either --self-affine or --psd FILE, not both");
+  if (!sa->value && !psd_opt->value)
+    return fail(cx, VL_EINPUT,
+                "give --self-affine --hurst H --q0 PER_M --q1 PER_M --hrms M, or --psd FILE");
+  for (size_t k = 0; k < 4; k++) {
+    option *o = find_opt(opts, n_opts, sa_opts[k]);
+    if (psd_opt->value && o->value)
+      return failf(cx, VL_EINPUT, "option %s belongs to --self-affine, not to --psd", o->name);
+    if (sa->value && !o->value)
+      return failf(cx, VL_EINPUT, "--self-affine needs option %s %s", o->name, o->metavar);
+  }
+  if (desc->value && strlen(desc->value) >= VL_DB_TEXT_MAX)
+    return failf(cx, VL_EINPUT, "option --description: longer than %d characters",
+                 VL_DB_TEXT_MAX - 1);
+
+  vl_error err;
+  vl_psd psd;
+  vl_status st;
+  memset(&psd, 0, sizeof psd);
+  if (sa->value) {
+    double v[4];
+    for (size_t k = 0; k < 4; k++)
+      if ((rc = number_opt(cx, find_opt(opts, n_opts, sa_opts[k]), &v[k])) >= 0) return rc;
+    if (!(v[0] > 0.0 && v[0] <= 1.0))
+      return failf(cx, VL_EINPUT, "option --hurst: H must lie in (0, 1] (got '%s')",
+                   find_opt(opts, n_opts, "--hurst")->value);
+    if (!(v[1] > 0.0))
+      return failf(cx, VL_EINPUT, "option --q0: the cut-off must be > 0 1/m (got '%s')",
+                   find_opt(opts, n_opts, "--q0")->value);
+    if (!(v[2] > v[1]))
+      return failf(cx, VL_EINPUT, "option --q1: must be larger than --q0 (got q0 = %s, q1 = %s)",
+                   find_opt(opts, n_opts, "--q0")->value, find_opt(opts, n_opts, "--q1")->value);
+    if (!(v[3] > 0.0))
+      return failf(cx, VL_EINPUT, "option --hrms: the rms roughness must be > 0 m (got '%s')",
+                   find_opt(opts, n_opts, "--hrms")->value);
+    st = vl_psd_init_self_affine(&psd, v[0], v[1], v[2], v[3], &err);
+  } else {
+    if (strlen(psd_opt->value) >= VL_DB_TEXT_MAX)
+      return failf(cx, VL_EINPUT, "option --psd: file name longer than %d characters",
+                   VL_DB_TEXT_MAX - 1);
+    st = vl_csv_read_psd(psd_opt->value, &psd, &err);
+  }
+  if (st != VL_OK) return fail(cx, st, err.msg);
+
+  vl_db *db = NULL;
+  if ((rc = open_db(cx, g, &db)) < 0) {
+    st = vl_db_surface_add(db, name, &psd, desc->value, psd_opt->value, &err);
+    if (st != VL_OK) {
+      rc = fail(cx, st, err.msg);
+    } else {
+      printf("added surface '%s' to %s: %s, h_rms %.6g m, rms slope %.6g\n", name, vl_db_path(db),
+             psd.kind == VL_PSD_TABULATED ? "tabulated" : "self-affine", vl_psd_hrms(&psd),
+             vl_psd_rms_slope(&psd));
+      rc = 0;
+    }
+  }
+  vl_db_close(db);
+  vl_psd_free(&psd);
+  return rc;
+}
+
+/* ---- fluids ----------------------------------------------------------- */
+
+static void fluid_json(FILE *out, const vl_db_fluid *f) {
+  int first = 1;
+  json_key_str(out, &first, "name", f->name, 0);
+  json_key_num(out, &first, "viscosity_pa_s", f->viscosity_pa_s);
+  json_key_num(out, &first, "tref_c", f->tref_c);
+  json_key_str(out, &first, "description", f->description, 0);
+  json_key_str(out, &first, "source_file", f->source_file, 1);
+  json_key_str(out, &first, "created_at", f->created_at, 0);
+  fputc('}', out);
+}
+
+static void fluid_text(FILE *out, const vl_db_fluid *f) {
+  fprintf(out, "fluid %s\n", f->name);
+  if (f->description[0]) fprintf(out, "  description   %s\n", f->description);
+  fprintf(out, "  viscosity     %.6g Pa s at %.6g C\n", f->viscosity_pa_s, f->tref_c);
+  fprintf(out, "  created       %s\n", f->created_at);
+}
+
+static void fluid_line(FILE *out, const vl_db_fluid *f) {
+  fprintf(out, "%-20s viscosity %-10.4g Pa s at %.4g C\n", f->name, f->viscosity_pa_s, f->tref_c);
+}
+
+static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
+  option opts[] = {{"--viscosity", "PA_S", NULL},
+                   {"--tref", "C", NULL},
+                   {"--description", "TEXT", NULL}};
+  const size_t n_opts = sizeof opts / sizeof *opts;
+  const char *pos[1], *name = NULL;
+  size_t n_pos;
+  int rc;
+  if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
+  if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  vl_db_fluid f;
+  memset(&f, 0, sizeof f);
+  snprintf(f.name, sizeof f.name, "%s", name);
+  f.tref_c = 20.0;
+  option *o = find_opt(opts, n_opts, "--viscosity");
+  if (!o->value) return fail(cx, VL_EINPUT, "option --viscosity PA_S is required");
+  if ((rc = number_opt(cx, o, &f.viscosity_pa_s)) >= 0) return rc;
+  if (!(f.viscosity_pa_s > 0.0))
+    return failf(cx, VL_EINPUT, "option --viscosity: must be > 0 Pa s (got '%s')", o->value);
+  if ((o = find_opt(opts, n_opts, "--tref"))->value) {
+    if ((rc = number_opt(cx, o, &f.tref_c)) >= 0) return rc;
+    if (f.tref_c < -273.15)
+      return failf(cx, VL_EINPUT, "option --tref: below absolute zero (got '%s')", o->value);
+  }
+  if ((o = find_opt(opts, n_opts, "--description"))->value) {
+    if (strlen(o->value) >= sizeof f.description)
+      return failf(cx, VL_EINPUT, "option --description: longer than %zu characters",
+                   sizeof f.description - 1);
+    snprintf(f.description, sizeof f.description, "%s", o->value);
+  }
+  vl_db *db = NULL;
+  vl_error err;
+  if ((rc = open_db(cx, g, &db)) < 0) {
+    vl_status st = vl_db_fluid_add(db, &f, &err);
+    if (st != VL_OK) {
+      rc = fail(cx, st, err.msg);
+    } else {
+      printf("added fluid '%s' to %s: viscosity %.6g Pa s at %.6g C\n", f.name, vl_db_path(db),
+             f.viscosity_pa_s, f.tref_c);
+      rc = 0;
+    }
+  }
+  vl_db_close(db);
+  return rc;
+}
+
+/* ---- list / show / remove, shared by the nouns ------------------------ */
+
+static int do_list(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
+  option opts[] = {{"--json", NULL, NULL}};
+  const char *pos[1];
+  size_t n_pos;
+  int rc;
+  if ((rc = parse_args(cx, argc, argv, 2, opts, 1, pos, 0, &n_pos)) >= 0) return rc;
+  int json = opts[0].value != NULL;
+  vl_db *db = NULL;
+  if ((rc = open_db(cx, g, &db)) >= 0) return rc;
+  vl_error err;
+  vl_status st;
+  size_t n = 0;
+  if (json) fputc('[', stdout);
+  if (cx->kind == NOUN_COMPOUND) {
+    vl_db_compound *items;
+    if ((st = vl_db_compound_list(db, &items, &n, &err)) == VL_OK) {
+      for (size_t i = 0; i < n; i++) {
+        if (json) {
+          fputs(i ? ",\n " : "", stdout);
+          compound_json(stdout, &items[i]);
+        } else {
+          compound_line(stdout, &items[i]);
+        }
+      }
+      free(items);
+    }
+  } else if (cx->kind == NOUN_SURFACE) {
+    vl_db_surface *items;
+    if ((st = vl_db_surface_list(db, &items, &n, &err)) == VL_OK) {
+      for (size_t i = 0; i < n; i++) {
+        if (json) {
+          fputs(i ? ",\n " : "", stdout);
+          surface_json(stdout, &items[i]);
+        } else {
+          surface_line(stdout, &items[i]);
+        }
+      }
+      free(items);
+    }
+  } else {
+    vl_db_fluid *items;
+    if ((st = vl_db_fluid_list(db, &items, &n, &err)) == VL_OK) {
+      for (size_t i = 0; i < n; i++) {
+        if (json) {
+          fputs(i ? ",\n " : "", stdout);
+          fluid_json(stdout, &items[i]);
+        } else {
+          fluid_line(stdout, &items[i]);
+        }
+      }
+      free(items);
+    }
+  }
+  if (json) fputs("]\n", stdout);
+  vl_db_close(db);
+  return st == VL_OK ? 0 : fail(cx, st, err.msg);
+}
+
+static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
+  option opts[] = {{"--json", NULL, NULL}};
+  const char *pos[1], *name = NULL;
+  size_t n_pos;
+  int rc;
+  if ((rc = parse_args(cx, argc, argv, 2, opts, 1, pos, 1, &n_pos)) >= 0) return rc;
+  if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  int json = opts[0].value != NULL;
+  vl_db *db = NULL;
+  if ((rc = open_db(cx, g, &db)) >= 0) return rc;
+  vl_error err;
+  vl_status st;
+  if (cx->kind == NOUN_COMPOUND) {
+    vl_db_compound *c = malloc(sizeof *c);
+    st = c ? vl_db_compound_info(db, name, c, &err) : VL_ENOMEM;
+    if (!c) vl_error_set(&err, "out of memory");
+    if (st == VL_OK) json ? compound_json(stdout, c) : compound_text(stdout, c);
+    free(c);
+  } else if (cx->kind == NOUN_SURFACE) {
+    vl_db_surface s;
+    if ((st = vl_db_surface_info(db, name, &s, &err)) == VL_OK)
+      json ? surface_json(stdout, &s) : surface_text(stdout, &s);
+  } else {
+    vl_db_fluid f;
+    if ((st = vl_db_fluid_info(db, name, &f, &err)) == VL_OK)
+      json ? fluid_json(stdout, &f) : fluid_text(stdout, &f);
+  }
+  if (st == VL_OK && json) fputc('\n', stdout);
+  vl_db_close(db);
+  return st == VL_OK ? 0 : fail(cx, st, err.msg);
+}
+
+static int do_remove(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
+  const char *pos[1], *name = NULL;
+  size_t n_pos;
+  int rc;
+  if ((rc = parse_args(cx, argc, argv, 2, NULL, 0, pos, 1, &n_pos)) >= 0) return rc;
+  if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  vl_db *db = NULL;
+  if ((rc = open_db(cx, g, &db)) >= 0) return rc;
+  vl_error err;
+  vl_status st = cx->kind == NOUN_COMPOUND ? vl_db_compound_remove(db, name, &err)
+                 : cx->kind == NOUN_SURFACE ? vl_db_surface_remove(db, name, &err)
+                                            : vl_db_fluid_remove(db, name, &err);
+  if (st == VL_OK) printf("removed %s '%s' from %s\n", cx->noun, name, vl_db_path(db));
+  vl_db_close(db);
+  return st == VL_OK ? 0 : fail(cx, st, err.msg);
+}
+
+/* ---- entry point ------------------------------------------------------ */
+
+int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv) {
+  context cx = {.noun = argv[0]};
+  if (!strcmp(argv[0], "compound"))
+    cx.kind = NOUN_COMPOUND;
+  else if (!strcmp(argv[0], "surface"))
+    cx.kind = NOUN_SURFACE;
+  else if (!strcmp(argv[0], "fluid"))
+    cx.kind = NOUN_FLUID;
+  else
+    return failf(&cx, VL_EINTERNAL, "not a material noun");
+
+  if (argc < 2) {
+    fputs(noun_help[cx.kind], stderr);
+    return vl_status_exit_code(VL_EINPUT);
+  }
+  const char *verb = argv[1];
+  if (!strcmp(verb, "--help") || !strcmp(verb, "-h") || !strcmp(verb, "help")) {
+    fputs(noun_help[cx.kind], stdout);
+    return 0;
+  }
+  static const char *const verbs[] = {"list", "show", "add", "remove"};
+  int known = 0;
+  for (size_t k = 0; k < 4; k++) known |= !strcmp(verb, verbs[k]);
+  if (!known)
+    return failf(&cx, VL_EINPUT, "unknown verb '%s' (expected list, show, add or remove; see "
+                                 "viscolube %s --help)",
+                 verb, cx.noun);
+  cx.verb = verb;
+  /* --help anywhere after the verb wins, so a half-typed command can ask. */
+  for (int i = 2; i < argc; i++) {
+    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+      verb_help(cx.kind, verb, stdout);
+      return 0;
+    }
+  }
+  if (!strcmp(verb, "list")) return do_list(&cx, g, argc, argv);
+  if (!strcmp(verb, "show")) return do_show(&cx, g, argc, argv);
+  if (!strcmp(verb, "remove")) return do_remove(&cx, g, argc, argv);
+  if (cx.kind == NOUN_COMPOUND) return compound_add(&cx, g, argc, argv);
+  if (cx.kind == NOUN_SURFACE) return surface_add(&cx, g, argc, argv);
+  return fluid_add(&cx, g, argc, argv);
+}
