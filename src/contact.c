@@ -146,14 +146,16 @@ static void eval_state(vl_contact *c, const double *y) {
    * its pressure (a leak far below any physical flow) */
   double us = c->uscale, floor_g = 1e-12 * pow(fmax(c->hrms, 1e-3 * c->u_ref) / us, 3.0);
   for (size_t i = 0; i < n; i++) {
-    double u = c->U[i] * us;
+    /* a Newton iterate may cross u < 0 (interpenetration): no flow there,
+     * rather than a negative conductance */
+    double u = fmax(c->U[i], 0.0) * us, on = c->U[i] > 0.0 ? 1.0 : 0.0;
     vl_flow_factor_values v, d;
     vl_flow_factors_eval(c->cfg.flow_factors, u, c->hrms, &v, &d);
     double u3 = u * u * u;
     c->g[i] = u3 * v.phi_p / (us * us * us) + floor_g;
-    c->dg[i] = (3.0 * u * u * v.phi_p + u3 * d.phi_p) / (us * us);
+    c->dg[i] = on * (3.0 * u * u * v.phi_p + u3 * d.phi_p) / (us * us);
     c->cf[i] = (u + c->hrms * v.phi_s) / us;
-    c->dcf[i] = 1.0 + c->hrms * d.phi_s;
+    c->dcf[i] = on * (1.0 + c->hrms * d.phi_s);
   }
   /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + c (upwind: the fluid
    * crossing a face carries the film of the cell it leaves); pf = 0 beyond
@@ -631,6 +633,24 @@ static void fluid_scales(vl_contact *c, double v0) {
   c->rscale = 1.0 / c->u_ref;
 }
 
+/* A fresh smooth wet solve starts from a film rather than from dry Hertz
+ * (opening a film out of a closed hard contact is a path Newton rarely
+ * finds): the rigid cylinder lifted by the larger of Martin's rigid film and
+ * the isoviscous-elastic (soft EHL) estimate h = 2.32 (eta um R/fN) g^0.8,
+ * g = fN/sqrt(eta um E' R), with no pressure yet. Newton's first step then
+ * solves the (nearly rigid) Reynolds problem; sweeps of smooth wet scenes
+ * run from high speed down. */
+static void wet_smooth_guess(vl_contact *c, double v0) {
+  size_t n = c->n;
+  double *y = N_VGetArrayPointer(c->y);
+  const vl_contact_config *cfg = &c->cfg;
+  double um = 0.5 * v0, eta = cfg->eta_pa_s, R = cfg->radius_m, fN = cfg->load_n_per_m;
+  double ge = fN / sqrt(eta * um * 2.0 * c->er_ref * R);
+  double h = fmax(2.32 * eta * um * R / fN * pow(ge, 0.8), 4.894 * eta * um * R / fN);
+  for (size_t i = 0; i < n; i++) y[i] = y[n + i] = 0.0;
+  y[n + c->nf] = h / c->uscale;
+}
+
 vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
   memset(pt, 0, sizeof *pt);
   pt->v0_m_s = v0_m_s;
@@ -642,6 +662,7 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
   double saved_kappa = c->kappa, saved_lambda = c->lambda, saved_rscale = c->rscale,
          saved_uref = c->u_ref, saved_v = c->v0;
   contact_set_speed(c, v0_m_s);
+  if (c->wet && !c->rough && c->v_state == 0.0) wet_smooth_guess(c, v0_m_s);
   fluid_scales(c, v0_m_s);
   int flag = KINSol(c->kmem, c->y, KIN_LINESEARCH, c->ones, c->ones);
   long nni = 0;

@@ -8,7 +8,7 @@
 
 const char *const vl_curve_columns[] = {
     "v0_m_s", "v0_eta_pa_m", "deborah", "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf", "u_min_m",
-    "u_central_m", "contact_width_m", "fluid_load_fraction", "E_wH_pa", "a_H_m", "Q",
+    "u_central_m", "contact_width_m", "fluid_load_fraction", "regime", "E_wH_pa", "a_H_m", "Q",
     "x_centroid_m", "load_error", "converged", "iterations", "residual", "warnings", NULL};
 
 static void cell(FILE *f, double v, int ok) {
@@ -35,6 +35,7 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->u_central_m, ok);
     cell(out, p->contact_width_m, ok);
     cell(out, p->fluid_load_fraction, ok);
+    fprintf(out, ",%s", ok ? vl_regime_name(p->regime) : "");
     cell(out, p->E_wH_pa, 1);
     cell(out, p->a_H_m, 1);
     cell(out, p->Q, 1);
@@ -78,10 +79,11 @@ vl_status vl_write_fields_csv(const char *path, const vl_fields *fl, double a0_m
   char tmp[4200];
   FILE *f = open_tmp(path, tmp, sizeof tmp, err);
   if (!f) return VL_EIO;
-  fputs("x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio\n", f);
+  fputs("x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction\n", f);
   for (size_t i = 0; i < fl->n; i++)
-    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", fl->x_m[i], fl->x_m[i] / a0_m,
-            fl->p_f_pa[i], fl->p_c_pa[i], fl->u_m[i], fl->area_ratio[i]);
+    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", fl->x_m[i], fl->x_m[i] / a0_m,
+            fl->p_f_pa[i], fl->p_c_pa[i], fl->u_m[i], fl->area_ratio[i],
+            fl->film_fraction ? fl->film_fraction[i] : 1.0);
   return close_rename(f, tmp, path, err);
 }
 
@@ -107,6 +109,8 @@ void vl_print_point_json(FILE *out, const vl_point *p, const vl_curve_meta *meta
   jnum(out, "u_central_m", p->u_central_m, ok, 1);
   jnum(out, "contact_width_m", p->contact_width_m, ok, 1);
   jnum(out, "fluid_load_fraction", p->fluid_load_fraction, ok, 1);
+  if (ok) fprintf(out, "\"regime\": \"%s\", ", vl_regime_name(p->regime));
+  else fputs("\"regime\": null, ", out);
   jnum(out, "E_wH_pa", p->E_wH_pa, 1, 1);
   jnum(out, "a_H_m", p->a_H_m, 1, 1);
   jnum(out, "Q", p->Q, 1, 1);

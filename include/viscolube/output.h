@@ -26,7 +26,7 @@ vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
                              const vl_curve_meta *meta, vl_error *err);
 void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta);
 
-/* Fields: x_m, x_over_a0, p_f_pa, p_c_pa, u_m, area_ratio. */
+/* Fields: x_m, x_over_a0, p_f_pa, p_c_pa, u_m, area_ratio, film_fraction. */
 vl_status vl_write_fields_csv(const char *path, const vl_fields *f, double a0_m, vl_error *err);
 
 /* One JSON object per point; an array for a curve. */

@@ -126,8 +126,9 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
     goto fail;
   }
   pts = calloc(n, sizeof *pts);
-  double *buf = calloc(5 * grid, sizeof *buf);
-  ctx.fields = (vl_fields){grid, buf, buf + grid, buf + 2 * grid, buf + 3 * grid, buf + 4 * grid};
+  double *buf = calloc(6 * grid, sizeof *buf);
+  ctx.fields = (vl_fields){grid,           buf,           buf + grid, buf + 2 * grid,
+                           buf + 3 * grid, buf + 4 * grid, buf + 5 * grid};
   if (!pts || !buf) {
     free(buf);
     vl_error_set(&err, "out of memory");

@@ -1,0 +1,92 @@
+/* viscolube: flow and shear-stress factors of the averaged Reynolds equation.
+ *
+ * MODEL.md sections 5 and 7 and FLOW_FACTORS.md. With u the average
+ * separation (the seed's u, the mean of the local film thickness), rubber and
+ * fluid moving at +v0, only the rubber rough:
+ *
+ *   flux         J   = -(u^3 phi_p / (12 eta)) dpf/dx + (v0/2) (u + h_rms phi_s)
+ *   wall shear   tau = (phi_f + phi_fs) eta v0 / u - phi_fp (u/2) dpf/dx
+ *
+ * The factors are a pluggable model chosen by the scene:
+ *
+ * smooth       phi_p = 1, phi_s = 0, phi_f = 1, phi_fs = 0, phi_fp = 1.
+ *
+ * patir-cheng  Patir & Cheng (J. Lubr. Technol. 100 (1978) 12; 101 (1979) 220),
+ *              isotropic Gaussian roughness (gamma = 1), sigma = h_rms. Their
+ *              argument is the nominal separation H = h/sigma, mapped to u by
+ *              the rigid Gaussian gap u/sigma = H Phi(H) + phi(H) (standard
+ *              normal cdf and pdf), then
+ *                phi_p = Phi_x(H) (h/u)^3, phi_s = Phi_s(H), phi_f = Phi_f(H) u/h,
+ *                phi_fs = Phi_fs(H) u/h,   phi_fp = Phi_fp(H) h/u.
+ *              Outside the published fit ranges the functions are continued so
+ *              that every factor is C1 in u on (0, inf) (the Jacobian uses the
+ *              derivatives); src/flow_factors.c lists each continuation:
+ *              - Phi_x: cubic a H^2 + b H^3 on 0 < H < 0.5, 0 for H <= 0
+ *                (flow stops at the percolation H = 0, u/sigma = 0.3989);
+ *              - Phi_s: the same kind of cubic on 0 < H < 0.5 (the fit's slope
+ *                is infinite at H = 0), a C1 blend of its two branches on
+ *                4.5 <= H <= 5.5, 0 for H <= 0;
+ *              - Phi_fs: a cubic Hermite tail from H = 7 to 0 at H = 8;
+ *              - Phi_fp: cubic on 0 < H < 0.75 (the fit is negative below
+ *                H = 0.51), 0 for H <= 0;
+ *              - Phi_f/H (the Couette shear per unit film): its limit at
+ *                H = 0, joined C1 by a quadratic on -0.5 <= H <= 0.
+ *              For u/sigma <= 0.198 (H <= -0.5) all factors are constants or
+ *              proportional to u: no pressure or shear flow, phi_fp = 0 and
+ *              phi_f = 1.648 u/sigma.
+ *
+ * Evaluation is allocation free and thread safe; the first patir-cheng call
+ * builds a small table for H(u) once (pthread_once). */
+#ifndef VISCOLUBE_FLOW_FACTORS_H
+#define VISCOLUBE_FLOW_FACTORS_H
+
+#include "viscolube/status.h"
+
+typedef enum { VL_FLOW_FACTORS_SMOOTH = 0, VL_FLOW_FACTORS_PATIR_CHENG } vl_flow_factor_kind;
+
+/* The five factors (dimensionless), or their derivatives d/du (1/m). */
+typedef struct {
+  double phi_p, phi_s, phi_f, phi_fs, phi_fp;
+} vl_flow_factor_values;
+
+/* The combinations the Reynolds solver and the friction integral use; they
+ * stay finite as u -> 0 for patir-cheng (for smooth, couette = 1/u):
+ *   conductance_m3 = u^3 phi_p            (flux = -conductance/(12 eta) dpf/dx)
+ *   shear_flow     = phi_s                (flux += (v0/2) h_rms phi_s)
+ *   couette_per_m  = (phi_f + phi_fs)/u   (shear += eta v0 couette_per_m)
+ *   poiseuille_m   = phi_fp u             (shear -= (1/2) poiseuille_m dpf/dx)
+ * or their derivatives d/du (units divided by m). */
+typedef struct {
+  double conductance_m3, shear_flow, couette_per_m, poiseuille_m;
+} vl_flow_terms;
+
+/* The five factors at average separation u_m for rms roughness hrms_m, and
+ * their derivatives d/du in *d when d != NULL (v must not be NULL).
+ * patir-cheng: u_m <= 0 gives the limit u -> 0+ (and its right derivative);
+ * hrms_m <= 0 gives the smooth factors (the limit sigma -> 0); a NaN input
+ * gives NaN outputs. Every output is finite for finite inputs. */
+void vl_flow_factors_eval(vl_flow_factor_kind kind, double u_m, double hrms_m,
+                          vl_flow_factor_values *v, vl_flow_factor_values *d);
+
+/* The solver's combinations (vl_flow_terms) and, when d != NULL, their
+ * derivatives d/du. Same conventions as vl_flow_factors_eval; for the smooth
+ * model (or hrms_m <= 0) u_m must be > 0 (the smooth Couette shear 1/u has
+ * no limit at u = 0). */
+void vl_flow_factors_terms(vl_flow_factor_kind kind, double u_m, double hrms_m, vl_flow_terms *t,
+                           vl_flow_terms *d);
+
+/* patir-cheng's mapping: the nominal separation h (m) of the mean planes for
+ * average separation u_m > 0 and hrms_m > 0, i.e. the root of
+ * u = h Phi(h/sigma) + sigma phi(h/sigma); dh/du in *dh_du when non-NULL.
+ * Works for every u in (0, inf) (h -> -inf as u -> 0, h -> u for u >> sigma);
+ * relative accuracy ~1e-15 in h. u_m <= 0 returns -INFINITY (dh_du = +INF). */
+double vl_flow_factors_nominal_gap(double u_m, double hrms_m, double *dh_du);
+
+/* "smooth" or "patir-cheng" (the scene's spelling); "unknown" otherwise. */
+const char *vl_flow_factors_name(vl_flow_factor_kind kind);
+
+/* Parses a scene's model name (exact, as above). VL_EINPUT with the valid
+ * names in err for anything else (or NULL). */
+vl_status vl_flow_factors_parse(const char *name, vl_flow_factor_kind *kind, vl_error *err);
+
+#endif
