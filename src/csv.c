@@ -25,8 +25,10 @@ typedef struct {
 static int is_blank(char c) { return c == ' ' || c == '\t'; }
 
 static span trim(span s) {
-  while (s.n > 0 && is_blank(s.p[0])) s.p++, s.n--;
-  while (s.n > 0 && is_blank(s.p[s.n - 1])) s.n--;
+  while (s.n > 0 && is_blank(s.p[0]))
+    s.p++, s.n--;
+  while (s.n > 0 && is_blank(s.p[s.n - 1]))
+    s.n--;
   return s;
 }
 
@@ -95,7 +97,8 @@ static size_t distance(span a, const char *b) {
   size_t nb = strlen(b);
   if (a.n > 32 || nb > 32) return 9;
   size_t prev[33], cur[33];
-  for (size_t j = 0; j <= nb; j++) prev[j] = j;
+  for (size_t j = 0; j <= nb; j++)
+    prev[j] = j;
   for (size_t i = 1; i <= a.n; i++) {
     cur[0] = i;
     for (size_t j = 1; j <= nb; j++) {
@@ -114,17 +117,20 @@ static int decimal_syntax(const char *s) {
   const char *p = s;
   if (*p == '+' || *p == '-') p++;
   size_t digits = 0;
-  while (*p >= '0' && *p <= '9') p++, digits++;
+  while (*p >= '0' && *p <= '9')
+    p++, digits++;
   if (*p == '.') {
     p++;
-    while (*p >= '0' && *p <= '9') p++, digits++;
+    while (*p >= '0' && *p <= '9')
+      p++, digits++;
   }
   if (digits == 0) return 0;
   if (*p == 'e' || *p == 'E') {
     p++;
     if (*p == '+' || *p == '-') p++;
     if (!(*p >= '0' && *p <= '9')) return 0;
-    while (*p >= '0' && *p <= '9') p++;
+    while (*p >= '0' && *p <= '9')
+      p++;
   }
   return *p == '\0';
 }
@@ -145,8 +151,7 @@ static vl_status parse_span(span s, double *out, const char **why) {
   if (!decimal_syntax(buf)) {
     const char *b = buf + (buf[0] == '+' || buf[0] == '-');
     span t = {b, strlen(b)};
-    if (span_eq_nocase(t, "nan") || span_eq_nocase(t, "inf") ||
-        span_eq_nocase(t, "infinity"))
+    if (span_eq_nocase(t, "nan") || span_eq_nocase(t, "inf") || span_eq_nocase(t, "infinity"))
       *why = "NaN and infinity are not allowed";
     else
       *why = "not a number";
@@ -214,8 +219,8 @@ static int units_match(span cell, const char *units) {
 }
 
 /* The units row the file would need, in the file's column order. */
-static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields,
-                           char *buf, size_t size) {
+static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields, char *buf,
+                           size_t size) {
   size_t k = 0;
   buf[0] = '\0';
   for (size_t f = 0; f < n_fields && k < size; f++) {
@@ -240,8 +245,7 @@ static vl_status grow(vl_csv *out, size_t *cap) {
 }
 
 vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
-                           const vl_csv_column *cols, size_t n_cols, vl_csv *out,
-                           vl_error *err) {
+                           const vl_csv_column *cols, size_t n_cols, vl_csv *out, vl_error *err) {
   vl_status st = VL_OK;
   span *cells = NULL;
   size_t *map = NULL;
@@ -295,7 +299,8 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
         if (parse_span(cells[f], &v, &why) != VL_OK) all_numbers = 0;
       }
       if (all_numbers) {
-        vl_error_set(err, "%s:%zu: missing header: expected the column names '%s' before the numbers",
+        vl_error_set(err,
+                     "%s:%zu: missing header: expected the column names '%s' before the numbers",
                      src, line_no, hdr);
         st = VL_EINPUT;
         goto cleanup;
@@ -310,7 +315,8 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
           goto cleanup;
         }
         size_t c = 0;
-        while (c < n_cols && !span_eq(name, cols[c].name)) c++;
+        while (c < n_cols && !span_eq(name, cols[c].name))
+          c++;
         if (c == n_cols) {
           size_t best = n_cols, best_d = 9;
           for (size_t k = 0; k < n_cols; k++) {
@@ -323,7 +329,8 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
                          "expected the header '%s')",
                          src, line_no, f + 1, shown, cols[best].name, hdr);
           else
-            vl_error_set(err, "%s:%zu: header field %zu: unknown column '%s' (expected the header '%s')",
+            vl_error_set(err,
+                         "%s:%zu: header field %zu: unknown column '%s' (expected the header '%s')",
                          src, line_no, f + 1, shown, hdr);
           st = VL_EINPUT;
           goto cleanup;
@@ -395,7 +402,8 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
       goto cleanup;
     }
     double *row = out->values + out->n_rows * n_cols;
-    for (size_t c = 0; c < n_cols; c++) row[c] = NAN;
+    for (size_t c = 0; c < n_cols; c++)
+      row[c] = NAN;
     for (size_t f = 0; f < n_fields; f++) {
       const vl_csv_column *col = &cols[map[f]];
       double v = 0.0;
@@ -452,8 +460,8 @@ cleanup:
   return st;
 }
 
-vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols,
-                           vl_csv *out, vl_error *err) {
+vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols, vl_csv *out,
+                           vl_error *err) {
   vl_status st = VL_OK;
   char *buf = NULL;
   size_t len = 0, cap = 0;

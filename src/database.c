@@ -57,9 +57,7 @@ static vl_status db_fail(const vl_db *db, int rc, const char *doing, vl_error *e
   const char *msg = db && db->h ? sqlite3_errmsg(db->h) : sqlite3_errstr(rc);
   const char *path = db ? db->path : "?";
   switch (rc & 0xff) {
-  case SQLITE_NOMEM:
-    vl_error_set(err, "out of memory while %s", doing);
-    return VL_ENOMEM;
+  case SQLITE_NOMEM: vl_error_set(err, "out of memory while %s", doing); return VL_ENOMEM;
   case SQLITE_READONLY:
     vl_error_set(err, "database %s is read-only: cannot %s (nothing was changed)", path, doing);
     return VL_EDB;
@@ -77,9 +75,7 @@ static vl_status db_fail(const vl_db *db, int rc, const char *doing, vl_error *e
   case SQLITE_FULL:
     vl_error_set(err, "database %s: I/O error while %s (%s)", path, doing, msg);
     return VL_EIO;
-  default:
-    vl_error_set(err, "database %s: error while %s (%s)", path, doing, msg);
-    return VL_EDB;
+  default: vl_error_set(err, "database %s: error while %s (%s)", path, doing, msg); return VL_EDB;
   }
 }
 
@@ -120,7 +116,8 @@ static vl_status pragma_int(vl_db *db, const char *sql, int *out, vl_error *err)
  * fail half-way, and ROLLBACK restores the file exactly. */
 static vl_status tx_begin(vl_db *db, const char *doing, vl_error *err) {
   if (db->readonly) {
-    vl_error_set(err, "database %s is read-only (no write permission): cannot %s; nothing was changed",
+    vl_error_set(err,
+                 "database %s is read-only (no write permission): cannot %s; nothing was changed",
                  db->path, doing);
     return VL_EDB;
   }
@@ -178,7 +175,8 @@ static size_t edit_distance(const char *a, const char *b) {
   size_t na = strlen(a), nb = strlen(b);
   if (na >= VL_DB_NAME_MAX || nb >= VL_DB_NAME_MAX) return (size_t)-1;
   size_t prev[VL_DB_NAME_MAX + 1], cur[VL_DB_NAME_MAX + 1];
-  for (size_t j = 0; j <= nb; j++) prev[j] = j;
+  for (size_t j = 0; j <= nb; j++)
+    prev[j] = j;
   for (size_t i = 1; i <= na; i++) {
     cur[0] = i;
     for (size_t j = 1; j <= nb; j++) {
@@ -326,8 +324,8 @@ static vl_status surface_load_psd(vl_db *db, sqlite3_int64 id, const char *kind,
   sqlite3_stmt *st = NULL;
   double *q = NULL, *C = NULL;
   size_t n = 0, cap = 0;
-  s = prepare(db, "SELECT q_per_m, c_m4 FROM surface_point WHERE surface_id = ?1 ORDER BY idx",
-              &st, err);
+  s = prepare(db, "SELECT q_per_m, c_m4 FROM surface_point WHERE surface_id = ?1 ORDER BY idx", &st,
+              err);
   if (s != VL_OK) return s;
   sqlite3_bind_int64(st, 1, id);
   int rc;
@@ -527,8 +525,9 @@ static vl_status migrate(vl_db *db, vl_error *err) {
     return VL_EDB;
   }
   if ((version > 0 || app != 0 || tables > 0) && app != VL_APPLICATION_ID) {
-    vl_error_set(err, "%s is an SQLite file of another program, not a viscolube database "
-                      "(it was not changed)",
+    vl_error_set(err,
+                 "%s is an SQLite file of another program, not a viscolube database "
+                 "(it was not changed)",
                  db->path);
     return VL_EDB;
   }
@@ -572,8 +571,7 @@ fail:
 /* ---- opening ---------------------------------------------------------- */
 
 vl_status vl_db_default_path(char *buf, size_t size, vl_error *err) {
-  const char *env = getenv("VISCOLUBE_DB"), *xdg = getenv("XDG_DATA_HOME"),
-             *home = getenv("HOME");
+  const char *env = getenv("VISCOLUBE_DB"), *xdg = getenv("XDG_DATA_HOME"), *home = getenv("HOME");
   int n;
   if (env && *env)
     n = snprintf(buf, size, "%s", env);
@@ -711,10 +709,11 @@ static const char *const compound_classes[] = {"model", "filled", "unfilled", "o
 static vl_status compound_by_id(vl_db *db, sqlite3_int64 id, vl_db_compound *out, vl_error *err) {
   sqlite3_stmt *st = NULL;
   memset(out, 0, sizeof *out);
-  vl_status s = prepare(db,
-                        "SELECT name, class, description, nu, e_inf_pa, tref_c, wlf_c1, wlf_c2_k, "
-                        "source_file, method, fit_rms_error, created_at FROM compound WHERE id = ?1",
-                        &st, err);
+  vl_status s =
+      prepare(db,
+              "SELECT name, class, description, nu, e_inf_pa, tref_c, wlf_c1, wlf_c2_k, "
+              "source_file, method, fit_rms_error, created_at FROM compound WHERE id = ?1",
+              &st, err);
   if (s != VL_OK) return s;
   sqlite3_bind_int64(st, 1, id);
   int rc = sqlite3_step(st);
@@ -924,7 +923,8 @@ vl_status vl_db_compound_list(vl_db *db, vl_db_compound **items, size_t *n, vl_e
     vl_error_set(err, "out of memory listing compounds");
     return VL_ENOMEM;
   }
-  for (size_t i = 0; i < count && s == VL_OK; i++) s = compound_by_id(db, ids[i], &arr[i], err);
+  for (size_t i = 0; i < count && s == VL_OK; i++)
+    s = compound_by_id(db, ids[i], &arr[i], err);
   free(ids);
   if (s != VL_OK) {
     free(arr);
@@ -1004,8 +1004,8 @@ vl_status vl_db_surface_get(vl_db *db, const char *name, vl_psd *out, vl_error *
   return s;
 }
 
-vl_status vl_db_surface_add(vl_db *db, const char *name, const vl_psd *psd,
-                            const char *description, const char *source_file, vl_error *err) {
+vl_status vl_db_surface_add(vl_db *db, const char *name, const vl_psd *psd, const char *description,
+                            const char *source_file, vl_error *err) {
   vl_status s;
   sqlite3_stmt *st = NULL;
   vl_psd copy;
@@ -1058,9 +1058,9 @@ vl_status vl_db_surface_add(vl_db *db, const char *name, const vl_psd *psd,
   sqlite3_finalize(st);
   st = NULL;
   if (tab) {
-    s = prepare(db,
-                "INSERT INTO surface_point (surface_id, idx, q_per_m, c_m4) VALUES (?1, ?2, ?3, ?4)",
-                &st, err);
+    s = prepare(
+        db, "INSERT INTO surface_point (surface_id, idx, q_per_m, c_m4) VALUES (?1, ?2, ?3, ?4)",
+        &st, err);
     if (s != VL_OK) goto cleanup;
     for (size_t k = 0; k < copy.n; k++) {
       sqlite3_reset(st);
@@ -1102,7 +1102,8 @@ vl_status vl_db_surface_list(vl_db *db, vl_db_surface **items, size_t *n, vl_err
     vl_error_set(err, "out of memory listing surfaces");
     return VL_ENOMEM;
   }
-  for (size_t i = 0; i < count && s == VL_OK; i++) s = surface_by_id(db, ids[i], &arr[i], err);
+  for (size_t i = 0; i < count && s == VL_OK; i++)
+    s = surface_by_id(db, ids[i], &arr[i], err);
   free(ids);
   if (s != VL_OK) {
     free(arr);
@@ -1221,7 +1222,8 @@ vl_status vl_db_fluid_list(vl_db *db, vl_db_fluid **items, size_t *n, vl_error *
     vl_error_set(err, "out of memory listing fluids");
     return VL_ENOMEM;
   }
-  for (size_t i = 0; i < count && s == VL_OK; i++) s = fluid_by_id(db, ids[i], &arr[i], err);
+  for (size_t i = 0; i < count && s == VL_OK; i++)
+    s = fluid_by_id(db, ids[i], &arr[i], err);
   free(ids);
   if (s != VL_OK) {
     free(arr);

@@ -2,9 +2,9 @@
  *
  * patir-cheng works in the nominal separation H = h/sigma. The hot path
  * (called for every grid node in every residual and Jacobian) is:
- *   g = u/sigma  ->  H(g) by a cubic Hermite table plus one Newton step
+ *   g = u/sigma  ->  H(g) from a quintic Hermite table (no special function)
  *                ->  the factors of H and their H-derivatives (closed forms)
- *                ->  the factors of u (chain rule with dH/dg = 1/Phi(H)).
+ *                ->  the factors of u (chain rule with dH/du = 1/(sigma Phi(H))).
  *
  * Continuations beyond the published fits (all chosen so that each factor is
  * C1 in H, hence in u, since dH/du = 1/(sigma Phi(H)) is smooth and positive):
@@ -22,16 +22,20 @@
  * Phi_f   exact Patir-Cheng closed forms, z = H/3 (checked symbolically: the
  *         z <= 1 polynomial is \int_{-z}^{1} of the quotient of (1-t^2)^3 by
  *         (z+t), the z > 1 one the same over [-1, 1]; both branches give 7/6
- *         and slope -1.6 in z at z = 1, so nothing to fix). For z >= 3 the
+ *         and slope -1.6 in z at z = 1, so nothing to fix). For z >= 2 the
  *         series Phi_f = sum_j 105 z^-2j / ((2j+1)(2j+3)(2j+5)(2j+7)) replaces
- *         the closed form, which cancels like z^6. The library stores
+ *         the closed form, which cancels like z^6 (its rounding noise, 1e-13
+ *         at z = 3, is what a finite-difference Jacobian would see). The library stores
  *         Psi_f = Phi_f/H, finite at H = 0 (Psi_0 = (35/96)(ln 300 - 11/12)).
  *         Its slope there is 7/18, so the constant limit for H < 0 would break
  *         C1: on [-0.5, 0] Psi_f = Psi_0 + (7/18)(H + H^2), constant
  *         Psi_0 - 7/72 below.
- * Phi_fs  11.1 H^2.31 exp(-2.38 H + 0.11 H^2) on (0, 7] (value and slope 0 at
- *         H = 0, so 0 below is C1); at H = 7 it drops by 0.0127 to 0, replaced
- *         by a monotone cubic Hermite tail to 0 (value and slope) at H = 8.
+ * Phi_fs  11.1 H^2.31 exp(-2.38 H + 0.11 H^2), fitted on 0.5 < H < 7. The
+ *         solver needs Phi_fs/H ~ H^1.31, whose slope ~H^0.31 is continuous at
+ *         0 but not Lipschitz; below 0.5 Phi_fs/H is the cubic a H^2 + b H^3
+ *         (value and slope matched at 0.5), 0 for H <= 0. At H = 7 the fit
+ *         drops by 0.0127 to 0: replaced by a monotone cubic Hermite tail to 0
+ *         (value and slope) at H = 8.
  * Phi_fp  1 - 1.40 exp(-0.66 H) is negative for H < ln(1.4)/0.66 = 0.510; a
  *         cubic joined at 0.5 would dip to -0.05, so it is joined at 0.75 (the
  *         cubic a H^2 + b H^3 stays >= 0 and monotone for a join at H >= 0.738).
@@ -54,19 +58,20 @@ static double norm_pdf(double x) { return INV_SQRT_2PI * exp(-0.5 * x * x); }
 static double gap_of_H(double H) { return norm_pdf(H) + H * norm_cdf(H); }
 
 /* Below H_LO the factors do not depend on H (see the header comment), so the
- * hot path never needs H there; above H_HI, g(H) - H < 1.4e-20 and H = g. */
+ * hot path never needs H there; above G_HI, g(H) - H < 1.4e-20 and H = g. */
 #define H_LO (-0.5)
 #define G_HI 9.0
-#define TABLE_N 256
+#define TABLE_N 512
 
 static struct {
-  double g_lo, dg, inv_dg; /* table over g in [g_lo, G_HI], uniform step dg */
-  double H[TABLE_N + 1], dH[TABLE_N + 1]; /* H(g_i) and dH/dg = 1/Phi(H) */
-  double ax, bx;   /* Phi_x cubic on (0, 0.5) */
-  double as, bs;   /* Phi_s cubic on (0, 0.5) */
-  double afp, bfp; /* Phi_fp cubic on (0, 0.75) */
-  double fs7, dfs7; /* Phi_fs value and slope at H = 7 (tail start) */
-  double psi0;      /* Psi_f = Phi_f/H at H = 0 */
+  double g_lo, s_lo, ds, inv_ds; /* table uniform in s = sqrt(g), g in [g_lo, G_HI] */
+  double c[TABLE_N][6]; /* H on interval i: sum_k c[i][k] t^k, t = (s - s_i)/ds in [0, 1] */
+  double ax, bx;        /* Phi_x cubic on (0, 0.5) */
+  double as, bs;        /* Phi_s cubic on (0, 0.5) */
+  double afp, bfp;      /* Phi_fp cubic on (0, 0.75) */
+  double afs, bfs;      /* Phi_fs/H cubic on (0, 0.5) */
+  double fs7, dfs7;     /* Phi_fs value and slope at H = 7 (tail start) */
+  double psi0;          /* Psi_f = Phi_f/H at H = 0 */
 } T;
 
 static pthread_once_t table_once = PTHREAD_ONCE_INIT;
@@ -78,24 +83,39 @@ static void cubic_join(double h1, double v, double m, double *a, double *b) {
   *b = (m * h1 - 2.0 * v) / (h1 * h1 * h1);
 }
 
+/* H(g) is tabulated as a quintic Hermite interpolant in s = sqrt(g) (which
+ * puts the nodes closer where H(g) bends most, at small g) of the exact H,
+ * dH/ds = 2 s/Phi(H) and d2H/ds2 = 2/Phi - 4 g phi/Phi^3 at the nodes: C2
+ * across nodes, within ~1e-14 of the root (checked by the tests), and the hot
+ * path needs no erfc. */
 static void table_build(void) {
   T.g_lo = gap_of_H(H_LO);
-  T.dg = (G_HI - T.g_lo) / TABLE_N;
-  T.inv_dg = 1.0 / T.dg;
-  double H = H_LO;
+  T.s_lo = sqrt(T.g_lo);
+  T.ds = (sqrt(G_HI) - T.s_lo) / TABLE_N;
+  T.inv_ds = 1.0 / T.ds;
+  double H = H_LO, y0 = 0.0, d0 = 0.0, c0 = 0.0;
   for (int i = 0; i <= TABLE_N; i++) {
-    double g = T.g_lo + i * T.dg;
+    double s = T.s_lo + i * T.ds, g = i == 0 ? T.g_lo : s * s;
     /* g is convex increasing in H: Newton from the previous node (left of
      * the root) first overshoots right, then converges monotonically */
-    for (int it = 0; it < 60; it++) {
+    for (int it = 0; it < 60 && i > 0; it++) {
       double step = (gap_of_H(H) - g) / norm_cdf(H);
       H -= step;
       if (fabs(step) <= 1e-16 * (1.0 + fabs(H))) break;
     }
-    T.H[i] = H;
-    T.dH[i] = 1.0 / norm_cdf(H);
+    double cdf = norm_cdf(H), pdf = norm_pdf(H);
+    double y1 = H, d1 = T.ds * 2.0 * s / cdf;
+    double c1 = T.ds * T.ds * (2.0 / cdf - 4.0 * g * pdf / (cdf * cdf * cdf));
+    if (i > 0) {
+      double *c = T.c[i - 1];
+      c[0] = y0, c[1] = d0, c[2] = 0.5 * c0;
+      double r0 = y1 - (c[0] + c[1] + c[2]), r1 = d1 - (c[1] + 2.0 * c[2]), r2 = c1 - 2.0 * c[2];
+      c[3] = 10.0 * r0 - 4.0 * r1 + 0.5 * r2;
+      c[4] = -15.0 * r0 + 7.0 * r1 - r2;
+      c[5] = 6.0 * r0 - 3.0 * r1 + 0.5 * r2;
+    }
+    y0 = y1, d0 = d1, c0 = c1;
   }
-  T.H[0] = H_LO;
 
   double e = exp(-0.56 * 0.5);
   cubic_join(0.5, 1.0 - 0.90 * e, 0.90 * 0.56 * e, &T.ax, &T.bx);
@@ -103,6 +123,8 @@ static void table_build(void) {
   cubic_join(0.5, A, A * (0.98 / 0.5 - 0.92 + 0.10 * 0.5), &T.as, &T.bs);
   e = exp(-0.66 * 0.75);
   cubic_join(0.75, 1.0 - 1.40 * e, 1.40 * 0.66 * e, &T.afp, &T.bfp);
+  double P = 11.1 * exp(1.31 * log(0.5) - 2.38 * 0.5 + 0.11 * 0.25); /* Phi_fs(0.5)/0.5 */
+  cubic_join(0.5, P, P * (1.31 / 0.5 - 2.38 + 0.22 * 0.5), &T.afs, &T.bfs);
   T.fs7 = 11.1 * exp(2.31 * log(7.0) - 2.38 * 7.0 + 0.11 * 49.0);
   T.dfs7 = T.fs7 * (2.31 / 7.0 - 2.38 + 0.22 * 7.0);
   T.psi0 = (35.0 / 96.0) * (log(300.0) - 55.0 / 60.0);
@@ -116,18 +138,16 @@ static double H_of_gap(double g, double *dH_dg) {
     *dH_dg = 1.0;
     return g;
   }
-  double s = (g - T.g_lo) * T.inv_dg;
-  int i = (int)s;
+  double sg = sqrt(g), x = (sg - T.s_lo) * T.inv_ds;
+  int i = (int)x;
   if (i < 0) i = 0;
   if (i > TABLE_N - 1) i = TABLE_N - 1;
-  double t = s - i, t2 = t * t, t3 = t2 * t;
-  double H0 = (2.0 * t3 - 3.0 * t2 + 1.0) * T.H[i] + (t3 - 2.0 * t2 + t) * T.dg * T.dH[i] +
-              (3.0 * t2 - 2.0 * t3) * T.H[i + 1] + (t3 - t2) * T.dg * T.dH[i + 1];
-  /* one Newton step takes the interpolant's ~1e-8 error to rounding */
-  double cdf = norm_cdf(H0), pdf = norm_pdf(H0);
-  double H = H0 - (pdf + H0 * cdf - g) / cdf;
-  *dH_dg = 1.0 / (cdf + pdf * (H - H0)); /* Phi(H) to second order */
-  return H;
+  double t = x - i;
+  const double *c = T.c[i];
+  /* dH/dg = (dH/dt) (dt/ds) (ds/dg), ds/dg = 1/(2 s) */
+  *dH_dg = (c[1] + t * (2.0 * c[2] + t * (3.0 * c[3] + t * (4.0 * c[4] + t * 5.0 * c[5])))) *
+           T.inv_ds / (2.0 * sg);
+  return c[0] + t * (c[1] + t * (c[2] + t * (c[3] + t * (c[4] + t * c[5]))));
 }
 
 /* ln g(H) for H <= H_LO without underflow: with x = -H, g = phi(x)(1 - x R(x))
@@ -142,7 +162,8 @@ static double log_gap_low(double H, double *dlng) {
     return log(g);
   }
   double t = x;
-  for (int k = 80; k >= 2; k--) t = x + k / t; /* t = t1 */
+  for (int k = 80; k >= 2; k--)
+    t = x + k / t; /* t = t1 */
   double t0 = x + 1.0 / t;
   double one_minus_xR = (1.0 / t) / t0;
   *dlng = (1.0 / t0) / one_minus_xR; /* Phi/g = R/(1 - x R) */
@@ -194,25 +215,27 @@ static double psi_f(double H, double *d) {
   double z = H / 3.0;
   if (z <= 1.0) {
     double w = 1.0 - z * z, w2 = w * w, L = log(300.0 * (1.0 + z));
-    double P = -55.0 + z * (132.0 + z * (345.0 + z * (-160.0 + z * (-405.0 + z * (60.0 + 147.0 * z)))));
+    double P =
+        -55.0 + z * (132.0 + z * (345.0 + z * (-160.0 + z * (-405.0 + z * (60.0 + 147.0 * z)))));
     double dP = 132.0 + z * (690.0 + z * (-480.0 + z * (-1620.0 + z * (300.0 + 882.0 * z))));
     *d = (35.0 / 96.0) * (-6.0 * z * w2 * L + w2 * w / (1.0 + z) + dP / 60.0) / 3.0;
     return (35.0 / 96.0) * (w2 * w * L + P / 60.0);
   }
-  if (z < 3.0) {
+  if (z < 2.0) {
     double w = 1.0 - z * z, w2 = w * w, z2 = z * z, L = log((z + 1.0) / (z - 1.0));
     *d = (35.0 / 96.0) *
          (-6.0 * z * w2 * L + 2.0 * w2 + (66.0 + z2 * (150.0 * z2 - 240.0)) / 15.0) / 3.0;
     return (35.0 / 96.0) * (w2 * w * L + z * (66.0 + z2 * (30.0 * z2 - 80.0)) / 15.0);
   }
-  /* Phi_f = sum_j c_j w^j, w = 1/z^2 <= 1/9: 15 terms reach 1e-17 */
-  static const double c[15] = {
+  /* Phi_f = sum_j c_j w^j, w = 1/z^2 <= 1/4: 22 terms reach 1e-17 */
+  static const double c[22] = {
 #define C(j) 105.0 / ((2 * (j) + 1.0) * (2 * (j) + 3.0) * (2 * (j) + 5.0) * (2 * (j) + 7.0))
-      C(0), C(1), C(2), C(3), C(4), C(5), C(6), C(7), C(8), C(9), C(10), C(11), C(12), C(13), C(14)
+      C(0),  C(1),  C(2),  C(3),  C(4),  C(5),  C(6),  C(7),  C(8),  C(9), C(10), C(11),
+      C(12), C(13), C(14), C(15), C(16), C(17), C(18), C(19), C(20), C(21)
 #undef C
   };
   double w = 1.0 / (z * z), f = 0.0, jf = 0.0;
-  for (int j = 14; j >= 1; j--) {
+  for (int j = 21; j >= 1; j--) {
     f = f * w + c[j];
     jf = jf * w + j * c[j];
   }
@@ -239,7 +262,7 @@ static void pc_of_H(double H, pc_h *v, pc_h *d) {
     }
     return;
   }
-  double lnH = log(H);
+  double lnH = H >= 0.5 && H <= 7.0 ? log(H) : 0.0; /* only the power-law fits need it */
 
   /* pressure flow */
   if (H < 0.5) {
@@ -278,11 +301,13 @@ static void pc_of_H(double H, pc_h *v, pc_h *d) {
 
   /* Couette shear of the mean film (Phi_f) and of the roughness (Phi_fs) */
   v->psf = psi_f(H, &d->psf);
-  if (H <= 7.0) {
-    /* Phi_fs/H = 11.1 H^1.31 exp(...); written without 1/H for tiny H */
-    double e = exp(0.31 * lnH - 2.38 * H + 0.11 * H * H);
-    v->psfs = 11.1 * H * e;
-    d->psfs = 11.1 * e * (1.31 - 2.38 * H + 0.22 * H * H);
+  if (H < 0.5) {
+    v->psfs = H * H * (T.afs + T.bfs * H);
+    d->psfs = H * (2.0 * T.afs + 3.0 * T.bfs * H);
+  } else if (H <= 7.0) {
+    double e = exp(1.31 * lnH - 2.38 * H + 0.11 * H * H); /* Phi_fs/H */
+    v->psfs = 11.1 * e;
+    d->psfs = v->psfs * (1.31 / H - 2.38 + 0.22 * H);
   } else if (H < 8.0) {
     double t = H - 7.0, t2 = t * t, t3 = t2 * t;
     double p = (2.0 * t3 - 3.0 * t2 + 1.0) * T.fs7 + (t3 - 2.0 * t2 + t) * T.dfs7;

@@ -191,17 +191,31 @@ static size_t kinks(const vl_psd *psd, double sigma_end, double *out) {
 
 /* Panels from sm to sigma_end: geometric (ratio PANEL_RATIO) near q0, at
  * most PANEL_DT wide in t, and never straddling a kink. Returns the panel
- * count; edges (may be NULL) receives count + 1 edges. kk: the kinks. */
-static size_t make_panels(const double *kk, size_t nkk, double sm, double *edges) {
+ * count and the node count in *nodes; edges and order (may be NULL) receive
+ * count + 1 edges and each panel's Gauss-Legendre order. A panel cut short
+ * by a kink to a fraction f of its natural width gets fewer points: the
+ * error of n points scales like (f kappa)^(2n), kappa the natural panel's
+ * width over the integrand's scale; n = GL_ORDER / (1 - ln f) keeps that at
+ * the full panel's kappa^(2 GL_ORDER) for kappa ~ 1/e (dense tabulated
+ * PSDs would otherwise cost GL_ORDER points per knot). */
+static size_t make_panels(const double *kk, size_t nkk, double sm, double *edges,
+                          unsigned *order, size_t *nodes) {
   size_t np = 0, j = 0;
   double h = 0.5 * PANEL_DT; /* dt/dsigma <= 2 */
   double a = sm, end = kk[nkk - 1];
+  *nodes = 0;
   if (edges) edges[0] = a;
   while (a < end) {
     while (kk[j] <= a) j++; /* kk[nkk-1] = end > a stops this */
-    double b = fmin(a * PANEL_RATIO, a + h);
+    double natural = fmin(a * (PANEL_RATIO - 1.0), h);
+    double b = a + natural;
     if (b >= kk[j] || kk[j] - b < 1e-9 * h) b = kk[j];
+    double f = fmin(1.0, (b - a) / natural);
+    unsigned n = (unsigned)ceil(GL_ORDER / (1.0 - log(f)) - 1e-9);
+    n = n < 2 ? 2 : n > GL_ORDER ? GL_ORDER : n;
     if (edges) edges[np + 1] = b;
+    if (order) order[np] = n;
+    *nodes += n;
     np++;
     a = b;
   }
@@ -211,7 +225,8 @@ static size_t make_panels(const double *kk, size_t nkk, double sm, double *edges
 static vl_status rule_build(const vl_psd *psd, rule *r, vl_error *err) {
   vl_status st = VL_OK;
   double *edges = NULL, *kk = NULL;
-  gsl_integration_glfixed_table *gl = NULL;
+  unsigned *order = NULL;
+  gsl_integration_glfixed_table *gl[GL_ORDER + 1] = {NULL};
   memset(r, 0, sizeof *r);
   double c_first, alpha, dt_first;
   first_piece(psd, &c_first, &alpha, &dt_first);
@@ -227,31 +242,40 @@ static vl_status rule_build(const vl_psd *psd, rule *r, vl_error *err) {
     return VL_ENOMEM;
   }
   kinks(psd, sigma_end, kk);
-  size_t np = make_panels(kk, nkk, r->sm, NULL);
+  size_t nodes, np = make_panels(kk, nkk, r->sm, NULL, NULL, &nodes);
   edges = malloc((np + 1) * sizeof *edges);
-  r->n = np * GL_ORDER;
+  order = malloc(np * sizeof *order);
+  r->n = nodes;
   r->w = malloc(r->n * sizeof *r->w);
   r->wt = malloc(r->n * sizeof *r->wt);
-  gl = gsl_integration_glfixed_table_alloc(GL_ORDER);
-  if (!edges || !r->w || !r->wt || !gl) {
+  if (!edges || !order || !r->w || !r->wt) {
     vl_error_set(err, "out of memory for a %zu-node quadrature rule", r->n);
     st = VL_ENOMEM;
     goto cleanup;
   }
-  make_panels(kk, nkk, r->sm, edges);
+  make_panels(kk, nkk, r->sm, edges, order, &nodes);
+  size_t k = 0;
   for (size_t p = 0; p < np; p++) {
-    for (size_t i = 0; i < GL_ORDER; i++) {
+    unsigned n = order[p];
+    if (!gl[n]) gl[n] = gsl_integration_glfixed_table_alloc(n);
+    if (!gl[n]) {
+      vl_error_set(err, "out of memory for a Gauss-Legendre table");
+      st = VL_ENOMEM;
+      goto cleanup;
+    }
+    for (size_t i = 0; i < n; i++, k++) {
       double xi, wi;
-      size_t k = p * GL_ORDER + i;
-      if (gsl_integration_glfixed_point(edges[p], edges[p + 1], i, &xi, &wi, gl) != GSL_SUCCESS) {
+      if (gsl_integration_glfixed_point(edges[p], edges[p + 1], i, &xi, &wi, gl[n]) !=
+          GSL_SUCCESS) {
         vl_error_set(err, "Gauss-Legendre node %zu failed", i);
         st = VL_EINTERNAL;
         goto cleanup;
       }
       r->wt[k] = wi * kernel(psd, xi, &r->w[k]);
       if (!(isfinite(r->wt[k]) && isfinite(r->w[k]))) {
+        double jac;
         vl_error_set(err, "PSD gives a non-finite Persson integrand at q = %g 1/m",
-                     psd->q0 * exp(xi * xi));
+                     psd->q0 * exp(dt_of_sigma(xi, &jac)));
         st = VL_EINPUT;
         goto cleanup;
       }
@@ -260,7 +284,9 @@ static vl_status rule_build(const vl_psd *psd, rule *r, vl_error *err) {
 cleanup:
   free(edges);
   free(kk);
-  if (gl) gsl_integration_glfixed_table_free(gl);
+  free(order);
+  for (unsigned n = 0; n <= GL_ORDER; n++)
+    if (gl[n]) gsl_integration_glfixed_table_free(gl[n]);
   if (st != VL_OK) rule_free(r);
   return st;
 }

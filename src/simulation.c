@@ -109,6 +109,9 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.load_n_per_m = scene->load_n_per_m;
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
   cfg.roughness = sim->table;
+  /* only a scene with the fluid effect gets fluid unknowns */
+  cfg.eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
+  cfg.flow_factors = scene->effects.flow_factors;
   cfg.grid = scene->grid;
   cfg.x_min_a0 = scene->domain_min_a0;
   cfg.x_max_a0 = scene->domain_max_a0;

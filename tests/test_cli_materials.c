@@ -6,11 +6,12 @@
  * database file byte-for-byte unchanged. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <setjmp.h>
-#include <cmocka.h>
+
+#include <cmocka.h> /* after the four headers it needs */
 
 #include "vl_test_util.h"
 
@@ -30,7 +31,8 @@
 static int j_value(const char **p, int depth);
 
 static void j_ws(const char **p) {
-  while (**p == ' ' || **p == '\t' || **p == '\n' || **p == '\r') (*p)++;
+  while (**p == ' ' || **p == '\t' || **p == '\n' || **p == '\r')
+    (*p)++;
 }
 
 static int j_string(const char **p) {
@@ -60,7 +62,8 @@ static int j_string(const char **p) {
 
 static int j_digits(const char **p) {
   const char *s = *p;
-  while (**p >= '0' && **p <= '9') (*p)++;
+  while (**p >= '0' && **p <= '9')
+    (*p)++;
   return *p > s;
 }
 
@@ -146,7 +149,8 @@ static double json_get(const char *json, const char *key, int nth) {
   }
   if (!p) fail_msg("no key %s (#%d) in %s", key, nth, json);
   p += strlen(pat);
-  while (*p == ' ' || *p == ':') p++;
+  while (*p == ' ' || *p == ':')
+    p++;
   if (!strncmp(p, "null", 4)) return NAN;
   char *end;
   double v = strtod(p, &end);
@@ -156,7 +160,8 @@ static double json_get(const char *json, const char *key, int nth) {
 
 static size_t count_of(const char *s, const char *needle) {
   size_t n = 0;
-  for (const char *p = s; (p = strstr(p, needle)); p += strlen(needle)) n++;
+  for (const char *p = s; (p = strstr(p, needle)); p += strlen(needle))
+    n++;
   return n;
 }
 
@@ -173,8 +178,7 @@ static int setup(void **state) {
 }
 
 /* Runs `viscolube --db g_db ARGS` (printf-style). */
-static int run(char **out, char **err, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
+static int run(char **out, char **err, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static int run(char **out, char **err, const char *fmt, ...) {
   char args[8192];
   int k = snprintf(args, sizeof args, "--db %s ", g_db);
@@ -279,7 +283,8 @@ static void test_help_everywhere(void **state) {
   for (int n = 0; n < 3; n++) {
     assert_int_equal(run(&out, &err, "%s --help", nouns[n]), 0);
     assert_non_null(strstr(out, "usage: viscolube"));
-    for (int v = 0; v < 4; v++) assert_non_null(strstr(out, verbs[v]));
+    for (int v = 0; v < 4; v++)
+      assert_non_null(strstr(out, verbs[v]));
     assert_string_equal(err, "");
     free(out), free(err);
     for (int v = 0; v < 4; v++) {
@@ -528,8 +533,8 @@ static void test_bad_files(void **state) {
       {"negq.csv", "q_per_m,C_m4\n-1e5,1e-20\n1e6,1e-21\n", "negq.csv:2:", "'q_per_m'"},
       {"zeroc.csv", "q_per_m,C_m4\n1e5,0\n1e6,1e-21\n", "zeroc.csv:2:", "'C_m4'"},
       {"negc.csv", "q_per_m,C_m4\n1e5,1e-20\n1e6,-1e-21\n", "negc.csv:3:", "'C_m4'"},
-      {"psdunits.csv", "q_per_m,C_m4\n1/m,m^2\n1e5,1e-20\n1e6,1e-21\n", "psdunits.csv:2:",
-       "'1/m,m^4'"},
+      {"psdunits.csv", "q_per_m,C_m4\n1/m,m^2\n1e5,1e-20\n1e6,1e-21\n",
+       "psdunits.csv:2:", "'1/m,m^4'"},
       {"psdhdr.csv", "q,C\n1e5,1e-20\n1e6,1e-21\n", "psdhdr.csv:1:", "unknown column 'q'"},
       {"one.csv", "q_per_m,C_m4\n1e5,1e-20\n", "one.csv:2:", "at least 2"},
       {"psdempty.csv", "", "psdempty.csv:1:", "empty file"},

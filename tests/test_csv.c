@@ -1,11 +1,12 @@
 /* The strict CSV reader (csv.h): accepted layouts, every class of bad input
  * (each message must name file, line and column), the two material file
  * readers, and a mutation smoke test for memory safety under ASan. */
+#include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <setjmp.h>
-#include <cmocka.h>
+
+#include <cmocka.h> /* after the four headers it needs */
 
 #include "vl_test_util.h"
 
@@ -192,7 +193,8 @@ static void test_parse_double(void **state) {
   assert_true(v == 0.5);
   assert_int_equal(vl_csv_parse_double("36e6", &v, &why), VL_OK);
   assert_true(v == 36e6);
-  const char *bad[] = {"", " ", "abc", "1x", "--1", "1e", "0x10", "nan", "-inf", "1e400", "1,5", "e5"};
+  const char *bad[] = {"",     " ",   "abc",  "1x",    "--1", "1e",
+                       "0x10", "nan", "-inf", "1e400", "1,5", "e5"};
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
     why = NULL;
     if (vl_csv_parse_double(bad[i], &v, &why) != VL_EINPUT) fail_msg("accepted '%s'", bad[i]);

@@ -3,11 +3,12 @@
  * assert the file is byte-for-byte unchanged after every refused write. */
 #define _POSIX_C_SOURCE 200809L
 
+#include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
-#include <setjmp.h>
-#include <cmocka.h>
+
+#include <cmocka.h> /* after the four headers it needs */
 
 #include "vl_test_util.h"
 
@@ -163,6 +164,13 @@ static void test_create_and_seed(void **state) {
   assert_int_equal(vl_db_compound_get(db, "model-rubber", &p, &err), VL_OK);
   vl_db_close(db);
   assert_unchanged(path, &s);
+
+  /* An existing empty file is an empty SQLite database: it gets seeded. */
+  path = db_path();
+  vl_test_write_file(path, "");
+  db = open_new(path);
+  assert_int_equal(vl_db_compound_get(db, "model-rubber", &p, &err), VL_OK);
+  vl_db_close(db);
 }
 
 /* The seed paper's model rubber: tau = 0.1 s, Einf/E0 = 10, E0 = 3.6 MPa,
@@ -242,8 +250,11 @@ static void test_seeded_fluids(void **state) {
   const struct {
     const char *name;
     double eta, tol;
-  } want[] = {{"water", 1.0016e-3, 2e-3},  {"glycerol", 1.412, 2e-3}, {"model-1e-4", 1e-4, 0.0},
-              {"model-1e-2", 1e-2, 0.0},   {"model-1", 1.0, 0.0}};
+  } want[] = {{"water", 1.0016e-3, 2e-3},
+              {"glycerol", 1.412, 2e-3},
+              {"model-1e-4", 1e-4, 0.0},
+              {"model-1e-2", 1e-2, 0.0},
+              {"model-1", 1.0, 0.0}};
   vl_error err;
   for (size_t i = 0; i < 5; i++) {
     double eta = 0.0;
@@ -262,7 +273,8 @@ static void test_seeded_fluids(void **state) {
   size_t n;
   assert_int_equal(vl_db_fluid_list(db, &items, &n, &err), VL_OK);
   assert_int_equal(n, 5);
-  for (size_t i = 1; i < n; i++) assert_true(strcmp(items[i - 1].name, items[i].name) < 0);
+  for (size_t i = 1; i < n; i++)
+    assert_true(strcmp(items[i - 1].name, items[i].name) < 0);
   free(items);
   vl_db_close(db);
 }
@@ -351,7 +363,8 @@ static void test_surface_tabulated_roundtrip(void **state) {
   vl_psd out;
   assert_int_equal(vl_db_surface_get(db, "measured", &out, &err), VL_OK);
   assert_int_equal(out.n, 3);
-  for (int k = 0; k < 3; k++) assert_true(out.q[k] == q[k] && out.C[k] == C[k]);
+  for (int k = 0; k < 3; k++)
+    assert_true(out.q[k] == q[k] && out.C[k] == C[k]);
   vl_psd_free(&out);
   assert_int_equal(vl_db_surface_remove(db, "measured", &err), VL_OK);
   vl_db_close(db);
@@ -388,10 +401,12 @@ static void test_invalid_adds_change_nothing(void **state) {
   snapshot s = take(path);
 
   const char *bad_names[] = {"", "-x", "a b", "a/b", "caf\xc3\xa9", "x;DROP"};
-  assert_int_equal(vl_db_check_name("012345678901234567890123456789012345678901234567890123456789012",
-                                    &err), VL_OK);
-  assert_int_equal(vl_db_check_name("0123456789012345678901234567890123456789012345678901234567890123",
-                                    &err), VL_EINPUT);
+  assert_int_equal(
+      vl_db_check_name("012345678901234567890123456789012345678901234567890123456789012", &err),
+      VL_OK);
+  assert_int_equal(
+      vl_db_check_name("0123456789012345678901234567890123456789012345678901234567890123", &err),
+      VL_EINPUT);
   for (size_t i = 0; i < sizeof bad_names / sizeof *bad_names; i++) {
     vl_db_compound c = sample_compound(bad_names[i]);
     assert_int_equal(vl_db_compound_add(db, &c, &err), VL_EINPUT);
@@ -425,10 +440,11 @@ static void test_invalid_adds_change_nothing(void **state) {
   vl_psd psd;
   memset(&psd, 0, sizeof psd);
   psd.kind = VL_PSD_SELF_AFFINE;
-  const double sa[][4] = {{0.0, 2e5, 7.8e9, 1e-6}, {1.2, 2e5, 7.8e9, 1e-6}, {-0.5, 2e5, 7.8e9, 1e-6},
-                          {0.8, 7.8e9, 2e5, 1e-6}, {0.8, 2e5, 2e5, 1e-6},   {0.8, -1.0, 7.8e9, 1e-6},
-                          {0.8, 2e5, 7.8e9, 0.0},  {0.8, 2e5, 7.8e9, -1e-6}, {NAN, 2e5, 7.8e9, 1e-6},
-                          {0.8, 2e5, INFINITY, 1e-6}};
+  const double sa[][4] = {{0.0, 2e5, 7.8e9, 1e-6},  {1.2, 2e5, 7.8e9, 1e-6},
+                          {-0.5, 2e5, 7.8e9, 1e-6}, {0.8, 7.8e9, 2e5, 1e-6},
+                          {0.8, 2e5, 2e5, 1e-6},    {0.8, -1.0, 7.8e9, 1e-6},
+                          {0.8, 2e5, 7.8e9, 0.0},   {0.8, 2e5, 7.8e9, -1e-6},
+                          {NAN, 2e5, 7.8e9, 1e-6},  {0.8, 2e5, INFINITY, 1e-6}};
   for (size_t i = 0; i < sizeof sa / sizeof *sa; i++) {
     psd.hurst = sa[i][0], psd.q0 = sa[i][1], psd.q1 = sa[i][2], psd.hrms_m = sa[i][3];
     if (vl_db_surface_add(db, "x", &psd, NULL, NULL, &err) != VL_EINPUT)

@@ -34,7 +34,8 @@ static vl_contact *make_contact(double ratio, size_t grid, const vl_persson *rou
   cfg.load_n_per_m = LOAD;
   cfg.grid = grid;
   cfg.roughness = rough;
-  if (rough) cfg.x_min_a0 = -1.8, cfg.x_max_a0 = 1.6;
+  cfg.x_min_a0 = -1.5, cfg.x_max_a0 = 1.5;
+  if (rough) cfg.x_min_a0 = -1.8, cfg.x_max_a0 = 1.8;
   vl_contact *c = NULL;
   vl_error err;
   if (vl_contact_create(&cfg, &c, &err) != VL_OK) fail_msg("create: %s", err.msg);
@@ -87,7 +88,9 @@ static void test_elastic_limits(void **state) {
   printf("  De = 1e-4: half-width %.6f a0 (Hertz E0: 1), p_max %.6f p0 (1)\n", a, pm);
   assert_true(fabs(a - 1.0) < 5e-3);
   assert_true(fabs(pm - 1.0) < 5e-3);
-  assert_true(fabs(pt.mu_Rc) < 1e-3 * 0.01); /* mu R/a0 ~ 0.9 De: tiny */
+  /* low-speed slope mu R/a0 -> (A/(1+A)) De (VALIDATION.md 2); the next
+   * order is ~0.55 De relative, far below the 1 % allowed here */
+  assert_true(vl_test_rel(pt.mu_Rc * RADIUS / vl_contact_a0(c), 0.9 * 1e-4) < 1e-2);
 
   double ramp[] = {1e-2, 1e-1, 1, 10, 100, 1e3, 1e4};
   vl_point pts[7];
@@ -159,27 +162,41 @@ static void test_hunter_grid_convergence(void **state) {
   for (int k = 0; k < 3; k++) assert_true(finest[k] < 1e-3);
 }
 
-/* VALIDATION.md 3: for small loss (Einf/E0 = 1.05) Persson's linear-order
- * formula is exact to first order in A; the solver must agree within 1 %. */
-static void test_persson_linear_small_loss(void **state) {
-  (void)state;
-  vl_contact *c = make_contact(1.05, 512, NULL);
+/* VALIDATION.md 3: Persson's linear-order formula is exact to first order
+ * in A = Einf/E0 - 1. Its departure from the exact (Hunter) answer is itself
+ * first order in A, about A/3 at the peak (the oracle's self-test measures
+ * 1.63 % for Einf/E0 = 1.05 and 0.33 % for 1.01): the issue's "within 1 % at
+ * 1.05" cannot hold for a correct solver. We assert what is true: within 1 %
+ * at Einf/E0 = 1.01, within 2 % at 1.05, and at 1.05 within 0.5 % of Hunter. */
+static void persson_linear_case(double ratio, double tol_linear) {
+  vl_contact *c = make_contact(ratio, 512, NULL);
   enum { N = 9 };
   double de[N];
   vl_point pts[N];
   for (int i = 0; i < N; i++) de[i] = pow(10.0, -2.0 + 4.0 * i / (N - 1));
   sweep_deborah(c, N, de, pts);
-  double worst = 0.0;
+  double worst = 0.0, worst_h = 0.0;
   for (int i = 0; i < N; i++) {
     assert_true(pts[i].converged);
     double mu = pts[i].mu_Rc * RADIUS / vl_contact_a0(c);
-    double ref = vl_oracle_persson_linear_mu(de[i], 1.05);
-    double e = vl_test_rel(mu, ref);
-    printf("  De %8.3g  solver %12.6g  Persson-linear %12.6g  rel %9.2e\n", de[i], mu, ref, e);
+    double ref = vl_oracle_persson_linear_mu(de[i], ratio);
+    vl_oracle_hunter_solution h;
+    assert_int_equal(vl_oracle_hunter_solve(de[i], ratio, &h), 0);
+    double e = vl_test_rel(mu, ref), eh = vl_test_rel(mu, h.mu_R_over_a0);
+    printf("  Einf/E0 %.2f De %8.3g  solver %12.6g  Persson-linear %12.6g (rel %8.2e)  Hunter rel %8.2e\n",
+           ratio, de[i], mu, ref, e, eh);
     worst = fmax(worst, e);
+    worst_h = fmax(worst_h, eh);
   }
-  assert_true(worst < 1e-2);
+  assert_true(worst < tol_linear);
+  assert_true(worst_h < 5e-3);
   vl_contact_free(c);
+}
+
+static void test_persson_linear_small_loss(void **state) {
+  (void)state;
+  persson_linear_case(1.01, 1e-2);
+  persson_linear_case(1.05, 2e-2);
 }
 
 /* Invariants of every solution: load balance to the solver tolerance,

@@ -53,13 +53,13 @@ typedef struct {
 /* A parsed table. Values are stored in the caller's column order (not the
  * file's); an absent optional column reads as NAN and present[c] == 0. */
 typedef struct {
-  char *source;          /* the file name used in messages (owned) */
-  size_t n_cols;         /* number of requested columns */
-  size_t n_rows;         /* data rows */
-  double *values;        /* n_rows * n_cols, row-major (owned) */
-  size_t *lines;         /* 1-based source line of each data row (owned) */
-  int *present;          /* n_cols flags (owned) */
-  int has_units_row;     /* the file had a (matching) units row */
+  char *source;      /* the file name used in messages (owned) */
+  size_t n_cols;     /* number of requested columns */
+  size_t n_rows;     /* data rows */
+  double *values;    /* n_rows * n_cols, row-major (owned) */
+  size_t *lines;     /* 1-based source line of each data row (owned) */
+  int *present;      /* n_cols flags (owned) */
+  int has_units_row; /* the file had a (matching) units row */
 } vl_csv;
 
 /* Reads and checks the CSV file at path against the n_cols column specs.
@@ -67,20 +67,19 @@ typedef struct {
  * *out is left empty (safe to vl_csv_free) and err names file, line and
  * column. Returns VL_EIO if the file cannot be read, VL_EINPUT for bad
  * content, VL_ENOMEM. */
-vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols,
-                           vl_csv *out, vl_error *err);
+vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols, vl_csv *out,
+                           vl_error *err);
 
 /* As vl_csv_read_file for text[0..len) already in memory; source names it in
  * messages. The text need not be NUL-terminated and is not modified. */
 vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
-                           const vl_csv_column *cols, size_t n_cols, vl_csv *out,
-                           vl_error *err);
+                           const vl_csv_column *cols, size_t n_cols, vl_csv *out, vl_error *err);
 
 /* Releases what a vl_csv owns and empties it; accepts an empty table. */
 void vl_csv_free(vl_csv *csv);
 
-/* Value of data row `row`, requested column `col` (no bounds check beyond an
- * assertion-free NAN for out-of-range indices). */
+/* Value of data row `row`, requested column `col`; NAN when either index is
+ * out of range or the column is an absent optional one. */
 double vl_csv_value(const vl_csv *csv, size_t row, size_t col);
 
 /* Parses a whole string as a finite decimal number with the reader's rules

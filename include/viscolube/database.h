@@ -39,15 +39,15 @@ typedef struct vl_db vl_db;
 /* A compound as stored: the Prony series and its metadata. */
 typedef struct {
   char name[VL_DB_NAME_MAX];
-  char class_name[16];               /* model | filled | unfilled | other */
-  char description[VL_DB_TEXT_MAX];  /* free text, including the source */
-  vl_prony prony;                    /* Einf, nu, terms at tref_c */
-  double tref_c;                     /* reference temperature of the series */
-  double wlf_c1, wlf_c2_k;           /* WLF constants, NAN when absent */
-  char source_file[VL_DB_TEXT_MAX];  /* file the terms came from ("" if none) */
-  char method[VL_DB_NAME_MAX];       /* 'prony-csv', 'model', a fit method */
-  double fit_rms_error;              /* NAN when not fitted */
-  char created_at[32];               /* ISO 8601 UTC, set by the database */
+  char class_name[16];              /* model | filled | unfilled | other */
+  char description[VL_DB_TEXT_MAX]; /* free text, including the source */
+  vl_prony prony;                   /* Einf, nu, terms at tref_c */
+  double tref_c;                    /* reference temperature of the series */
+  double wlf_c1, wlf_c2_k;          /* WLF constants, NAN when absent */
+  char source_file[VL_DB_TEXT_MAX]; /* file the terms came from ("" if none) */
+  char method[VL_DB_NAME_MAX];      /* 'prony-csv', 'model', a fit method */
+  double fit_rms_error;             /* NAN when not fitted */
+  char created_at[32];              /* ISO 8601 UTC, set by the database */
 } vl_db_compound;
 
 /* A surface as stored (metadata and derived scalars; the spectrum itself is
@@ -55,13 +55,13 @@ typedef struct {
 typedef struct {
   char name[VL_DB_NAME_MAX];
   vl_psd_kind kind;
-  double hurst;           /* self-affine only (NAN for tabulated) */
-  double q0_per_m;        /* band (tabulated: first and last q) */
+  double hurst;    /* self-affine only (NAN for tabulated) */
+  double q0_per_m; /* band (tabulated: first and last q) */
   double q1_per_m;
-  double hrms_m;          /* derived by vl_psd_hrms (equals the input for self-affine) */
-  double c0_m4;           /* self-affine prefactor (NAN for tabulated) */
-  double rms_slope;       /* derived by vl_psd_rms_slope */
-  size_t n_points;        /* tabulated points (0 for self-affine) */
+  double hrms_m;    /* derived by vl_psd_hrms (equals the input for self-affine) */
+  double c0_m4;     /* self-affine prefactor (NAN for tabulated) */
+  double rms_slope; /* derived by vl_psd_rms_slope */
+  size_t n_points;  /* tabulated points (0 for self-affine) */
   char description[VL_DB_TEXT_MAX];
   char source_file[VL_DB_TEXT_MAX];
   char created_at[32];
@@ -70,7 +70,7 @@ typedef struct {
 /* A Newtonian lubricant. */
 typedef struct {
   char name[VL_DB_NAME_MAX];
-  double viscosity_pa_s;  /* low-shear viscosity at tref_c */
+  double viscosity_pa_s; /* low-shear viscosity at tref_c */
   double tref_c;
   char description[VL_DB_TEXT_MAX];
   char source_file[VL_DB_TEXT_MAX];
@@ -142,8 +142,8 @@ vl_status vl_db_surface_info(vl_db *db, const char *name, vl_db_surface *out, vl
  * vl_psd_init_self_affine / vl_psd_init_tabulated, which validate it, and
  * the derived columns are computed from that copy. description and
  * source_file may be NULL. VL_EINPUT, VL_EEXIST, VL_EDB. */
-vl_status vl_db_surface_add(vl_db *db, const char *name, const vl_psd *psd,
-                            const char *description, const char *source_file, vl_error *err);
+vl_status vl_db_surface_add(vl_db *db, const char *name, const vl_psd *psd, const char *description,
+                            const char *source_file, vl_error *err);
 
 /* Removes surface `name` with its points. VL_ENOTFOUND, VL_EDB. */
 vl_status vl_db_surface_remove(vl_db *db, const char *name, vl_error *err);

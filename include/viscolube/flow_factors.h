@@ -26,7 +26,9 @@
  *              - Phi_s: the same kind of cubic on 0 < H < 0.5 (the fit's slope
  *                is infinite at H = 0), a C1 blend of its two branches on
  *                4.5 <= H <= 5.5, 0 for H <= 0;
- *              - Phi_fs: a cubic Hermite tail from H = 7 to 0 at H = 8;
+ *              - Phi_fs: Phi_fs/H is the same kind of cubic on 0 < H < 0.5
+ *                (it goes like H^1.31 there, with a non-Lipschitz slope), and
+ *                a cubic Hermite tail from H = 7 to 0 at H = 8;
  *              - Phi_fp: cubic on 0 < H < 0.75 (the fit is negative below
  *                H = 0.51), 0 for H <= 0;
  *              - Phi_f/H (the Couette shear per unit film): its limit at
@@ -79,7 +81,8 @@ void vl_flow_factors_terms(vl_flow_factor_kind kind, double u_m, double hrms_m, 
  * average separation u_m > 0 and hrms_m > 0, i.e. the root of
  * u = h Phi(h/sigma) + sigma phi(h/sigma); dh/du in *dh_du when non-NULL.
  * Works for every u in (0, inf) (h -> -inf as u -> 0, h -> u for u >> sigma);
- * relative accuracy ~1e-15 in h. u_m <= 0 returns -INFINITY (dh_du = +INF). */
+ * error below 1e-14 sigma (1 + |h|/sigma). u_m <= 0 returns -INFINITY (dh_du =
+ * +INFINITY); NaN or hrms_m <= 0 returns NaN. */
 double vl_flow_factors_nominal_gap(double u_m, double hrms_m, double *dh_du);
 
 /* "smooth" or "patir-cheng" (the scene's spelling); "unknown" otherwise. */

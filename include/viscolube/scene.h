@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "viscolube/contact.h"
+#include "viscolube/flow_factors.h"
 #include "viscolube/status.h"
 
 #define VL_NAME_MAX 128
@@ -19,7 +20,6 @@ typedef enum {
   VL_SWEEP_DEBORAH     /* v0 tau / a0, one-term compounds */
 } vl_sweep_quantity;
 
-typedef enum { VL_FLOW_SMOOTH = 0, VL_FLOW_PATIR_CHENG } vl_flow_factor_model;
 
 typedef enum {
   VL_ELASTIC_RELAXED = 0, /* viscoelastic = off: E = E0 of the compound */
@@ -45,7 +45,7 @@ typedef struct {
   /* [effects]: only those on are built and solved */
   struct {
     bool viscoelastic, roughness, fluid, solid_shear, viscous_flattening, temperature;
-    vl_flow_factor_model flow_factors;
+    vl_flow_factor_kind flow_factors;
     double temperature_c;
   } effects;
   /* [numerics] */
@@ -64,6 +64,5 @@ vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err);
 vl_status vl_scene_parse(const char *text, const char *path, vl_scene *scene, vl_error *err);
 
 const char *vl_sweep_quantity_name(vl_sweep_quantity q);
-const char *vl_flow_factor_model_name(vl_flow_factor_model m);
 
 #endif

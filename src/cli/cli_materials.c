@@ -78,22 +78,23 @@ static const char *const noun_help[] = {
         "  remove NAME            delete a surface\n"
         "\n"
         "`viscolube surface VERB --help` describes a verb.\n",
-    [NOUN_FLUID] =
-        "usage: viscolube [--db PATH] fluid VERB ...\n"
-        "\n"
-        "Newtonian lubricants: low-shear viscosity at a reference temperature.\n"
-        "\n"
-        "verbs:\n"
-        "  list [--json]          one line per fluid: name, viscosity\n"
-        "  show NAME [--json]     viscosity, reference temperature, description\n"
-        "  add NAME --viscosity PA_S [--tref C] [--description TEXT]\n"
-        "  remove NAME            delete a fluid\n"
-        "\n"
-        "`viscolube fluid VERB --help` describes a verb.\n",
+    [NOUN_FLUID] = "usage: viscolube [--db PATH] fluid VERB ...\n"
+                   "\n"
+                   "Newtonian lubricants: low-shear viscosity at a reference temperature.\n"
+                   "\n"
+                   "verbs:\n"
+                   "  list [--json]          one line per fluid: name, viscosity\n"
+                   "  show NAME [--json]     viscosity, reference temperature, description\n"
+                   "  add NAME --viscosity PA_S [--tref C] [--description TEXT]\n"
+                   "  remove NAME            delete a fluid\n"
+                   "\n"
+                   "`viscolube fluid VERB --help` describes a verb.\n",
 };
 
 static void verb_help(noun_kind kind, const char *verb, FILE *out) {
-  const char *noun = kind == NOUN_COMPOUND ? "compound" : kind == NOUN_SURFACE ? "surface" : "fluid";
+  const char *noun = kind == NOUN_COMPOUND  ? "compound"
+                     : kind == NOUN_SURFACE ? "surface"
+                                            : "fluid";
   if (!strcmp(verb, "list")) {
     fprintf(out,
             "usage: viscolube [--db PATH] %s list [--json]\n"
@@ -192,10 +193,9 @@ static int parse_args(const context *cx, int argc, char **argv, int first, optio
       for (size_t k = 0; k < n_opts; k++)
         if (strlen(opts[k].name) == len && !strncmp(opts[k].name, a, len)) o = &opts[k];
       if (!o)
-        return failf(cx, VL_EINPUT, "unknown option '%.*s' (see viscolube %s %s --help)",
-                     (int)len, a, cx->noun, cx->verb);
-      if (o->value)
-        return failf(cx, VL_EINPUT, "option %s is given twice", o->name);
+        return failf(cx, VL_EINPUT, "unknown option '%.*s' (see viscolube %s %s --help)", (int)len,
+                     a, cx->noun, cx->verb);
+      if (o->value) return failf(cx, VL_EINPUT, "option %s is given twice", o->name);
       if (!o->metavar) {
         if (eq) return failf(cx, VL_EINPUT, "option %s takes no value", o->name);
         o->value = "";
@@ -209,8 +209,7 @@ static int parse_args(const context *cx, int argc, char **argv, int first, optio
         o->value = argv[++i];
       }
       if (o->metavar && o->value[0] == '\0')
-        return failf(cx, VL_EINPUT, "option %s needs a non-empty value (%s)", o->name,
-                     o->metavar);
+        return failf(cx, VL_EINPUT, "option %s needs a non-empty value (%s)", o->name, o->metavar);
     } else if (a[0] == '-' && a[1] != '\0' && !(a[1] >= '0' && a[1] <= '9') && a[1] != '.') {
       return failf(cx, VL_EINPUT, "unknown option '%s' (see viscolube %s %s --help)", a, cx->noun,
                    cx->verb);
@@ -371,7 +370,8 @@ static void compound_text(FILE *out, const vl_db_compound *c) {
   else
     fprintf(out, "  tan delta max none (elastic)\n");
   fprintf(out, "  tref          %.6g C\n", c->tref_c);
-  if (!isnan(c->wlf_c1)) fprintf(out, "  WLF           C1 %.6g, C2 %.6g K\n", c->wlf_c1, c->wlf_c2_k);
+  if (!isnan(c->wlf_c1))
+    fprintf(out, "  WLF           C1 %.6g, C2 %.6g K\n", c->wlf_c1, c->wlf_c2_k);
   fprintf(out, "  method        %s\n", c->method);
   if (c->source_file[0]) fprintf(out, "  source file   %s\n", c->source_file);
   if (!isnan(c->fit_rms_error)) fprintf(out, "  fit rms error %.6g\n", c->fit_rms_error);
@@ -391,10 +391,10 @@ static void compound_line(FILE *out, const vl_db_compound *c) {
 }
 
 static int compound_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--prony", "FILE", NULL},       {"--e-inf", "PA", NULL},
-                   {"--nu", "NU", NULL},            {"--class", "CLASS", NULL},
-                   {"--description", "TEXT", NULL}, {"--tref", "C", NULL},
-                   {"--wlf-c1", "C1", NULL},        {"--wlf-c2", "C2_K", NULL}};
+  option opts[] = {
+      {"--prony", "FILE", NULL},  {"--e-inf", "PA", NULL},         {"--nu", "NU", NULL},
+      {"--class", "CLASS", NULL}, {"--description", "TEXT", NULL}, {"--tref", "C", NULL},
+      {"--wlf-c1", "C1", NULL},   {"--wlf-c2", "C2_K", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -469,8 +469,8 @@ static int compound_add(const context *cx, const vl_cli_globals *g, int argc, ch
       rc = fail(cx, st, err.msg);
     } else {
       printf("added compound '%s' to %s: %zu Prony terms, E0 %.6g Pa, Einf %.6g Pa, nu %.6g\n",
-             c->name, vl_db_path(db), c->prony.n_terms, vl_prony_e0(&c->prony),
-             c->prony.e_inf_pa, c->prony.nu);
+             c->name, vl_db_path(db), c->prony.n_terms, vl_prony_e0(&c->prony), c->prony.e_inf_pa,
+             c->prony.nu);
       rc = 0;
     }
   }
@@ -527,9 +527,8 @@ static void surface_line(FILE *out, const vl_db_surface *s) {
 }
 
 static int surface_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--self-affine", NULL, NULL}, {"--hurst", "H", NULL},
-                   {"--q0", "PER_M", NULL},       {"--q1", "PER_M", NULL},
-                   {"--hrms", "M", NULL},         {"--psd", "FILE", NULL},
+  option opts[] = {{"--self-affine", NULL, NULL},  {"--hurst", "H", NULL}, {"--q0", "PER_M", NULL},
+                   {"--q1", "PER_M", NULL},        {"--hrms", "M", NULL},  {"--psd", "FILE", NULL},
                    {"--description", "TEXT", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
@@ -627,9 +626,8 @@ static void fluid_line(FILE *out, const vl_db_fluid *f) {
 }
 
 static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--viscosity", "PA_S", NULL},
-                   {"--tref", "C", NULL},
-                   {"--description", "TEXT", NULL}};
+  option opts[] = {
+      {"--viscosity", "PA_S", NULL}, {"--tref", "C", NULL}, {"--description", "TEXT", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -773,7 +771,7 @@ static int do_remove(const context *cx, const vl_cli_globals *g, int argc, char 
   vl_db *db = NULL;
   if ((rc = open_db(cx, g, &db)) >= 0) return rc;
   vl_error err;
-  vl_status st = cx->kind == NOUN_COMPOUND ? vl_db_compound_remove(db, name, &err)
+  vl_status st = cx->kind == NOUN_COMPOUND  ? vl_db_compound_remove(db, name, &err)
                  : cx->kind == NOUN_SURFACE ? vl_db_surface_remove(db, name, &err)
                                             : vl_db_fluid_remove(db, name, &err);
   if (st == VL_OK) printf("removed %s '%s' from %s\n", cx->noun, name, vl_db_path(db));
@@ -805,10 +803,12 @@ int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv) {
   }
   static const char *const verbs[] = {"list", "show", "add", "remove"};
   int known = 0;
-  for (size_t k = 0; k < 4; k++) known |= !strcmp(verb, verbs[k]);
+  for (size_t k = 0; k < 4; k++)
+    known |= !strcmp(verb, verbs[k]);
   if (!known)
-    return failf(&cx, VL_EINPUT, "unknown verb '%s' (expected list, show, add or remove; see "
-                                 "viscolube %s --help)",
+    return failf(&cx, VL_EINPUT,
+                 "unknown verb '%s' (expected list, show, add or remove; see "
+                 "viscolube %s --help)",
                  verb, cx.noun);
   cx.verb = verb;
   /* --help anywhere after the verb wins, so a half-typed command can ask. */
