@@ -25,8 +25,10 @@ struct vl_contact {
   vl_contact_config cfg;
   bool rough, wet;
   size_t n;        /* grid nodes */
+  size_t nc;       /* contact unknowns (n; 0 for a smooth wet contact) */
   size_t nf;       /* fluid unknowns (n when wet, else 0) */
-  size_t nunk;     /* unknowns: n contact + nf fluid + rigid approach */
+  size_t nunk;     /* unknowns: nc contact + nf fluid + rigid approach */
+  size_t of, ih;   /* offsets of the fluid unknowns and of the rigid approach */
   double er_ref;   /* reduced modulus defining a0 (relaxed, or the elastic one) */
   double er_inf;   /* reduced glassy modulus (kernel prefactor) */
   double a0, p0, uscale, dxi, kfac;
@@ -113,7 +115,7 @@ static double fb(double a, double b, double *da, double *db) {
  * dP/dU), fluid pressure F, separation U, flow quantities and face fluxes. */
 static void eval_state(vl_contact *c, const double *y) {
   size_t n = c->n;
-  double h0 = y[n + c->nf];
+  double h0 = y[c->ih];
   if (c->rough) {
     for (size_t i = 0; i < n; i++) {
       double dsdu;
@@ -121,10 +123,12 @@ static void eval_state(vl_contact *c, const double *y) {
       c->P[i] = c->sfac * s;
       c->dPdU[i] = c->sfac * dsdu * c->uscale;
     }
-  } else {
+  } else if (c->nc) {
     memcpy(c->P, y, n * sizeof *c->P);
+  } else {
+    memset(c->P, 0, n * sizeof *c->P); /* smooth wet: the film carries all */
   }
-  for (size_t i = 0; i < n; i++) c->F[i] = c->wet ? c->kappa * y[n + i] : 0.0;
+  for (size_t i = 0; i < n; i++) c->F[i] = c->wet ? c->kappa * y[c->of + i] : 0.0;
   /* elastic/viscoelastic gap: h0 + xi^2/2 + sum_j M_ij (P_j + F_j); for a
    * rough surface it is stored in D (the residual compares it with U) */
   double *G = c->rough ? c->D : c->U;
@@ -160,7 +164,7 @@ static void eval_state(vl_contact *c, const double *y) {
   /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + c (upwind: the fluid
    * crossing a face carries the film of the cell it leaves); pf = 0 beyond
    * both ends of the domain (half-cell distance) */
-  const double *pf = y + n;
+  const double *pf = y + c->of;
   double L = c->lambda, dx = c->dxi;
   c->Jf[0] = -L * c->g[0] * pf[0] / (0.5 * dx) + c->cf[0];
   for (size_t i = 0; i + 1 < n; i++)
