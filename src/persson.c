@@ -8,31 +8,39 @@
  * Near q0, M ~ q0^4 C(q0) (t - t0), so w ~ (t - t0)^(-1/2): an integrable
  * singularity when s is small. The substitution t = t0 + sigma^2 (for
  * t - t0 <= 1; linear t = t0 + 1 + 2 (sigma - 1) beyond, C1 at sigma = 1)
- * removes it, and [0, SIGMA_END] is done in closed form with the leading
- * local behaviour (q^3 C w dt/dsigma -> 2 q0 sqrt(C(q0)) / sqrt(pi)).
+ * removes it; the sliver sigma in [0, sm], sm = 1e-4 min(1, sigma_end), is
+ * done in closed form with the leading local behaviour
+ * (q^3 C w dt/dsigma -> 2 q0 sqrt(C(q0)) / sqrt(pi)). The table uses a fixed
+ * composite Gauss-Legendre rule (panels geometric near q0, <= 0.25 wide in
+ * t, split at tabulated knots), so the nodes' w and weights are computed
+ * once and each u(s) costs one E1 per node; vl_persson_separation_exact uses
+ * GSL's adaptive QAGP instead (independent of that rule).
  *
- * The table. Nodes s_k are uniform in z = ln s + s^2/(4g): at small s,
- * u ~ -u* ln s is linear in ln s; at large s, ln u ~ -s^2/(4g), so uniform z
- * means uniform steps in ln u there. Each node stores u_k and the exact
- * derivative du/d ln s (same quadrature, e^{-x} instead of E1), so the
- * interpolant is a cubic Hermite one with exact slopes (4th order; slopes
- * are limited by the Fritsch-Carlson condition, which keeps it monotone).
- * It interpolates y = ln s against x = ln(expm1(u/uc)), uc = u*: x ~ u/u*
- * at large u, where y is linear in u, and x ~ ln(u/u*) at small u, where
- * y ~ (1/2) ln ln(1/u) is smooth in ln u but singular in u.
+ * The table. Each node stores u_k and the exact derivative du/d ln s (same
+ * quadrature, e^{-x} in place of E1), so the interpolant is cubic Hermite
+ * with exact slopes (4th order; slopes limited by the Fritsch-Carlson
+ * condition, which keeps every piece monotone). It interpolates y = ln s
+ * against x = ln(expm1(u/u*)): x ~ u/u* at large u, where y is linear in u,
+ * and x ~ ln(u/u*) at small u, where y is smooth in ln u but not in u.
+ * Nodes equidistribute a monitor (arc length in the (ln s, x) plane, damped
+ * where y(x) is linear: see monitor()), found by a cheap pilot march.
  *
  * Range: u from U_MAX_HRMS h_rms (s ~ exp(-50 h_rms/u*)) down to
- * U_MIN_HRMS h_rms. Outside: for u > u_max, ln s continues linearly with the
- * end slope (-> -1/u*, the exact asymptote); for u < u_min, s continues
- * linearly in u with the end slope ds/du, so s stays finite and positive for
- * every finite u (a stiff linear wall for Newton iterates at u <= 0). */
-#include <float.h>
+ * U_MIN_HRMS h_rms (for the paper's surface s ~ 3, A/A0 ~ 0.45: far above
+ * any pressure the solver reaches; s ~ 30 already means u ~ 1e-20 m, so a
+ * range "up to s ~ 1e3" would only add nodes at u ~ 0). Outside:
+ * for u > u_max, ln s continues linearly with the end slope (-> -1/u*, the
+ * exact asymptote); for u < u_min, s continues linearly in u with the end
+ * slope ds/du, so s stays finite and positive for every finite u (a stiff
+ * linear wall for Newton iterates at u <= 0; linear in ln s would overflow
+ * near u = -3 h_rms for the paper's surface). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
+#include <gsl/gsl_math.h> /* M_PI, which strict C17 <math.h> lacks */
 #include <gsl/gsl_sf_expint.h>
 
 #include "viscolube/roughness.h"
@@ -40,18 +48,18 @@
 #define DEFAULT_N_TABLE 256
 #define MIN_N_TABLE 64
 #define MAX_N_TABLE 1000000
-#define U_MAX_HRMS 50.0   /* table top, in h_rms */
-#define U_MIN_HRMS 1e-3   /* table bottom, in h_rms */
-#define GL_ORDER 8        /* Gauss-Legendre points per panel */
-#define PANEL_DT 0.25     /* largest panel width in t = ln q */
-#define PANEL_RATIO 2.0   /* geometric growth of panels near q0 (in sigma) */
-#define MONITOR_X0 2.0    /* x = ln(expm1(u/u*)) beyond which y(x) is ~linear */
+#define U_MAX_HRMS 50.0 /* table top, in h_rms */
+#define U_MIN_HRMS 1e-3 /* table bottom, in h_rms */
+#define GL_ORDER 8      /* Gauss-Legendre points per panel */
+#define PANEL_DT 0.25   /* largest panel width in t = ln q */
+#define PANEL_RATIO 2.0 /* geometric growth of panels near q0 (in sigma) */
+#define MONITOR_XI0 2.0 /* -ln(s b0) beyond which y(x) is ~linear */
 #define MONITOR_FLOOR 0.1
-#define PILOT_DMU 0.25    /* pilot step in monitor units */
+#define PILOT_DMU 0.25 /* pilot step in monitor units */
 #define EULER_GAMMA 0.57721566490153286061
 
 struct vl_persson {
-  vl_psd psd;       /* private copy (the exact quadrature needs it) */
+  vl_psd psd; /* private copy (the exact quadrature needs it) */
   double g, ustar, hrms, uc;
   size_t n;
   double *x, *y, *d; /* nodes: x(u) increasing, y = ln s decreasing, d = dy/dx */
@@ -82,9 +90,7 @@ static double e1_sq(double ws, double *emx) {
 }
 
 /* (e^{p x} - 1)/(p x) -> 1 for p x -> 0. */
-static double expm1_ratio(double px) {
-  return fabs(px) < 1e-300 ? 1.0 : expm1(px) / px;
-}
+static double expm1_ratio(double px) { return fabs(px) < 1e-300 ? 1.0 : expm1(px) / px; }
 
 /* The first power-law piece of the PSD: C(q) = c_first (q/q0)^alpha for
  * t - t0 <= dt_first. */
@@ -149,10 +155,11 @@ static double endpoint_piece(double c, double b, double sm, double *dlns) {
 
 typedef struct {
   size_t n;
-  double *w;      /* w at each node */
-  double *wt;     /* quadrature weight times the kernel */
-  double c, b0;   /* endpoint piece: c and b = s b0 */
-  double sm;      /* end of the closed-form piece */
+  double *w;        /* w at each node */
+  double *wt;       /* quadrature weight times the kernel */
+  double c, b0;     /* endpoint piece: c and b = s b0 */
+  double sm;        /* end of the closed-form piece */
+  double sigma_ref; /* min(1, sigma_end): the band's extent in sigma */
 } rule;
 
 static void rule_free(rule *r) {
@@ -198,15 +205,16 @@ static size_t kinks(const vl_psd *psd, double sigma_end, double *out) {
  * width over the integrand's scale; n = GL_ORDER / (1 - ln f) keeps that at
  * the full panel's kappa^(2 GL_ORDER) for kappa ~ 1/e (dense tabulated
  * PSDs would otherwise cost GL_ORDER points per knot). */
-static size_t make_panels(const double *kk, size_t nkk, double sm, double *edges,
-                          unsigned *order, size_t *nodes) {
+static size_t make_panels(const double *kk, size_t nkk, double sm, double *edges, unsigned *order,
+                          size_t *nodes) {
   size_t np = 0, j = 0;
   double h = 0.5 * PANEL_DT; /* dt/dsigma <= 2 */
   double a = sm, end = kk[nkk - 1];
   *nodes = 0;
   if (edges) edges[0] = a;
   while (a < end) {
-    while (kk[j] <= a) j++; /* kk[nkk-1] = end > a stops this */
+    while (kk[j] <= a)
+      j++; /* kk[nkk-1] = end > a stops this */
     double natural = fmin(a * (PANEL_RATIO - 1.0), h);
     double b = a + natural;
     if (b >= kk[j] || kk[j] - b < 1e-9 * h) b = kk[j];
@@ -231,7 +239,8 @@ static vl_status rule_build(const vl_psd *psd, rule *r, vl_error *err) {
   double c_first, alpha, dt_first;
   first_piece(psd, &c_first, &alpha, &dt_first);
   double sigma_end = sigma_of_dt(log(psd->q1 / psd->q0));
-  r->sm = fmin(1e-4, 1e-2 * sigma_end);
+  r->sigma_ref = fmin(1.0, sigma_end);
+  r->sm = 1e-4 * r->sigma_ref; /* closed-form piece: relative error O(sm^2) */
   r->c = psd->q0 * sqrt(c_first);
   r->b0 = 1.0 / (sqrt(M_PI) * psd->q0 * psd->q0 * sqrt(c_first));
 
@@ -341,7 +350,10 @@ static size_t find_x(const vl_persson *t, double x) {
   size_t lo = 0, hi = t->n - 1;
   while (hi - lo > 1) {
     size_t mid = (lo + hi) / 2;
-    if (t->x[mid] <= x) lo = mid; else hi = mid;
+    if (t->x[mid] <= x)
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -398,11 +410,14 @@ static vl_status copy_psd(vl_psd *dst, const vl_psd *src, vl_error *err) {
 }
 
 /* Node density per unit ln s (the monitor): arc length in the (ln s, x)
- * plane, damped where y(x) is nearly linear (large x: the deviation from
- * the asymptote decays like s ~ e^{-x}, so the cubic's error h^4 y^(4)
- * allows steps growing like e^{x/4}), with a floor so steps stay bounded. */
-static double monitor(double x, double dxdlns) {
-  double damp = exp(-fmax(0.0, x - MONITOR_X0) / 4.0);
+ * plane, damped where y(x) is nearly linear. The deviation of u from its
+ * asymptote -u* ln s + const comes from q near q0 where w s > 1, i.e. from
+ * sigma < b = s b0 (endpoint_piece), and is O(b / sigma_ref) (sigma_ref =
+ * min(1, sigma_end) for narrow bands); so once xi = -ln(s b0 / sigma_ref)
+ * exceeds MONITOR_XI0, y^(4) ~ e^{-xi} and the cubic's error
+ * h^4 y^(4) allows steps growing like e^{xi/4}. A floor keeps steps bounded. */
+static double monitor(double lns, double lnb0, double dxdlns) {
+  double damp = exp(-fmax(0.0, -(lns + lnb0) - MONITOR_XI0) / 4.0);
   return sqrt(1.0 + dxdlns * dxdlns) * fmax(damp, MONITOR_FLOOR);
 }
 
@@ -429,7 +444,7 @@ static vl_status place_nodes(vl_persson *t, const rule *r, double lns_min, doubl
   if (!pl || !pmu) goto nomem;
   while (1) {
     if (!eval_node(t, r, lns, &u, &x, &dxl)) goto bad;
-    double rho = monitor(x, dxl);
+    double rho = monitor(lns, log(r->b0 / r->sigma_ref), dxl);
     if (m == cap) {
       cap *= 2;
       double *a = realloc(pl, cap * sizeof *pl);
@@ -450,7 +465,8 @@ static vl_status place_nodes(vl_persson *t, const rule *r, double lns_min, doubl
   size_t seg = 0;
   for (size_t j = 0; j < t->n; j++) {
     double mu = pmu[m - 1] * (double)j / (double)(t->n - 1);
-    while (seg + 2 < m && pmu[seg + 1] < mu) seg++;
+    while (seg + 2 < m && pmu[seg + 1] < mu)
+      seg++;
     double f = (pmu[seg + 1] > pmu[seg]) ? (mu - pmu[seg]) / (pmu[seg + 1] - pmu[seg]) : 0.0;
     f = fmin(1.0, fmax(0.0, f));
     lns = j == 0 ? lns_max : j + 1 == t->n ? lns_min : pl[seg] + f * (pl[seg + 1] - pl[seg]);
@@ -523,7 +539,8 @@ vl_status vl_persson_build(const vl_psd *psd, size_t n_table, vl_persson **out, 
   t->hrms = vl_psd_hrms(&t->psd);
   t->g = 0.25 * M_PI * vl_psd_moment(&t->psd, 3, t->psd.q0, t->psd.q1);
   double wsum = r.c * r.sm;
-  for (size_t k = 0; k < r.n; k++) wsum += r.wt[k];
+  for (size_t k = 0; k < r.n; k++)
+    wsum += r.wt[k];
   t->ustar = 2.0 * wsum; /* sqrt(pi) \int q^2 C w dq */
   t->uc = t->ustar;
   if (!(t->g > 0.0 && isfinite(t->g) && t->ustar > 0.0 && isfinite(t->ustar) && t->hrms > 0.0)) {
@@ -596,14 +613,20 @@ double vl_persson_separation(const vl_persson *t, double s) {
   size_t lo = 0, hi = t->n - 1;
   while (hi - lo > 1) {
     size_t mid = (lo + hi) / 2;
-    if (t->y[mid] >= y) lo = mid; else hi = mid;
+    if (t->y[mid] >= y)
+      lo = mid;
+    else
+      hi = mid;
   }
   /* Solve the monotone cubic by safeguarded Newton on h in [0,1]. */
   double a = 0.0, b = 1.0, h = (y - t->y[lo]) / (t->y[lo + 1] - t->y[lo]);
   double dx = t->x[lo + 1] - t->x[lo];
   for (int it = 0; it < 60; it++) {
     double dydx, f = hermite(t, lo, h, &dydx) - y;
-    if (f > 0.0) a = h; else b = h; /* decreasing: f > 0 means root to the right */
+    if (f > 0.0)
+      a = h;
+    else
+      b = h; /* decreasing: f > 0 means root to the right */
     double hn = (dydx != 0.0) ? h - f / (dydx * dx) : 0.5 * (a + b);
     if (!(hn > a && hn < b)) hn = 0.5 * (a + b);
     if (fabs(hn - h) < 1e-15) {
