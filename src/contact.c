@@ -42,7 +42,8 @@ struct vl_contact {
   double e_abs, a_h, omega_h, sfac; /* asperity state; P = sfac * s(u) */
   /* fluid scales of the current solve: pf = kappa p0 Pf; Reynolds rows are
    * divided by the Couette flux v0 u_ref / 2 */
-  double kappa, lambda, rscale, u_ref;
+  double kappa, lambda, rscale, u_ref, lh;
+  double *rw;         /* weight of Reynolds row i (frozen during a solve) */
   double v_state;     /* speed at which y was last converged (0: initial guess) */
   double q_rolling;   /* rolling number (wet, rough, viscoelastic), else 0 */
   double *P, *dPdU;   /* contact pressure (p0) and dP/dU on the grid */
@@ -104,11 +105,47 @@ void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radiu
 
 /* Fischer-Burmeister complementarity a >= 0, b >= 0, a b = 0 (smoothed), with
  * its partial derivatives. */
+static int vl_cf_mode = 0; /* DEBUG-EHL: 0 FB, 1 min */
+static double cfun(double a, double b, double *da, double *db) {
+  if (vl_cf_mode == 1) {
+    if (a <= b) { if (da) *da = 1.0; if (db) *db = 0.0; return a; }
+    if (da) *da = 0.0; if (db) *db = 1.0; return b;
+  }
+  double r = sqrt(a * a + b * b + FB_EPS);
+  if (da) *da = 1.0 - a / r;
+  if (db) *db = 1.0 - b / r;
+  return a + b - r;
+}
 static double fb(double a, double b, double *da, double *db) {
   double r = sqrt(a * a + b * b + FB_EPS);
   if (da) *da = 1.0 - a / r;
   if (db) *db = 1.0 - b / r;
   return a + b - r;
+}
+
+/* Couette film carried across face f (0..n; face f lies between cells f-1
+ * and f) as a combination sum_q w[q] cf[k[q]] of cell values; returns the
+ * number of terms. Second-order upwind (the film of the cell the fluid
+ * leaves, extrapolated linearly from the cell behind it): a centred film
+ * would decouple odd and even cells where the Poiseuille flow vanishes (the
+ * EHL contact zone), first-order upwind costs O(dx) in the film (13 % at 128
+ * cells on Martin's rigid cylinder). The outlet face takes the upwind cell.
+ * DEBUG-EHL: scheme switch for the study (0 upwind1, 1 central, 2 upwind2). */
+static int vl_couette_scheme = 2;
+
+static int couette_stencil(const vl_contact *c, size_t f, size_t k[3], double w[3]) {
+  size_t n = c->n;
+  if (f == 0) { /* inflow face: extrapolated from cells 0 and 1 */
+    if (vl_couette_scheme == 0) { k[0] = 0; w[0] = 1.0; return 1; }
+    k[0] = 0, k[1] = 1, w[0] = 1.5, w[1] = -0.5;
+    return 2;
+  }
+  if (f == n) { k[0] = n - 1; w[0] = 1.0; return 1; }
+  if (vl_couette_scheme == 1) { k[0] = f - 1, k[1] = f, w[0] = w[1] = 0.5; return 2; }
+  if (vl_couette_scheme == 0) { k[0] = f - 1; w[0] = 1.0; return 1; }
+  if (f == 1) { k[0] = 0, k[1] = 1, w[0] = w[1] = 0.5; return 2; } /* no cell behind */
+  k[0] = f - 1, k[1] = f - 2, w[0] = 1.5, w[1] = -0.5;
+  return 2;
 }
 
 /* Everything the residual needs from the unknowns y: contact pressure P (and
@@ -148,11 +185,13 @@ static void eval_state(vl_contact *c, const double *y) {
   /* flow: conductance g = u^3 phi_p and Couette film c = u + h phi_s, with a
    * conductance floor so that a fully contacted (or closed) cell still fixes
    * its pressure (a leak far below any physical flow) */
-  double us = c->uscale, floor_g = 1e-12 * pow(fmax(c->hrms, 1e-3 * c->u_ref) / us, 3.0);
+  double us = c->uscale, floor_g = 1e-12 * pow(fmax(c->hrms / us, 1e-3 * c->u_ref), 3.0);
   for (size_t i = 0; i < n; i++) {
     /* a Newton iterate may cross u < 0 (interpenetration): no flow there,
      * rather than a negative conductance */
-    double u = fmax(c->U[i], 0.0) * us, on = c->U[i] > 0.0 ? 1.0 : 0.0;
+    double on = (c->rough || c->U[i] > 0.0) ? 1.0 : 0.0; /* rough: pc(u) and the
+                                                          * factors extend to u <= 0 smoothly */
+    double u = (c->rough ? c->U[i] : fmax(c->U[i], 0.0)) * us;
     vl_flow_factor_values v, d;
     vl_flow_factors_eval(c->cfg.flow_factors, u, c->hrms, &v, &d);
     double u3 = u * u * u;
@@ -161,15 +200,22 @@ static void eval_state(vl_contact *c, const double *y) {
     c->cf[i] = (u + c->hrms * v.phi_s) / us;
     c->dcf[i] = on * (1.0 + c->hrms * d.phi_s);
   }
-  /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + c (upwind: the fluid
-   * crossing a face carries the film of the cell it leaves); pf = 0 beyond
-   * both ends of the domain (half-cell distance) */
+  /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + Couette film at the face
+   * (couette_stencil); pf = 0 beyond both ends of the domain (half-cell
+   * distance) */
   const double *pf = y + c->of;
   double L = c->lambda, dx = c->dxi;
-  c->Jf[0] = -L * c->g[0] * pf[0] / (0.5 * dx) + c->cf[0];
-  for (size_t i = 0; i + 1 < n; i++)
-    c->Jf[i + 1] = -L * 0.5 * (c->g[i] + c->g[i + 1]) * (pf[i + 1] - pf[i]) / dx + c->cf[i];
-  c->Jf[n] = L * c->g[n - 1] * pf[n - 1] / (0.5 * dx) + c->cf[n - 1];
+  for (size_t f = 0; f <= n; f++) {
+    size_t k[3];
+    double w[3];
+    int m = couette_stencil(c, f, k, w);
+    double jc = 0.0;
+    for (int q = 0; q < m; q++) jc += w[q] * c->cf[k[q]];
+    double jp = f == 0   ? -L * c->g[0] * pf[0] / (0.5 * dx)
+                : f == n ? L * c->g[n - 1] * pf[n - 1] / (0.5 * dx)
+                         : -L * 0.5 * (c->g[f - 1] + c->g[f]) * (pf[f] - pf[f - 1]) / dx;
+    c->Jf[f] = jp + jc;
+  }
 }
 
 static double load_sum(const vl_contact *c) {
@@ -178,24 +224,73 @@ static double load_sum(const vl_contact *c) {
   return s * c->dxi / (0.5 * M_PI);
 }
 
-/* Reynolds row i before complementarity: (J_{i+1/2} - J_{i-1/2}) / dxi, in
- * units of the Couette flux at the reference film. */
+/* Reynolds row i before complementarity: rw_i (J_{i+1/2} - J_{i-1/2}), see
+ * reynolds_weights. */
 static double reynolds_residual(const vl_contact *c, size_t i) {
-  return c->rscale * (c->Jf[i + 1] - c->Jf[i]) / c->dxi;
+  return c->rw[i] * (c->Jf[i + 1] - c->Jf[i]);
+}
+
+/* Weights of the Reynolds rows for the next solve, from the current state
+ * (needs eval_state). The complementarity FB(pf_i, R_i) compares a pressure
+ * with a flux imbalance; it identifies the cavitated cells only if both are
+ * measured alike. Rough: R is the imbalance per unit length in units of the
+ * Couette flux at the reference film. Smooth: R is the imbalance per unit
+ * length divided by its sensitivity to a pressure change spread over the
+ * hydrodynamic length lh (Poiseuille: lambda g/lh^2; elastic change of the
+ * Couette film: kappa kfac), i.e. the pressure change that would balance
+ * it. Otherwise, where the film is thick (inlet), a tiny relative flux error
+ * is a huge R next to a tiny pf and Newton takes the inlet for cavitated;
+ * and a per-cell sensitivity (lambda g/dx^2) makes R vanish with dx in the
+ * cavitated zone, where FB then sits at its kink. Frozen during a solve, so
+ * the rows stay smooth. */
+static int vl_rw_mode = 0; /* DEBUG-EHL: 0 per-cell sensitivity, 1 per-lh */
+static void reynolds_weights(vl_contact *c) {
+  size_t n = c->n;
+  if (c->rough) {
+    for (size_t i = 0; i < n; i++) c->rw[i] = c->rscale / c->dxi;
+    return;
+  }
+  if (vl_rw_mode == 1) {
+    double l2 = c->lh * c->lh;
+    for (size_t i = 0; i < n; i++)
+      c->rw[i] = 1.0 / (c->dxi * (c->lambda * c->g[i] / l2 + c->kappa * c->kfac));
+    return;
+  }
+  double L = c->lambda, dx = c->dxi;
+  for (size_t i = 0; i < n; i++) {
+    double gl = i > 0 ? 0.5 * (c->g[i - 1] + c->g[i]) : 2.0 * c->g[0];
+    double gr = i + 1 < n ? 0.5 * (c->g[i] + c->g[i + 1]) : 2.0 * c->g[n - 1];
+    double poiseuille = L * (gl + gr) / dx, elastic = 0.0;
+    for (int side = 0; side < 2; side++) {
+      size_t k[3];
+      double w[3];
+      int m = couette_stencil(c, i + (size_t)side, k, w);
+      for (int q = 0; q < m; q++)
+        elastic += (side ? 1.0 : -1.0) * w[q] * c->dcf[k[q]] * c->M[k[q] * n + i] * c->kappa;
+    }
+    double d = poiseuille + fabs(elastic);
+    c->rw[i] = d > 0.0 ? 1.0 / d : 1.0;
+  }
 }
 
 static int residual_fn(N_Vector yv, N_Vector fv, void *user) {
   vl_contact *c = user;
   const double *y = N_VGetArrayPointer(yv);
   double *f = N_VGetArrayPointer(fv);
-  size_t n = c->n, nf = c->nf;
+  size_t nc = c->nc, nf = c->nf, of = c->of;
   eval_state(c, y);
-  for (size_t i = 0; i < n; i++)
+  for (size_t i = 0; i < nc; i++)
     f[i] = c->rough ? c->D[i] : fb(c->P[i], c->U[i], NULL, NULL);
-  for (size_t i = 0; i < nf; i++) f[n + i] = fb(y[n + i], reynolds_residual(c, i), NULL, NULL);
-  f[n + nf] = load_sum(c) - 1.0;
+  for (size_t i = 0; i < nf; i++) f[of + i] = cfun(y[of + i], reynolds_residual(c, i), NULL, NULL);
+  f[c->ih] = load_sum(c) - 1.0;
   for (size_t i = 0; i < c->nunk; i++)
     if (!isfinite(f[i])) return 1; /* recoverable: KINSOL shortens the step */
+  /* a smooth wet film must stay open: a step that closes it is refused
+   * (recoverable: KINSOL halves the step; U is affine in y, so every shorter
+   * step of the line search stays open too) */
+  if (c->wet && !c->rough)
+    for (size_t i = 0; i < c->n; i++)
+      if (!(c->U[i] > 0.0)) return 1;
   return 0;
 }
 
@@ -209,9 +304,10 @@ static void add_dU(vl_contact *c, double *Jd, size_t ld, size_t row, size_t k, d
     return;
   }
   const double *mrow = c->M + k * n;
-  for (size_t j = 0; j < n; j++) Jd[j * ld + row] += w * mrow[j];
-  for (size_t j = 0; j < c->nf; j++) Jd[(n + j) * ld + row] += w * c->kappa * mrow[j];
-  Jd[(n + c->nf) * ld + row] += w;
+  for (size_t j = 0; j < c->nc; j++) Jd[j * ld + row] += w * mrow[j];
+  double wk = w * c->kappa, *col = Jd + c->of * ld + row;
+  for (size_t j = 0; j < c->nf; j++) col[j * ld] += wk * mrow[j];
+  Jd[c->ih * ld + row] += w;
 }
 
 static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vector t1,
@@ -219,12 +315,12 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
   (void)fv, (void)t1, (void)t2;
   vl_contact *c = user;
   const double *y = N_VGetArrayPointer(yv);
-  size_t n = c->n, nf = c->nf, ld = c->nunk, ih = n + nf;
+  size_t n = c->n, nc = c->nc, nf = c->nf, of = c->of, ld = c->nunk, ih = c->ih;
   double *Jd = SUNDenseMatrix_Data(J);
   memset(Jd, 0, ld * ld * sizeof *Jd);
   eval_state(c, y);
   /* contact / elasticity rows */
-  for (size_t i = 0; i < n; i++) {
+  for (size_t i = 0; i < nc; i++) {
     const double *row = c->M + i * n;
     if (!c->rough) {
       double dfdp, dfdu;
@@ -233,48 +329,54 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
       Jd[i * ld + i] += dfdp;
     } else {
       for (size_t j = 0; j < n; j++) Jd[j * ld + i] = -row[j] * c->dPdU[j];
-      for (size_t j = 0; j < nf; j++) Jd[(n + j) * ld + i] = -row[j] * c->kappa;
+      for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + i] = -row[j] * c->kappa;
       Jd[i * ld + i] += 1.0;
       Jd[ih * ld + i] = -1.0;
     }
   }
-  /* Reynolds rows: the fluxes of faces i-1/2 and i+1/2 depend on pf and u
-   * of the cells i-1, i, i+1 */
-  const double *pf = y + n;
-  double L = c->lambda, dx = c->dxi, w = c->rscale / dx;
+  /* Reynolds rows: the fluxes of faces i (left) and i+1 (right) depend on
+   * pf of cells i-1..i+1 and on u of cells i-2..i+1 */
+  const double *pf = y + of;
+  double L = c->lambda, dx = c->dxi;
   for (size_t i = 0; i < nf; i++) {
-    size_t row = n + i;
+    size_t row = of + i;
     double da, db;
-    fb(pf[i], reynolds_residual(c, i), &da, &db);
+    cfun(pf[i], reynolds_residual(c, i), &da, &db);
     Jd[row * ld + row] += da;
-    double s = db * w; /* d(row)/d(J_{i+1/2}) = s, d(row)/d(J_{i-1/2}) = -s */
-    /* face i+1/2 */
-    if (i + 1 < n) {
-      double gf = 0.5 * (c->g[i] + c->g[i + 1]), dp = (pf[i + 1] - pf[i]) / dx;
-      Jd[(n + i + 1) * ld + row] += s * (-L * gf / dx);
-      Jd[(n + i) * ld + row] += s * (L * gf / dx);
-      add_dU(c, Jd, ld, row, i, s * (-L * 0.5 * c->dg[i] * dp + c->dcf[i]));
-      add_dU(c, Jd, ld, row, i + 1, s * (-L * 0.5 * c->dg[i + 1] * dp));
-    } else {
-      Jd[(n + i) * ld + row] += s * (L * c->g[i] / (0.5 * dx));
-      add_dU(c, Jd, ld, row, i, s * (L * c->dg[i] * pf[i] / (0.5 * dx) + c->dcf[i]));
+    double s = db * c->rw[i]; /* d(row)/d(J_{i+1}) = s, d(row)/d(J_i) = -s */
+    if (s == 0.0) continue;
+    double dpf[3] = {0.0, 0.0, 0.0}, du[4] = {0.0, 0.0, 0.0, 0.0}; /* cells i-1.., i-2.. */
+    for (int side = 0; side < 2; side++) {
+      size_t f = i + (size_t)side;
+      double sg = side ? s : -s;
+      if (f == 0) {
+        dpf[1] += sg * (-L * c->g[0] / (0.5 * dx));
+        du[2] += sg * (-L * c->dg[0] * pf[0] / (0.5 * dx));
+      } else if (f == n) {
+        dpf[1] += sg * (L * c->g[n - 1] / (0.5 * dx));
+        du[2] += sg * (L * c->dg[n - 1] * pf[n - 1] / (0.5 * dx));
+      } else {
+        double gf = 0.5 * (c->g[f - 1] + c->g[f]), dp = (pf[f] - pf[f - 1]) / dx;
+        /* cells f-1 and f are i-1, i (left face) or i, i+1 (right face) */
+        dpf[side] += sg * (L * gf / dx);
+        dpf[side + 1] += sg * (-L * gf / dx);
+        du[side + 1] += sg * (-L * 0.5 * c->dg[f - 1] * dp);
+        du[side + 2] += sg * (-L * 0.5 * c->dg[f] * dp);
+      }
+      size_t k[3];
+      double cw[3];
+      int m = couette_stencil(c, f, k, cw);
+      for (int q = 0; q < m; q++) du[k[q] + 2 - i] += sg * cw[q] * c->dcf[k[q]];
     }
-    /* face i-1/2 */
-    if (i > 0) {
-      double gf = 0.5 * (c->g[i - 1] + c->g[i]), dp = (pf[i] - pf[i - 1]) / dx;
-      Jd[(n + i) * ld + row] -= s * (-L * gf / dx);
-      Jd[(n + i - 1) * ld + row] -= s * (L * gf / dx);
-      add_dU(c, Jd, ld, row, i - 1, -s * (-L * 0.5 * c->dg[i - 1] * dp + c->dcf[i - 1]));
-      add_dU(c, Jd, ld, row, i, -s * (-L * 0.5 * c->dg[i] * dp));
-    } else {
-      Jd[(n + i) * ld + row] -= s * (-L * c->g[0] / (0.5 * dx));
-      add_dU(c, Jd, ld, row, 0, -s * (-L * c->dg[0] * pf[0] / (0.5 * dx) + c->dcf[0]));
-    }
+    for (int q = 0; q < 3; q++)
+      if (dpf[q] != 0.0) Jd[(of + i + (size_t)q - 1) * ld + row] += dpf[q];
+    for (int q = 0; q < 4; q++)
+      if (du[q] != 0.0) add_dU(c, Jd, ld, row, i + (size_t)q - 2, du[q]);
   }
   /* load balance */
   double lw = c->dxi / (0.5 * M_PI);
-  for (size_t j = 0; j < n; j++) Jd[j * ld + ih] = lw * (c->rough ? c->dPdU[j] : 1.0);
-  for (size_t j = 0; j < nf; j++) Jd[(n + j) * ld + ih] = lw * c->kappa;
+  for (size_t j = 0; j < nc; j++) Jd[j * ld + ih] = lw * (c->rough ? c->dPdU[j] : 1.0);
+  for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + ih] = lw * c->kappa;
   return 0;
 }
 
@@ -311,7 +413,7 @@ void vl_contact_reset(vl_contact *c) {
     double x = c->xi[i];
     double p = fabs(x) < 1.0 ? sqrt(1.0 - x * x) : 0.0;
     if (!c->rough) {
-      y[i] = p;
+      y[i] = p; /* contact pressure, or fluid pressure when smooth wet (kappa = 1) */
     } else {
       /* Separation of the rough contact under the Hertz pressure, plus the
        * Hertz gap outside. */
@@ -320,11 +422,11 @@ void vl_contact_reset(vl_contact *c) {
       y[i] = u / c->uscale + hertz_gap(x);
     }
   }
-  for (size_t i = 0; i < c->nf; i++) y[n + i] = 0.0;
+  if (c->nc) for (size_t i = 0; i < c->nf; i++) y[c->of + i] = 0.0;
   c->kappa = 1.0;
   c->v_state = 0.0;
   /* h0 that best satisfies the gap equation inside the contact */
-  y[n + c->nf] = 0.0;
+  y[c->ih] = 0.0;
   eval_state(c, y);
   double sum = 0.0;
   size_t cnt = 0;
@@ -334,7 +436,7 @@ void vl_contact_reset(vl_contact *c) {
       cnt++;
     }
   }
-  y[n + c->nf] = cnt ? sum / (double)cnt : 0.0;
+  y[c->ih] = cnt ? sum / (double)cnt : 0.0;
 }
 
 /* The library never prints: KINSOL's messages are dropped, its return flags
@@ -383,12 +485,20 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   if (c->cfg.max_iterations <= 0) c->cfg.max_iterations = 100;
   c->rough = cfg->roughness != NULL;
   c->wet = cfg->eta_pa_s > 0.0;
+  if (getenv("VL_SCHEME")) vl_couette_scheme = atoi(getenv("VL_SCHEME")); /* DEBUG-EHL */
+  if (getenv("VL_RW")) vl_rw_mode = atoi(getenv("VL_RW")); /* DEBUG-EHL */
+  if (getenv("VL_CF")) vl_cf_mode = atoi(getenv("VL_CF")); /* DEBUG-EHL */
   /* flow factors only make sense for a rough surface */
   if (!c->rough) c->cfg.flow_factors = VL_FLOW_FACTORS_SMOOTH;
   c->hrms = c->rough ? vl_persson_hrms(cfg->roughness) : 0.0;
   c->n = cfg->grid;
   c->nf = c->wet ? c->n : 0;
-  c->nunk = c->n + c->nf + 1;
+  /* A smooth wet contact keeps a positive film (Reynolds' equation carries
+   * any load at any v0 > 0): no contact unknowns, pressure-only system. */
+  c->nc = c->wet && !c->rough ? 0 : c->n;
+  c->of = c->nc;
+  c->ih = c->nc + c->nf;
+  c->nunk = c->nc + c->nf + 1;
   double red = vl_prony_reduced_factor(&cfg->rubber);
   c->er_ref = vl_prony_e0(&cfg->rubber) * red;
   c->er_inf = cfg->rubber.e_inf_pa * red;
@@ -412,8 +522,9 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->theta = calloc(n, sizeof *c->theta);
   c->g = calloc(4 * n, sizeof *c->g);
   c->Jf = calloc(n + 1, sizeof *c->Jf);
+  c->rw = calloc(n, sizeof *c->rw);
   if (!c->xi || !c->A || !c->beta || !c->M || !c->P || !c->U || !c->dPdU || !c->F || !c->D || !c->theta ||
-      !c->g || !c->Jf)
+      !c->g || !c->Jf || !c->rw)
     goto nomem;
   c->dg = c->g + n;
   c->cf = c->g + 2 * n;
@@ -496,6 +607,7 @@ void vl_contact_free(vl_contact *c) {
   free(c->theta);
   free(c->g);
   free(c->Jf);
+  free(c->rw);
   free(c);
 }
 
@@ -512,7 +624,7 @@ static void film_fraction(const vl_contact *c, const double *y, double *theta) {
   size_t n = c->n;
   double jcur = c->Jf[0];
   for (size_t i = 0; i < n; i++) {
-    bool cavitated = c->wet && y[n + i] <= 1e-12 && reynolds_residual(c, i) > c->cfg.tolerance;
+    bool cavitated = c->wet && y[c->of + i] <= 1e-12 && reynolds_residual(c, i) > c->cfg.tolerance;
     if (!cavitated) {
       theta[i] = 1.0;
       jcur = c->Jf[i + 1];
@@ -603,10 +715,18 @@ static void contact_report(vl_contact *c, vl_point *pt) {
   (void)pfmax;
 }
 
-/* Scales of the fluid unknowns for a solve at v0, from the current state:
- * pf by its expected magnitude (extrapolated linearly in speed from the last
- * converged state: pf ~ eta v0 in the boundary regime), Reynolds rows by the
- * Couette flux at the current minimum film. Rescales y accordingly. */
+static double film_estimate(const vl_contact *c, double v0);
+
+/* Scales of the fluid unknowns for a solve at v0, from the current state.
+ * Rough: pf by its expected magnitude (extrapolated linearly in speed from
+ * the last converged state: pf ~ eta v0 in the boundary regime), Reynolds
+ * rows by the Couette flux at the current minimum film. Smooth: the film
+ * carries the whole load, so pf keeps the magnitude of the current state
+ * (about fN over the pressurised length); the reference film is the current
+ * minimum film and the Reynolds rows are flux balances relative to the
+ * Couette flux there, per hydrodynamic length lh = max(a0, sqrt(2 R u)), so
+ * that they stay O(1) when the inlet length far exceeds a0 (stiff solids).
+ * Rescales y accordingly. */
 static void fluid_scales(vl_contact *c, double v0) {
   if (!c->wet) return;
   size_t n = c->n;
@@ -618,41 +738,106 @@ static void fluid_scales(vl_contact *c, double v0) {
     fmax_p0 = fmax(fmax_p0, c->F[i]);
   }
   double us = c->uscale, eta = c->cfg.eta_pa_s;
-  /* the film cannot be thinner than a rigid cylinder's (Martin) nor, on a
-   * rough surface, than a fraction of the roughness */
-  double h_martin = 2.447 * eta * v0 * c->cfg.radius_m / c->cfg.load_n_per_m;
-  c->u_ref = fmax(umin, fmax(1e-3 * c->hrms, h_martin) / us);
   double kappa;
-  if (fmax_p0 > 0.0 && c->v_state > 0.0) {
-    kappa = fmax_p0 * v0 / c->v_state;
+  if (!c->rough) {
+    c->u_ref = umin > 0.0 ? umin : film_estimate(c, v0) / us;
+    c->lh = fmax(1.0, sqrt(2.0 * c->u_ref)); /* sqrt(2 R u)/a0 with u in a0^2/R */
+    kappa = fmax_p0 > 0.0 ? fmax_p0 : 1.0 / c->lh;
+    c->rscale = c->lh / c->u_ref;
   } else {
-    /* hydrodynamic estimate 6 eta v0 a0 / u^2, at most p0 */
-    double u = c->u_ref * us;
-    kappa = 6.0 * eta * v0 * c->a0 / (u * u) / c->p0;
+    /* the film cannot be thinner than a rigid cylinder's (Martin) nor, on a
+     * rough surface, than a fraction of the roughness */
+    double h_martin = 2.447 * eta * v0 * c->cfg.radius_m / c->cfg.load_n_per_m;
+    c->u_ref = fmax(umin, fmax(1e-3 * c->hrms, h_martin) / us);
+    if (fmax_p0 > 0.0 && c->v_state > 0.0) {
+      kappa = fmax_p0 * v0 / c->v_state;
+    } else {
+      /* hydrodynamic estimate 6 eta v0 a0 / u^2, at most p0 */
+      double u = c->u_ref * us;
+      kappa = 6.0 * eta * v0 * c->a0 / (u * u) / c->p0;
+    }
+    kappa = fmin(fmax(kappa, 1e-300), 10.0);
+    c->rscale = 1.0 / c->u_ref;
   }
-  kappa = fmin(fmax(kappa, 1e-300), 10.0);
-  for (size_t i = 0; i < c->nf; i++) y[n + i] *= c->kappa / kappa;
+  for (size_t i = 0; i < c->nf; i++) y[c->of + i] *= c->kappa / kappa;
   c->kappa = kappa;
   c->lambda = us * us * c->p0 * kappa / (6.0 * eta * v0 * c->a0);
-  c->rscale = 1.0 / c->u_ref;
+  eval_state(c, y);
+  reynolds_weights(c);
 }
 
-/* A fresh smooth wet solve starts from a film rather than from dry Hertz
- * (opening a film out of a closed hard contact is a path Newton rarely
- * finds): the rigid cylinder lifted by the larger of Martin's rigid film and
- * the isoviscous-elastic (soft EHL) estimate h = 2.32 (eta um R/fN) g^0.8,
- * g = fN/sqrt(eta um E' R), with no pressure yet. Newton's first step then
- * solves the (nearly rigid) Reynolds problem; sweeps of smooth wet scenes
- * run from high speed down. */
+/* Minimum film (m) of a smooth wet contact at v0, estimated as the larger of
+ * Martin's rigid film 4.894 eta um R/fN and the isoviscous-elastic (soft
+ * EHL) one 2.32 (eta um R/fN) g^0.8, g = fN/sqrt(eta um E' R), um = v0/2,
+ * E' = 2 Er (relaxed). */
+static double film_estimate(const vl_contact *c, double v0) {
+  const vl_contact_config *cfg = &c->cfg;
+  double um = 0.5 * v0, eta = cfg->eta_pa_s, R = cfg->radius_m, fN = cfg->load_n_per_m;
+  double ge = fN / sqrt(eta * um * 2.0 * c->er_ref * R);
+  return fmax(2.32 * pow(ge, 0.8), 4.894) * eta * um * R / fN;
+}
+
+/* Rigid-cylinder Reynolds pressure (Swift-Stieber outlet) for the gap
+ * h0 (1 + X^2), X = x/b, b = sqrt(2 R h0), fed from X_in: dp/dX is
+ * proportional to (H - Hc)/H^3, integrated in closed form with
+ * I2 = \int dX/H^2 and I3 = \int dX/H^3; the outlet Xc solves p(Xc) = 0.
+ * Returns the unnormalised shape at X (0 beyond Xc). */
+static double rigid_i2(double X) { return 0.5 * (X / (1.0 + X * X) + atan(X)); }
+static double rigid_i3(double X) {
+  double H = 1.0 + X * X;
+  return X / (4.0 * H * H) + 3.0 * X / (8.0 * H) + 0.375 * atan(X);
+}
+static double rigid_outlet(double X_in, double X_max) {
+  double lo = 0.0, hi = X_max;
+  double a2 = rigid_i2(X_in), a3 = rigid_i3(X_in);
+#define G(X) ((rigid_i2(X) - a2) - (1.0 + (X) * (X)) * (rigid_i3(X) - a3))
+  if (!(G(hi) < 0.0)) return X_max;
+  for (int it = 0; it < 100; it++) {
+    double mid = 0.5 * (lo + hi);
+    if (G(mid) > 0.0) lo = mid; else hi = mid;
+  }
+#undef G
+  return 0.5 * (lo + hi);
+}
+
+/* A fresh smooth wet solve starts from a film with a pressure that carries
+ * the load (a start without pressure leaves the load independent of the
+ * rigid approach: singular Jacobian). The film is film_estimate(); the
+ * pressure is the rigid cylinder's (Martin) where that film exceeds the
+ * soft estimate, else the relaxed Hertz pressure (the soft EHL pressure is
+ * nearly Hertzian); the rigid approach puts the minimum film at the
+ * estimate. Newton then corrects the shape. */
 static void wet_smooth_guess(vl_contact *c, double v0) {
   size_t n = c->n;
   double *y = N_VGetArrayPointer(c->y);
   const vl_contact_config *cfg = &c->cfg;
   double um = 0.5 * v0, eta = cfg->eta_pa_s, R = cfg->radius_m, fN = cfg->load_n_per_m;
-  double ge = fN / sqrt(eta * um * 2.0 * c->er_ref * R);
-  double h = fmax(2.32 * eta * um * R / fN * pow(ge, 0.8), 4.894 * eta * um * R / fN);
-  for (size_t i = 0; i < n; i++) y[i] = y[n + i] = 0.0;
-  y[n + c->nf] = h / c->uscale;
+  double h = film_estimate(c, v0);
+  bool rigid = h <= 4.894 * eta * um * R / fN * (1.0 + 1e-12);
+  double b = sqrt(2.0 * R * h) / c->a0; /* in a0 */
+  double X_in = c->xi[0] / b - 0.5 * c->dxi / b, X_max = c->xi[n - 1] / b + 0.5 * c->dxi / b;
+  double Xc = rigid ? rigid_outlet(X_in, X_max) : 0.0, Hc = 1.0 + Xc * Xc;
+  double a2 = rigid_i2(X_in), a3 = rigid_i3(X_in), sum = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    double x = c->xi[i], p;
+    if (rigid) {
+      double X = x / b;
+      p = X < Xc ? fmax((rigid_i2(X) - a2) - Hc * (rigid_i3(X) - a3), 0.0) : 0.0;
+    } else {
+      p = fabs(x) < 1.0 ? sqrt(1.0 - x * x) : 0.0;
+    }
+    c->F[i] = p;
+    sum += p;
+  }
+  double scale = sum > 0.0 ? (0.5 * M_PI) / (sum * c->dxi) : 0.0, fmx = 0.0;
+  for (size_t i = 0; i < n; i++) fmx = fmax(fmx, c->F[i] *= scale);
+  c->kappa = fmx > 0.0 ? fmx : 1.0;
+  for (size_t i = 0; i < n; i++) y[c->of + i] = c->F[i] / c->kappa;
+  y[c->ih] = 0.0;
+  eval_state(c, y);
+  double umin = INFINITY;
+  for (size_t i = 0; i < n; i++) umin = fmin(umin, c->U[i]);
+  y[c->ih] = h / c->uscale - umin;
 }
 
 vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
@@ -668,7 +853,9 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
   contact_set_speed(c, v0_m_s);
   if (c->wet && !c->rough && c->v_state == 0.0) wet_smooth_guess(c, v0_m_s);
   fluid_scales(c, v0_m_s);
-  int flag = KINSol(c->kmem, c->y, KIN_LINESEARCH, c->ones, c->ones);
+  if (getenv("VL_KIN_PRINT")) KINSetPrintLevel(c->kmem, atoi(getenv("VL_KIN_PRINT"))); /* DEBUG-EHL */
+  int strategy = getenv("VL_GLOBAL") && atoi(getenv("VL_GLOBAL")) == 0 ? KIN_NONE : KIN_LINESEARCH; /* DEBUG-EHL */
+  int flag = KINSol(c->kmem, c->y, strategy, c->ones, c->ones);
   long nni = 0;
   KINGetNumNonlinSolvIters(c->kmem, &nni);
   /* Our own residual check: KINSOL also returns success when the step, not
@@ -687,6 +874,10 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
     if (saved_v == saved_v) contact_set_speed(c, saved_v);
     c->kappa = saved_kappa, c->lambda = saved_lambda, c->rscale = saved_rscale;
     c->u_ref = saved_uref;
+    if (c->wet) {
+      eval_state(c, N_VGetArrayPointer(c->y));
+      reynolds_weights(c);
+    }
     memset(pt, 0, sizeof *pt);
     pt->v0_m_s = v0_m_s;
     pt->converged = false;

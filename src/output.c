@@ -11,8 +11,12 @@ const char *const vl_curve_columns[] = {
     "u_central_m", "contact_width_m", "fluid_load_fraction", "regime", "E_wH_pa", "a_H_m", "Q",
     "x_centroid_m", "load_error", "converged", "iterations", "residual", "warnings", NULL};
 
+/* -0 (a sum of zeros with a minus sign, e.g. mu_Rf of a dry contact) is
+ * written as 0: readers compare text, and "-0" looks like a sign. */
+static double plain_zero(double v) { return v == 0.0 ? 0.0 : v; }
+
 static void cell(FILE *f, double v, int ok) {
-  if (ok && isfinite(v)) fprintf(f, ",%.10g", v);
+  if (ok && isfinite(v)) fprintf(f, ",%.10g", plain_zero(v));
   else fputc(',', f);
 }
 
@@ -23,7 +27,7 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
   for (size_t i = 0; i < n; i++) {
     const vl_point *p = &pts[i];
     int ok = p->converged;
-    fprintf(out, "%.10g", p->v0_m_s);
+    fprintf(out, "%.10g", plain_zero(p->v0_m_s));
     cell(out, p->v0_m_s * meta->eta_pa_s, meta->eta_pa_s > 0);
     cell(out, p->v0_m_s * meta->tau_s / meta->a0_m, meta->tau_s > 0 && meta->a0_m > 0);
     cell(out, p->mu, ok);
@@ -81,14 +85,15 @@ vl_status vl_write_fields_csv(const char *path, const vl_fields *fl, double a0_m
   if (!f) return VL_EIO;
   fputs("x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction\n", f);
   for (size_t i = 0; i < fl->n; i++)
-    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", fl->x_m[i], fl->x_m[i] / a0_m,
-            fl->p_f_pa[i], fl->p_c_pa[i], fl->u_m[i], fl->area_ratio[i],
-            fl->film_fraction ? fl->film_fraction[i] : 1.0);
+    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", plain_zero(fl->x_m[i]),
+            plain_zero(fl->x_m[i] / a0_m), plain_zero(fl->p_f_pa[i]), plain_zero(fl->p_c_pa[i]),
+            plain_zero(fl->u_m[i]), plain_zero(fl->area_ratio[i]),
+            fl->film_fraction ? plain_zero(fl->film_fraction[i]) : 1.0);
   return close_rename(f, tmp, path, err);
 }
 
 static void jnum(FILE *out, const char *key, double v, int ok, int comma) {
-  if (ok && isfinite(v)) fprintf(out, "\"%s\": %.10g", key, v);
+  if (ok && isfinite(v)) fprintf(out, "\"%s\": %.10g", key, plain_zero(v));
   else fprintf(out, "\"%s\": null", key);
   if (comma) fputs(", ", out);
 }

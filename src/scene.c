@@ -1,6 +1,8 @@
 /* Scene files: INI parsed by libinih, with line numbers for every error. */
 #include "viscolube/scene.h"
 
+#include <ctype.h>
+#include <stdarg.h>
 #include <errno.h>
 #include <ini.h>
 #include <math.h>
@@ -8,26 +10,66 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Every key a scene may hold. The parser records the line of each, so that
+ * errors found after the whole file is read (inconsistent effects) still
+ * name the line, and a key given twice is refused instead of silently
+ * overriding the first. */
+typedef enum {
+  K_TITLE,
+  K_COMPOUND, K_SURFACE, K_FLUID_NAME, K_ELASTIC_MODULUS,
+  K_RADIUS, K_LOAD, K_SIGMA_S,
+  K_QUANTITY, K_FROM, K_TO, K_POINTS, K_FIELDS_AT,
+  K_VISCOELASTIC, K_ROUGHNESS, K_FLUID, K_SOLID_SHEAR, K_VISCOUS_FLATTENING, K_TEMPERATURE,
+  K_FLOW_FACTORS, K_TEMPERATURE_C,
+  K_GRID, K_DOMAIN, K_TOLERANCE, K_LINEAR_SOLVER, K_PERSSON_TABLE,
+  K_COUNT
+} key_id;
+
+static const struct {
+  const char *section, *key;
+  bool required;
+} keys[K_COUNT] = {
+    [K_TITLE] = {"scene", "title", false},
+    [K_COMPOUND] = {"materials", "compound", true},
+    [K_SURFACE] = {"materials", "surface", false},
+    [K_FLUID_NAME] = {"materials", "fluid", false},
+    [K_ELASTIC_MODULUS] = {"materials", "elastic_modulus", false},
+    [K_RADIUS] = {"contact", "radius_m", true},
+    [K_LOAD] = {"contact", "load_n_per_m", true},
+    [K_SIGMA_S] = {"contact", "sigma_s_pa", false},
+    [K_QUANTITY] = {"sweep", "quantity", true},
+    [K_FROM] = {"sweep", "from", true},
+    [K_TO] = {"sweep", "to", true},
+    [K_POINTS] = {"sweep", "points", true},
+    [K_FIELDS_AT] = {"sweep", "fields_at", false},
+    [K_VISCOELASTIC] = {"effects", "viscoelastic", false},
+    [K_ROUGHNESS] = {"effects", "roughness", false},
+    [K_FLUID] = {"effects", "fluid", false},
+    [K_SOLID_SHEAR] = {"effects", "solid_shear", false},
+    [K_VISCOUS_FLATTENING] = {"effects", "viscous_flattening", false},
+    [K_TEMPERATURE] = {"effects", "temperature", false},
+    [K_FLOW_FACTORS] = {"effects", "flow_factors", false},
+    [K_TEMPERATURE_C] = {"effects", "temperature_c", false},
+    [K_GRID] = {"numerics", "grid", false},
+    [K_DOMAIN] = {"numerics", "domain_a0", false},
+    [K_TOLERANCE] = {"numerics", "tolerance", false},
+    [K_LINEAR_SOLVER] = {"numerics", "linear_solver", false},
+    [K_PERSSON_TABLE] = {"numerics", "persson_table", false},
+};
+
+static const char *const sections[] = {"scene", "materials", "contact", "sweep", "effects",
+                                       "numerics"};
+
 typedef struct {
   vl_scene *scene;
   const char *path;
   vl_error *err;
   vl_status status;
   int line;              /* line being parsed (counted by our reader) */
+  int err_line;          /* line of the error in status (0 if none) */
   const char *cursor;    /* reader position in the text */
-  unsigned seen;         /* bit set of required keys seen */
-  int fields_line;
+  int key_line[K_COUNT]; /* where each key was set; 0 = not in the file */
 } parse_state;
-
-enum {
-  SEEN_COMPOUND = 1u << 0,
-  SEEN_RADIUS = 1u << 1,
-  SEEN_LOAD = 1u << 2,
-  SEEN_FROM = 1u << 3,
-  SEEN_TO = 1u << 4,
-  SEEN_POINTS = 1u << 5,
-  SEEN_QUANTITY = 1u << 6,
-};
 
 const char *vl_sweep_quantity_name(vl_sweep_quantity q) {
   switch (q) {
@@ -38,16 +80,20 @@ const char *vl_sweep_quantity_name(vl_sweep_quantity q) {
   return "?";
 }
 
-
+/* Records "file:line: [section] key: why" (why = fmt with value) and
+ * returns 0, which stops inih. */
 static int fail(parse_state *ps, const char *section, const char *key, const char *fmt,
                 const char *value) {
   char why[512];
   snprintf(why, sizeof why, fmt, value);
   vl_error_set(ps->err, "%s:%d: [%s] %s: %s", ps->path, ps->line, section, key, why);
   ps->status = VL_EINPUT;
-  return 0; /* stops inih */
+  ps->err_line = ps->line;
+  return 0;
 }
 
+/* A finite number and nothing else (trailing blanks allowed): "1cm", "nan",
+ * "inf", "1e999" and "" are refused. */
 static bool parse_double(const char *v, double *out) {
   char *end;
   errno = 0;
@@ -80,17 +126,77 @@ static bool parse_switch(const char *v, bool *out) {
   return false;
 }
 
-/* Up to max comma-separated numbers. Returns the count or -1. */
+/* 1 to max comma-separated numbers. Returns the count, or -1 for an empty
+ * value, an empty item ("1,,2", "1,"), a bad number or more than max. */
 static int parse_list(const char *v, double *out, int max) {
-  char buf[2048];
-  snprintf(buf, sizeof buf, "%s", v);
   int n = 0;
-  for (char *tok = strtok(buf, ","); tok; tok = strtok(NULL, ",")) {
-    while (*tok == ' ' || *tok == '\t') tok++;
-    if (n >= max || !parse_double(tok, &out[n])) return -1;
-    n++;
+  for (const char *p = v;; n++) {
+    size_t len = strcspn(p, ",");
+    char tok[64];
+    if (n >= max || len == 0 || len >= sizeof tok) return -1;
+    memcpy(tok, p, len);
+    tok[len] = '\0';
+    const char *t = tok;
+    while (*t == ' ' || *t == '\t') t++;
+    if (!parse_double(t, &out[n])) return -1;
+    if (p[len] == '\0') return n + 1;
+    p += len + 1;
   }
-  return n;
+}
+
+/* Edit distance with transpositions (optimal string alignment), capped:
+ * for "did you mean" hints only. */
+static size_t edit_distance(const char *a, const char *b) {
+  size_t la = strlen(a), lb = strlen(b);
+  if (la > 40 || lb > 40) return 99;
+  size_t d[41][41];
+  for (size_t i = 0; i <= la; i++) d[i][0] = i;
+  for (size_t j = 0; j <= lb; j++) d[0][j] = j;
+  for (size_t i = 1; i <= la; i++) {
+    for (size_t j = 1; j <= lb; j++) {
+      size_t cost = a[i - 1] != b[j - 1];
+      size_t best = d[i - 1][j] + 1;
+      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
+      if (d[i - 1][j - 1] + cost < best) best = d[i - 1][j - 1] + cost;
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+          d[i - 2][j - 2] + 1 < best)
+        best = d[i - 2][j - 2] + 1;
+      d[i][j] = best;
+    }
+  }
+  return d[la][lb];
+}
+
+/* The hint for an unknown key: the same key in another section, else the
+ * nearest key of this section (at most 2 edits). Empty when none fits. */
+static void key_hint(const char *section, const char *key, char *hint, size_t size) {
+  hint[0] = '\0';
+  for (int k = 0; k < K_COUNT; k++) {
+    if (!strcmp(keys[k].key, key)) {
+      snprintf(hint, size, " (it belongs in [%s])", keys[k].section);
+      return;
+    }
+  }
+  size_t best = 3;
+  for (int k = 0; k < K_COUNT; k++) {
+    if (strcmp(keys[k].section, section)) continue;
+    size_t d = edit_distance(key, keys[k].key);
+    if (d < best) {
+      best = d;
+      snprintf(hint, size, " (did you mean '%s'?)", keys[k].key);
+    }
+  }
+}
+
+static void unknown_section(parse_state *ps, const char *section) {
+  char hint[64] = "";
+  for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
+    if (edit_distance(section, sections[s]) <= 2)
+      snprintf(hint, sizeof hint, " (did you mean [%s]?)", sections[s]);
+  vl_error_set(ps->err, "%s:%d: unknown section [%s]%s (known: scene, materials, contact, "
+               "sweep, effects, numerics)", ps->path, ps->line, section, hint);
+  ps->status = VL_EINPUT;
+  ps->err_line = ps->line;
 }
 
 static int copy_name(parse_state *ps, const char *section, const char *key, char *dst,
@@ -100,148 +206,189 @@ static int copy_name(parse_state *ps, const char *section, const char *key, char
   return 1;
 }
 
-#define POSITIVE(field, bit)                                                                       \
+#define POSITIVE(field)                                                                            \
   do {                                                                                             \
     if (!parse_double(value, &sc->field) || !(sc->field > 0.0))                                    \
       return fail(ps, section, key, "expected a positive number, got '%s'", value);               \
-    ps->seen |= (bit);                                                                             \
     return 1;                                                                                      \
   } while (0)
 
+/* One key = value: inih calls this for every assignment, in file order. */
 static int handler(void *user, const char *section, const char *key, const char *value) {
   parse_state *ps = user;
   vl_scene *sc = ps->scene;
   if (ps->status != VL_OK) return 0; /* inih goes on after an error: keep the first */
-  if (!strcmp(section, "scene")) {
-    if (!strcmp(key, "title")) {
-      snprintf(sc->title, sizeof sc->title, "%s", value);
-      return 1;
-    }
-  } else if (!strcmp(section, "materials")) {
-    if (!strcmp(key, "compound")) {
-      ps->seen |= SEEN_COMPOUND;
-      return copy_name(ps, section, key, sc->compound, value);
-    }
-    if (!strcmp(key, "surface")) return copy_name(ps, section, key, sc->surface, value);
-    if (!strcmp(key, "fluid")) return copy_name(ps, section, key, sc->fluid, value);
-    if (!strcmp(key, "elastic_modulus")) {
-      if (!strcmp(value, "relaxed")) sc->elastic = VL_ELASTIC_RELAXED;
-      else if (!strcmp(value, "glassy")) sc->elastic = VL_ELASTIC_GLASSY;
-      else if (parse_double(value, &sc->elastic_modulus_pa) && sc->elastic_modulus_pa > 0.0)
-        sc->elastic = VL_ELASTIC_GIVEN;
-      else
-        return fail(ps, section, key, "expected relaxed, glassy or a modulus in Pa, got '%s'",
-                    value);
-      return 1;
-    }
-  } else if (!strcmp(section, "contact")) {
-    if (!strcmp(key, "radius_m")) POSITIVE(radius_m, SEEN_RADIUS);
-    if (!strcmp(key, "load_n_per_m")) POSITIVE(load_n_per_m, SEEN_LOAD);
-    if (!strcmp(key, "sigma_s_pa")) {
-      if (!parse_double(value, &sc->sigma_s_pa) || sc->sigma_s_pa < 0.0)
-        return fail(ps, section, key, "expected a number >= 0, got '%s'", value);
-      return 1;
-    }
-  } else if (!strcmp(section, "sweep")) {
-    if (!strcmp(key, "quantity")) {
-      ps->seen |= SEEN_QUANTITY;
-      if (!strcmp(value, "v0")) sc->quantity = VL_SWEEP_V0;
-      else if (!strcmp(value, "v0_eta")) sc->quantity = VL_SWEEP_V0_ETA;
-      else if (!strcmp(value, "deborah")) sc->quantity = VL_SWEEP_DEBORAH;
-      else return fail(ps, section, key, "expected v0, v0_eta or deborah, got '%s'", value);
-      return 1;
-    }
-    if (!strcmp(key, "from")) POSITIVE(from, SEEN_FROM);
-    if (!strcmp(key, "to")) POSITIVE(to, SEEN_TO);
-    if (!strcmp(key, "points")) {
-      if (!parse_size(value, &sc->points) || sc->points > 100000)
-        return fail(ps, section, key, "expected a whole number in [1, 100000], got '%s'", value);
-      ps->seen |= SEEN_POINTS;
-      return 1;
-    }
-    if (!strcmp(key, "fields_at")) {
-      int n = parse_list(value, sc->fields_at, VL_FIELDS_AT_MAX);
-      if (n < 0) return fail(ps, section, key, "expected up to 32 comma-separated numbers, got '%s'", value);
-      for (int i = 0; i < n; i++)
-        if (!(sc->fields_at[i] > 0.0)) return fail(ps, section, key, "values must be positive: '%s'", value);
-      sc->n_fields_at = (size_t)n;
-      ps->fields_line = ps->line;
-      return 1;
-    }
-  } else if (!strcmp(section, "effects")) {
-    bool *sw = NULL;
-    if (!strcmp(key, "viscoelastic")) sw = &sc->effects.viscoelastic;
-    else if (!strcmp(key, "roughness")) sw = &sc->effects.roughness;
-    else if (!strcmp(key, "fluid")) sw = &sc->effects.fluid;
-    else if (!strcmp(key, "solid_shear")) sw = &sc->effects.solid_shear;
-    else if (!strcmp(key, "viscous_flattening")) sw = &sc->effects.viscous_flattening;
-    else if (!strcmp(key, "temperature")) sw = &sc->effects.temperature;
-    if (sw) {
-      if (!parse_switch(value, sw)) return fail(ps, section, key, "expected on or off, got '%s'", value);
-      return 1;
-    }
-    if (!strcmp(key, "flow_factors")) {
-      if (vl_flow_factors_parse(value, &sc->effects.flow_factors, NULL) != VL_OK)
-        return fail(ps, section, key, "expected smooth or patir-cheng, got '%s'", value);
-      return 1;
-    }
-    if (!strcmp(key, "temperature_c")) {
-      if (!parse_double(value, &sc->effects.temperature_c) || sc->effects.temperature_c < -273.15)
-        return fail(ps, section, key, "expected a temperature in C, got '%s'", value);
-      return 1;
-    }
-  } else if (!strcmp(section, "numerics")) {
-    if (!strcmp(key, "grid")) {
-      if (!parse_size(value, &sc->grid) || sc->grid < 16 || sc->grid > 8192)
-        return fail(ps, section, key, "expected a whole number in [16, 8192], got '%s'", value);
-      return 1;
-    }
-    if (!strcmp(key, "domain_a0")) {
-      double d[2];
-      if (parse_list(value, d, 2) != 2 || !(d[1] > d[0]))
-        return fail(ps, section, key, "expected two increasing numbers 'start, end', got '%s'", value);
-      sc->domain_min_a0 = d[0];
-      sc->domain_max_a0 = d[1];
-      return 1;
-    }
-    if (!strcmp(key, "tolerance")) {
-      if (!parse_double(value, &sc->tolerance) || !(sc->tolerance > 0.0 && sc->tolerance < 1.0))
-        return fail(ps, section, key, "expected a number in (0, 1), got '%s'", value);
-      return 1;
-    }
-    if (!strcmp(key, "linear_solver")) {
-      if (!strcmp(value, "lapack")) sc->linear_solver = VL_LINSOL_LAPACK;
-      else if (!strcmp(value, "sundials")) sc->linear_solver = VL_LINSOL_SUNDIALS;
-      else return fail(ps, section, key, "expected lapack or sundials, got '%s'", value);
-      return 1;
-    }
-    if (!strcmp(key, "persson_table")) {
-      if (!parse_size(value, &sc->persson_table) || sc->persson_table < 64 || sc->persson_table > 100000)
-        return fail(ps, section, key, "expected a whole number in [64, 100000], got '%s'", value);
-      return 1;
-    }
-  } else {
-    char what[300];
-    snprintf(what, sizeof what, "unknown section [%s] (known: scene, materials, contact, sweep, "
-             "effects, numerics)", section);
-    vl_error_set(ps->err, "%s:%d: %s", ps->path, ps->line, what);
+
+  if (!section[0]) {
+    vl_error_set(ps->err, "%s:%d: key '%s' before any [section]", ps->path, ps->line, key);
     ps->status = VL_EINPUT;
+    ps->err_line = ps->line;
     return 0;
+  }
+  bool known_section = false;
+  for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
+    if (!strcmp(section, sections[s])) known_section = true;
+  if (!known_section) { /* normally caught by the reader at the header line */
+    unknown_section(ps, section);
+    return 0;
+  }
+  int id = -1;
+  for (int k = 0; k < K_COUNT; k++)
+    if (!strcmp(keys[k].section, section) && !strcmp(keys[k].key, key)) id = k;
+  if (id < 0) {
+    char hint[128];
+    key_hint(section, key, hint, sizeof hint);
+    return fail(ps, section, key, "unknown key%s", hint);
+  }
+  if (ps->key_line[id]) {
+    char why[64];
+    snprintf(why, sizeof why, "given twice (first on line %d)", ps->key_line[id]);
+    return fail(ps, section, key, "%s", why);
+  }
+  ps->key_line[id] = ps->line;
+
+  switch ((key_id)id) {
+  case K_TITLE:
+    snprintf(sc->title, sizeof sc->title, "%s", value);
+    return 1;
+  case K_COMPOUND: return copy_name(ps, section, key, sc->compound, value);
+  case K_SURFACE: return copy_name(ps, section, key, sc->surface, value);
+  case K_FLUID_NAME: return copy_name(ps, section, key, sc->fluid, value);
+  case K_ELASTIC_MODULUS:
+    if (!strcmp(value, "relaxed")) sc->elastic = VL_ELASTIC_RELAXED;
+    else if (!strcmp(value, "glassy")) sc->elastic = VL_ELASTIC_GLASSY;
+    else if (parse_double(value, &sc->elastic_modulus_pa) && sc->elastic_modulus_pa > 0.0)
+      sc->elastic = VL_ELASTIC_GIVEN;
+    else
+      return fail(ps, section, key, "expected relaxed, glassy or a modulus in Pa, got '%s'",
+                  value);
+    return 1;
+  case K_RADIUS: POSITIVE(radius_m);
+  case K_LOAD: POSITIVE(load_n_per_m);
+  case K_SIGMA_S:
+    if (!parse_double(value, &sc->sigma_s_pa) || sc->sigma_s_pa < 0.0)
+      return fail(ps, section, key, "expected a number >= 0, got '%s'", value);
+    return 1;
+  case K_QUANTITY:
+    if (!strcmp(value, "v0")) sc->quantity = VL_SWEEP_V0;
+    else if (!strcmp(value, "v0_eta")) sc->quantity = VL_SWEEP_V0_ETA;
+    else if (!strcmp(value, "deborah")) sc->quantity = VL_SWEEP_DEBORAH;
+    else return fail(ps, section, key, "expected v0, v0_eta or deborah, got '%s'", value);
+    return 1;
+  case K_FROM: POSITIVE(from);
+  case K_TO: POSITIVE(to);
+  case K_POINTS:
+    if (!parse_size(value, &sc->points) || sc->points > 100000)
+      return fail(ps, section, key, "expected a whole number in [1, 100000], got '%s'", value);
+    return 1;
+  case K_FIELDS_AT: {
+    int n = parse_list(value, sc->fields_at, VL_FIELDS_AT_MAX);
+    if (n < 0)
+      return fail(ps, section, key, "expected 1 to 32 comma-separated numbers, got '%s'", value);
+    for (int i = 0; i < n; i++)
+      if (!(sc->fields_at[i] > 0.0)) return fail(ps, section, key, "values must be positive: '%s'", value);
+    sc->n_fields_at = (size_t)n;
+    return 1;
+  }
+  case K_VISCOELASTIC:
+  case K_ROUGHNESS:
+  case K_FLUID:
+  case K_SOLID_SHEAR:
+  case K_VISCOUS_FLATTENING:
+  case K_TEMPERATURE: {
+    bool *sw = id == K_VISCOELASTIC ? &sc->effects.viscoelastic
+               : id == K_ROUGHNESS  ? &sc->effects.roughness
+               : id == K_FLUID      ? &sc->effects.fluid
+               : id == K_SOLID_SHEAR ? &sc->effects.solid_shear
+               : id == K_VISCOUS_FLATTENING ? &sc->effects.viscous_flattening
+                                            : &sc->effects.temperature;
+    if (!parse_switch(value, sw)) return fail(ps, section, key, "expected on or off, got '%s'", value);
+    return 1;
+  }
+  case K_FLOW_FACTORS:
+    if (vl_flow_factors_parse(value, &sc->effects.flow_factors, NULL) != VL_OK)
+      return fail(ps, section, key, "expected smooth or patir-cheng, got '%s'", value);
+    return 1;
+  case K_TEMPERATURE_C:
+    if (!parse_double(value, &sc->effects.temperature_c) || sc->effects.temperature_c < -273.15)
+      return fail(ps, section, key, "expected a temperature in C, got '%s'", value);
+    return 1;
+  case K_GRID:
+    if (!parse_size(value, &sc->grid) || sc->grid < 16 || sc->grid > 8192)
+      return fail(ps, section, key, "expected a whole number in [16, 8192], got '%s'", value);
+    return 1;
+  case K_DOMAIN: {
+    double d[2];
+    /* the cylinder axis x = 0 lies in every contact: a domain without it
+     * cannot hold the solution */
+    if (parse_list(value, d, 2) != 2 || !(d[0] < 0.0 && d[1] > 0.0))
+      return fail(ps, section, key,
+                  "expected 'start, end' with start < 0 < end (in units of a0), got '%s'", value);
+    sc->domain_min_a0 = d[0];
+    sc->domain_max_a0 = d[1];
+    return 1;
+  }
+  case K_TOLERANCE:
+    if (!parse_double(value, &sc->tolerance) || !(sc->tolerance > 0.0 && sc->tolerance < 1.0))
+      return fail(ps, section, key, "expected a number in (0, 1), got '%s'", value);
+    return 1;
+  case K_LINEAR_SOLVER:
+    if (!strcmp(value, "lapack")) sc->linear_solver = VL_LINSOL_LAPACK;
+    else if (!strcmp(value, "sundials")) sc->linear_solver = VL_LINSOL_SUNDIALS;
+    else return fail(ps, section, key, "expected lapack or sundials, got '%s'", value);
+    return 1;
+  case K_PERSSON_TABLE:
+    if (!parse_size(value, &sc->persson_table) || sc->persson_table < 64 || sc->persson_table > 100000)
+      return fail(ps, section, key, "expected a whole number in [64, 100000], got '%s'", value);
+    return 1;
+  case K_COUNT: break;
   }
   return fail(ps, section, key, "unknown key%s", "");
 }
 
-/* inih reader over a string that counts lines, so the handler knows where it is. */
+/* inih reader over a string that counts lines, so the handler knows where
+ * it is. It hands inih each line trimmed, which matters twice:
+ * - leading blanks would make inih take an indented line for the
+ *   continuation of the previous value (its multi-line mode, compiled in);
+ * - inih cuts lines longer than its buffer (num) into pieces and parses the
+ *   rest as a new line: comment lines of any length are passed as empty,
+ *   any other line too long is an error at its line. */
 static char *reader(char *str, int num, void *stream) {
   parse_state *ps = stream;
-  if (!*ps->cursor) return NULL;
-  int i = 0;
-  while (i < num - 1 && ps->cursor[i] && ps->cursor[i] != '\n') i++;
-  if (ps->cursor[i] == '\n' && i < num - 1) i++;
-  memcpy(str, ps->cursor, (size_t)i);
-  str[i] = '\0';
-  ps->cursor += i;
+  if (ps->status != VL_OK || !*ps->cursor) return NULL;
+  const char *text = ps->cursor;
+  size_t len = strcspn(text, "\n");
+  ps->cursor += len + (text[len] == '\n');
   ps->line++;
+  size_t b = 0, e = len;
+  while (b < e && (text[b] == ' ' || text[b] == '\t')) b++;
+  while (e > b && isspace((unsigned char)text[e - 1])) e--;
+  if (b < e && (text[b] == ';' || text[b] == '#')) e = b;
+  /* a section header is checked here, at its own line, as inih tells the
+   * handler nothing of a section without keys */
+  const char *close = b < e && text[b] == '[' ? memchr(text + b, ']', e - b) : NULL;
+  if (close) {
+    size_t n = (size_t)(close - (text + b)) - 1;
+    bool known = false;
+    for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
+      if (strlen(sections[s]) == n && !strncmp(text + b + 1, sections[s], n)) known = true;
+    if (!known) {
+      char name[64];
+      snprintf(name, sizeof name, "%.*s", (int)(n < 60 ? n : 60), text + b + 1);
+      unknown_section(ps, name);
+      return NULL;
+    }
+  }
+  if (e - b + 2 > (size_t)num) {
+    vl_error_set(ps->err, "%s:%d: line too long (at most %d characters)", ps->path, ps->line,
+                 num - 2);
+    ps->status = VL_EINPUT;
+    ps->err_line = ps->line;
+    return NULL;
+  }
+  memcpy(str, text + b, e - b);
+  str[e - b] = '\n';
+  str[e - b + 1] = '\0';
   return str;
 }
 
@@ -260,65 +407,64 @@ static void scene_defaults(vl_scene *sc) {
   sc->persson_table = 0;
 }
 
+/* An error about key id found after the whole file is read: it names the
+ * line where the key was set. */
+static vl_status check_fail(parse_state *ps, key_id id, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+static vl_status check_fail(parse_state *ps, key_id id, const char *fmt, ...) {
+  char why[600];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(why, sizeof why, fmt, ap);
+  va_end(ap);
+  if (ps->key_line[id])
+    vl_error_set(ps->err, "%s:%d: [%s] %s: %s", ps->path, ps->key_line[id], keys[id].section,
+                 keys[id].key, why);
+  else
+    vl_error_set(ps->err, "%s: [%s] %s: %s", ps->path, keys[id].section, keys[id].key, why);
+  return VL_EINPUT;
+}
+
 /* Requirements between keys, checked once the whole file is read. */
 static vl_status scene_check(parse_state *ps) {
   vl_scene *sc = ps->scene;
-  struct { unsigned bit; const char *what; } req[] = {
-      {SEEN_COMPOUND, "[materials] compound"}, {SEEN_RADIUS, "[contact] radius_m"},
-      {SEEN_LOAD, "[contact] load_n_per_m"},   {SEEN_QUANTITY, "[sweep] quantity"},
-      {SEEN_FROM, "[sweep] from"},             {SEEN_TO, "[sweep] to"},
-      {SEEN_POINTS, "[sweep] points"}};
-  for (size_t i = 0; i < sizeof req / sizeof req[0]; i++) {
-    if (!(ps->seen & req[i].bit)) {
-      vl_error_set(ps->err, "%s: missing required key %s", ps->path, req[i].what);
+  for (int k = 0; k < K_COUNT; k++) {
+    if (keys[k].required && !ps->key_line[k]) {
+      vl_error_set(ps->err, "%s: missing required key [%s] %s", ps->path, keys[k].section,
+                   keys[k].key);
       return VL_EINPUT;
     }
   }
-  if (sc->effects.roughness && !sc->surface[0]) {
-    vl_error_set(ps->err, "%s: [effects] roughness = on needs [materials] surface", ps->path);
-    return VL_EINPUT;
-  }
-  if (sc->effects.fluid && !sc->fluid[0]) {
-    vl_error_set(ps->err, "%s: [effects] fluid = on needs [materials] fluid", ps->path);
-    return VL_EINPUT;
-  }
-  if (sc->quantity == VL_SWEEP_V0_ETA && !sc->effects.fluid) {
-    vl_error_set(ps->err, "%s: [sweep] quantity = v0_eta needs [effects] fluid = on", ps->path);
-    return VL_EINPUT;
-  }
-  if (sc->quantity == VL_SWEEP_DEBORAH && !sc->effects.viscoelastic) {
-    vl_error_set(ps->err, "%s: [sweep] quantity = deborah needs [effects] viscoelastic = on",
-                 ps->path);
-    return VL_EINPUT;
-  }
-  if (sc->effects.solid_shear && !(sc->sigma_s_pa > 0.0)) {
-    vl_error_set(ps->err, "%s: [effects] solid_shear = on needs [contact] sigma_s_pa > 0",
-                 ps->path);
-    return VL_EINPUT;
-  }
+  if (sc->effects.roughness && !sc->surface[0])
+    return check_fail(ps, K_ROUGHNESS, "roughness = on needs [materials] surface");
+  if (sc->effects.fluid && !sc->fluid[0])
+    return check_fail(ps, K_FLUID, "fluid = on needs [materials] fluid");
+  if (sc->quantity == VL_SWEEP_V0_ETA && !sc->effects.fluid)
+    return check_fail(ps, K_QUANTITY, "v0_eta needs [effects] fluid = on");
+  if (sc->quantity == VL_SWEEP_DEBORAH && !sc->effects.viscoelastic)
+    return check_fail(ps, K_QUANTITY, "deborah needs [effects] viscoelastic = on (line %d sets it off)",
+                      ps->key_line[K_VISCOELASTIC]);
+  if (ps->key_line[K_ELASTIC_MODULUS] && sc->effects.viscoelastic)
+    return check_fail(ps, K_ELASTIC_MODULUS,
+                      "applies to [effects] viscoelastic = off only (the rubber is viscoelastic)");
+  if (sc->effects.solid_shear && !(sc->sigma_s_pa > 0.0))
+    return check_fail(ps, K_SOLID_SHEAR, "solid_shear = on needs [contact] sigma_s_pa > 0");
   if (!sc->effects.solid_shear) sc->sigma_s_pa = 0.0;
-  if (sc->effects.flow_factors != VL_FLOW_FACTORS_SMOOTH && !sc->effects.roughness) {
-    vl_error_set(ps->err, "%s: [effects] flow_factors = %s needs roughness = on", ps->path,
-                 vl_flow_factors_name(sc->effects.flow_factors));
-    return VL_EINPUT;
-  }
-  if (sc->points > 1 && !(sc->to > sc->from)) {
-    vl_error_set(ps->err, "%s: [sweep] to (%g) must exceed from (%g)", ps->path, sc->to, sc->from);
-    return VL_EINPUT;
-  }
+  if (sc->effects.flow_factors != VL_FLOW_FACTORS_SMOOTH && !sc->effects.roughness)
+    return check_fail(ps, K_FLOW_FACTORS, "%s needs [effects] roughness = on",
+                      vl_flow_factors_name(sc->effects.flow_factors));
+  if (sc->points > 1 && !(sc->to > sc->from))
+    return check_fail(ps, K_TO, "to (%g) must exceed from (%g)", sc->to, sc->from);
   for (size_t i = 0; i < sc->n_fields_at; i++) {
-    if (sc->fields_at[i] < sc->from * (1 - 1e-9) || sc->fields_at[i] > sc->to * (1 + 1e-9)) {
-      vl_error_set(ps->err, "%s:%d: [sweep] fields_at: %g lies outside [from, to] = [%g, %g]",
-                   ps->path, ps->fields_line, sc->fields_at[i], sc->from, sc->to);
-      return VL_EINPUT;
-    }
+    if (sc->fields_at[i] < sc->from * (1 - 1e-9) || sc->fields_at[i] > sc->to * (1 + 1e-9))
+      return check_fail(ps, K_FIELDS_AT, "%g lies outside [from, to] = [%g, %g]", sc->fields_at[i],
+                        sc->from, sc->to);
   }
   /* Effects of later issues: refuse rather than silently ignore them. */
-  if (sc->effects.viscous_flattening || sc->effects.temperature) {
-    vl_error_set(ps->err, "%s: [effects] %s = on is not available in this version", ps->path,
-                 sc->effects.viscous_flattening ? "viscous_flattening" : "temperature");
-    return VL_EINPUT;
-  }
+  if (sc->effects.viscous_flattening)
+    return check_fail(ps, K_VISCOUS_FLATTENING, "on is not available in this version");
+  if (sc->effects.temperature)
+    return check_fail(ps, K_TEMPERATURE, "on is not available in this version");
   return VL_OK;
 }
 
@@ -327,9 +473,16 @@ vl_status vl_scene_parse(const char *text, const char *path, vl_scene *scene, vl
   snprintf(scene->path, sizeof scene->path, "%s", path);
   parse_state ps = {.scene = scene, .path = path, .err = err, .status = VL_OK, .cursor = text};
   int rc = ini_parse_stream(reader, &ps, handler, &ps);
+  /* rc is the first line inih found wrong, ours included: a syntax error
+   * before the line of our error comes first */
+  if (rc > 0 && (ps.status == VL_OK || rc < ps.err_line)) {
+    vl_error_set(err, "%s:%d: syntax error (expected [section], key = value or a comment)", path,
+                 rc);
+    return VL_EINPUT;
+  }
   if (ps.status != VL_OK) return ps.status;
   if (rc != 0) {
-    vl_error_set(err, "%s:%d: syntax error (expected [section] or key = value)", path, rc);
+    vl_error_set(err, "%s: cannot parse (inih error %d)", path, rc);
     return VL_EINPUT;
   }
   return scene_check(&ps);
@@ -365,9 +518,17 @@ vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err) {
       text = t;
     }
   }
+  if (ferror(f)) { /* a directory, for one */
+    vl_error_set(err, "%s: cannot read scene file: %s", path, strerror(errno));
+    st = VL_EIO;
+    goto done;
+  }
   text[len] = '\0';
-  if (memchr(text, '\0', len)) {
-    vl_error_set(err, "%s: not a text file (contains a NUL byte)", path);
+  const char *nul = memchr(text, '\0', len);
+  if (nul) {
+    int line = 1;
+    for (const char *p = text; p < nul; p++) line += *p == '\n';
+    vl_error_set(err, "%s:%d: not a text file (contains a NUL byte)", path, line);
     st = VL_EINPUT;
     goto done;
   }

@@ -76,7 +76,10 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   }
   sim->scene = *scene;
   vl_status st = vl_db_compound_get(db, scene->compound, &sim->rubber, err);
-  if (st != VL_OK) goto fail;
+  if (st != VL_OK) {
+    if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] compound", scene->path);
+    goto fail;
+  }
   if (scene->quantity == VL_SWEEP_DEBORAH && sim->rubber.n_terms != 1) {
     vl_error_set(err, "%s: [sweep] quantity = deborah needs a one-term compound; '%s' has %zu terms",
                  scene->path, scene->compound, sim->rubber.n_terms);
@@ -85,11 +88,17 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   }
   if (scene->fluid[0]) {
     st = vl_db_fluid_get(db, scene->fluid, &sim->eta_pa_s, err);
-    if (st != VL_OK) goto fail;
+    if (st != VL_OK) {
+      if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] fluid", scene->path);
+      goto fail;
+    }
   }
   if (scene->effects.roughness) {
     st = vl_db_surface_get(db, scene->surface, &sim->psd, err);
-    if (st != VL_OK) goto fail;
+    if (st != VL_OK) {
+      if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] surface", scene->path);
+      goto fail;
+    }
     sim->have_psd = true;
     st = vl_persson_build(&sim->psd, scene->persson_table, &sim->table, err);
     if (st != VL_OK) goto fail;

@@ -326,7 +326,7 @@ static void test_list_fresh_database(void **state) {
   free(out);
   out = run_ok("fluid list --json%s", "");
   if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
-  assert_int_equal(count_of(out, "\"name\""), 5);
+  assert_int_equal(count_of(out, "\"name\""), 7);
   free(out);
 
   /* text: one line per item, starting with the name */
@@ -638,7 +638,7 @@ static void test_readonly_database(void **state) {
   assert_int_equal(chmod(g_db, 0444), 0);
   snapshot before = take(g_db);
   char *out = run_ok("fluid list%s", "");
-  assert_int_equal(count_of(out, "\n"), 5);
+  assert_int_equal(count_of(out, "\n"), 7);
   free(out);
   expect_fail(5, "read-only", NULL, "fluid add oil --viscosity 0.1");
   expect_fail(5, "read-only", NULL, "compound remove model-rubber");

@@ -110,7 +110,10 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   if (!out_dir) {
     const char *base = strrchr(scene_path, '/');
     base = base ? base + 1 : scene_path;
-    snprintf(default_dir, sizeof default_dir, "out/%.*s", (int)strcspn(base, "."), base);
+    /* drop the extension only: fig03-rough-0.1um.ini -> out/fig03-rough-0.1um */
+    const char *dot = strrchr(base, '.');
+    size_t stem = dot && dot != base ? (size_t)(dot - base) : strlen(base);
+    snprintf(default_dir, sizeof default_dir, "out/%.*s", (int)stem, base);
     out_dir = default_dir;
   }
   st = vl_db_open(g->db_path, &db, &err);
