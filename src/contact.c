@@ -50,6 +50,9 @@ struct vl_contact {
   double *F;          /* fluid pressure (p0) */
   double *U;          /* separation (a0^2/R) */
   double *g, *dg, *cf, *dcf; /* conductance u^3 phi_p and Couette film u + h phi_s, /us^3, /us */
+  bool jfo;           /* smooth wet: mass-conserving universal variable (see eval_state) */
+  double *pfs, *dpfs; /* fluid pressure in units of kappa p0, and d/d(unknown) */
+  double *th, *dth;   /* film fraction theta and d/d(unknown) (1 and 0 unless jfo) */
   double *Jf;         /* face fluxes, n + 1 */
   double *D;          /* rough: elasticity residual U - G */
   double *theta;      /* film fraction (report only) */
@@ -165,7 +168,19 @@ static void eval_state(vl_contact *c, const double *y) {
   } else {
     memset(c->P, 0, n * sizeof *c->P); /* smooth wet: the film carries all */
   }
-  for (size_t i = 0; i < n; i++) c->F[i] = c->wet ? c->kappa * y[c->of + i] : 0.0;
+  /* Fluid unknown phi_i. Rough (FB cavitation): pf = phi, theta = 1. Smooth
+   * (mass-conserving, Elrod-Adams universal variable): pf = max(phi, 0) and
+   * theta = 1 + min(phi, 0), so one flux balance per cell holds in the full
+   * film and in the cavitated zone alike. */
+  for (size_t i = 0; i < n; i++) {
+    double phi = c->wet ? y[c->of + i] : 0.0;
+    bool full = !c->jfo || phi >= 0.0;
+    c->pfs[i] = full ? phi : 0.0;
+    c->dpfs[i] = full ? 1.0 : 0.0;
+    c->th[i] = full ? 1.0 : 1.0 + phi;
+    c->dth[i] = full ? 0.0 : 1.0;
+    c->F[i] = c->kappa * c->pfs[i];
+  }
   /* elastic/viscoelastic gap: h0 + xi^2/2 + sum_j M_ij (P_j + F_j); for a
    * rough surface it is stored in D (the residual compares it with U) */
   double *G = c->rough ? c->D : c->U;
@@ -200,17 +215,17 @@ static void eval_state(vl_contact *c, const double *y) {
     c->cf[i] = (u + c->hrms * v.phi_s) / us;
     c->dcf[i] = on * (1.0 + c->hrms * d.phi_s);
   }
-  /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + Couette film at the face
-   * (couette_stencil); pf = 0 beyond both ends of the domain (half-cell
-   * distance) */
-  const double *pf = y + c->of;
+  /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + Couette film theta c at
+   * the face (couette_stencil; a full film enters the domain); pf = 0 beyond
+   * both ends of the domain (half-cell distance) */
+  const double *pf = c->pfs;
   double L = c->lambda, dx = c->dxi;
   for (size_t f = 0; f <= n; f++) {
     size_t k[3];
     double w[3];
     int m = couette_stencil(c, f, k, w);
     double jc = 0.0;
-    for (int q = 0; q < m; q++) jc += w[q] * c->cf[k[q]];
+    for (int q = 0; q < m; q++) jc += w[q] * c->cf[k[q]] * (f ? c->th[k[q]] : 1.0);
     double jp = f == 0   ? -L * c->g[0] * pf[0] / (0.5 * dx)
                 : f == n ? L * c->g[n - 1] * pf[n - 1] / (0.5 * dx)
                          : -L * 0.5 * (c->g[f - 1] + c->g[f]) * (pf[f] - pf[f - 1]) / dx;
@@ -281,7 +296,8 @@ static int residual_fn(N_Vector yv, N_Vector fv, void *user) {
   eval_state(c, y);
   for (size_t i = 0; i < nc; i++)
     f[i] = c->rough ? c->D[i] : fb(c->P[i], c->U[i], NULL, NULL);
-  for (size_t i = 0; i < nf; i++) f[of + i] = cfun(y[of + i], reynolds_residual(c, i), NULL, NULL);
+  for (size_t i = 0; i < nf; i++)
+    f[of + i] = c->jfo ? reynolds_residual(c, i) : cfun(y[of + i], reynolds_residual(c, i), NULL, NULL);
   f[c->ih] = load_sum(c) - 1.0;
   for (size_t i = 0; i < c->nunk; i++)
     if (!isfinite(f[i])) return 1; /* recoverable: KINSOL shortens the step */
@@ -306,7 +322,7 @@ static void add_dU(vl_contact *c, double *Jd, size_t ld, size_t row, size_t k, d
   const double *mrow = c->M + k * n;
   for (size_t j = 0; j < c->nc; j++) Jd[j * ld + row] += w * mrow[j];
   double wk = w * c->kappa, *col = Jd + c->of * ld + row;
-  for (size_t j = 0; j < c->nf; j++) col[j * ld] += wk * mrow[j];
+  for (size_t j = 0; j < c->nf; j++) col[j * ld] += wk * mrow[j] * c->dpfs[j];
   Jd[c->ih * ld + row] += w;
 }
 
@@ -319,6 +335,12 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
   double *Jd = SUNDenseMatrix_Data(J);
   memset(Jd, 0, ld * ld * sizeof *Jd);
   eval_state(c, y);
+  if (getenv("VL_JDBG") && c->wet) { /* DEBUG-EHL */
+    size_t last = 0, first = n, nneg = 0; double fmx = 0, umin = 1e300; size_t iu = 0;
+    for (size_t i = 0; i < n; i++) { fmx = fmax(fmx, y[of + i]); if (c->U[i] < umin) umin = c->U[i], iu = i; }
+    for (size_t i = 0; i < n; i++) { if (y[of + i] > 1e-6 * fmx) { last = i; if (first == n) first = i; } if (reynolds_residual(c, i) < 0 && y[of+i] < 1e-6*fmx) nneg++; }
+    fprintf(stderr, "J: h0 %.6g pressurised [%zu, %zu] dry-but-R<0 %zu umin %.4g at %zu\n", y[ih], first, last, nneg, umin, iu);
+  }
   /* contact / elasticity rows */
   for (size_t i = 0; i < nc; i++) {
     const double *row = c->M + i * n;
@@ -336,16 +358,17 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
   }
   /* Reynolds rows: the fluxes of faces i (left) and i+1 (right) depend on
    * pf of cells i-1..i+1 and on u of cells i-2..i+1 */
-  const double *pf = y + of;
+  const double *pf = c->pfs;
   double L = c->lambda, dx = c->dxi;
   for (size_t i = 0; i < nf; i++) {
     size_t row = of + i;
-    double da, db;
-    cfun(pf[i], reynolds_residual(c, i), &da, &db);
+    double da = 0.0, db = 1.0;
+    if (!c->jfo) cfun(y[of + i], reynolds_residual(c, i), &da, &db);
     Jd[row * ld + row] += da;
     double s = db * c->rw[i]; /* d(row)/d(J_{i+1}) = s, d(row)/d(J_i) = -s */
     if (s == 0.0) continue;
-    double dpf[3] = {0.0, 0.0, 0.0}, du[4] = {0.0, 0.0, 0.0, 0.0}; /* cells i-1.., i-2.. */
+    /* d/d(pf) of cells i-1..i+1; d/du and d/d(phi) of cells i-2..i+1 */
+    double dpf[3] = {0.0, 0.0, 0.0}, du[4] = {0.0, 0.0, 0.0, 0.0}, dphi[4] = {0.0, 0.0, 0.0, 0.0};
     for (int side = 0; side < 2; side++) {
       size_t f = i + (size_t)side;
       double sg = side ? s : -s;
@@ -366,17 +389,23 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
       size_t k[3];
       double cw[3];
       int m = couette_stencil(c, f, k, cw);
-      for (int q = 0; q < m; q++) du[k[q] + 2 - i] += sg * cw[q] * c->dcf[k[q]];
+      for (int q = 0; q < m; q++) {
+        double th = f ? c->th[k[q]] : 1.0, dth = f ? c->dth[k[q]] : 0.0;
+        du[k[q] + 2 - i] += sg * cw[q] * c->dcf[k[q]] * th;
+        dphi[k[q] + 2 - i] += sg * cw[q] * c->cf[k[q]] * dth;
+      }
     }
     for (int q = 0; q < 3; q++)
-      if (dpf[q] != 0.0) Jd[(of + i + (size_t)q - 1) * ld + row] += dpf[q];
+      if (dpf[q] != 0.0) dphi[q + 1] += dpf[q] * c->dpfs[i + (size_t)q - 1];
+    for (int q = 0; q < 4; q++)
+      if (dphi[q] != 0.0) Jd[(of + i + (size_t)q - 2) * ld + row] += dphi[q];
     for (int q = 0; q < 4; q++)
       if (du[q] != 0.0) add_dU(c, Jd, ld, row, i + (size_t)q - 2, du[q]);
   }
   /* load balance */
   double lw = c->dxi / (0.5 * M_PI);
   for (size_t j = 0; j < nc; j++) Jd[j * ld + ih] = lw * (c->rough ? c->dPdU[j] : 1.0);
-  for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + ih] = lw * c->kappa;
+  for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + ih] = lw * c->kappa * c->dpfs[j];
   return 0;
 }
 
@@ -496,6 +525,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   /* A smooth wet contact keeps a positive film (Reynolds' equation carries
    * any load at any v0 > 0): no contact unknowns, pressure-only system. */
   c->nc = c->wet && !c->rough ? 0 : c->n;
+  c->jfo = c->wet && !c->rough;
   c->of = c->nc;
   c->ih = c->nc + c->nf;
   c->nunk = c->nc + c->nf + 1;
@@ -520,7 +550,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->F = calloc(n, sizeof *c->F);
   c->D = calloc(n, sizeof *c->D);
   c->theta = calloc(n, sizeof *c->theta);
-  c->g = calloc(4 * n, sizeof *c->g);
+  c->g = calloc(8 * n, sizeof *c->g);
   c->Jf = calloc(n + 1, sizeof *c->Jf);
   c->rw = calloc(n, sizeof *c->rw);
   if (!c->xi || !c->A || !c->beta || !c->M || !c->P || !c->U || !c->dPdU || !c->F || !c->D || !c->theta ||
@@ -529,6 +559,10 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->dg = c->g + n;
   c->cf = c->g + 2 * n;
   c->dcf = c->g + 3 * n;
+  c->pfs = c->g + 4 * n;
+  c->dpfs = c->g + 5 * n;
+  c->th = c->g + 6 * n;
+  c->dth = c->g + 7 * n;
   c->u_ref = 1.0;
   c->kappa = 1.0;
   if (c->wet && c->rough && nt > 0) {
@@ -622,6 +656,10 @@ static void add_warning(vl_point *pt, const char *w) {
  * conservation). Needs eval_state. */
 static void film_fraction(const vl_contact *c, const double *y, double *theta) {
   size_t n = c->n;
+  if (c->jfo) { /* an unknown of the mass-conserving formulation */
+    memcpy(theta, c->th, n * sizeof *theta);
+    return;
+  }
   double jcur = c->Jf[0];
   for (size_t i = 0; i < n; i++) {
     bool cavitated = c->wet && y[c->of + i] <= 1e-12 && reynolds_residual(c, i) > c->cfg.tolerance;
@@ -759,7 +797,8 @@ static void fluid_scales(vl_contact *c, double v0) {
     kappa = fmin(fmax(kappa, 1e-300), 10.0);
     c->rscale = 1.0 / c->u_ref;
   }
-  for (size_t i = 0; i < c->nf; i++) y[c->of + i] *= c->kappa / kappa;
+  for (size_t i = 0; i < c->nf; i++)
+    if (!c->jfo || y[c->of + i] > 0.0) y[c->of + i] *= c->kappa / kappa; /* not theta - 1 */
   c->kappa = kappa;
   c->lambda = us * us * c->p0 * kappa / (6.0 * eta * v0 * c->a0);
   eval_state(c, y);
@@ -838,6 +877,17 @@ static void wet_smooth_guess(vl_contact *c, double v0) {
   double umin = INFINITY;
   for (size_t i = 0; i < n; i++) umin = fmin(umin, c->U[i]);
   y[c->ih] = h / c->uscale - umin;
+  /* downstream of the last pressurised cell the film carries the flux of
+   * that cell without pressure: theta u = const */
+  eval_state(c, y);
+  size_t last = n;
+  for (size_t i = n; i-- > 0;)
+    if (c->F[i] > 0.0) {
+      last = i;
+      break;
+    }
+  for (size_t i = last + 1; i < n; i++)
+    if (c->U[i] > c->U[last]) y[c->of + i] = c->U[last] / c->U[i] - 1.0;
 }
 
 vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {

@@ -253,7 +253,25 @@ static int handler(void *user, const char *section, const char *key, const char 
     return 1;
   case K_COMPOUND: return copy_name(ps, section, key, sc->compound, value);
   case K_SURFACE: return copy_name(ps, section, key, sc->surface, value);
-  case K_FLUID_NAME: return copy_name(ps, section, key, sc->fluid, value);
+  case K_FLUID_NAME: {
+    /* a comma-separated list runs one curve per fluid (e.g. a viscosity series) */
+    char buf[VL_FLUIDS_MAX * VL_NAME_MAX];
+    snprintf(buf, sizeof buf, "%s", value);
+    sc->n_fluids = 0;
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+      while (*tok == ' ' || *tok == '\t') tok++;
+      size_t len = strlen(tok);
+      while (len && (tok[len - 1] == ' ' || tok[len - 1] == '\t')) tok[--len] = '\0';
+      if (sc->n_fluids >= VL_FLUIDS_MAX)
+        return fail(ps, section, key, "at most 8 fluids, got '%s'", value);
+      if (!copy_name(ps, section, key, sc->fluids[sc->n_fluids], tok)) return 0;
+      sc->n_fluids++;
+    }
+    if (sc->n_fluids == 0) return fail(ps, section, key, "bad name '%s'", value);
+    snprintf(sc->fluid, sizeof sc->fluid, "%s", sc->fluids[0]);
+    return 1;
+  }
   case K_ELASTIC_MODULUS:
     if (!strcmp(value, "relaxed")) sc->elastic = VL_ELASTIC_RELAXED;
     else if (!strcmp(value, "glassy")) sc->elastic = VL_ELASTIC_GLASSY;

@@ -208,7 +208,100 @@ static void test_fig10(void **state) {
   free(cv);
 }
 
+/* CASES.md fig12/13: five viscosities 1e-4 ... 1 Pa s. The Stribeck curves
+ * do not collapse on a master curve in v0 eta; the mixed-lubrication
+ * transition sits near the same v0 eta for all; the rolling friction
+ * mu_Rc + mu_Rf vs v0 tau/a0 overlaps at low speed and grows without bound
+ * at high speed. Coarser (grid 128, 2 points a decade) to keep it cheap: the
+ * statements are about decades, not digits. */
+static void test_fig12(void **state) {
+  (void)state;
+  enum { M = 25, K = 5 };
+  static double mu[K][M], rolling[K][M], fl[K][M], de[K][M], v0eta[M];
+  double ml[K];
+  vl_psd psd;
+  vl_persson *tab;
+  vl_error err;
+  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, HRMS, &err), VL_OK);
+  assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
+  for (int k = 0; k < K; k++) {
+    double eta = pow(10.0, -4.0 + k);
+    vl_contact_config cfg;
+    vl_contact_config_defaults(&cfg);
+    cfg.rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
+    cfg.radius_m = 0.01;
+    cfg.load_n_per_m = 1000.0;
+    cfg.sigma_s_pa = 1e6;
+    cfg.roughness = tab;
+    cfg.eta_pa_s = eta;
+    cfg.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
+    cfg.grid = 128;
+    cfg.x_min_a0 = -3.0;
+    cfg.x_max_a0 = 1.6;
+    vl_contact *c;
+    assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
+    double v[M];
+    vl_point pt[M];
+    for (int i = 0; i < M; i++) {
+      v0eta[i] = pow(10.0, -12.0 + 12.0 * i / (M - 1));
+      v[i] = v0eta[i] / eta;
+    }
+    assert_int_equal(vl_sweep_run(c, M, v, NULL, pt, NULL, NULL, NULL, &err), VL_OK);
+    ml[k] = NAN;
+    for (int i = 0; i < M; i++) {
+      assert_true(pt[i].converged);
+      mu[k][i] = pt[i].mu;
+      rolling[k][i] = pt[i].mu_Rc + pt[i].mu_Rf;
+      fl[k][i] = pt[i].fluid_load_fraction;
+      de[k][i] = v[i] * 0.1 / vl_contact_a0(c);
+      if (i > 0 && isnan(ml[k]) && fl[k][i - 1] < 0.5 && fl[k][i] >= 0.5)
+        ml[k] = v0eta[i - 1] * pow(v0eta[i] / v0eta[i - 1], (0.5 - fl[k][i - 1]) / (fl[k][i] - fl[k][i - 1]));
+    }
+    printf("  eta %6.0e: ML transition at v0 eta = %.3g Pa m, mu range %.4f..%.4f\n", eta, ml[k],
+           mu[k][0], mu[k][M - 1]);
+    vl_contact_free(c);
+  }
+  vl_persson_free(tab);
+  vl_psd_free(&psd);
+  /* no master curve: at some v0 eta the curves differ by more than 2x */
+  double spread = 0.0;
+  for (int i = 0; i < M; i++) {
+    double lo = INFINITY, hi = 0.0;
+    for (int k = 0; k < K; k++) lo = fmin(lo, mu[k][i]), hi = fmax(hi, mu[k][i]);
+    spread = fmax(spread, hi / lo);
+  }
+  printf("  largest ratio between curves at equal v0 eta: %.2f\n", spread);
+  assert_true(spread > 2.0);
+  /* the ML transitions lie within one decade of each other */
+  double lo = INFINITY, hi = 0.0;
+  for (int k = 0; k < K; k++) {
+    assert_false(isnan(ml[k]));
+    lo = fmin(lo, ml[k]), hi = fmax(hi, ml[k]);
+  }
+  assert_true(log10(hi / lo) < 1.0);
+  /* Fig. 13: at low speed (De < 1e-2, dry-like) the rolling friction of all
+   * viscosities agrees within 5 % at equal De; at the highest speed it grows
+   * with viscosity (the fluid's unbounded rolling dissipation) */
+  for (int k = 1; k < K; k++) {
+    for (int i = 0; i < M; i++) {
+      if (de[k][i] > 1e-2 || de[k][i] < 1e-4) continue;
+      /* the same De on the eta = 1e-4 curve, log-interpolated */
+      for (int j = 1; j < M; j++) {
+        if (de[0][j - 1] <= de[k][i] && de[k][i] <= de[0][j]) {
+          double t = log(de[k][i] / de[0][j - 1]) / log(de[0][j] / de[0][j - 1]);
+          double ref = rolling[0][j - 1] + t * (rolling[0][j] - rolling[0][j - 1]);
+          assert_true(vl_test_rel(rolling[k][i], ref) < 0.05);
+        }
+      }
+    }
+  }
+  printf("  rolling friction at the end of the sweep (v0 eta = 1 Pa m): ");
+  for (int k = 0; k < K; k++) printf("%.4f ", rolling[k][M - 1]);
+  printf("\n");
+}
+
 int main(void) {
-  const struct CMUnitTest tests[] = {cmocka_unit_test(test_fig05), cmocka_unit_test(test_fig10)};
+  const struct CMUnitTest tests[] = {cmocka_unit_test(test_fig05), cmocka_unit_test(test_fig10),
+                                     cmocka_unit_test(test_fig12)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

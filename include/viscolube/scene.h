@@ -13,6 +13,7 @@
 
 #define VL_NAME_MAX 128
 #define VL_FIELDS_AT_MAX 32
+#define VL_FLUIDS_MAX 8
 
 typedef enum {
   VL_SWEEP_V0 = 0,     /* sliding speed, m/s */
@@ -31,7 +32,10 @@ typedef struct {
   char path[1024];
   char title[256];
   /* [materials] */
-  char compound[VL_NAME_MAX], surface[VL_NAME_MAX], fluid[VL_NAME_MAX];
+  char compound[VL_NAME_MAX], surface[VL_NAME_MAX];
+  char fluid[VL_NAME_MAX];                  /* the fluid of this run: fluids[0] */
+  size_t n_fluids;                          /* `fluid = a, b, ...`: one curve each */
+  char fluids[VL_FLUIDS_MAX][VL_NAME_MAX];
   vl_elastic_choice elastic;
   double elastic_modulus_pa;
   /* [contact] */

@@ -21,6 +21,8 @@ static void run_usage(FILE *out) {
         "                        contact width, load shares, |Er(wH)|, a_H, Q, convergence)\n"
         "  DIR/fields/NNN.csv    x, pressures, separation, contact area at the speeds of\n"
         "                        [sweep] fields_at (NNN = row of curve.csv, from 000)\n"
+        "A scene whose [materials] fluid lists several fluids runs one curve per fluid,\n"
+        "written to DIR/<fluid>/ (with --json: an object keyed by fluid).\n"
         "DIR defaults to out/<scene name>. Prints a short table, or with --json the curve\n"
         "as a JSON array. Exit status 0 when every point converged, 7 when some did not\n"
         "(they are still written, flagged converged = 0).\n",
@@ -67,6 +69,91 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
     ctx->io_failed = 1;
 }
 
+/* Runs one curve of the scene (one fluid) into out_dir. *failed counts the
+ * points that did not converge. json_sep: NULL for a single curve, else the
+ * key this curve gets in the JSON object. */
+static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *db,
+                         const char *out_dir, int json, const char *json_key, size_t *failed,
+                         vl_error *err) {
+  vl_simulation *sim = NULL;
+  vl_point *pts = NULL;
+  double *buf = NULL;
+  run_ctx ctx = {0};
+  vl_status st = vl_simulation_create(scene, db, &sim, err);
+  if (st != VL_OK) goto done;
+  size_t n = vl_simulation_points(sim), grid = vl_contact_grid(vl_simulation_contact(sim));
+  char fields_dir[4200];
+  snprintf(fields_dir, sizeof fields_dir, "%s/fields", out_dir);
+  if (make_dirs(out_dir) != 0 || (scene->n_fields_at && make_dirs(fields_dir) != 0)) {
+    vl_error_set(err, "%s: cannot create output directory: %s", out_dir, strerror(errno));
+    st = VL_EIO;
+    goto done;
+  }
+  pts = calloc(n, sizeof *pts);
+  buf = calloc(6 * grid, sizeof *buf);
+  if (!pts || !buf) {
+    vl_error_set(err, "out of memory");
+    st = VL_ENOMEM;
+    goto done;
+  }
+  ctx.fields = (vl_fields){grid,           buf,           buf + grid, buf + 2 * grid,
+                           buf + 3 * grid, buf + 4 * grid, buf + 5 * grid};
+  ctx.sim = sim;
+  ctx.out_dir = out_dir;
+  ctx.tty = isatty(STDERR_FILENO);
+  const vl_contact *contact = vl_simulation_contact(sim);
+  if (!json)
+    printf("scene %s%s%s%s%s: %zu points, grid %zu on [%g, %g] a0, a0 = %.4g m, p0 = %.4g Pa\n",
+           scene_path, scene->title[0] ? " - " : "", scene->title,
+           scene->effects.fluid ? ", fluid " : "", scene->effects.fluid ? scene->fluid : "", n,
+           grid, scene->domain_min_a0, scene->domain_max_a0, vl_contact_a0(contact),
+           vl_contact_p0(contact));
+  vl_sweep_stats stats;
+  st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, err);
+  if (st != VL_OK) goto done;
+  if (ctx.io_failed) {
+    *err = ctx.err;
+    st = VL_EIO;
+    goto done;
+  }
+  vl_curve_meta meta = {vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(contact)};
+  char curve_path[4200];
+  snprintf(curve_path, sizeof curve_path, "%s/curve.csv", out_dir);
+  st = vl_write_curve_csv(curve_path, n, pts, &meta, err);
+  if (st != VL_OK) goto done;
+  *failed += stats.failed;
+  if (json) {
+    if (json_key) printf("\"%s\": ", json_key);
+    vl_print_curve_json(stdout, n, pts, &meta);
+  } else {
+    printf("%11s %11s %10s %10s %10s %10s %10s %10s %12s %4s %4s\n", "v0_m_s",
+           vl_sweep_quantity_name(scene->quantity), "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf",
+           "u_min_m", "regime", "conv", "iter");
+    for (size_t i = 0; i < n; i++) {
+      const vl_point *p = &pts[i];
+      double q = scene->quantity == VL_SWEEP_V0       ? p->v0_m_s
+                 : scene->quantity == VL_SWEEP_V0_ETA ? p->v0_m_s * meta.eta_pa_s
+                                                      : p->v0_m_s * meta.tau_s / meta.a0_m;
+      if (p->converged)
+        printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld\n",
+               p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0,
+               p->mu_Sf + 0.0, p->u_min_m, vl_regime_name(p->regime), "yes", p->iterations);
+      else
+        printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld\n", p->v0_m_s, q, "-",
+               "-", "-", "-", "-", "-", "-", "NO", p->iterations);
+    }
+    printf("%zu converged, %zu failed, %ld Newton iterations, %.3f s (%.1f ms per point)\n",
+           stats.converged, stats.failed, stats.newton_iterations, stats.seconds,
+           1e3 * stats.seconds / (double)n);
+    printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
+  }
+done:
+  free(buf);
+  free(pts);
+  vl_simulation_free(sim);
+  return st;
+}
+
 int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   const char *scene_path = NULL, *out_dir = NULL;
   int json = 0;
@@ -100,10 +187,8 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   vl_error err = {{0}};
   vl_scene scene;
   vl_db *db = NULL;
-  vl_simulation *sim = NULL;
-  vl_point *pts = NULL;
-  run_ctx ctx = {0};
   int rc = 0;
+  size_t failed = 0;
   char default_dir[2048];
   vl_status st = vl_scene_load(scene_path, &scene, &err);
   if (st != VL_OK) goto fail;
@@ -118,79 +203,30 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   }
   st = vl_db_open(g->db_path, &db, &err);
   if (st != VL_OK) goto fail;
-  st = vl_simulation_create(&scene, db, &sim, &err);
-  if (st != VL_OK) goto fail;
-  size_t n = vl_simulation_points(sim), grid = vl_contact_grid(vl_simulation_contact(sim));
-  char fields_dir[4200];
-  snprintf(fields_dir, sizeof fields_dir, "%s/fields", out_dir);
-  if (make_dirs(out_dir) != 0 || (scene.n_fields_at && make_dirs(fields_dir) != 0)) {
-    vl_error_set(&err, "%s: cannot create output directory: %s", out_dir, strerror(errno));
-    st = VL_EIO;
-    goto fail;
-  }
-  pts = calloc(n, sizeof *pts);
-  double *buf = calloc(6 * grid, sizeof *buf);
-  ctx.fields = (vl_fields){grid,           buf,           buf + grid, buf + 2 * grid,
-                           buf + 3 * grid, buf + 4 * grid, buf + 5 * grid};
-  if (!pts || !buf) {
-    free(buf);
-    vl_error_set(&err, "out of memory");
-    st = VL_ENOMEM;
-    goto fail;
-  }
-  ctx.sim = sim;
-  ctx.out_dir = out_dir;
-  ctx.tty = isatty(STDERR_FILENO);
-  if (!json)
-    printf("scene %s%s%s: %zu points, grid %zu on [%g, %g] a0, a0 = %.4g m, p0 = %.4g Pa\n",
-           scene_path, scene.title[0] ? " - " : "", scene.title, n, grid, scene.domain_min_a0,
-           scene.domain_max_a0, vl_contact_a0(vl_simulation_contact(sim)),
-           vl_contact_p0(vl_simulation_contact(sim)));
-  vl_sweep_stats stats;
-  st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, &err);
-  free(buf);
-  if (st != VL_OK) goto fail;
-  if (ctx.io_failed) {
-    err = ctx.err;
-    st = VL_EIO;
-    goto fail;
-  }
-  vl_curve_meta meta = {vl_simulation_eta(sim), vl_simulation_tau(sim),
-                        vl_contact_a0(vl_simulation_contact(sim))};
-  char curve_path[4200];
-  snprintf(curve_path, sizeof curve_path, "%s/curve.csv", out_dir);
-  st = vl_write_curve_csv(curve_path, n, pts, &meta, &err);
-  if (st != VL_OK) goto fail;
-  if (json) {
-    vl_print_curve_json(stdout, n, pts, &meta);
+  if (scene.n_fluids <= 1) {
+    st = run_one(scene_path, &scene, db, out_dir, json, NULL, &failed, &err);
+    if (st != VL_OK) goto fail;
   } else {
-    printf("%12s %12s %12s %12s %12s %12s %5s %5s\n", "v0_m_s", vl_sweep_quantity_name(scene.quantity),
-           "mu", "mu_Rc", "mu_Sc", "u_min_m", "conv", "iter");
-    for (size_t i = 0; i < n; i++) {
-      const vl_point *p = &pts[i];
-      double q = scene.quantity == VL_SWEEP_V0       ? p->v0_m_s
-                 : scene.quantity == VL_SWEEP_V0_ETA ? p->v0_m_s * meta.eta_pa_s
-                                                     : p->v0_m_s * meta.tau_s / meta.a0_m;
-      if (p->converged)
-        printf("%12.4g %12.4g %12.5g %12.5g %12.5g %12.4g %5s %5ld\n", p->v0_m_s, q, p->mu,
-               p->mu_Rc, p->mu_Sc, p->u_min_m, "yes", p->iterations);
-      else
-        printf("%12.4g %12.4g %12s %12s %12s %12s %5s %5ld\n", p->v0_m_s, q, "-", "-", "-", "-",
-               "NO", p->iterations);
+    /* one curve per fluid, each in DIR/<fluid>/ */
+    if (json) fputs("{\n", stdout);
+    for (size_t k = 0; k < scene.n_fluids; k++) {
+      vl_scene one = scene;
+      snprintf(one.fluid, sizeof one.fluid, "%s", scene.fluids[k]);
+      one.n_fluids = 1;
+      char dir[4200];
+      snprintf(dir, sizeof dir, "%s/%s", out_dir, one.fluid);
+      if (json && k) fputs(",\n", stdout);
+      st = run_one(scene_path, &one, db, dir, json, one.fluid, &failed, &err);
+      if (st != VL_OK) goto fail;
     }
-    printf("%zu converged, %zu failed, %ld Newton iterations, %.3f s (%.1f ms per point)\n",
-           stats.converged, stats.failed, stats.newton_iterations, stats.seconds,
-           1e3 * stats.seconds / (double)n);
-    printf("wrote %s%s\n", curve_path, scene.n_fields_at ? " and fields/" : "");
+    if (json) fputs("}\n", stdout);
   }
-  if (stats.failed) rc = vl_status_exit_code(VL_ENOCONV);
+  if (failed) rc = vl_status_exit_code(VL_ENOCONV);
   goto done;
 fail:
   fprintf(stderr, "viscolube run: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
   rc = vl_status_exit_code(st);
 done:
-  free(pts);
-  vl_simulation_free(sim);
   vl_db_close(db);
   return rc;
 }
