@@ -17,8 +17,10 @@ build() { # dir, extra cmake args...
 case "${1:-}" in
   run)
     build build
-    # The main job on the embedded default database: see README.
-    exec build/viscolube compound list
+    # The main job on the embedded default database (created on first use):
+    # the wet Stribeck curve of the seed's Fig. 5, written to out/fig05/.
+    build/viscolube compound list
+    exec build/viscolube run cases/fig05.ini --out out/fig05
     ;;
   test)
     build build
