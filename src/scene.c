@@ -410,7 +410,7 @@ static char *reader(char *str, int num, void *stream) {
   return str;
 }
 
-static void scene_defaults(vl_scene *sc) {
+void vl_scene_defaults(vl_scene *sc) {
   memset(sc, 0, sizeof *sc);
   sc->effects.viscoelastic = true;
   sc->elastic = VL_ELASTIC_RELAXED;
@@ -453,6 +453,12 @@ static vl_status scene_check(parse_state *ps) {
       return VL_EINPUT;
     }
   }
+  /* a lubricated contact needs room for the inlet meniscus and the film
+   * build-up upstream of the contact (MODEL.md section 5) */
+  if (sc->effects.fluid && !ps->key_line[K_DOMAIN]) {
+    sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
+    sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
+  }
   if (sc->effects.roughness && !sc->surface[0])
     return check_fail(ps, K_ROUGHNESS, "roughness = on needs [materials] surface");
   if (sc->effects.fluid && !sc->fluid[0])
@@ -487,7 +493,7 @@ static vl_status scene_check(parse_state *ps) {
 }
 
 vl_status vl_scene_parse(const char *text, const char *path, vl_scene *scene, vl_error *err) {
-  scene_defaults(scene);
+  vl_scene_defaults(scene);
   snprintf(scene->path, sizeof scene->path, "%s", path);
   parse_state ps = {.scene = scene, .path = path, .err = err, .status = VL_OK, .cursor = text};
   int rc = ini_parse_stream(reader, &ps, handler, &ps);

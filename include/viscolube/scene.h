@@ -14,6 +14,9 @@
 #define VL_NAME_MAX 128
 #define VL_FIELDS_AT_MAX 32
 #define VL_FLUIDS_MAX 8
+/* default domain of wet scenes, in a0 (dry: -1.5, 1.5) */
+#define VL_WET_DOMAIN_MIN_A0 -3.0
+#define VL_WET_DOMAIN_MAX_A0 1.6
 
 typedef enum {
   VL_SWEEP_V0 = 0,     /* sliding speed, m/s */
@@ -59,6 +62,10 @@ typedef struct {
   vl_linear_solver linear_solver;
   size_t persson_table;
 } vl_scene;
+
+/* The defaults of every optional key (README.md), with no materials named:
+ * for scenes built in code (the `friction` and `compare` commands). */
+void vl_scene_defaults(vl_scene *scene);
 
 /* Parses a scene file. Errors (unknown section or key, missing required key,
  * bad value, inconsistent effects) name "file:line: [section] key: why". */

@@ -16,6 +16,8 @@ static void usage(FILE *out) {
         "  surface    roughness power spectra: list, show, add, remove\n"
         "  fluid      lubricants: list, show, add, remove\n"
         "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
+        "  friction   one operating point of a stored compound/surface/fluid triple\n"
+        "  compare    Stribeck curves of several compounds side by side\n"
         "\n"
         "options:\n"
         "  --db PATH  database file (default: $VISCOLUBE_DB, else\n"
@@ -52,6 +54,8 @@ int main(int argc, char **argv) {
   if (!strcmp(noun, "compound") || !strcmp(noun, "surface") || !strcmp(noun, "fluid"))
     return vl_cli_materials(&g, argc - i, argv + i);
   if (!strcmp(noun, "run")) return vl_cli_run(&g, argc - i, argv + i);
+  if (!strcmp(noun, "friction")) return vl_cli_friction(&g, argc - i, argv + i);
+  if (!strcmp(noun, "compare")) return vl_cli_compare(&g, argc - i, argv + i);
   fprintf(stderr, "viscolube: unknown noun '%s' (see viscolube --help)\n", noun);
   return 2;
 }
