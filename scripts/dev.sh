@@ -23,6 +23,8 @@ case "${1:-}" in
     exec build/viscolube run cases/fig05.ini --out out/fig05
     ;;
   test)
+    # ctest runs tests in parallel on the cores: one BLAS thread per test
+    export OPENBLAS_NUM_THREADS=1
     build build
     ctest --test-dir build --output-on-failure -j "$jobs"
     build build-asan -DVL_SANITIZE=ON
