@@ -3,7 +3,8 @@
 # Non-interactive and idempotent: silent and fast when everything is present.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libsundials-dev libgsl-dev libsqlite3-dev
-          libcmocka-dev libinih-dev liblapack-dev libopenblas-dev)
+          libcmocka-dev libinih-dev liblapack-dev libopenblas-dev
+          libplplot-dev plplot-driver-cairo fonts-dejavu-core)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

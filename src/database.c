@@ -458,6 +458,14 @@ static int migration_number(const char *name) {
 
 static int is_seed(const char *name) { return strncmp(name, "seed_", 5) == 0; }
 
+/* Shipped measured data (*.csv), imported by seed_measured. */
+static int is_data(const char *name) {
+  size_t n = strlen(name);
+  return n > 4 && strcmp(name + n - 4, ".csv") == 0;
+}
+
+static vl_status seed_measured(vl_db *db, vl_error *err);
+
 int vl_db_schema_version(void) {
   int latest = 0;
   for (const struct vl_embedded_file *f = vl_embedded_materials; f->name; f++) {
@@ -472,8 +480,8 @@ static vl_status check_embedded(vl_error *err) {
   int latest = vl_db_schema_version(), expect = 1;
   for (const struct vl_embedded_file *f = vl_embedded_materials; f->name; f++) {
     int v = migration_number(f->name);
-    if (v == 0 && !is_seed(f->name)) {
-      vl_error_set(err, "embedded material file '%s' is neither NNNN_*.sql nor seed_*.sql",
+    if (v == 0 && !is_seed(f->name) && !is_data(f->name)) {
+      vl_error_set(err, "embedded material file '%s' is neither NNNN_*.sql, seed_*.sql nor *.csv",
                    f->name);
       return VL_EINTERNAL;
     }
@@ -556,6 +564,7 @@ static vl_status migrate(vl_db *db, vl_error *err) {
     if (fresh) {
       for (const struct vl_embedded_file *f = vl_embedded_materials; f->name; f++)
         if (is_seed(f->name) && (s = apply_sql(db, f, err)) != VL_OK) goto fail;
+      if ((s = seed_measured(db, err)) != VL_OK) goto fail;
     }
     if ((s = fill_derived(db, err)) != VL_OK) goto fail;
     if ((s = set_version(db, fresh ? latest : target, err)) != VL_OK) goto fail;
@@ -785,9 +794,9 @@ vl_status vl_db_compound_get(vl_db *db, const char *name, vl_prony *out, vl_erro
   return s;
 }
 
-vl_status vl_db_compound_add(vl_db *db, const vl_db_compound *c, vl_error *err) {
+/* Everything vl_db_compound_add checks before touching the file. */
+static vl_status compound_check(const vl_db_compound *c, vl_error *err) {
   vl_status s;
-  sqlite3_stmt *st = NULL;
   if ((s = vl_db_check_name(c->name, err)) != VL_OK) return s;
   int class_ok = 0;
   for (size_t i = 0; i < sizeof compound_classes / sizeof *compound_classes; i++)
@@ -817,16 +826,22 @@ vl_status vl_db_compound_add(vl_db *db, const vl_db_compound *c, vl_error *err) 
     vl_error_set(err, "fit rms error must be finite and >= 0 (got %g)", c->fit_rms_error);
     return VL_EINPUT;
   }
-  char doing[128];
-  snprintf(doing, sizeof doing, "add compound '%s'", c->name);
-  if ((s = tx_begin(db, doing, err)) != VL_OK) return s;
-  if ((s = check_free(db, "compound", c->name, err)) != VL_OK) goto cleanup;
+  return VL_OK;
+}
+
+/* Inside a transaction: inserts a checked compound and its terms; *id gets
+ * its row id. */
+static vl_status compound_insert(vl_db *db, const vl_db_compound *c, const char *doing,
+                                 sqlite3_int64 *id, vl_error *err) {
+  vl_status s;
+  sqlite3_stmt *st = NULL;
+  if ((s = check_free(db, "compound", c->name, err)) != VL_OK) return s;
   s = prepare(db,
               "INSERT INTO compound (name, class, description, nu, e_inf_pa, tref_c, wlf_c1, "
               "wlf_c2_k, source_file, method, fit_rms_error) "
               "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11)",
               &st, err);
-  if (s != VL_OK) goto cleanup;
+  if (s != VL_OK) return s;
   sqlite3_bind_text(st, 1, c->name, -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(st, 2, c->class_name, -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(st, 3, c->description, -1, SQLITE_TRANSIENT);
@@ -843,7 +858,7 @@ vl_status vl_db_compound_add(vl_db *db, const vl_db_compound *c, vl_error *err) 
     s = db_fail(db, rc, doing, err);
     goto cleanup;
   }
-  sqlite3_int64 id = sqlite3_last_insert_rowid(db->h);
+  *id = sqlite3_last_insert_rowid(db->h);
   sqlite3_finalize(st);
   st = NULL;
   s = prepare(db, "INSERT INTO compound_prony (compound_id, idx, A, tau_s) VALUES (?1, ?2, ?3, ?4)",
@@ -851,7 +866,7 @@ vl_status vl_db_compound_add(vl_db *db, const vl_db_compound *c, vl_error *err) 
   if (s != VL_OK) goto cleanup;
   for (size_t i = 0; i < c->prony.n_terms; i++) {
     sqlite3_reset(st);
-    sqlite3_bind_int64(st, 1, id);
+    sqlite3_bind_int64(st, 1, *id);
     sqlite3_bind_int64(st, 2, (sqlite3_int64)i + 1);
     bind_real(st, 3, c->prony.A[i]);
     bind_real(st, 4, c->prony.tau_s[i]);
@@ -860,13 +875,357 @@ vl_status vl_db_compound_add(vl_db *db, const vl_db_compound *c, vl_error *err) 
       goto cleanup;
     }
   }
-  sqlite3_finalize(st);
-  st = NULL;
-  s = tx_commit(db, doing, err);
 
 cleanup:
   sqlite3_finalize(st);
+  return s;
+}
+
+vl_status vl_db_compound_add(vl_db *db, const vl_db_compound *c, vl_error *err) {
+  vl_status s;
+  if ((s = compound_check(c, err)) != VL_OK) return s;
+  char doing[128];
+  snprintf(doing, sizeof doing, "add compound '%s'", c->name);
+  if ((s = tx_begin(db, doing, err)) != VL_OK) return s;
+  sqlite3_int64 id;
+  if ((s = compound_insert(db, c, doing, &id, err)) == VL_OK) s = tx_commit(db, doing, err);
   if (s != VL_OK) tx_rollback(db);
+  return s;
+}
+
+/* ---- measured compounds ----------------------------------------------- */
+
+/* Checks that m is a complete import (as vl_measured_read_* leave it). */
+static vl_status measured_check(const vl_measured *m, vl_error *err) {
+  if (!m || m->n == 0 || !m->omega_rad_s || !m->storage_pa || !m->loss_pa || !m->temperature_c ||
+      !m->reduced_omega_rad_s || !m->line || !m->isotherm || m->n_isotherms == 0 ||
+      !m->iso_temperature_c || !m->iso_log10_a_t ||
+      (m->kind == VL_DMA_COMPLIANCE && (!m->j1_per_pa || !m->j2_per_pa))) {
+    vl_error_set(err, "the measured data are incomplete (not from vl_measured_read_*)");
+    return VL_EINPUT;
+  }
+  for (size_t k = 0; k < m->n; k++) {
+    if (!(m->omega_rad_s[k] > 0.0 && isfinite(m->omega_rad_s[k]) &&
+          m->reduced_omega_rad_s[k] > 0.0 && isfinite(m->reduced_omega_rad_s[k]) &&
+          isfinite(m->temperature_c[k]) && m->isotherm[k] < m->n_isotherms)) {
+      vl_error_set(err, "measured point %zu is invalid", k + 1);
+      return VL_EINPUT;
+    }
+  }
+  return VL_OK;
+}
+
+/* Inside a transaction: the compound of meta (name, class, description,
+ * source file) with the series, shifts, points and fit of m. */
+static vl_status measured_insert(vl_db *db, const vl_db_compound *meta, const vl_measured *m,
+                                 const char *doing, vl_error *err) {
+  vl_status s;
+  sqlite3_stmt *st = NULL;
+  vl_db_compound *c = malloc(sizeof *c);
+  if (!c) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  memset(c, 0, sizeof *c);
+  snprintf(c->name, sizeof c->name, "%s", meta->name);
+  snprintf(c->class_name, sizeof c->class_name, "%s", meta->class_name);
+  snprintf(c->description, sizeof c->description, "%s", meta->description);
+  snprintf(c->source_file, sizeof c->source_file, "%s", meta->source_file);
+  snprintf(c->method, sizeof c->method, "dma-fit");
+  c->prony = m->prony;
+  c->tref_c = m->tref_c;
+  c->wlf_c1 = m->wlf_c1;
+  c->wlf_c2_k = m->wlf_c2_k;
+  c->fit_rms_error = m->fit.rms_rel;
+  sqlite3_int64 id = 0;
+  if ((s = compound_check(c, err)) != VL_OK) goto cleanup;
+  if ((s = compound_insert(db, c, doing, &id, err)) != VL_OK) goto cleanup;
+
+  int compliance = m->kind == VL_DMA_COMPLIANCE;
+  s = prepare(db,
+              "INSERT INTO compound_measurement (compound_id, frequency_rad_s, temperature_c, "
+              "storage_pa, loss_pa, j1_per_pa, j2_per_pa, source_file, source_line, "
+              "reduced_frequency_rad_s) VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10)",
+              &st, err);
+  if (s != VL_OK) goto cleanup;
+  int rc;
+  for (size_t k = 0; k < m->n; k++) {
+    sqlite3_reset(st);
+    sqlite3_bind_int64(st, 1, id);
+    bind_real(st, 2, m->omega_rad_s[k]);
+    bind_real(st, 3, m->temperature_c[k]);
+    bind_real(st, 4, compliance ? NAN : m->storage_pa[k]);
+    bind_real(st, 5, compliance ? NAN : m->loss_pa[k]);
+    bind_real(st, 6, compliance ? m->j1_per_pa[k] : NAN);
+    bind_real(st, 7, compliance ? m->j2_per_pa[k] : NAN);
+    bind_text_or_null(st, 8, c->source_file);
+    sqlite3_bind_int64(st, 9, (sqlite3_int64)m->line[k]);
+    bind_real(st, 10, m->reduced_omega_rad_s[k]);
+    if ((rc = sqlite3_step(st)) != SQLITE_DONE) {
+      s = db_fail(db, rc, doing, err);
+      goto cleanup;
+    }
+  }
+  sqlite3_finalize(st);
+  st = NULL;
+  if (m->has_temperature) {
+    s = prepare(db,
+                "INSERT INTO compound_shift (compound_id, temperature_c, log10_a_t) "
+                "VALUES (?1, ?2, ?3)",
+                &st, err);
+    if (s != VL_OK) goto cleanup;
+    for (size_t g = 0; g < m->n_isotherms; g++) {
+      sqlite3_reset(st);
+      sqlite3_bind_int64(st, 1, id);
+      bind_real(st, 2, m->iso_temperature_c[g]);
+      bind_real(st, 3, m->iso_log10_a_t[g]);
+      if ((rc = sqlite3_step(st)) != SQLITE_DONE) {
+        s = db_fail(db, rc, doing, err);
+        goto cleanup;
+      }
+    }
+    sqlite3_finalize(st);
+    st = NULL;
+  }
+  s = prepare(db,
+              "INSERT INTO compound_fit (compound_id, input_kind, weights, n_points, n_isotherms, "
+              "omega_min_rad_s, omega_max_rad_s, terms_per_decade, n_grid, rms_rel_storage, "
+              "max_rel_storage, rms_rel_loss, max_rel_loss, wlf_rms_log10_a_t) "
+              "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, ?13, ?14)",
+              &st, err);
+  if (s != VL_OK) goto cleanup;
+  const vl_prony_fit_report *f = &m->fit;
+  sqlite3_bind_int64(st, 1, id);
+  sqlite3_bind_text(st, 2, vl_dma_kind_name(m->kind), -1, SQLITE_STATIC);
+  sqlite3_bind_text(st, 3, vl_prony_weights_name(f->weights), -1, SQLITE_STATIC);
+  sqlite3_bind_int64(st, 4, (sqlite3_int64)m->n);
+  sqlite3_bind_int64(st, 5, (sqlite3_int64)m->n_isotherms);
+  bind_real(st, 6, f->omega_min_rad_s);
+  bind_real(st, 7, f->omega_max_rad_s);
+  bind_real(st, 8, f->terms_per_decade);
+  sqlite3_bind_int64(st, 9, (sqlite3_int64)f->n_grid);
+  bind_real(st, 10, f->rms_rel_storage);
+  bind_real(st, 11, f->max_rel_storage);
+  bind_real(st, 12, f->rms_rel_loss);
+  bind_real(st, 13, f->max_rel_loss);
+  bind_real(st, 14, m->wlf_rms);
+  if ((rc = sqlite3_step(st)) != SQLITE_DONE) s = db_fail(db, rc, doing, err);
+
+cleanup:
+  sqlite3_finalize(st);
+  free(c);
+  return s;
+}
+
+vl_status vl_db_compound_add_measured(vl_db *db, const vl_db_compound *meta, const vl_measured *m,
+                                      vl_error *err) {
+  vl_status s;
+  if ((s = measured_check(m, err)) != VL_OK) return s;
+  char doing[128];
+  snprintf(doing, sizeof doing, "add compound '%s'", meta->name);
+  if ((s = tx_begin(db, doing, err)) != VL_OK) return s;
+  if ((s = measured_insert(db, meta, m, doing, err)) == VL_OK) s = tx_commit(db, doing, err);
+  if (s != VL_OK) tx_rollback(db);
+  return s;
+}
+
+/* Compounds shipped as measured-style data files in materials/, registered
+ * in every new database through the import path of user data
+ * (vl_measured_read_text, then measured_insert) inside the creating
+ * transaction. Both are SYNTHETIC: no public, licensed measurement of an
+ * unfilled and a filled rubber exists; scripts/gen_synthetic_dma.py made
+ * them from the documented model in their header comments. Relative
+ * weights: the data obey Kramers-Kronig, so E'' is fitted to its noise. */
+static const struct {
+  const char *file, *name, *class_name, *description;
+} shipped_measured[] = {
+    {"sbr-unfilled-synthetic.csv", "sbr-unfilled", "unfilled",
+     "SYNTHETIC stand-in for an unfilled SBR, not a measurement: Havriliak-Negami modulus "
+     "(E0 2 MPa, Einf 2 GPa, alpha 0.60, beta 0.35, tau 2.5 ms) with WLF (C1 12.57, C2 71.6 K at "
+     "20 C), DMA-like sampling 0-100 C, 0.1-100 Hz, 1 % noise (scripts/gen_synthetic_dma.py), "
+     "imported and fitted like user data; rolling number near Scaraggi & Persson's "
+     "Q_unfilled = 3e-4 (Fig. 15)"},
+    {"sbr-filled-synthetic.csv", "sbr-filled", "filled",
+     "SYNTHETIC stand-in for a carbon-black filled SBR, not a measurement: Havriliak-Negami "
+     "modulus (E0 8 MPa, Einf 3 GPa, alpha 0.50, beta 0.35, tau 2.8 ms) with WLF (C1 12.57, "
+     "C2 71.6 K at 20 C), DMA-like sampling 0-100 C, 0.1-100 Hz, 1 % noise "
+     "(scripts/gen_synthetic_dma.py), imported and fitted like user data; rolling number near "
+     "Scaraggi & Persson's Q_filled = 3e-5 (Fig. 16)"},
+};
+
+static vl_status seed_measured(vl_db *db, vl_error *err) {
+  for (size_t i = 0; i < sizeof shipped_measured / sizeof *shipped_measured; i++) {
+    const struct vl_embedded_file *f = vl_embedded_materials;
+    while (f->name && strcmp(f->name, shipped_measured[i].file))
+      f++;
+    if (!f->name) {
+      vl_error_set(err, "shipped data file materials/%s is not embedded in the program",
+                   shipped_measured[i].file);
+      return VL_EINTERNAL;
+    }
+    char source[VL_DB_TEXT_MAX];
+    snprintf(source, sizeof source, "materials/%s", f->name);
+    vl_dma_options o = vl_dma_options_default();
+    o.tref_c = 20.0;
+    o.weights = VL_PRONY_WEIGHTS_RELATIVE;
+    vl_measured m;
+    vl_status s = vl_measured_read_text(f->text, strlen(f->text), source, &o, &m, err);
+    if (s == VL_OK) {
+      vl_db_compound *meta = calloc(1, sizeof *meta);
+      if (!meta) {
+        vl_measured_free(&m);
+        vl_error_set(err, "out of memory");
+        return VL_ENOMEM;
+      }
+      snprintf(meta->name, sizeof meta->name, "%s", shipped_measured[i].name);
+      snprintf(meta->class_name, sizeof meta->class_name, "%s", shipped_measured[i].class_name);
+      snprintf(meta->description, sizeof meta->description, "%s", shipped_measured[i].description);
+      snprintf(meta->source_file, sizeof meta->source_file, "%s", source);
+      s = measured_insert(db, meta, &m, "seed the shipped compounds", err);
+      free(meta);
+      vl_measured_free(&m);
+    }
+    if (s != VL_OK) {
+      /* shipped data that do not import are a bug of this program */
+      vl_error_prefix(err, "shipped compound '%s'", shipped_measured[i].name);
+      return s == VL_EINPUT ? VL_EINTERNAL : s;
+    }
+  }
+  return VL_OK;
+}
+
+void vl_db_compound_fit_free(vl_db_compound_fit *fit) {
+  if (!fit) return;
+  free(fit->shift_temperature_c);
+  free(fit->shift_log10_a_t);
+  memset(fit, 0, sizeof *fit);
+}
+
+vl_status vl_db_compound_fit_info(vl_db *db, const char *name, vl_db_compound_fit *out,
+                                  vl_error *err) {
+  vl_status s;
+  sqlite3_stmt *st = NULL;
+  memset(out, 0, sizeof *out);
+  sqlite3_int64 id = find_id(db, "compound", name, &s, err);
+  if (id < 0) return s;
+  if (id == 0) return not_found(db, "compound", name, err);
+  s = prepare(db,
+              "SELECT input_kind, weights, n_points, n_isotherms, omega_min_rad_s, "
+              "omega_max_rad_s, terms_per_decade, n_grid, rms_rel_storage, max_rel_storage, "
+              "rms_rel_loss, max_rel_loss, wlf_rms_log10_a_t FROM compound_fit "
+              "WHERE compound_id = ?1",
+              &st, err);
+  if (s != VL_OK) return s;
+  sqlite3_bind_int64(st, 1, id);
+  int rc = sqlite3_step(st);
+  if (rc == SQLITE_DONE) goto cleanup; /* not fitted: has_fit stays 0 */
+  if (rc != SQLITE_ROW) {
+    s = db_fail(db, rc, "reading a compound fit", err);
+    goto cleanup;
+  }
+  out->has_fit = 1;
+  copy_text(out->input_kind, sizeof out->input_kind, sqlite3_column_text(st, 0));
+  copy_text(out->weights, sizeof out->weights, sqlite3_column_text(st, 1));
+  out->n_points = (size_t)sqlite3_column_int64(st, 2);
+  out->n_isotherms = (size_t)sqlite3_column_int64(st, 3);
+  out->omega_min_rad_s = column_real(st, 4);
+  out->omega_max_rad_s = column_real(st, 5);
+  out->terms_per_decade = column_real(st, 6);
+  out->n_grid = (size_t)sqlite3_column_int64(st, 7);
+  out->rms_rel_storage = column_real(st, 8);
+  out->max_rel_storage = column_real(st, 9);
+  out->rms_rel_loss = column_real(st, 10);
+  out->max_rel_loss = column_real(st, 11);
+  out->wlf_rms_log10_a_t = column_real(st, 12);
+  sqlite3_finalize(st);
+  st = NULL;
+  s = prepare(db,
+              "SELECT temperature_c, log10_a_t FROM compound_shift WHERE compound_id = ?1 "
+              "ORDER BY temperature_c",
+              &st, err);
+  if (s != VL_OK) goto cleanup;
+  sqlite3_bind_int64(st, 1, id);
+  size_t cap = 0;
+  while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+    if (out->n_shifts == cap) {
+      size_t ncap = cap ? 2 * cap : 16;
+      double *t = realloc(out->shift_temperature_c, ncap * sizeof *t);
+      if (t) out->shift_temperature_c = t;
+      double *l = t ? realloc(out->shift_log10_a_t, ncap * sizeof *l) : NULL;
+      if (l) out->shift_log10_a_t = l;
+      if (!t || !l) {
+        vl_error_set(err, "out of memory reading shift factors");
+        s = VL_ENOMEM;
+        goto cleanup;
+      }
+      cap = ncap;
+    }
+    out->shift_temperature_c[out->n_shifts] = column_real(st, 0);
+    out->shift_log10_a_t[out->n_shifts] = column_real(st, 1);
+    out->n_shifts++;
+  }
+  if (rc != SQLITE_DONE) s = db_fail(db, rc, "reading shift factors", err);
+
+cleanup:
+  sqlite3_finalize(st);
+  if (s != VL_OK) vl_db_compound_fit_free(out);
+  return s;
+}
+
+vl_status vl_db_compound_points(vl_db *db, const char *name, vl_db_measured_point **points,
+                                size_t *n, vl_error *err) {
+  vl_status s;
+  sqlite3_stmt *st = NULL;
+  *points = NULL;
+  *n = 0;
+  sqlite3_int64 id = find_id(db, "compound", name, &s, err);
+  if (id < 0) return s;
+  if (id == 0) return not_found(db, "compound", name, err);
+  s = prepare(db,
+              "SELECT frequency_rad_s, temperature_c, coalesce(reduced_frequency_rad_s, "
+              "frequency_rad_s), storage_pa, loss_pa, j1_per_pa, j2_per_pa, "
+              "coalesce(source_line, 0) FROM compound_measurement WHERE compound_id = ?1 "
+              "ORDER BY 3, id",
+              &st, err);
+  if (s != VL_OK) return s;
+  sqlite3_bind_int64(st, 1, id);
+  size_t cap = 0;
+  int rc;
+  while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+    if (*n == cap) {
+      size_t ncap = cap ? 2 * cap : 256;
+      vl_db_measured_point *np = realloc(*points, ncap * sizeof *np);
+      if (!np) {
+        vl_error_set(err, "out of memory reading measured points");
+        s = VL_ENOMEM;
+        goto cleanup;
+      }
+      *points = np;
+      cap = ncap;
+    }
+    vl_db_measured_point *p = &(*points)[*n];
+    p->omega_rad_s = column_real(st, 0);
+    p->temperature_c = column_real(st, 1);
+    p->reduced_omega_rad_s = column_real(st, 2);
+    p->storage_pa = column_real(st, 3);
+    p->loss_pa = column_real(st, 4);
+    if (isnan(p->storage_pa)) { /* stored as compliance: E = 1/(J' - i J'') */
+      double j1 = column_real(st, 5), j2 = column_real(st, 6), m2 = j1 * j1 + j2 * j2;
+      p->storage_pa = j1 / m2;
+      p->loss_pa = j2 / m2;
+    }
+    p->source_line = (size_t)sqlite3_column_int64(st, 7);
+    (*n)++;
+  }
+  if (rc != SQLITE_DONE) s = db_fail(db, rc, "reading measured points", err);
+
+cleanup:
+  sqlite3_finalize(st);
+  if (s != VL_OK) {
+    free(*points);
+    *points = NULL;
+    *n = 0;
+  }
   return s;
 }
 

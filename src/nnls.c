@@ -106,9 +106,12 @@ vl_status vl_nnls_solve(size_t m, size_t n, const double *a, const double *b, do
   /* Unit-norm columns: the Prony columns differ by orders of magnitude in
    * some rows, and the tolerances below are then relative. */
   for (size_t j = 0; j < n; j++) {
-    double s = 0.0;
+    double big = 0.0, ss = 0.0;
     for (size_t i = 0; i < m; i++)
-      s = hypot(s, a[i * n + j]);
+      big = fmax(big, fabs(a[i * n + j]));
+    for (size_t i = 0; big > 0.0 && i < m; i++) /* scaled: no overflow for huge entries */
+      ss += (a[i * n + j] / big) * (a[i * n + j] / big);
+    double s = big * sqrt(ss);
     scale[j] = s;
     for (size_t i = 0; i < m; i++)
       gsl_matrix_set(as, i, j, s > 0.0 ? a[i * n + j] / s : 0.0);
@@ -240,7 +243,8 @@ vl_status vl_nnls_solve(size_t m, size_t n, const double *a, const double *b, do
         double vmin = INFINITY;
         for (size_t k = 0; k < np; k++) {
           double zk = gsl_vector_get(z, k);
-          if (zk <= 0.0 && gsl_vector_get(xs, p[k]) < vmin) vmin = gsl_vector_get(xs, p[k]), kmin = k;
+          if (zk <= 0.0 && gsl_vector_get(xs, p[k]) < vmin)
+            vmin = gsl_vector_get(xs, p[k]), kmin = k;
         }
         gsl_vector_set(xs, p[kmin], 0.0);
         in_p[p[kmin]] = 0;

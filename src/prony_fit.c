@@ -12,6 +12,12 @@
  * more than rounding: it is dropped rather than stored as noise. */
 #define DROP_REL 1e-12
 
+const char *vl_prony_weights_name(vl_prony_weights w) {
+  return w == VL_PRONY_WEIGHTS_MODULUS    ? "modulus"
+         : w == VL_PRONY_WEIGHTS_RELATIVE ? "relative"
+                                          : "?";
+}
+
 size_t vl_prony_fit_grid(double omega_min_rad_s, double omega_max_rad_s, double terms_per_decade,
                          double *tau_s, size_t cap) {
   if (!(omega_min_rad_s > 0.0 && omega_max_rad_s > omega_min_rad_s && isfinite(omega_max_rad_s) &&
@@ -30,8 +36,8 @@ size_t vl_prony_fit_grid(double omega_min_rad_s, double omega_max_rad_s, double 
 }
 
 vl_status vl_prony_fit(size_t n, const double *omega_rad_s, const double *storage_pa,
-                       const double *loss_pa, double terms_per_decade, double nu, vl_prony *out,
-                       vl_prony_fit_report *report, vl_error *err) {
+                       const double *loss_pa, double terms_per_decade, vl_prony_weights weights,
+                       double nu, vl_prony *out, vl_prony_fit_report *report, vl_error *err) {
   vl_status st = VL_OK;
   double *a = NULL, *b = NULL, *x = NULL;
   double tau[VL_PRONY_MAX_TERMS];
@@ -41,6 +47,10 @@ vl_status vl_prony_fit(size_t n, const double *omega_rad_s, const double *storag
   if (!(terms_per_decade > 0.0 && terms_per_decade <= VL_PRONY_FIT_MAX_PER_DECADE)) {
     vl_error_set(err, "terms per decade must lie in (0, %g] (got %g)", VL_PRONY_FIT_MAX_PER_DECADE,
                  terms_per_decade);
+    return VL_EINPUT;
+  }
+  if (weights != VL_PRONY_WEIGHTS_RELATIVE && weights != VL_PRONY_WEIGHTS_MODULUS) {
+    vl_error_set(err, "unknown fit weighting %d", (int)weights);
     return VL_EINPUT;
   }
   if (!(isfinite(nu) && nu >= 0.0 && nu <= 0.5)) {
@@ -68,6 +78,7 @@ vl_status vl_prony_fit(size_t n, const double *omega_rad_s, const double *storag
   rep.omega_min_rad_s = wmin;
   rep.omega_max_rad_s = wmax;
   rep.terms_per_decade = terms_per_decade;
+  rep.weights = weights;
   /* A Prony series has one free shape per decade at most; less than a
    * decade of data cannot tell a relaxation from a constant. */
   if (!(wmax >= 10.0 * wmin * (1.0 - 1e-12))) {
@@ -109,16 +120,18 @@ vl_status vl_prony_fit(size_t n, const double *omega_rad_s, const double *storag
     double m2 = e1 * e1 + e2 * e2;
     double j1 = e1 / m2, j2 = e2 / m2; /* J = 1/E = J' - i J'' */
     double wt = sqrt(m2);              /* 1/|J| */
+    int rel = weights == VL_PRONY_WEIGHTS_RELATIVE;
+    double wt1 = rel ? 1.0 / j1 : wt, wt2 = rel ? 1.0 / j2 : wt;
     double *r1 = a + (2 * k) * cols, *r2 = a + (2 * k + 1) * cols;
-    r1[0] = wt;
+    r1[0] = wt1;
     r2[0] = 0.0;
     for (size_t i = 0; i < ng; i++) {
       double wtau = w * tau[i], d = 1.0 / (1.0 + wtau * wtau);
-      r1[i + 1] = wt * d;
-      r2[i + 1] = wt * wtau * d;
+      r1[i + 1] = wt1 * d;
+      r2[i + 1] = wt2 * wtau * d;
     }
-    b[2 * k] = wt * j1;
-    b[2 * k + 1] = wt * j2;
+    b[2 * k] = wt1 * j1;
+    b[2 * k + 1] = wt2 * j2;
   }
   if ((st = vl_nnls_solve(rows, cols, a, b, x, NULL, err)) != VL_OK) {
     vl_error_prefix(err, "Prony fit");

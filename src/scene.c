@@ -492,7 +492,17 @@ static vl_status scene_check(parse_state *ps) {
   return VL_OK;
 }
 
-vl_status vl_scene_parse(const char *text, const char *path, vl_scene *scene, vl_error *err) {
+/* Messages quote the file's text and go to a terminal: a control byte there
+ * (an escape sequence, a carriage return) could rewrite what the user sees,
+ * so each becomes '?', as in the CSV reader's messages. */
+static vl_status printable(vl_status st, vl_error *err) {
+  if (st != VL_OK && err)
+    for (char *c = err->msg; *c; c++)
+      if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+  return st;
+}
+
+static vl_status scene_parse(const char *text, const char *path, vl_scene *scene, vl_error *err) {
   vl_scene_defaults(scene);
   snprintf(scene->path, sizeof scene->path, "%s", path);
   parse_state ps = {.scene = scene, .path = path, .err = err, .status = VL_OK, .cursor = text};
@@ -510,6 +520,10 @@ vl_status vl_scene_parse(const char *text, const char *path, vl_scene *scene, vl
     return VL_EINPUT;
   }
   return scene_check(&ps);
+}
+
+vl_status vl_scene_parse(const char *text, const char *path, vl_scene *scene, vl_error *err) {
+  return printable(scene_parse(text, path, scene, err), err);
 }
 
 vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err) {
@@ -556,10 +570,10 @@ vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err) {
     st = VL_EINPUT;
     goto done;
   }
-  st = vl_scene_parse(text, path, scene, err);
+  st = scene_parse(text, path, scene, err);
 done:
   if (st == VL_ENOMEM) vl_error_set(err, "%s: out of memory", path);
   free(text);
   fclose(f);
-  return st;
+  return printable(st, err);
 }

@@ -195,8 +195,11 @@ static void test_seeded_model_rubber(void **state) {
   vl_db_compound *items;
   size_t n;
   assert_int_equal(vl_db_compound_list(db, &items, &n, &err), VL_OK);
-  assert_int_equal(n, 1);
+  /* with the two shipped (synthetic) measured compounds, see test_dma_import.c */
+  assert_int_equal(n, 3);
   assert_string_equal(items[0].name, "model-rubber");
+  assert_string_equal(items[1].name, "sbr-filled");
+  assert_string_equal(items[2].name, "sbr-unfilled");
   free(items);
   vl_db_close(db);
 }
@@ -286,10 +289,10 @@ static void test_compound_roundtrip(void **state) {
   const char *path = db_path();
   vl_db *db = open_new(path);
   vl_error err;
-  vl_db_compound c = sample_compound("sbr-filled");
+  vl_db_compound c = sample_compound("sbr-lab");
   assert_int_equal(vl_db_compound_add(db, &c, &err), VL_OK);
   vl_db_compound back;
-  assert_int_equal(vl_db_compound_info(db, "sbr-filled", &back, &err), VL_OK);
+  assert_int_equal(vl_db_compound_info(db, "sbr-lab", &back, &err), VL_OK);
   assert_string_equal(back.class_name, "filled");
   assert_string_equal(back.description, c.description);
   assert_string_equal(back.source_file, "fit.csv");
@@ -303,33 +306,39 @@ static void test_compound_roundtrip(void **state) {
   vl_db_compound *items;
   size_t n;
   assert_int_equal(vl_db_compound_list(db, &items, &n, &err), VL_OK);
-  assert_int_equal(n, 2);
+  assert_int_equal(n, 4); /* model-rubber, the two shipped sbr-*filled, sbr-lab */
   assert_string_equal(items[0].name, "model-rubber");
-  assert_string_equal(items[1].name, "sbr-filled");
+  assert_string_equal(items[2].name, "sbr-lab");
   free(items);
 
   /* measured points and shift factors belong to the compound */
   vl_db_close(db);
   sql_exec(path, "INSERT INTO compound_measurement (compound_id, frequency_rad_s, "
                  "temperature_c, storage_pa, loss_pa) SELECT id, 10, 20, 1e6, 1e5 FROM compound "
-                 "WHERE name = 'sbr-filled'; INSERT INTO compound_shift SELECT id, 30, -1.2 FROM "
-                 "compound WHERE name = 'sbr-filled';");
+                 "WHERE name = 'sbr-lab'; INSERT INTO compound_shift SELECT id, 30, -1.2 FROM "
+                 "compound WHERE name = 'sbr-lab';");
   db = open_new(path);
 
   /* a duplicate is refused and changes nothing */
   snapshot s = take(path);
   assert_int_equal(vl_db_compound_add(db, &c, &err), VL_EEXIST);
-  assert_non_null(strstr(err.msg, "'sbr-filled'"));
+  assert_non_null(strstr(err.msg, "'sbr-lab'"));
   assert_unchanged(path, &s);
 
-  assert_int_equal(vl_db_compound_remove(db, "sbr-filled", &err), VL_OK);
+  assert_int_equal(vl_db_compound_remove(db, "sbr-lab", &err), VL_OK);
   vl_prony p;
-  assert_int_equal(vl_db_compound_get(db, "sbr-filled", &p, &err), VL_ENOTFOUND);
+  assert_int_equal(vl_db_compound_get(db, "sbr-lab", &p, &err), VL_ENOTFOUND);
   vl_db_close(db);
-  /* ON DELETE CASCADE with foreign keys on: nothing of it is left */
-  assert_true(sql_num(path, "SELECT count(*) FROM compound_prony") == 1);
-  assert_true(sql_num(path, "SELECT count(*) FROM compound_measurement") == 0);
-  assert_true(sql_num(path, "SELECT count(*) FROM compound_shift") == 0);
+  /* ON DELETE CASCADE with foreign keys on: nothing of it is left (the
+   * rows that remain all belong to the remaining compounds) */
+  assert_true(sql_num(path, "SELECT count(*) FROM compound_prony WHERE compound_id NOT IN "
+                            "(SELECT id FROM compound)") == 0);
+  assert_true(sql_num(path, "SELECT count(*) FROM compound_prony") ==
+              sql_num(path, "SELECT count(*) FROM compound_prony p JOIN compound c ON "
+                            "c.id = p.compound_id WHERE c.name <> 'sbr-lab'"));
+  assert_true(sql_num(path, "SELECT count(*) FROM compound_measurement WHERE temperature_c = 20 "
+                            "AND frequency_rad_s = 10 AND storage_pa = 1e6") == 0);
+  assert_true(sql_num(path, "SELECT count(*) FROM compound_shift WHERE log10_a_t = -1.2") == 0);
 }
 
 /* A tabulated PSD as two power-law pieces; h_rms^2 = 2 pi sum over pieces

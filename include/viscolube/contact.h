@@ -11,11 +11,26 @@
  *                condition p >= 0, u >= 0, p u = 0 by a (slightly smoothed)
  *                Fischer-Burmeister function;
  *   rough, dry:  separation u_i + h0, with pc = |Er(wH)| s(u) from Persson.
- *   wet (either): plus the fluid pressure pf_i, scaled by its current
+ *   rough, wet:  plus the fluid pressure pf_i, scaled by its current
  *                magnitude; the averaged Reynolds equation in conservative
- *                finite-volume form (upwind Couette flux), pf = 0 at both
- *                ends of the domain, and the Reynolds cavitation condition
- *                pf >= 0, dJ/dx >= 0, pf dJ/dx = 0 by Fischer-Burmeister.
+ *                finite-volume form (second-order upwind Couette flux,
+ *                centred Poiseuille flux), pf = 0 at both ends of the
+ *                domain, and the Reynolds cavitation condition pf >= 0,
+ *                dJ/dx >= 0, pf dJ/dx = 0 by Fischer-Burmeister.
+ *   smooth, wet: the same Reynolds equation and cavitation condition, but
+ *                no contact unknowns (a smooth film stays open at any
+ *                v0 > 0: pc = 0): pf_i and the rigid approach only, with a
+ *                film that must stay positive (a Newton step that closes it
+ *                is shortened). The Reynolds rows are flux imbalances
+ *                divided by their sensitivity to pf_i (a pressure
+ *                measure, as the complementarity needs, free of any length
+ *                scale: stiff solids, whose inlet length sqrt(2 R h) far
+ *                exceeds a0, are as well posed as soft ones). A fresh start
+ *                (first solve, or a continuation step that failed) solves
+ *                on a chain of half-size grids first: cavitation is a free
+ *                boundary that one Newton step moves by about one cell.
+ *                The coarsest level starts from Martin's rigid solution or,
+ *                for soft EHL, from Hertz.
  * The rigid approach h0 (the displacement kernel's free constant) is the
  * load-balance unknown; the separation at the pressure centroid u0 is
  * reported afterwards (MODEL.md section 3: measured to converge better than
@@ -45,7 +60,9 @@ typedef struct {
   double eta_pa_s;            /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
   vl_flow_factor_kind flow_factors; /* with roughness; smooth surfaces use smooth */
   size_t grid;                /* nodes (cells) on the domain */
-  double x_min_a0, x_max_a0;  /* domain in units of a0 */
+  double x_min_a0, x_max_a0;  /* domain in units of a0 (the relaxed Hertz half-width, however
+                               * stiff the solid): smooth wet contacts need an inlet of tens
+                               * of vl_contact_inlet_length_m beyond the contact */
   double tolerance;           /* scaled residual norm for convergence */
   int max_iterations;         /* Newton iterations per solve (0 = default 100) */
   vl_linear_solver linear_solver;
@@ -61,7 +78,8 @@ void vl_contact_config_defaults(vl_contact_config *cfg);
 typedef struct {
   double v0_m_s;
   bool converged;
-  long iterations;            /* Newton iterations of the final solve */
+  long iterations;            /* Newton iterations of this call (smooth wet: including a
+                               * failed continuation attempt and coarse-grid starts) */
   double residual;            /* final scaled residual norm (max norm) */
   double mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf;
   double u_min_m, u_central_m;/* min separation; separation at the pressure centroid */
@@ -74,7 +92,7 @@ typedef struct {
   double Q;                   /* rolling number (wet rough only; else 0) */
   double peak_pressure_pa, x_peak_m;
   double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
-  double x_min_film_m;        /* where u is smallest */
+  double x_min_film_m;        /* where u is smallest (EHL constriction: outlet side, x > 0) */
   int regime;                 /* vl_regime */
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
 } vl_point;
@@ -120,6 +138,23 @@ void vl_contact_fields(const vl_contact *c, vl_fields *f);
  * |J_fd - J| over all entries divided by the largest |J|, or a negative
  * value on allocation failure. Leaves the state unchanged. */
 double vl_contact_jacobian_check(vl_contact *c, double v0_m_s);
+
+/* Test aid: the fluid flux per unit length J (m^2/s) through the n + 1
+ * cell faces of the current state, as discretised by the solver (face 0 is
+ * the inlet end of the domain, face n the outlet end;
+ * J = -(u^3 phi_p/(12 eta)) dpf/dx + v0 (u + h_rms phi_s)/2). Writes
+ * min(cap, n + 1) values; returns n + 1, or 0 for a dry contact. */
+size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap);
+
+/* Hydrodynamic inlet length sqrt(2 R h) (m) of a smooth wet contact of cfg
+ * at speed v0 > 0, with h the larger of Martin's rigid film
+ * 4.894 eta (v0/2) R/fN and the isoviscous-elastic estimate
+ * 2.32 (eta (v0/2) R/fN) g^0.8, g = fN/sqrt(eta (v0/2) E' R), E' = 2 Er
+ * (relaxed). For sizing the domain (MODEL.md section 9): the pressure of a
+ * rigid cylinder spreads over several such lengths, and with the inlet end
+ * X lengths upstream its film is short by about 1/(2 X^2) / (1/(4 Hc)),
+ * Hc = 1.226 (0.6 % at X = 20). Reads rubber, radius, load, viscosity. */
+double vl_contact_inlet_length_m(const vl_contact_config *cfg, double v0_m_s);
 
 size_t vl_contact_grid(const vl_contact *c);
 double vl_contact_a0(const vl_contact *c); /* m */

@@ -5,7 +5,9 @@
  * files of materials/ (embedded in the program): NNNN_*.sql are forward
  * migrations, applied in order, each in its own transaction that also sets
  * PRAGMA user_version; seed_*.sql are the shipped materials, inserted only
- * into a new database.
+ * into a new database, as are the compounds of the shipped measured-style
+ * data files materials/NAME.csv, which go through the import of
+ * vl_measured_read_text and vl_db_compound_add_measured like user data.
  *
  * Guarantees:
  *   - Foreign keys are ON; every write runs in one BEGIN IMMEDIATE ... COMMIT
@@ -27,6 +29,7 @@
 
 #include <stddef.h>
 
+#include "viscolube/dma.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
 #include "viscolube/status.h"
@@ -120,8 +123,63 @@ vl_status vl_db_compound_info(vl_db *db, const char *name, vl_db_compound *out, 
  * is ignored. VL_EINPUT, VL_EEXIST, VL_EDB. */
 vl_status vl_db_compound_add(vl_db *db, const vl_db_compound *compound, vl_error *err);
 
+/* Adds a compound fitted to measured data (dma.h): name, class_name,
+ * description and source_file come from meta (its other fields are
+ * ignored); the Prony series, nu, tref, WLF constants and fit from m. In
+ * one transaction it stores the compound (method 'dma-fit', fit_rms_error =
+ * m->fit.rms_rel), its terms, every raw point with its reduced frequency
+ * (compound_measurement: E', E'' or J', J'' as the file gave them), the
+ * shift of each isotherm (compound_shift, files with a temperature column)
+ * and the fit report (compound_fit); any failure leaves the file as it
+ * was. Checks as vl_db_compound_add. VL_EINPUT, VL_EEXIST, VL_EDB. */
+vl_status vl_db_compound_add_measured(vl_db *db, const vl_db_compound *meta, const vl_measured *m,
+                                      vl_error *err);
+
+/* How a measured compound was fitted (see 0002_measured.sql). */
+typedef struct {
+  int has_fit;         /* 0: not fitted to measured data; the rest is empty */
+  char input_kind[24]; /* storage-loss | storage-tan-delta | compliance */
+  char weights[16];    /* relative | modulus */
+  size_t n_points, n_isotherms;
+  double omega_min_rad_s; /* master-curve window at tref */
+  double omega_max_rad_s;
+  double terms_per_decade;
+  size_t n_grid;                           /* tau grid size (terms kept: the compound's n_terms) */
+  double rms_rel_storage, max_rel_storage; /* (fit - measured)/measured of E' */
+  double rms_rel_loss, max_rel_loss;       /* the same for E'' */
+  double wlf_rms_log10_a_t;                /* NAN without a WLF fit */
+  size_t n_shifts;                         /* isotherm shifts, by increasing temperature */
+  double *shift_temperature_c;             /* malloc'd (n_shifts values) */
+  double *shift_log10_a_t;
+} vl_db_compound_fit;
+
+/* The fit report and shifts of compound `name` (has_fit = 0 for a compound
+ * entered as a Prony series). Release with vl_db_compound_fit_free.
+ * VL_ENOTFOUND, VL_EDB, VL_ENOMEM. */
+vl_status vl_db_compound_fit_info(vl_db *db, const char *name, vl_db_compound_fit *out,
+                                  vl_error *err);
+
+/* Frees the arrays of fit (and empties it); NULL is fine. */
+void vl_db_compound_fit_free(vl_db_compound_fit *fit);
+
+/* One stored measured point; E', E'' computed from J', J'' when the file
+ * gave compliances. */
+typedef struct {
+  double omega_rad_s; /* as measured */
+  double temperature_c;
+  double reduced_omega_rad_s; /* on the master curve at the compound's tref */
+  double storage_pa, loss_pa;
+  size_t source_line; /* line in the source file (0 if unknown) */
+} vl_db_measured_point;
+
+/* The measured points of compound `name` sorted by reduced frequency, into
+ * a malloc'd array (caller free()s *points; NULL when *n is 0, e.g. for a
+ * compound entered as a Prony series). VL_ENOTFOUND, VL_EDB, VL_ENOMEM. */
+vl_status vl_db_compound_points(vl_db *db, const char *name, vl_db_measured_point **points,
+                                size_t *n, vl_error *err);
+
 /* Removes compound `name` and everything that belongs to it (terms,
- * measurements, shift factors). VL_ENOTFOUND, VL_EDB. */
+ * measurements, shift factors, fit). VL_ENOTFOUND, VL_EDB. */
 vl_status vl_db_compound_remove(vl_db *db, const char *name, vl_error *err);
 
 /* All compounds sorted by name into a malloc'd array (caller free()s

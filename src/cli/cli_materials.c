@@ -6,6 +6,8 @@
  * results to stdout (text, or JSON with --json). */
 #define _POSIX_C_SOURCE 200809L
 
+#include <complex.h>
+#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -15,6 +17,7 @@
 #include "cli.h"
 #include "viscolube/csv.h"
 #include "viscolube/database.h"
+#include "viscolube/dma.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
 
@@ -59,9 +62,13 @@ static const char *const noun_help[] = {
         "\n"
         "verbs:\n"
         "  list [--json]          one line per compound: name, class, E0, Einf, nu, loss peak\n"
-        "  show NAME [--json]     E0, Einf, nu, loss-tangent peak, Prony terms\n"
+        "  show NAME [--json] [--curve FILE]\n"
+        "                         E0, Einf, nu, loss-tangent peak, Prony terms, fit report;\n"
+        "                         --curve writes measured vs fitted E', E'', tan delta (CSV)\n"
         "  add NAME --prony FILE --e-inf PA --nu NU [--class CLASS] [--description TEXT]\n"
-        "                         register a compound (see `compound add --help`)\n"
+        "  add NAME --measured FILE [--tref C] [--class CLASS] ...\n"
+        "                         register a compound from its Prony series or from measured\n"
+        "                         DMA data (see `compound add --help`)\n"
         "  remove NAME            delete a compound and its data\n"
         "\n"
         "`viscolube compound VERB --help` describes a verb.\n",
@@ -102,6 +109,21 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
             "Lists every %s, one per line, sorted by name.\n"
             "  --json   print a JSON array of objects instead (the fields of `%s show --json`)\n",
             noun, noun, noun);
+  } else if (!strcmp(verb, "show") && kind == NOUN_COMPOUND) {
+    fputs("usage: viscolube [--db PATH] compound show NAME [--json] [--curve FILE]\n"
+          "\n"
+          "Prints what is stored about compound NAME and the quantities derived from it:\n"
+          "E0, Einf, nu, the loss-tangent peak, the Prony terms and, for a compound fitted\n"
+          "to measured data, the fit report (rms and largest relative error of E' and E'',\n"
+          "terms, frequency window, WLF constants and the shift of each isotherm).\n"
+          "  --json        print one JSON object instead\n"
+          "  --curve FILE  also write FILE (CSV, one row per measured point, sorted by\n"
+          "                reduced frequency): omega_rad_s, frequency_hz, temperature_c,\n"
+          "                reduced_omega_rad_s (a_T omega at tref), storage_pa and\n"
+          "                storage_fit_pa, loss_pa and loss_fit_pa, tan_delta and\n"
+          "                tan_delta_fit (fitted at the reduced frequency), source_line;\n"
+          "                plot measured against fitted over reduced_omega_rad_s.\n",
+          out);
   } else if (!strcmp(verb, "show")) {
     fprintf(out,
             "usage: viscolube [--db PATH] %s show NAME [--json]\n"
@@ -119,23 +141,71 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
     fputs("usage: viscolube [--db PATH] compound add NAME --prony FILE --e-inf PA --nu NU\n"
           "                 [--class model|filled|unfilled|other] [--description TEXT]\n"
           "                 [--tref C] [--wlf-c1 C1 --wlf-c2 C2_K]\n"
+          "       viscolube [--db PATH] compound add NAME --measured FILE [--tref C]\n"
+          "                 [--class CLASS] [--description TEXT] [--nu NU]\n"
+          "                 [--freq-unit Hz|rad/s] [--modulus-unit Pa|kPa|MPa|GPa]\n"
+          "                 [--temp-unit C|K] [--terms-per-decade N]\n"
+          "                 [--fit-weights relative|modulus]\n"
           "\n"
-          "Registers a rubber compound from its creep-form Prony series\n"
+          "Registers a rubber compound by its creep-form Prony series\n"
           "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]  (MODEL.md section 2)\n"
+          "given directly (--prony) or fitted to measured DMA data (--measured).\n"
           "\n"
           "  NAME            1-63 characters of A-Z a-z 0-9 . _ + -\n"
+          "  --class CLASS   model, filled, unfilled or other (default other)\n"
+          "  --description TEXT  free text; note the source of the data here\n"
+          "\n"
+          "From a Prony series:\n"
           "  --prony FILE    CSV with the header line 'A,tau_s' and one term per row:\n"
           "                  A >= 0 (dimensionless), tau_s > 0 (retardation time, s).\n"
           "                  An optional units row '1,s' may follow the header; lines\n"
           "                  starting with '#' are comments. At most 128 terms.\n"
           "  --e-inf PA      glassy (high-frequency) modulus Einf > 0, Pa\n"
           "  --nu NU         Poisson ratio, 0 <= nu <= 0.5\n"
-          "  --class CLASS   model, filled, unfilled or other (default other)\n"
-          "  --description TEXT  free text; note the source of the data here\n"
           "  --tref C        reference temperature of the series, Celsius (default 20)\n"
           "  --wlf-c1 C1, --wlf-c2 C2_K  WLF constants of the compound (both or neither)\n"
+          "The relaxed modulus is E0 = Einf / (1 + sum A_i).\n"
           "\n"
-          "The relaxed modulus is E0 = Einf / (1 + sum A_i).\n",
+          "From measured data (--measured FILE), a DMA export as CSV:\n"
+          "  header row     column names in any order (case, blanks, '_' and '-' ignored):\n"
+          "                   frequency: f, freq, frequency, omega\n"
+          "                   E', E'': E', E_stor, storage / E'', E_loss, loss\n"
+          "                   or E' with tan delta (tan delta, tan_del, tand)\n"
+          "                   or J', J'': J_stor, J_loss (compliances)\n"
+          "                   temperature (optional): T, temp, temperature\n"
+          "                   set (optional): which isotherm a row belongs to\n"
+          "                 A unit may follow a name: 'f [Hz]', 'E' (MPa)'.\n"
+          "  units row      optional, right after the header, e.g. 'Hz,MPa,MPa,C':\n"
+          "                 Hz or rad/s; Pa, kPa, MPa or GPa (compliances 1/MPa ...);\n"
+          "                 C or K; '-' for tan delta and set. Every column needs a unit\n"
+          "                 from the header, the units row or these options (which must\n"
+          "                 agree with the file where both are given):\n"
+          "  --freq-unit Hz|rad/s  --modulus-unit Pa|kPa|MPa|GPa  --temp-unit C|K\n"
+          "  isotherms      with a temperature column, rows are grouped by the set column\n"
+          "                 or, without one, by runs of rows within 1 K; the isotherms are\n"
+          "                 shifted onto each other (time-temperature superposition on\n"
+          "                 log E', and log E'' where it superposes as well) and WLF is\n"
+          "                 fitted to the shifts (3 or more isotherms).\n"
+          "  --tref C       reference temperature of the master curve. Required for a\n"
+          "                 file without temperatures (a master curve) and for a single\n"
+          "                 isotherm (then equal to its temperature); with several\n"
+          "                 isotherms it defaults to the measured temperature nearest 20 C.\n"
+          "  --nu NU        Poisson ratio stored with the fit (default 0.5: DMA in tension\n"
+          "                 of a nearly incompressible rubber)\n"
+          "  --terms-per-decade N  Prony grid density over the master curve (default 2,\n"
+          "                 at most 8); terms the data do not need come out zero\n"
+          "  --fit-weights relative|modulus  relative (default): J' and J'' rows each by\n"
+          "                 their own magnitude, so E' and E'' are fitted to the same\n"
+          "                 relative accuracy; modulus: both by |J|, i.e. the complex\n"
+          "                 modulus to a relative and tan delta to an absolute accuracy\n"
+          "                 (use it when E'' does not superpose, e.g. glassy secondary\n"
+          "                 relaxations)\n"
+          "Refused with FILE:LINE and the column: non-numeric, NaN/Inf, zero or negative\n"
+          "values, unknown/misspelt/missing columns, wrong or mixed units, E' falling\n"
+          "with frequency by over 10 %, isotherms that do not superpose, a master curve\n"
+          "under one decade, fewer points than Prony terms + 1. Nothing is stored then.\n"
+          "The raw points, shifts, master curve and fit are stored in one transaction;\n"
+          "`compound show NAME` prints the fit report.\n",
           out);
   } else if (kind == NOUN_SURFACE) {
     fputs("usage: viscolube [--db PATH] surface add NAME --self-affine --hurst H --q0 PER_M\n"
@@ -319,7 +389,7 @@ static compound_derived compound_derive(const vl_db_compound *c) {
   return d;
 }
 
-static void compound_json(FILE *out, const vl_db_compound *c) {
+static void compound_json(FILE *out, const vl_db_compound *c, const vl_db_compound_fit *f) {
   compound_derived d = compound_derive(c);
   int first = 1;
   json_key_str(out, &first, "name", c->name, 0);
@@ -345,6 +415,38 @@ static void compound_json(FILE *out, const vl_db_compound *c) {
   json_key_str(out, &first, "method", c->method, 0);
   json_key_num(out, &first, "fit_rms_error", c->fit_rms_error);
   json_key_str(out, &first, "created_at", c->created_at, 0);
+  json_key(out, &first, "fit");
+  if (f && f->has_fit) {
+    int f2 = 1;
+    json_key_str(out, &f2, "input_kind", f->input_kind, 0);
+    json_key_str(out, &f2, "weights", f->weights, 0);
+    json_key(out, &f2, "n_points");
+    fprintf(out, "%zu", f->n_points);
+    json_key(out, &f2, "n_isotherms");
+    fprintf(out, "%zu", f->n_isotherms);
+    json_key_num(out, &f2, "omega_min_rad_s", f->omega_min_rad_s);
+    json_key_num(out, &f2, "omega_max_rad_s", f->omega_max_rad_s);
+    json_key_num(out, &f2, "terms_per_decade", f->terms_per_decade);
+    json_key(out, &f2, "n_grid");
+    fprintf(out, "%zu", f->n_grid);
+    json_key_num(out, &f2, "rms_rel_storage", f->rms_rel_storage);
+    json_key_num(out, &f2, "max_rel_storage", f->max_rel_storage);
+    json_key_num(out, &f2, "rms_rel_loss", f->rms_rel_loss);
+    json_key_num(out, &f2, "max_rel_loss", f->max_rel_loss);
+    json_key_num(out, &f2, "wlf_rms_log10_a_t", f->wlf_rms_log10_a_t);
+    json_key(out, &f2, "shifts");
+    fputc('[', out);
+    for (size_t k = 0; k < f->n_shifts; k++) {
+      int f3 = 1;
+      if (k) fputs(", ", out);
+      json_key_num(out, &f3, "temperature_c", f->shift_temperature_c[k]);
+      json_key_num(out, &f3, "log10_a_t", f->shift_log10_a_t[k]);
+      fputc('}', out);
+    }
+    fputs("]}", out);
+  } else {
+    fputs("null", out);
+  }
   json_key(out, &first, "prony");
   fputc('[', out);
   for (size_t i = 0; i < c->prony.n_terms; i++) {
@@ -357,7 +459,29 @@ static void compound_json(FILE *out, const vl_db_compound *c) {
   fputs("]}", out);
 }
 
-static void compound_text(FILE *out, const vl_db_compound *c) {
+/* Prints the fit report of a measured compound (add and show). */
+static void fit_report_text(FILE *out, const vl_db_compound *c, const vl_db_compound_fit *f) {
+  fprintf(out, "  fit to data   %zu points (%s), %zu isotherm%s, %s weights\n", f->n_points,
+          f->input_kind, f->n_isotherms, f->n_isotherms == 1 ? "" : "s", f->weights);
+  fprintf(out, "  window        %.4g to %.4g rad/s at %.6g C (%.2f decades)\n", f->omega_min_rad_s,
+          f->omega_max_rad_s, c->tref_c, log10(f->omega_max_rad_s / f->omega_min_rad_s));
+  fprintf(out, "  terms         %zu kept of a grid of %zu (%g per decade)\n", c->prony.n_terms,
+          f->n_grid, f->terms_per_decade);
+  fprintf(out, "  error E'      rms %.3g %%, max %.3g %%\n", 100.0 * f->rms_rel_storage,
+          100.0 * f->max_rel_storage);
+  fprintf(out, "  error E''     rms %.3g %%, max %.3g %%\n", 100.0 * f->rms_rel_loss,
+          100.0 * f->max_rel_loss);
+  if (!isnan(f->wlf_rms_log10_a_t))
+    fprintf(out, "  WLF residual  rms %.3g in log10 aT\n", f->wlf_rms_log10_a_t);
+  if (f->n_shifts > 1) {
+    fprintf(out, "  shifts        %10s %12s\n", "T (C)", "log10 aT");
+    for (size_t k = 0; k < f->n_shifts; k++)
+      fprintf(out, "                %10.4g %12.5g\n", f->shift_temperature_c[k],
+              f->shift_log10_a_t[k]);
+  }
+}
+
+static void compound_text(FILE *out, const vl_db_compound *c, const vl_db_compound_fit *f) {
   compound_derived d = compound_derive(c);
   fprintf(out, "compound %s (%s)\n", c->name, c->class_name);
   if (c->description[0]) fprintf(out, "  description   %s\n", c->description);
@@ -376,6 +500,7 @@ static void compound_text(FILE *out, const vl_db_compound *c) {
   if (c->source_file[0]) fprintf(out, "  source file   %s\n", c->source_file);
   if (!isnan(c->fit_rms_error)) fprintf(out, "  fit rms error %.6g\n", c->fit_rms_error);
   fprintf(out, "  created       %s\n", c->created_at);
+  if (f && f->has_fit) fit_report_text(out, c, f);
   fprintf(out, "  Prony terms (1/E = (1/Einf) [1 + sum A_i / (1 - i w tau_i)]):\n");
   fprintf(out, "  %5s %14s %14s\n", "i", "A", "tau_s");
   for (size_t i = 0; i < c->prony.n_terms; i++)
@@ -390,21 +515,148 @@ static void compound_line(FILE *out, const vl_db_compound *c) {
   fputc('\n', out);
 }
 
+/* `compound add NAME --measured FILE ...`: import, shift, fit, store. */
+static int compound_add_measured(const context *cx, const vl_cli_globals *g, const char *name,
+                                 option *opts, size_t n_opts) {
+  const char *forbidden[] = {"--prony", "--e-inf", "--wlf-c1", "--wlf-c2"};
+  for (size_t k = 0; k < 4; k++) {
+    option *o = find_opt(opts, n_opts, forbidden[k]);
+    if (o->value)
+      return failf(cx, VL_EINPUT,
+                   "option %s does not go with --measured (the fit determines the series%s)",
+                   o->name, k >= 2 ? " and the WLF constants" : "");
+  }
+  option *file = find_opt(opts, n_opts, "--measured"), *cls = find_opt(opts, n_opts, "--class");
+  option *desc = find_opt(opts, n_opts, "--description"), *tref = find_opt(opts, n_opts, "--tref");
+  option *nu = find_opt(opts, n_opts, "--nu"), *fu = find_opt(opts, n_opts, "--freq-unit");
+  option *mu = find_opt(opts, n_opts, "--modulus-unit"),
+         *tu = find_opt(opts, n_opts, "--temp-unit");
+  option *tpd = find_opt(opts, n_opts, "--terms-per-decade");
+  option *fw = find_opt(opts, n_opts, "--fit-weights");
+  vl_dma_options o = vl_dma_options_default();
+  int rc;
+  if (tref->value) {
+    if ((rc = number_opt(cx, tref, &o.tref_c)) >= 0) return rc;
+    if (o.tref_c < -273.15)
+      return failf(cx, VL_EINPUT, "option --tref: below absolute zero (got '%s')", tref->value);
+  }
+  if (nu->value) {
+    if ((rc = number_opt(cx, nu, &o.nu)) >= 0) return rc;
+    if (!(o.nu >= 0.0 && o.nu <= 0.5))
+      return failf(cx, VL_EINPUT, "option --nu: the Poisson ratio must lie in [0, 0.5] (got '%s')",
+                   nu->value);
+  }
+  if (fu->value && strcmp(fu->value, "Hz") && strcmp(fu->value, "rad/s"))
+    return failf(cx, VL_EINPUT, "option --freq-unit: '%s' is not Hz or rad/s", fu->value);
+  if (mu->value && strcmp(mu->value, "Pa") && strcmp(mu->value, "kPa") &&
+      strcmp(mu->value, "MPa") && strcmp(mu->value, "GPa"))
+    return failf(cx, VL_EINPUT, "option --modulus-unit: '%s' is not one of Pa, kPa, MPa, GPa",
+                 mu->value);
+  if (tu->value && strcmp(tu->value, "C") && strcmp(tu->value, "K"))
+    return failf(cx, VL_EINPUT, "option --temp-unit: '%s' is not C or K", tu->value);
+  o.freq_unit = fu->value;
+  o.modulus_unit = mu->value;
+  o.temp_unit = tu->value;
+  if (tpd->value) {
+    if ((rc = number_opt(cx, tpd, &o.terms_per_decade)) >= 0) return rc;
+    if (!(o.terms_per_decade > 0.0 && o.terms_per_decade <= VL_PRONY_FIT_MAX_PER_DECADE))
+      return failf(cx, VL_EINPUT, "option --terms-per-decade: must lie in (0, %g] (got '%s')",
+                   VL_PRONY_FIT_MAX_PER_DECADE, tpd->value);
+  }
+  if (fw->value) {
+    if (!strcmp(fw->value, "relative"))
+      o.weights = VL_PRONY_WEIGHTS_RELATIVE;
+    else if (!strcmp(fw->value, "modulus"))
+      o.weights = VL_PRONY_WEIGHTS_MODULUS;
+    else
+      return failf(cx, VL_EINPUT, "option --fit-weights: '%s' is not relative or modulus",
+                   fw->value);
+  }
+  if (cls->value && strcmp(cls->value, "model") && strcmp(cls->value, "filled") &&
+      strcmp(cls->value, "unfilled") && strcmp(cls->value, "other"))
+    return failf(cx, VL_EINPUT, "option --class: '%s' is not one of model, filled, unfilled, other",
+                 cls->value);
+  if (desc->value && strlen(desc->value) >= VL_DB_TEXT_MAX)
+    return failf(cx, VL_EINPUT, "option --description: longer than %d characters",
+                 VL_DB_TEXT_MAX - 1);
+  if (strlen(file->value) >= VL_DB_TEXT_MAX)
+    return failf(cx, VL_EINPUT, "option --measured: file name longer than %d characters",
+                 VL_DB_TEXT_MAX - 1);
+
+  vl_error err;
+  vl_measured m;
+  vl_status st = vl_measured_read_file(file->value, &o, &m, &err);
+  if (st != VL_OK) return fail(cx, st, err.msg);
+  vl_db_compound *c = calloc(1, sizeof *c);
+  vl_db *db = NULL;
+  if (!c) {
+    vl_measured_free(&m);
+    return fail(cx, VL_ENOMEM, "out of memory");
+  }
+  snprintf(c->name, sizeof c->name, "%s", name);
+  snprintf(c->class_name, sizeof c->class_name, "%s", cls->value ? cls->value : "other");
+  snprintf(c->description, sizeof c->description, "%s", desc->value ? desc->value : "");
+  snprintf(c->source_file, sizeof c->source_file, "%s", file->value);
+  if ((rc = open_db(cx, g, &db)) < 0) {
+    st = vl_db_compound_add_measured(db, c, &m, &err);
+    vl_db_compound_fit f;
+    memset(&f, 0, sizeof f);
+    if (st == VL_OK) st = vl_db_compound_info(db, name, c, &err);
+    if (st == VL_OK) st = vl_db_compound_fit_info(db, name, &f, &err);
+    if (st != VL_OK) {
+      rc = fail(cx, st, err.msg);
+    } else {
+      printf("added compound '%s' to %s: fitted to %s\n", name, vl_db_path(db), file->value);
+      printf("  E0            %.6g Pa, Einf %.6g Pa, nu %.6g\n", vl_prony_e0(&c->prony),
+             c->prony.e_inf_pa, c->prony.nu);
+      if (!isnan(c->wlf_c1))
+        printf("  WLF           C1 %.6g, C2 %.6g K at %.6g C\n", c->wlf_c1, c->wlf_c2_k, c->tref_c);
+      fit_report_text(stdout, c, &f);
+      rc = 0;
+    }
+    vl_db_compound_fit_free(&f);
+  }
+  vl_db_close(db);
+  vl_measured_free(&m);
+  free(c);
+  return rc;
+}
+
 static int compound_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {
-      {"--prony", "FILE", NULL},  {"--e-inf", "PA", NULL},         {"--nu", "NU", NULL},
-      {"--class", "CLASS", NULL}, {"--description", "TEXT", NULL}, {"--tref", "C", NULL},
-      {"--wlf-c1", "C1", NULL},   {"--wlf-c2", "C2_K", NULL}};
+  option opts[] = {{"--prony", "FILE", NULL},
+                   {"--e-inf", "PA", NULL},
+                   {"--nu", "NU", NULL},
+                   {"--class", "CLASS", NULL},
+                   {"--description", "TEXT", NULL},
+                   {"--tref", "C", NULL},
+                   {"--wlf-c1", "C1", NULL},
+                   {"--wlf-c2", "C2_K", NULL},
+                   {"--measured", "FILE", NULL},
+                   {"--freq-unit", "UNIT", NULL},
+                   {"--modulus-unit", "UNIT", NULL},
+                   {"--temp-unit", "UNIT", NULL},
+                   {"--terms-per-decade", "N", NULL},
+                   {"--fit-weights", "WEIGHTS", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
   if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  if (find_opt(opts, n_opts, "--measured")->value)
+    return compound_add_measured(cx, g, name, opts, n_opts);
+  const char *measured_only[] = {"--freq-unit", "--modulus-unit", "--temp-unit",
+                                 "--terms-per-decade", "--fit-weights"};
+  for (size_t k = 0; k < 5; k++) {
+    option *o = find_opt(opts, n_opts, measured_only[k]);
+    if (o->value) return failf(cx, VL_EINPUT, "option %s belongs to --measured FILE", o->name);
+  }
   const char *required[] = {"--prony", "--e-inf", "--nu"};
   for (size_t k = 0; k < 3; k++) {
     option *o = find_opt(opts, n_opts, required[k]);
-    if (!o->value) return failf(cx, VL_EINPUT, "option %s %s is required", o->name, o->metavar);
+    if (!o->value)
+      return failf(cx, VL_EINPUT, "option %s %s is required%s", o->name, o->metavar,
+                   k == 0 ? " (or --measured FILE)" : "");
   }
   option *file = find_opt(opts, n_opts, "--prony"), *einf = find_opt(opts, n_opts, "--e-inf");
   option *nu = find_opt(opts, n_opts, "--nu"), *cls = find_opt(opts, n_opts, "--class");
@@ -691,7 +943,10 @@ static int do_list(const context *cx, const vl_cli_globals *g, int argc, char **
       for (size_t i = 0; i < n; i++) {
         if (json) {
           fputs(i ? ",\n " : "", stdout);
-          compound_json(stdout, &items[i]);
+          vl_db_compound_fit f;
+          if ((st = vl_db_compound_fit_info(db, items[i].name, &f, &err)) != VL_OK) break;
+          compound_json(stdout, &items[i], &f);
+          vl_db_compound_fit_free(&f);
         } else {
           compound_line(stdout, &items[i]);
         }
@@ -730,12 +985,52 @@ static int do_list(const context *cx, const vl_cli_globals *g, int argc, char **
   return st == VL_OK ? 0 : fail(cx, st, err.msg);
 }
 
+/* Writes the measured vs fitted curve of compound c (see `compound show
+ * --help`). Returns the exit code after one message on failure, else -1. */
+static int write_curve(const context *cx, vl_db *db, const vl_db_compound *c, const char *path) {
+  vl_error err;
+  vl_db_measured_point *pts = NULL;
+  size_t n = 0;
+  vl_status st = vl_db_compound_points(db, c->name, &pts, &n, &err);
+  if (st != VL_OK) return fail(cx, st, err.msg);
+  if (n == 0)
+    return failf(cx, VL_EINPUT,
+                 "option --curve: compound '%s' has no measured data (it was entered as a Prony "
+                 "series)",
+                 c->name);
+  FILE *f = fopen(path, "wb");
+  if (!f) {
+    free(pts);
+    return failf(cx, VL_EIO, "option --curve: cannot write %s: %s", path, strerror(errno));
+  }
+  fprintf(f,
+          "# viscolube compound %s: measured points and the stored Prony fit at the reduced\n"
+          "# frequency a_T omega of the master curve at tref = %.6g C (source %s)\n",
+          c->name, c->tref_c, c->source_file[0] ? c->source_file : "?");
+  fputs("omega_rad_s,frequency_hz,temperature_c,reduced_omega_rad_s,storage_pa,storage_fit_pa,"
+        "loss_pa,loss_fit_pa,tan_delta,tan_delta_fit,source_line\n",
+        f);
+  for (size_t k = 0; k < n; k++) {
+    const vl_db_measured_point *p = &pts[k];
+    double complex e = vl_prony_modulus(&c->prony, p->reduced_omega_rad_s);
+    fprintf(f, "%.9g,%.9g,%.6g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%zu\n", p->omega_rad_s,
+            p->omega_rad_s / TWO_PI, p->temperature_c, p->reduced_omega_rad_s, p->storage_pa,
+            creal(e), p->loss_pa, cimag(e), p->loss_pa / p->storage_pa, cimag(e) / creal(e),
+            p->source_line);
+  }
+  free(pts);
+  if (fclose(f) != 0)
+    return failf(cx, VL_EIO, "option --curve: cannot write %s: %s", path, strerror(errno));
+  return -1;
+}
+
 static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--json", NULL, NULL}};
+  option opts[] = {{"--json", NULL, NULL}, {"--curve", "FILE", NULL}};
+  size_t n_opts = cx->kind == NOUN_COMPOUND ? 2 : 1;
   const char *pos[1], *name = NULL;
   size_t n_pos;
   int rc;
-  if ((rc = parse_args(cx, argc, argv, 2, opts, 1, pos, 1, &n_pos)) >= 0) return rc;
+  if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
   if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
   int json = opts[0].value != NULL;
   vl_db *db = NULL;
@@ -744,9 +1039,26 @@ static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **
   vl_status st;
   if (cx->kind == NOUN_COMPOUND) {
     vl_db_compound *c = malloc(sizeof *c);
+    vl_db_compound_fit f;
+    memset(&f, 0, sizeof f);
     st = c ? vl_db_compound_info(db, name, c, &err) : VL_ENOMEM;
     if (!c) vl_error_set(&err, "out of memory");
-    if (st == VL_OK) json ? compound_json(stdout, c) : compound_text(stdout, c);
+    if (st == VL_OK) st = vl_db_compound_fit_info(db, name, &f, &err);
+    /* the curve first: a failure to write it prints nothing else */
+    if (st == VL_OK && opts[1].value && (rc = write_curve(cx, db, c, opts[1].value)) >= 0) {
+      vl_db_compound_fit_free(&f);
+      free(c);
+      vl_db_close(db);
+      return rc;
+    }
+    if (st == VL_OK) {
+      if (json) {
+        compound_json(stdout, c, &f);
+      } else {
+        compound_text(stdout, c, &f);
+      }
+    }
+    vl_db_compound_fit_free(&f);
     free(c);
   } else if (cx->kind == NOUN_SURFACE) {
     vl_db_surface s;

@@ -1,4 +1,4 @@
-/* `viscolube run SCENE [--out DIR] [--json]` */
+/* `viscolube run SCENE [--out DIR] [--json] [--plot]` */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -10,19 +10,30 @@
 #include "cli.h"
 #include "viscolube/database.h"
 #include "viscolube/output.h"
+#include "viscolube/plot.h"
 #include "viscolube/scene.h"
 #include "viscolube/simulation.h"
 
 static void run_usage(FILE *out) {
-  fputs("usage: viscolube run SCENE [--out DIR] [--json]\n"
+  fputs("usage: viscolube run SCENE [--out DIR] [--json] [--plot]\n"
         "\n"
         "Runs the sweep of a scene file (see cases/ and README.md) and writes\n"
         "  DIR/curve.csv         one row per speed (mu and its four components, separations,\n"
         "                        contact width, load shares, |Er(wH)|, a_H, Q, convergence)\n"
         "  DIR/fields/NNN.csv    x, pressures, separation, contact area at the speeds of\n"
         "                        [sweep] fields_at (NNN = row of curve.csv, from 000)\n"
+        "With --plot, figures next to them, each as PNG and SVG:\n"
+        "  DIR/stribeck          mu and its four components against the sweep quantity,\n"
+        "                        the fields_at speeds numbered 1, 2, ...\n"
+        "  DIR/separation        minimum separation u_min/h_rms (u_min in um when smooth)\n"
+        "  DIR/fields-pc, -pf, -u  p_c/p0, p_f/p0 (wet) and u/h_rms against x/a0, one curve\n"
+        "                        per fields_at speed, labelled with its number\n"
+        "Points that did not converge are drawn as hollow circles above the x axis,\n"
+        "never joined to their neighbours.\n"
         "A scene whose [materials] fluid lists several fluids runs one curve per fluid,\n"
-        "written to DIR/<fluid>/ (with --json: an object keyed by fluid).\n"
+        "written to DIR/<fluid>/ (with --json: an object keyed by fluid); with --plot also\n"
+        "DIR/stribeck-all (mu of every fluid on one axis) and, for one-term compounds,\n"
+        "DIR/rolling-all (mu_Rc + mu_Rf against v0 tau/a0).\n"
         "DIR defaults to out/<scene name>. Prints a short table, or with --json the curve\n"
         "as a JSON array. Exit status 0 when every point converged, 7 when some did not\n"
         "(they are still written, flagged converged = 0).\n",
@@ -50,6 +61,11 @@ typedef struct {
   int tty;
   int io_failed;
   vl_error err;
+  /* --plot: the fields of the fields_at speeds, kept for the figures */
+  size_t n_kept;
+  size_t *kept_index; /* point index of each kept slot */
+  vl_fields *kept;    /* n = 0 while (or when) the point has not converged */
+  double *kept_buf;
 } run_ctx;
 
 static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
@@ -62,19 +78,131 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
     fflush(stderr);
   }
   if (!vl_simulation_wants_fields(ctx->sim, i) || !pt->converged || ctx->io_failed) return;
-  vl_contact_fields(contact, &ctx->fields);
+  vl_fields *f = &ctx->fields;
+  for (size_t k = 0; k < ctx->n_kept; k++)
+    if (ctx->kept_index[k] == i) {
+      f = &ctx->kept[k];
+      f->n = vl_contact_grid(contact);
+    }
+  vl_contact_fields(contact, f);
   char path[4200];
   snprintf(path, sizeof path, "%s/fields/%03zu.csv", ctx->out_dir, i);
-  if (vl_write_fields_csv(path, &ctx->fields, vl_contact_a0(contact), &ctx->err) != VL_OK)
+  if (vl_write_fields_csv(path, f, vl_contact_a0(contact), &ctx->err) != VL_OK)
     ctx->io_failed = 1;
 }
+
+/* Sets aside the fields of the fields_at speeds for the figures. */
+static vl_status keep_fields(run_ctx *ctx, size_t n, size_t grid, vl_error *err) {
+  for (size_t i = 0; i < n; i++) ctx->n_kept += vl_simulation_wants_fields(ctx->sim, i);
+  if (!ctx->n_kept) return VL_OK;
+  ctx->kept_index = calloc(ctx->n_kept, sizeof *ctx->kept_index);
+  ctx->kept = calloc(ctx->n_kept, sizeof *ctx->kept);
+  ctx->kept_buf = calloc(6 * grid * ctx->n_kept, sizeof *ctx->kept_buf);
+  if (!ctx->kept_index || !ctx->kept || !ctx->kept_buf) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  for (size_t i = 0, k = 0; i < n; i++) {
+    if (!vl_simulation_wants_fields(ctx->sim, i)) continue;
+    double *b = ctx->kept_buf + 6 * grid * k;
+    ctx->kept_index[k] = i;
+    ctx->kept[k] = (vl_fields){0, b, b + grid, b + 2 * grid, b + 3 * grid, b + 4 * grid, b + 5 * grid};
+    k++;
+  }
+  return VL_OK;
+}
+
+/* The sweep quantity of a point, as in the table and the CSV. */
+static double sweep_value(vl_sweep_quantity q, const vl_point *p, const vl_curve_meta *m) {
+  return q == VL_SWEEP_V0       ? p->v0_m_s
+         : q == VL_SWEEP_V0_ETA ? p->v0_m_s * m->eta_pa_s
+                                : p->v0_m_s * m->tau_s / m->a0_m;
+}
+
+/* Writes the figures of one curve (see run_usage); names them in *list. */
+static vl_status write_plots(const char *out_dir, const vl_scene *scene, const char *fluid_key,
+                             vl_simulation *sim, size_t n, const vl_point *pts,
+                             const vl_curve_meta *meta, const run_ctx *ctx, char *list,
+                             size_t list_size, vl_error *err) {
+  char title[1536], stem[4200];
+  snprintf(title, sizeof title, "%s%s%s", scene->title[0] ? scene->title : scene->path,
+           fluid_key ? " | fluid " : "", fluid_key ? fluid_key : "");
+  vl_plot_options opt;
+  vl_plot_options_defaults(&opt);
+  opt.title = title;
+  opt.mark_half_load = scene->effects.fluid;
+  const vl_psd *psd = vl_simulation_psd(sim);
+  double h_rms = psd ? vl_psd_hrms(psd) : 0;
+  size_t *marks = NULL;
+  char(*labels)[96] = NULL;
+  const char **label_ptrs = NULL;
+  vl_status st = VL_ENOMEM;
+  if (ctx->n_kept) {
+    marks = calloc(ctx->n_kept, sizeof *marks);
+    labels = calloc(ctx->n_kept, sizeof *labels);
+    label_ptrs = calloc(ctx->n_kept, sizeof *label_ptrs);
+    if (!marks || !labels || !label_ptrs) {
+      vl_error_set(err, "out of memory");
+      goto done;
+    }
+  }
+  static const char *const pre[] = {"v₀ = ", "v₀η = ", "v₀τ/a₀ = "};
+  static const char *const post[] = {" m/s", " Pa m", ""};
+  for (size_t k = 0; k < ctx->n_kept; k++) {
+    marks[k] = ctx->kept_index[k];
+    char v[48];
+    vl_plot_format_value(v, sizeof v, sweep_value(scene->quantity, &pts[marks[k]], meta));
+    snprintf(labels[k], sizeof labels[k], "%zu: %s%s%s", k + 1, pre[scene->quantity], v,
+             post[scene->quantity]);
+    label_ptrs[k] = labels[k];
+  }
+  snprintf(stem, sizeof stem, "%s/stribeck", out_dir);
+  st = vl_plot_stribeck(stem, n, pts, meta, scene->quantity, ctx->n_kept, marks, &opt, NULL, err);
+  if (st != VL_OK) goto done;
+  snprintf(stem, sizeof stem, "%s/separation", out_dir);
+  st = vl_plot_separation(stem, n, pts, meta, scene->quantity, h_rms, ctx->n_kept, marks, &opt,
+                          NULL, err);
+  if (st != VL_OK) goto done;
+  size_t len = (size_t)snprintf(list, list_size, "stribeck, separation");
+  if (ctx->n_kept) {
+    const vl_contact *c = vl_simulation_contact(sim);
+    vl_plot_scales sc = {vl_contact_a0(c), vl_contact_p0(c), h_rms};
+    static const struct {
+      vl_plot_field field;
+      const char *name;
+    } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"}, {VL_PLOT_FIELD_PF, "fields-pf"},
+                {VL_PLOT_FIELD_U, "fields-u"}};
+    for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
+      if (figs[k].field == VL_PLOT_FIELD_PF && !scene->effects.fluid) continue;
+      snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
+      st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, &opt,
+                          NULL, err);
+      if (st != VL_OK) goto done;
+      if (len < list_size)
+        len += (size_t)snprintf(list + len, list_size - len, ", %s", figs[k].name);
+    }
+  }
+done:
+  free(label_ptrs);
+  free(labels);
+  free(marks);
+  return st;
+}
+
+/* One curve of a multi-fluid scene, kept for the figures with all fluids. */
+typedef struct {
+  vl_point *pts;
+  size_t n;
+  vl_curve_meta meta;
+  double h_rms_m;
+} kept_curve;
 
 /* Runs one curve of the scene (one fluid) into out_dir. *failed counts the
  * points that did not converge. json_sep: NULL for a single curve, else the
  * key this curve gets in the JSON object. */
 static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *db,
-                         const char *out_dir, int json, const char *json_key, size_t *failed,
-                         vl_error *err) {
+                         const char *out_dir, int json, const char *json_key, int plot,
+                         kept_curve *keep, size_t *failed, vl_error *err) {
   vl_simulation *sim = NULL;
   vl_point *pts = NULL;
   double *buf = NULL;
@@ -100,6 +228,7 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
                            buf + 3 * grid, buf + 4 * grid, buf + 5 * grid};
   ctx.sim = sim;
   ctx.out_dir = out_dir;
+  if (plot && (st = keep_fields(&ctx, n, grid, err)) != VL_OK) goto done;
   ctx.tty = isatty(STDERR_FILENO);
   const vl_contact *contact = vl_simulation_contact(sim);
   if (!json)
@@ -122,6 +251,11 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
   st = vl_write_curve_csv(curve_path, n, pts, &meta, err);
   if (st != VL_OK) goto done;
   *failed += stats.failed;
+  char plots[256] = "";
+  if (plot) {
+    st = write_plots(out_dir, scene, json_key, sim, n, pts, &meta, &ctx, plots, sizeof plots, err);
+    if (st != VL_OK) goto done;
+  }
   if (json) {
     if (json_key) printf("\"%s\": ", json_key);
     vl_print_curve_json(stdout, n, pts, &meta);
@@ -146,23 +280,81 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
            stats.converged, stats.failed, stats.newton_iterations, stats.seconds,
            1e3 * stats.seconds / (double)n);
     printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
+    if (plot) printf("plots (png, svg) in %s: %s\n", out_dir, plots);
+  }
+  if (keep) {
+    const vl_psd *psd = vl_simulation_psd(sim);
+    *keep = (kept_curve){pts, n, meta, psd ? vl_psd_hrms(psd) : 0};
+    pts = NULL;
   }
 done:
+  free(ctx.kept_buf);
+  free(ctx.kept);
+  free(ctx.kept_index);
   free(buf);
   free(pts);
   vl_simulation_free(sim);
   return st;
 }
 
+/* The figures with one curve per fluid: DIR/stribeck-all and, when the
+ * Deborah number is defined (one-term compound), DIR/rolling-all. */
+static vl_status plot_all_fluids(const vl_scene *scene, const char *out_dir,
+                                 const kept_curve *curves, int json, vl_error *err) {
+  vl_plot_curve pc[VL_FLUIDS_MAX];
+  char labels[VL_FLUIDS_MAX][VL_NAME_MAX + 64];
+  bool deborah = true;
+  for (size_t k = 0; k < scene->n_fluids; k++) {
+    char eta[48];
+    vl_plot_format_value(eta, sizeof eta, curves[k].meta.eta_pa_s);
+    /* the viscosity first: a long fluid name is what gets cut in the legend */
+    snprintf(labels[k], sizeof labels[k], "η = %s Pa s (%s)", eta, scene->fluids[k]);
+    pc[k] = (vl_plot_curve){labels[k], curves[k].n, curves[k].pts, curves[k].meta,
+                            curves[k].h_rms_m};
+    if (!(curves[k].meta.tau_s > 0 && curves[k].meta.a0_m > 0)) deborah = false;
+  }
+  vl_plot_options opt;
+  vl_plot_options_defaults(&opt);
+  opt.title = scene->title[0] ? scene->title : scene->path;
+  opt.mark_half_load = scene->effects.fluid;
+  char stem[4200];
+  snprintf(stem, sizeof stem, "%s/stribeck-all", out_dir);
+  vl_status st =
+      vl_plot_compare(stem, scene->n_fluids, pc, scene->quantity, VL_PLOT_Y_MU, &opt, NULL, err);
+  if (st != VL_OK) return st;
+  if (deborah) {
+    snprintf(stem, sizeof stem, "%s/rolling-all", out_dir);
+    opt.mark_half_load = false;
+    st = vl_plot_compare(stem, scene->n_fluids, pc, VL_SWEEP_DEBORAH, VL_PLOT_Y_MU_ROLLING, &opt,
+                         NULL, err);
+    if (st != VL_OK) return st;
+  }
+  if (!json)
+    printf("plots (png, svg) in %s: stribeck-all%s\n", out_dir, deborah ? ", rolling-all" : "");
+  return VL_OK;
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+/* Sanitizer builds only: fontconfig, under PLplot's cairo drivers, keeps
+ * caches it never frees (not ours to fix); LeakSanitizer would fail every
+ * run with --plot. The summary of suppressed leaks is not printed. */
+const char *__lsan_default_suppressions(void);
+const char *__lsan_default_suppressions(void) { return "leak:libfontconfig.so\n"; }
+const char *__lsan_default_options(void);
+const char *__lsan_default_options(void) { return "print_suppressions=0"; }
+#endif
+
 int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   const char *scene_path = NULL, *out_dir = NULL;
-  int json = 0;
+  int json = 0, plot = 0;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       run_usage(stdout);
       return 0;
     } else if (!strcmp(argv[i], "--json")) {
       json = 1;
+    } else if (!strcmp(argv[i], "--plot")) {
+      plot = 1;
     } else if (!strcmp(argv[i], "--out")) {
       if (i + 1 >= argc) {
         fputs("viscolube run: option --out needs a DIR\n", stderr);
@@ -190,8 +382,14 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   int rc = 0;
   size_t failed = 0;
   char default_dir[2048];
+  kept_curve curves[VL_FLUIDS_MAX] = {{0}};
   vl_status st = vl_scene_load(scene_path, &scene, &err);
   if (st != VL_OK) goto fail;
+  /* before the sweep, not after minutes of solving */
+  if (plot && !vl_plot_available(&err)) {
+    st = VL_EIO;
+    goto fail;
+  }
   if (!out_dir) {
     const char *base = strrchr(scene_path, '/');
     base = base ? base + 1 : scene_path;
@@ -204,7 +402,7 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   st = vl_db_open(g->db_path, &db, &err);
   if (st != VL_OK) goto fail;
   if (scene.n_fluids <= 1) {
-    st = run_one(scene_path, &scene, db, out_dir, json, NULL, &failed, &err);
+    st = run_one(scene_path, &scene, db, out_dir, json, NULL, plot, NULL, &failed, &err);
     if (st != VL_OK) goto fail;
   } else {
     /* one curve per fluid, each in DIR/<fluid>/ */
@@ -216,10 +414,15 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
       char dir[4200];
       snprintf(dir, sizeof dir, "%s/%s", out_dir, one.fluid);
       if (json && k) fputs(",\n", stdout);
-      st = run_one(scene_path, &one, db, dir, json, one.fluid, &failed, &err);
+      st = run_one(scene_path, &one, db, dir, json, one.fluid, plot, plot ? &curves[k] : NULL,
+                   &failed, &err);
       if (st != VL_OK) goto fail;
     }
     if (json) fputs("}\n", stdout);
+    if (plot) {
+      st = plot_all_fluids(&scene, out_dir, curves, json, &err);
+      if (st != VL_OK) goto fail;
+    }
   }
   if (failed) rc = vl_status_exit_code(VL_ENOCONV);
   goto done;
@@ -227,6 +430,7 @@ fail:
   fprintf(stderr, "viscolube run: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
   rc = vl_status_exit_code(st);
 done:
+  for (size_t k = 0; k < VL_FLUIDS_MAX; k++) free(curves[k].pts);
   vl_db_close(db);
   return rc;
 }

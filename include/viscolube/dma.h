@@ -1,0 +1,136 @@
+/* viscolube: measured dynamic-mechanical (DMA) data -> a fitted compound.
+ *
+ * Reads a DMA export as users have it, builds the master curve at a
+ * reference temperature by time-temperature superposition (tts.h), fits
+ * WLF constants to the shifts and the creep-form Prony series to the master
+ * curve (prony_fit.h). The database stores the result with the raw points
+ * (database.h, vl_db_compound_add_measured); the shipped compounds go
+ * through the same code.
+ *
+ * File format (the CSV rules of csv.h: '#' comments, blank lines, LF or
+ * CRLF, optional UTF-8 byte-order mark, strict decimal numbers, no NaN/Inf):
+ *
+ *   - A header row naming the columns, in any order. Names are matched
+ *     without regard to case, blanks, '_' and '-' (single letters exactly):
+ *       frequency  f, freq, frequency, omega, w
+ *       E'         E', E_stor, E_storage, storage, storage modulus, E1
+ *       E''        E'', E_loss, loss, loss modulus, E2
+ *       tan delta  tan delta, tan_del, tand, tan(delta), loss factor
+ *       J', J''    J', J_stor, J_storage, J1 / J'', J_loss, J2 (compliances)
+ *       T          T, temp, temperature (optional)
+ *       set        set, isotherm (optional: which isotherm a row belongs to)
+ *     Required: frequency and one of {E', E''}, {E', tan delta},
+ *     {J', J''}. E', E'' and tan delta together are accepted (tan delta
+ *     must then equal E''/E' within 2 %). A unit may follow a name in
+ *     brackets: "f [Hz]", "E' (MPa)".
+ *   - An optional units row right after the header: frequency Hz or rad/s;
+ *     moduli Pa, kPa, MPa or GPa (compliances 1/Pa ... 1/GPa or Pa^-1 ...);
+ *     temperature C, °C, degC or K; tan delta and set '-', '1' or empty.
+ *     E' and E'' (or J' and J'') must have the same unit. Units come from
+ *     the header, the units row or the options, which must agree where more
+ *     than one is given; a column without any unit is refused (Hz and
+ *     rad/s differ by 2 pi, C and K by 273.15).
+ *   - Data rows: frequency, moduli, compliances and tan delta > 0.
+ *
+ * Isotherms: without a temperature column the file is one master curve at
+ * opts->tref_c (which is then required). With one, rows are grouped into
+ * isotherms: by the set column when present, else consecutive rows within
+ * VL_DMA_ISOTHERM_TOL_K of the first row of their group; groups whose mean
+ * temperatures lie within that tolerance are merged. A single isotherm
+ * needs tref_c equal to its temperature (within the tolerance): it cannot
+ * be shifted without WLF constants. Several isotherms are shifted (on
+ * log E', and log E'' too where E' is flat: see vl_tts_chain) to the isotherm
+ * nearest tref_c (default: the measured temperature nearest 20 C), WLF is
+ * fitted (3 or more isotherms) and the shifts are re-referred to tref_c
+ * exactly through the WLF equation; with 2 isotherms tref_c must be one of
+ * their temperatures.
+ *
+ * Refused, with FILE:LINE: column 'NAME' (field K) where a row is at fault:
+ * everything csv.h refuses; unknown, misspelt, duplicate or missing columns;
+ * missing, wrong or mixed units; E' decreasing with frequency within an
+ * isotherm by more than VL_DMA_DECREASE_TOL of its largest value at lower
+ * frequency (a Prony series cannot); tan delta inconsistent with E''/E';
+ * temperatures below absolute zero; a set spanning more than
+ * 2 VL_DMA_ISOTHERM_TOL_K; an isotherm with one point; isotherms that
+ * cannot be superposed; a master curve under one decade; fewer points than
+ * Prony terms + 1. */
+#ifndef VISCOLUBE_DMA_H
+#define VISCOLUBE_DMA_H
+
+#include <stddef.h>
+
+#include "viscolube/prony_fit.h"
+#include "viscolube/rheology.h"
+#include "viscolube/status.h"
+
+#define VL_DMA_ISOTHERM_TOL_K 1.0
+/* Measurement scatter lets E' dip between neighbouring points (up to 6.6 %
+ * in the pyvisco master curve); a real decrease is larger. */
+#define VL_DMA_DECREASE_TOL 0.10
+#define VL_DMA_MAX_POINTS 20000
+
+typedef enum {
+  VL_DMA_STORAGE_LOSS = 0,  /* E', E'' (tan delta may be present too) */
+  VL_DMA_STORAGE_TAN_DELTA, /* E', tan delta */
+  VL_DMA_COMPLIANCE         /* J', J'' */
+} vl_dma_kind;
+
+/* "storage-loss", "storage-tan-delta", "compliance". */
+const char *vl_dma_kind_name(vl_dma_kind kind);
+
+typedef struct {
+  const char *freq_unit;    /* "Hz" or "rad/s"; NULL: from the file */
+  const char *modulus_unit; /* "Pa", "kPa", "MPa", "GPa" (compliances in its
+                               reciprocal); NULL: from the file */
+  const char *temp_unit;    /* "C" or "K"; NULL: from the file */
+  double tref_c;            /* reference temperature; NAN: not given */
+  double terms_per_decade;  /* Prony grid density; 0: the default */
+  vl_prony_weights weights; /* Prony fit row weights (prony_fit.h) */
+  double nu;                /* Poisson ratio stored with the series */
+} vl_dma_options;
+
+/* No units, tref NAN, default grid, relative weights, nu = 0.5 (rubber,
+ * DMA in tension). */
+vl_dma_options vl_dma_options_default(void);
+
+/* The result of an import: the data as read (SI, file order), the
+ * isotherms with their shifts, the master curve and the fit. */
+typedef struct {
+  char *source; /* file name used in messages (owned) */
+  vl_dma_kind kind;
+  int has_temperature;           /* the file had a temperature column */
+  size_t n;                      /* data points */
+  size_t *line;                  /* source line of each point */
+  double *omega_rad_s;           /* angular frequency as measured */
+  double *temperature_c;         /* measured (tref_c when the file has none) */
+  double *storage_pa, *loss_pa;  /* E', E'' (derived when J or tan delta given) */
+  double *j1_per_pa, *j2_per_pa; /* compliance input only, else NULL */
+  size_t *isotherm;              /* isotherm index of each point */
+  double *reduced_omega_rad_s;   /* a_T omega: the master curve at tref_c */
+  size_t n_isotherms;
+  double *iso_temperature_c; /* mean temperature, increasing */
+  double *iso_log10_a_t;     /* shift of each isotherm relative to tref_c */
+  size_t *iso_points;        /* points per isotherm */
+  double tref_c;
+  double wlf_c1, wlf_c2_k; /* at tref_c; NAN with fewer than 3 isotherms */
+  double wlf_rms;          /* rms residual of the WLF fit in log10 a_T */
+  vl_prony prony;          /* the fitted series at tref_c */
+  vl_prony_fit_report fit;
+} vl_measured;
+
+/* Reads, shifts and fits the DMA file at path (see above). On VL_OK *out
+ * owns its arrays (release with vl_measured_free); on failure *out is
+ * empty (safe to free) and err holds one sentence naming the file (and
+ * line and column where a row is at fault). opts may be NULL (defaults).
+ * VL_EIO (unreadable file), VL_EINPUT, VL_ENOMEM, VL_ENOCONV. */
+vl_status vl_measured_read_file(const char *path, const vl_dma_options *opts, vl_measured *out,
+                                vl_error *err);
+
+/* As vl_measured_read_file for text[0..len) in memory, named source. */
+vl_status vl_measured_read_text(const char *text, size_t len, const char *source,
+                                const vl_dma_options *opts, vl_measured *out, vl_error *err);
+
+/* Releases what a vl_measured owns and empties it (NULL or empty is fine). */
+void vl_measured_free(vl_measured *m);
+
+#endif

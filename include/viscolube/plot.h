@@ -1,0 +1,168 @@
+/* viscolube: figures of curves, fields and moduli as PNG and SVG files,
+ * drawn with PLplot's cairo drivers (pngcairo, svgcairo).
+ *
+ * The module knows nothing of the solver: its inputs are arrays (the
+ * vl_point of a curve, the vl_fields of marked speeds, measured and fitted
+ * moduli) and labels. Every function writes STEM.png and STEM.svg (or the
+ * formats the options select), each through STEM.EXT.tmp renamed into place
+ * once PLplot has closed it and the file is checked complete, so a failure
+ * leaves no half-written figure.
+ *
+ * Conventions in every figure: axis titles carry units; a legend right of
+ * the plot area (never over the data) names each series; logarithmic axes
+ * are labelled at whole decades, every decade or every few when they would
+ * crowd; a point that did not converge is never joined to its neighbours:
+ * its lines have a gap there and it is drawn as a hollow marker on a row
+ * just above the x axis (it has no value to plot), listed in the legend as
+ * "not converged" (white inside, so that in the SVG each is one path filled
+ * white). Series are drawn with pens of 2 px or more in colours that are
+ * not greys; axes, grid, reference lines and marker edges are grey or black
+ * or thinner, so the series of a figure can be told apart in its SVG.
+ *
+ * PLplot keeps global state: these functions are not thread-safe. Errors
+ * PLplot reports as recoverable are captured (nothing is printed) and
+ * returned as VL_EINTERNAL; what can be foreseen (missing driver, file not
+ * writable, empty or bad input) is checked first. PLplot itself still ends
+ * the process on the errors it treats as fatal (out of memory inside it). */
+#ifndef VISCOLUBE_PLOT_H
+#define VISCOLUBE_PLOT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "viscolube/contact.h"
+#include "viscolube/output.h"
+#include "viscolube/scene.h"
+#include "viscolube/status.h"
+
+typedef enum { VL_PLOT_PNG = 1u, VL_PLOT_SVG = 2u } vl_plot_format;
+
+typedef struct {
+  unsigned formats;        /* VL_PLOT_PNG | VL_PLOT_SVG; 0 = both */
+  int width_px, height_px; /* 0 = 1000 x 750 (SVG: points) */
+  const char *title;       /* line above the plot; NULL or "" = none */
+  bool mark_half_load;     /* curves: mark where the fluid starts to carry half
+                              of the load (fluid_load_fraction crosses 0.5) */
+} vl_plot_options;
+
+/* What a call drew (the same in every format). */
+typedef struct {
+  size_t series;         /* data series drawn, one legend entry each */
+  size_t failed_markers; /* hollow markers for points that did not converge */
+  size_t files;          /* files written */
+} vl_plot_report;
+
+/* Both formats, 1000 x 750, no title, no half-load marks. */
+void vl_plot_options_defaults(vl_plot_options *opt);
+
+/* True when PLplot has both cairo drivers; otherwise false and err says
+ * which is missing (Debian package plplot-driver-cairo). */
+bool vl_plot_available(vl_error *err);
+
+/* Writes v as plain UTF-8 text with 3 significant digits: "0.25", "1500",
+ * "1×10⁻⁷", "3.2×10⁵" (powers of ten outside [1e-3, 1e4)). Returns the
+ * length written (truncated to size - 1, always NUL-terminated). For the
+ * labels callers build (speeds of marked curves, compound names...). */
+size_t vl_plot_format_value(char *buf, size_t size, double v);
+
+/* The Stribeck figure: mu and its four components mu_Rc, mu_Rf, mu_Sc, mu_Sf
+ * against the sweep quantity x (v0, v0*eta or v0 tau/a0, from pt->v0_m_s
+ * and meta as in the CSV) on a logarithmic axis; friction on a linear axis.
+ * A component that is zero at every converged point (no fluid, no sigma_s)
+ * is left out. marks[0..n_marks) are indices into pts of the speeds whose
+ * fields are plotted: they are numbered 1..n_marks on the mu curve, the
+ * numbers vl_plot_fields labels should carry (a mark on a point that did
+ * not converge is skipped; its number is not reused).
+ * VL_EINPUT: n = 0, x undefined (v0_eta without eta, deborah without tau
+ * or a0), a mark out of range; VL_EIO: a file could not be written;
+ * VL_EINTERNAL: PLplot reported an error. */
+vl_status vl_plot_stribeck(const char *stem, size_t n, const vl_point *pts,
+                           const vl_curve_meta *meta, vl_sweep_quantity x, size_t n_marks,
+                           const size_t *marks, const vl_plot_options *opt,
+                           vl_plot_report *report, vl_error *err);
+
+/* The minimum separation against x: u_min/h_rms when h_rms_m > 0, else
+ * u_min in um; the y axis is logarithmic when the data span more than a
+ * factor 30. Marks and errors as vl_plot_stribeck. */
+vl_status vl_plot_separation(const char *stem, size_t n, const vl_point *pts,
+                             const vl_curve_meta *meta, vl_sweep_quantity x, double h_rms_m,
+                             size_t n_marks, const size_t *marks, const vl_plot_options *opt,
+                             vl_plot_report *report, vl_error *err);
+
+typedef enum {
+  VL_PLOT_FIELD_PC = 0, /* solid contact pressure p_c / p0 */
+  VL_PLOT_FIELD_PF,     /* fluid pressure p_f / p0 */
+  VL_PLOT_FIELD_U,      /* separation u / h_rms (log axis when it spans more than a
+                           factor 30), or u in um on a linear axis when h_rms = 0 */
+  VL_PLOT_FIELD_AREA    /* contact area ratio A/A0 */
+} vl_plot_field;
+
+/* Scales of the fields figures: a0, p0 of the Hertz contact (relaxed
+ * modulus) and h_rms (0 = smooth surface). */
+typedef struct {
+  double a0_m, p0_pa, h_rms_m;
+} vl_plot_scales;
+
+/* One field against x/a0, one curve per fields[j] (in a sequential colour
+ * order: give them by increasing speed), legend labels[j] (plain text; a
+ * NULL label draws "j+1"). fields[j].n == 0 stands for a speed that did not
+ * converge: no curve, a hollow marker in the legend. Thin dotted lines mark
+ * x = +-a0. VL_EINPUT: k = 0, bad scales, a field with NULL arrays. */
+vl_status vl_plot_fields(const char *stem, vl_plot_field field, size_t k,
+                         const vl_fields *fields, const char *const *labels,
+                         const vl_plot_scales *scales, const vl_plot_options *opt,
+                         vl_plot_report *report, vl_error *err);
+
+/* One curve of vl_plot_compare. */
+typedef struct {
+  const char *label; /* legend text (plain) */
+  size_t n;
+  const vl_point *pts;
+  vl_curve_meta meta;
+  double h_rms_m;    /* for VL_PLOT_Y_U_MIN; 0 = u_min in um */
+} vl_plot_curve;
+
+typedef enum {
+  VL_PLOT_Y_MU = 0,
+  VL_PLOT_Y_MU_RC,
+  VL_PLOT_Y_MU_RF,
+  VL_PLOT_Y_MU_SC,
+  VL_PLOT_Y_MU_SF,
+  VL_PLOT_Y_MU_ROLLING,  /* mu_Rc + mu_Rf (the seed's Fig. 13) */
+  VL_PLOT_Y_U_MIN,       /* u_min / h_rms */
+  VL_PLOT_Y_FLUID_LOAD   /* share of the load carried by the fluid */
+} vl_plot_y;
+
+/* k curves of quantity y against x on one axis (8 distinguishable colours,
+ * then dash patterns repeat them). With opt->mark_half_load each curve gets
+ * a diamond where its fluid load share crosses 0.5. Errors as
+ * vl_plot_stribeck; every curve must define x. */
+vl_status vl_plot_compare(const char *stem, size_t k, const vl_plot_curve *curves,
+                          vl_sweep_quantity x, vl_plot_y y, const vl_plot_options *opt,
+                          vl_plot_report *report, vl_error *err);
+
+/* Measured and fitted moduli of a compound. */
+typedef struct {
+  size_t n; /* measured points (at reduced frequency when shifted) */
+  const double *omega_rad_s, *storage_pa, *loss_pa;
+  size_t n_fit; /* the fitted model on a frequency grid; 0 = none */
+  const double *fit_omega_rad_s, *fit_storage_pa, *fit_loss_pa;
+  const char *measured_label; /* NULL = "measured" */
+  const char *fit_label;      /* NULL = "Prony fit" */
+} vl_plot_modulus_data;
+
+/* Two panels against angular frequency, log-log: E' and E'' (top), tan
+ * delta = E''/E' (bottom); measured as markers, fitted as lines of the same
+ * colour. VL_EINPUT: no points, a non-positive or non-finite value. */
+vl_status vl_plot_modulus(const char *stem, const vl_plot_modulus_data *d,
+                          const vl_plot_options *opt, vl_plot_report *report, vl_error *err);
+
+/* Shift factors of time-temperature superposition: log10 a_T of n isotherms
+ * against temperature (markers) and, when c1 > 0 and c2_k > 0, the WLF curve
+ * log10 a_T = -c1 (T - Tref)/(c2 + T - Tref) over the data's range.
+ * VL_EINPUT: n = 0, non-finite values. */
+vl_status vl_plot_shifts(const char *stem, size_t n, const double *t_c, const double *log10_a_t,
+                         double tref_c, double c1, double c2_k, const vl_plot_options *opt,
+                         vl_plot_report *report, vl_error *err);
+
+#endif

@@ -1,0 +1,80 @@
+/* viscolube: time-temperature superposition of measured isotherms.
+ *
+ * A thermorheologically simple rubber measured at temperature T behaves at
+ * the reference temperature Tref as at the reduced frequency
+ *   w_r = a_T(T) w,   log10 a_T(Tref) = 0,
+ * with a_T > 1 below Tref (colder = stiffer = "higher frequency"). Only
+ * horizontal shifts are applied (no vertical b_T = rho T / rho0 T0 factor,
+ * a few % over a typical range and usually below the scatter of the data).
+ *
+ * Shifts are found pairwise between neighbouring isotherms from the overlap
+ * of their curves in the (log w, log E') and (log w, log E'') planes, and
+ * chained from the reference isotherm outwards. The WLF equation (MODEL.md
+ * section 2) is then fitted to the chained shifts. */
+#ifndef VISCOLUBE_TTS_H
+#define VISCOLUBE_TTS_H
+
+#include <stddef.h>
+
+#include "viscolube/status.h"
+
+/* One isotherm: n points sorted by increasing log10 w (rad/s); the two
+ * curves log10 E' and log10 E'' (Pa) at those points. */
+typedef struct {
+  double temperature_c;
+  size_t n;
+  const double *log10_omega;
+  const double *log10_storage;
+  const double *log10_loss;
+} vl_tts_isotherm;
+
+/* The horizontal shift d (decades) that lays isotherm b onto isotherm a:
+ * b's point at log w sits on a's curve at log w + d. Minimises the mean
+ * squared difference of log E' (plus loss_weight times that of log E'')
+ * between each curve's points and the other curve's piecewise-linear
+ * interpolant, over the overlap of the two frequency ranges (each curve is
+ * compared where the other is defined, so neither is favoured). The
+ * overlap must hold at least 3 points of the two curves together and a
+ * quarter of the narrower window; among such shifts the global minimum is
+ * found by a scan (0.05 decade, then 0.005 decade around its best) and
+ * refined by golden section.
+ *
+ * *shift gets d; *rms (may be NULL) the rms log10 mismatch at d.
+ * VL_EINPUT if an isotherm has fewer than 2 distinct frequencies or the
+ * curves have no shift with enough overlap (the message names both
+ * temperatures). */
+vl_status vl_tts_pair_shift(const vl_tts_isotherm *a, const vl_tts_isotherm *b, double loss_weight,
+                            double *shift, double *rms, vl_error *err);
+
+/* Shifts of n isotherms sorted by increasing temperature relative to
+ * isotherm ref: log10_a_t[ref] = 0 and
+ *   log10_a_t[k+1] = log10_a_t[k] + d(iso[k], iso[k+1]).
+ * Each pair is shifted on log E' and log E'' together (E' alone is flat on
+ * the rubbery and glassy plateaus, where E'' still varies) unless, at that
+ * shift, log E' alone mismatches by more than 1.5 times (+ 0.001) the
+ * larger of its mismatch at its own best shift and the mismatch its
+ * scatter explains (rms residuals of quadratic fits of log E' against
+ * log w, added in quadrature for the two isotherms): then E'' does not obey
+ * superposition - below the glass transition secondary relaxations
+ * dominate it (on the pyvisco data a shift on E'' puts glassy isotherms
+ * ~10 decades off) - and log E', monotonic and still superposable there,
+ * decides alone.
+ * pair_rms (n - 1 values, may be NULL) gets each pair's rms mismatch.
+ * Errors as vl_tts_pair_shift. */
+vl_status vl_tts_chain(size_t n, const vl_tts_isotherm *iso, size_t ref, double *log10_a_t,
+                       double *pair_rms, vl_error *err);
+
+/* Least-squares fit of the WLF equation
+ *   log10 a_T = -C1 (T - Tref) / (C2 + T - Tref)
+ * to n >= 3 shifts at distinct temperatures (Celsius) measured relative to
+ * tref_c (the shift at tref_c is 0 by definition; it need not be one of the
+ * t_c). For fixed C2 the model is linear in C1 (solved exactly); C2 is
+ * found by a scan in log C2 and golden-section refinement over
+ * (Tref - Tmin, 1e5 K], so that C2 + T - Tref > 0 at every data point.
+ * *c1, *c2_k get the constants and *rms (may be NULL) the rms residual in
+ * log10 a_T. VL_EINPUT: fewer than 3 points, non-finite input, shifts that
+ * do not decrease with temperature overall (C1 <= 0: not WLF). */
+vl_status vl_wlf_fit(size_t n, const double *t_c, const double *log10_a_t, double tref_c,
+                     double *c1, double *c2_k, double *rms, vl_error *err);
+
+#endif

@@ -1,0 +1,1098 @@
+/* DMA import: header and units, isotherms, superposition, WLF, Prony fit
+ * (dma.h). The numbers themselves are read by the strict CSV reader of
+ * csv.h; this file only recognises the columns, works out their units and
+ * hands the reader a column list that names them exactly as the file does,
+ * so every cell-level error keeps the reader's FILE:LINE: column form. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "viscolube/dma.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "viscolube/csv.h"
+#include "viscolube/tts.h"
+
+#define TWO_PI 6.283185307179586476925287
+#define MAX_FIELDS 16
+#define CELL_MAX 128
+#define DEFAULT_TREF_C 20.0
+/* E', E'' and tan delta all given: tan delta must match E''/E' this well
+ * (exports round each column to 4-6 digits on its own). */
+#define TAN_CONSISTENCY 0.02
+/* A neighbouring pair whose shift points the wrong way by more than this
+ * (decades) is not scatter: colder must mean stiffer. */
+#define WRONG_WAY_TOL 0.1
+
+typedef enum { R_FREQ, R_STORAGE, R_LOSS, R_TAN, R_J1, R_J2, R_TEMP, R_SET, R_COUNT } role;
+
+typedef enum { U_FREQ, U_MODULUS, U_COMPLIANCE, U_TEMP, U_NONE } unit_family;
+
+static const struct {
+  const char *what; /* for messages */
+  unit_family family;
+  const char *aliases[10]; /* display spellings; one-letter ones match exactly */
+} roles[R_COUNT] = {
+    [R_FREQ] = {"frequency", U_FREQ, {"f", "w", "freq", "frequency", "omega", "angular frequency"}},
+    [R_STORAGE] = {"storage modulus E'",
+                   U_MODULUS,
+                   {"E'", "E_stor", "E_storage", "storage", "storage modulus", "E1", "E_prime"}},
+    [R_LOSS] = {"loss modulus E''",
+                U_MODULUS,
+                {"E''", "E\"", "E_loss", "loss", "loss modulus", "E2"}},
+    [R_TAN] = {"tan delta",
+               U_NONE,
+               {"tan delta", "tan_del", "tand", "tan(delta)", "loss factor", "tan \xCE\xB4",
+                "tan(\xCE\xB4)"}},
+    [R_J1] = {"storage compliance J'",
+              U_COMPLIANCE,
+              {"J'", "J_stor", "J_storage", "storage compliance", "J1"}},
+    [R_J2] = {"loss compliance J''",
+              U_COMPLIANCE,
+              {"J''", "J\"", "J_loss", "loss compliance", "J2"}},
+    [R_TEMP] = {"temperature", U_TEMP, {"T", "temp", "temperature"}},
+    [R_SET] = {"set", U_NONE, {"set", "isotherm"}},
+};
+
+typedef struct {
+  const char *name;
+  double factor; /* SI value = factor * file value (+ offset for temperatures) */
+  double offset;
+} unit_def;
+
+static const unit_def freq_units[] = {{"Hz", TWO_PI, 0.0}, {"rad/s", 1.0, 0.0}, {NULL, 0, 0}};
+static const unit_def modulus_units[] = {
+    {"Pa", 1.0, 0.0}, {"kPa", 1e3, 0.0}, {"MPa", 1e6, 0.0}, {"GPa", 1e9, 0.0}, {NULL, 0, 0}};
+static const unit_def compliance_units[] = {
+    {"1/Pa", 1.0, 0.0},    {"1/kPa", 1e-3, 0.0},  {"1/MPa", 1e-6, 0.0},
+    {"1/GPa", 1e-9, 0.0},  {"Pa^-1", 1.0, 0.0},   {"kPa^-1", 1e-3, 0.0},
+    {"MPa^-1", 1e-6, 0.0}, {"GPa^-1", 1e-9, 0.0}, {NULL, 0, 0}};
+static const unit_def temp_units[] = {{"C", 1.0, 0.0},
+                                      {"\xC2\xB0"
+                                       "C",
+                                       1.0, 0.0},
+                                      {"degC", 1.0, 0.0},
+                                      {"K", 1.0, -273.15},
+                                      {NULL, 0, 0}};
+static const unit_def none_units[] = {
+    {"-", 1.0, 0.0}, {"1", 1.0, 0.0}, {"", 1.0, 0.0}, {NULL, 0, 0}};
+
+static const unit_def *family_units(unit_family f) {
+  switch (f) {
+  case U_FREQ: return freq_units;
+  case U_MODULUS: return modulus_units;
+  case U_COMPLIANCE: return compliance_units;
+  case U_TEMP: return temp_units;
+  default: return none_units;
+  }
+}
+
+/* "Hz|rad/s" for the CSV reader and for messages ("Hz or rad/s"). */
+static void family_list(unit_family f, const char *sep, char *buf, size_t size) {
+  size_t k = 0;
+  buf[0] = '\0';
+  for (const unit_def *u = family_units(f); u->name && k < size; u++) {
+    if (!strcmp(sep, "|") || u->name[0]) {
+      int w = snprintf(buf + k, size - k, "%s%s", k ? sep : "", u->name);
+      if (w < 0) break;
+      k += (size_t)w;
+    }
+  }
+}
+
+static const unit_def *find_unit(unit_family f, const char *s) {
+  for (const unit_def *u = family_units(f); u->name; u++)
+    if (!strcmp(u->name, s)) return u;
+  return NULL;
+}
+
+const char *vl_dma_kind_name(vl_dma_kind kind) {
+  switch (kind) {
+  case VL_DMA_STORAGE_LOSS: return "storage-loss";
+  case VL_DMA_STORAGE_TAN_DELTA: return "storage-tan-delta";
+  case VL_DMA_COMPLIANCE: return "compliance";
+  }
+  return "?";
+}
+
+vl_dma_options vl_dma_options_default(void) {
+  vl_dma_options o = {NULL, NULL, NULL, NAN, 0.0, VL_PRONY_WEIGHTS_RELATIVE, 0.5};
+  return o;
+}
+
+void vl_measured_free(vl_measured *m) {
+  if (!m) return;
+  free(m->source);
+  free(m->line);
+  free(m->omega_rad_s);
+  free(m->temperature_c);
+  free(m->storage_pa);
+  free(m->loss_pa);
+  free(m->j1_per_pa);
+  free(m->j2_per_pa);
+  free(m->isotherm);
+  free(m->reduced_omega_rad_s);
+  free(m->iso_temperature_c);
+  free(m->iso_log10_a_t);
+  free(m->iso_points);
+  memset(m, 0, sizeof *m);
+}
+
+/* ---- header recognition ----------------------------------------------- */
+
+/* Trims blanks and one pair of double quotes, like csv.c does for header
+ * and units cells, into a NUL-terminated copy. Returns 0 if too long. */
+static int cell_text(const char *p, size_t n, char *out, size_t cap) {
+  while (n > 0 && (*p == ' ' || *p == '\t'))
+    p++, n--;
+  while (n > 0 && (p[n - 1] == ' ' || p[n - 1] == '\t'))
+    n--;
+  if (n >= 2 && p[0] == '"' && p[n - 1] == '"') {
+    p++, n -= 2;
+    while (n > 0 && (*p == ' ' || *p == '\t'))
+      p++, n--;
+    while (n > 0 && (p[n - 1] == ' ' || p[n - 1] == '\t'))
+      n--;
+  }
+  if (n >= cap) return 0;
+  memcpy(out, p, n);
+  out[n] = '\0';
+  return 1;
+}
+
+/* Lower case without blanks, '_' and '-': "E_Stor" and "e stor" compare
+ * equal to "estor". */
+static void normalise(const char *s, char *out, size_t cap) {
+  size_t k = 0;
+  for (; *s && k + 1 < cap; s++) {
+    char c = *s;
+    if (c == ' ' || c == '\t' || c == '_' || c == '-') continue;
+    if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
+    out[k++] = c;
+  }
+  out[k] = '\0';
+}
+
+static int alias_match(const char *alias, const char *name) {
+  if (strlen(alias) == 1) return !strcmp(alias, name);
+  char a[CELL_MAX], b[CELL_MAX];
+  normalise(alias, a, sizeof a);
+  normalise(name, b, sizeof b);
+  return a[0] && !strcmp(a, b);
+}
+
+static size_t edit_distance(const char *a, const char *b) {
+  size_t na = strlen(a), nb = strlen(b);
+  if (na > 40 || nb > 40) return 99;
+  size_t prev[41], cur[41];
+  for (size_t j = 0; j <= nb; j++)
+    prev[j] = j;
+  for (size_t i = 1; i <= na; i++) {
+    cur[0] = i;
+    for (size_t j = 1; j <= nb; j++) {
+      size_t sub = prev[j - 1] + (a[i - 1] != b[j - 1]);
+      size_t del = prev[j] + 1, ins = cur[j - 1] + 1;
+      cur[j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
+    }
+    memcpy(prev, cur, (nb + 1) * sizeof *prev);
+  }
+  return prev[nb];
+}
+
+/* Role of a header name (R_COUNT if none). */
+static role name_role(const char *name) {
+  for (int r = 0; r < R_COUNT; r++)
+    for (int k = 0; k < 10 && roles[r].aliases[k]; k++)
+      if (alias_match(roles[r].aliases[k], name)) return (role)r;
+  return R_COUNT;
+}
+
+/* The closest alias to an unknown name, or NULL if none is close. */
+static const char *suggest(const char *name) {
+  char b[CELL_MAX];
+  normalise(name, b, sizeof b);
+  const char *best = NULL;
+  size_t len = strlen(b), limit = len / 2 < 1 ? 1 : len / 2 > 2 ? 2 : len / 2;
+  size_t best_d = limit + 1;
+  for (int r = 0; r < R_COUNT; r++) {
+    for (int k = 0; k < 10 && roles[r].aliases[k]; k++) {
+      char a[CELL_MAX];
+      normalise(roles[r].aliases[k], a, sizeof a);
+      if (strlen(a) < 3) continue;
+      size_t d = edit_distance(a, b);
+      if (d < best_d) best_d = d, best = roles[r].aliases[k];
+    }
+  }
+  return best;
+}
+
+typedef struct {
+  role r;
+  char text[CELL_MAX]; /* the cell as the CSV reader will match it */
+  char inline_unit[CELL_MAX];
+  int has_inline_unit;
+  char row_unit[CELL_MAX];
+  int has_row_unit;
+} field;
+
+/* Splits "E' [MPa]" / "f (Hz)" into name and unit when the whole text is
+ * not itself a known name. */
+static role parse_header_cell(field *f) {
+  role r = name_role(f->text);
+  if (r != R_COUNT) return r;
+  size_t n = strlen(f->text);
+  if (n < 3) return R_COUNT;
+  char close = f->text[n - 1], open = close == ']' ? '[' : close == ')' ? '(' : 0;
+  if (!open) return R_COUNT;
+  const char *o = strrchr(f->text, open);
+  if (!o || o == f->text) return R_COUNT;
+  char name[CELL_MAX], unit[CELL_MAX];
+  if (!cell_text(f->text, (size_t)(o - f->text), name, sizeof name) ||
+      !cell_text(o + 1, (size_t)(f->text + n - 1 - (o + 1)), unit, sizeof unit))
+    return R_COUNT;
+  r = name_role(name);
+  if (r == R_COUNT) return R_COUNT;
+  snprintf(f->inline_unit, sizeof f->inline_unit, "%s", unit);
+  f->has_inline_unit = 1;
+  return r;
+}
+
+/* Iterates over the meaningful lines of text (skipping blank and '#'
+ * lines): returns 1 and the line (without CR) and its number, or 0 at the
+ * end. *pos and *line_no carry the state. */
+static int next_line(const char *text, size_t len, size_t *pos, size_t *line_no, const char **p,
+                     size_t *n) {
+  if (*pos == 0 && len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) *pos = 3;
+  while (*pos < len) {
+    (*line_no)++;
+    const char *start = text + *pos;
+    const char *nl = memchr(start, '\n', len - *pos);
+    size_t end = nl ? (size_t)(nl - text) : len;
+    size_t ln = end - *pos;
+    *pos = end + 1;
+    if (ln > 0 && start[ln - 1] == '\r') ln--;
+    size_t i = 0;
+    while (i < ln && (start[i] == ' ' || start[i] == '\t'))
+      i++;
+    if (i == ln || start[i] == '#') continue;
+    *p = start;
+    *n = ln;
+    return 1;
+  }
+  return 0;
+}
+
+static size_t split_cells(const char *p, size_t n, const char **cell, size_t *cell_n, size_t cap) {
+  size_t count = 0;
+  const char *start = p, *end = p + n;
+  for (const char *c = p;; c++) {
+    if (c == end || *c == ',') {
+      if (count < cap) cell[count] = start, cell_n[count] = (size_t)(c - start);
+      count++;
+      if (c == end) break;
+      start = c + 1;
+    }
+  }
+  return count;
+}
+
+static int is_number(const char *s) {
+  double v;
+  return vl_csv_parse_double(s, &v, NULL) == VL_OK;
+}
+
+/* ---- the import ------------------------------------------------------- */
+
+typedef struct {
+  const char *src;
+  field fields[MAX_FIELDS];
+  size_t n_fields;
+  size_t header_line, units_line;
+  int col_of_role[R_COUNT]; /* requested column index, or -1 */
+  int field_of_role[R_COUNT];
+  const unit_def *unit[R_COUNT];
+} layout;
+
+/* Reads the header and the optional units row; fills lay. */
+static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error *err) {
+  size_t pos = 0, line_no = 0, n;
+  const char *p;
+  const char *cell[MAX_FIELDS + 1];
+  size_t cell_n[MAX_FIELDS + 1];
+  for (int r = 0; r < R_COUNT; r++)
+    lay->col_of_role[r] = lay->field_of_role[r] = -1;
+  if (!next_line(text, len, &pos, &line_no, &p, &n)) {
+    vl_error_set(err,
+                 "%s:%zu: empty file (expected a header such as 'f,E_stor,E_loss,T' and data "
+                 "rows)",
+                 lay->src, line_no ? line_no : 1);
+    return VL_EINPUT;
+  }
+  lay->header_line = line_no;
+  size_t count = split_cells(p, n, cell, cell_n, MAX_FIELDS + 1);
+  if (count > MAX_FIELDS) {
+    vl_error_set(err, "%s:%zu: the header has %zu columns; a DMA file has at most %d", lay->src,
+                 line_no, count, MAX_FIELDS);
+    return VL_EINPUT;
+  }
+  int all_numbers = 1;
+  for (size_t k = 0; k < count; k++) {
+    field *f = &lay->fields[k];
+    memset(f, 0, sizeof *f);
+    if (!cell_text(cell[k], cell_n[k], f->text, sizeof f->text)) {
+      vl_error_set(err, "%s:%zu: header field %zu is too long to be a column name", lay->src,
+                   line_no, k + 1);
+      return VL_EINPUT;
+    }
+    if (!is_number(f->text)) all_numbers = 0;
+  }
+  if (all_numbers) {
+    vl_error_set(err,
+                 "%s:%zu: missing header: expected column names such as 'f,E_stor,E_loss,T' "
+                 "before the numbers",
+                 lay->src, line_no);
+    return VL_EINPUT;
+  }
+  for (size_t k = 0; k < count; k++) {
+    field *f = &lay->fields[k];
+    if (!f->text[0]) {
+      vl_error_set(err, "%s:%zu: header field %zu is empty (every column needs a name)", lay->src,
+                   line_no, k + 1);
+      return VL_EINPUT;
+    }
+    role r = parse_header_cell(f);
+    char norm[CELL_MAX];
+    normalise(f->text, norm, sizeof norm);
+    if (r == R_COUNT &&
+        (!strcmp(f->text, "t") || !strcmp(norm, "time") || !strncmp(norm, "erelax", 6))) {
+      vl_error_set(err,
+                   "%s:%zu: header field %zu: '%.40s' looks like time-domain (relaxation) data; "
+                   "only frequency sweeps (f, E', E'' or tan delta, or J', J'') can be imported",
+                   lay->src, line_no, k + 1, f->text);
+      return VL_EINPUT;
+    }
+    if (r == R_COUNT) {
+      const char *s = suggest(f->text);
+      vl_error_set(err,
+                   "%s:%zu: header field %zu: unknown column '%.40s'%s%s%s (known: frequency f, "
+                   "E_stor, E_loss, tan delta, J_stor, J_loss, T, set; see compound add "
+                   "--help)",
+                   lay->src, line_no, k + 1, f->text, s ? " (did you mean '" : "", s ? s : "",
+                   s ? "'?)" : "");
+      return VL_EINPUT;
+    }
+    if (lay->field_of_role[r] >= 0) {
+      vl_error_set(err,
+                   "%s:%zu: header field %zu: a second %s column ('%.40s', after '%.40s' in "
+                   "field %d)",
+                   lay->src, line_no, k + 1, roles[r].what, f->text,
+                   lay->fields[lay->field_of_role[r]].text, lay->field_of_role[r] + 1);
+      return VL_EINPUT;
+    }
+    f->r = r;
+    lay->field_of_role[r] = (int)k;
+  }
+  lay->n_fields = count;
+  int *fr = lay->field_of_role;
+  if (fr[R_FREQ] < 0) {
+    vl_error_set(err, "%s:%zu: the header lacks a frequency column (f, freq or omega)", lay->src,
+                 line_no);
+    return VL_EINPUT;
+  }
+  int moduli = fr[R_STORAGE] >= 0 || fr[R_LOSS] >= 0 || fr[R_TAN] >= 0;
+  int compl = fr[R_J1] >= 0 || fr[R_J2] >= 0;
+  if (moduli && compl ) {
+    vl_error_set(err,
+                 "%s:%zu: the header has both moduli and compliances: give E' with E'' (or "
+                 "tan delta), or J' with J''",
+                 lay->src, line_no);
+    return VL_EINPUT;
+  }
+  if (compl &&(fr[R_J1] < 0 || fr[R_J2] < 0)) {
+    vl_error_set(err, "%s:%zu: the header lacks the %s column (J' and J'' go together)", lay->src,
+                 line_no, fr[R_J1] < 0 ? "storage compliance J'" : "loss compliance J''");
+    return VL_EINPUT;
+  }
+  if (!compl &&(fr[R_STORAGE] < 0 || (fr[R_LOSS] < 0 && fr[R_TAN] < 0))) {
+    vl_error_set(err,
+                 "%s:%zu: the header lacks the %s column (need E' with E'' or tan delta, or J' "
+                 "with J'')",
+                 lay->src, line_no,
+                 fr[R_STORAGE] < 0 ? "storage modulus E' (E_stor)" : "loss modulus E'' (E_loss)");
+    return VL_EINPUT;
+  }
+
+  /* Units row: the next line, when one of its cells is not a number but
+   * spells its column's unit (the CSV reader applies the same rule). */
+  if (next_line(text, len, &pos, &line_no, &p, &n)) {
+    count = split_cells(p, n, cell, cell_n, MAX_FIELDS + 1);
+    if (count == lay->n_fields) {
+      char u[MAX_FIELDS][CELL_MAX];
+      int is_units = 0;
+      for (size_t k = 0; k < count; k++) {
+        if (!cell_text(cell[k], cell_n[k], u[k], CELL_MAX)) u[k][0] = '\x01', u[k][1] = '\0';
+        unit_family fam = roles[lay->fields[k].r].family;
+        if (!is_number(u[k]) && find_unit(fam, u[k])) is_units = 1;
+      }
+      if (is_units) {
+        lay->units_line = line_no;
+        for (size_t k = 0; k < count; k++) {
+          field *f = &lay->fields[k];
+          unit_family fam = roles[f->r].family;
+          if (!find_unit(fam, u[k])) {
+            char list[128];
+            family_list(fam, ", ", list, sizeof list);
+            vl_error_set(err,
+                         "%s:%zu: column '%s' (field %zu): '%.40s' is not a unit of %s "
+                         "(expected %s%s)",
+                         lay->src, line_no, f->text, k + 1, u[k][0] == '\x01' ? "?" : u[k],
+                         roles[f->r].what, fam == U_NONE ? "'-', '1' or nothing" : "one of ",
+                         fam == U_NONE ? "" : list);
+            return VL_EINPUT;
+          }
+          snprintf(f->row_unit, sizeof f->row_unit, "%s", u[k]);
+          f->has_row_unit = 1;
+        }
+      }
+    }
+  }
+  return VL_OK;
+}
+
+/* Settles the unit of every column from the header, the units row and the
+ * options, which must agree. */
+static vl_status resolve_units(layout *lay, const vl_dma_options *o, vl_error *err) {
+  const unit_def *family_seen[U_NONE + 1] = {0};
+  int family_field[U_NONE + 1] = {0};
+  for (size_t k = 0; k < lay->n_fields; k++) {
+    field *f = &lay->fields[k];
+    unit_family fam = roles[f->r].family;
+    const unit_def *from_header = NULL, *from_row = NULL, *from_opt = NULL;
+    const char *opt_name = NULL, *opt_text = NULL;
+    char list[128], inv[32];
+    family_list(fam, ", ", list, sizeof list);
+    if (f->has_inline_unit && !(from_header = find_unit(fam, f->inline_unit))) {
+      vl_error_set(err,
+                   "%s:%zu: header field %zu: '%.40s' in '%s' is not a unit of %s (expected %s%s)",
+                   lay->src, lay->header_line, k + 1, f->inline_unit, f->text, roles[f->r].what,
+                   fam == U_NONE ? "'-' or '1'" : "one of ", fam == U_NONE ? "" : list);
+      return VL_EINPUT;
+    }
+    if (f->has_row_unit) from_row = find_unit(fam, f->row_unit);
+    if (fam == U_FREQ) opt_name = "frequency unit", opt_text = o->freq_unit;
+    if (fam == U_MODULUS) opt_name = "modulus unit", opt_text = o->modulus_unit;
+    if (fam == U_TEMP) opt_name = "temperature unit", opt_text = o->temp_unit;
+    if (fam == U_COMPLIANCE && o->modulus_unit) {
+      opt_name = "modulus unit";
+      snprintf(inv, sizeof inv, "1/%s", o->modulus_unit);
+      opt_text = inv;
+    }
+    if (opt_text) {
+      from_opt = find_unit(fam, opt_text);
+      if (!from_opt && fam == U_COMPLIANCE) from_opt = find_unit(fam, o->modulus_unit);
+      if (!from_opt) {
+        vl_error_set(err, "the %s '%s' is not one of %s", opt_name, opt_text, list);
+        return VL_EINPUT;
+      }
+    }
+    /* the same physical unit may be spelt two ways (C, degC) */
+    const unit_def *u = from_header ? from_header : from_row ? from_row : from_opt;
+    const unit_def *pair[3] = {from_header, from_row, from_opt};
+    const char *where[3] = {"the header", "the units row", "the options"};
+    for (int a = 0; a < 3; a++) {
+      for (int b = a + 1; b < 3; b++) {
+        if (pair[a] && pair[b] &&
+            (pair[a]->factor != pair[b]->factor || pair[a]->offset != pair[b]->offset)) {
+          vl_error_set(err,
+                       "%s:%zu: column '%s' (field %zu): mixed units: %s says %s but %s says %s",
+                       lay->src, (a == 1 || b == 1) ? lay->units_line : lay->header_line, f->text,
+                       k + 1, where[a], pair[a]->name, where[b], pair[b]->name);
+          return VL_EINPUT;
+        }
+      }
+    }
+    if (!u && fam != U_NONE) {
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %zu): no unit for the %s (give a units row with "
+                   "one of %s after the header, write it as '%s [unit]', or give the %s option)",
+                   lay->src, lay->header_line, f->text, k + 1, roles[f->r].what, list, f->text,
+                   opt_name ? opt_name : "unit");
+      return VL_EINPUT;
+    }
+    if (!u) u = &none_units[0];
+    if (fam == U_MODULUS || fam == U_COMPLIANCE) {
+      if (family_seen[fam] && family_seen[fam]->factor != u->factor) {
+        vl_error_set(err,
+                     "%s:%zu: column '%s' (field %zu): mixed units: %s but '%s' (field %d) is in "
+                     "%s; give both in the same unit",
+                     lay->src, lay->units_line ? lay->units_line : lay->header_line, f->text, k + 1,
+                     u->name, lay->fields[family_field[fam]].text, family_field[fam] + 1,
+                     family_seen[fam]->name);
+        return VL_EINPUT;
+      }
+      family_seen[fam] = u;
+      family_field[fam] = (int)k;
+    }
+    lay->unit[f->r] = u;
+  }
+  return VL_OK;
+}
+
+/* One point's place for sorting: isotherm, then frequency. */
+typedef struct {
+  size_t iso;
+  double omega;
+  size_t idx;
+} order_key;
+
+static int cmp_key(const void *pa, const void *pb) {
+  const order_key *a = pa, *b = pb;
+  if (a->iso != b->iso) return a->iso < b->iso ? -1 : 1;
+  if (a->omega != b->omega) return a->omega < b->omega ? -1 : 1;
+  return a->idx < b->idx ? -1 : a->idx > b->idx;
+}
+
+typedef struct {
+  double mean;
+  size_t id;
+} group_key;
+
+static int cmp_group(const void *pa, const void *pb) {
+  const group_key *a = pa, *b = pb;
+  if (a->mean != b->mean) return a->mean < b->mean ? -1 : 1;
+  return a->id < b->id ? -1 : a->id > b->id;
+}
+
+static vl_status alloc_arrays(vl_measured *m, size_t n, int compliance) {
+  m->line = calloc(n, sizeof *m->line);
+  m->omega_rad_s = calloc(n, sizeof *m->omega_rad_s);
+  m->temperature_c = calloc(n, sizeof *m->temperature_c);
+  m->storage_pa = calloc(n, sizeof *m->storage_pa);
+  m->loss_pa = calloc(n, sizeof *m->loss_pa);
+  m->isotherm = calloc(n, sizeof *m->isotherm);
+  m->reduced_omega_rad_s = calloc(n, sizeof *m->reduced_omega_rad_s);
+  if (compliance) {
+    m->j1_per_pa = calloc(n, sizeof *m->j1_per_pa);
+    m->j2_per_pa = calloc(n, sizeof *m->j2_per_pa);
+    if (!m->j1_per_pa || !m->j2_per_pa) return VL_ENOMEM;
+  }
+  if (!m->line || !m->omega_rad_s || !m->temperature_c || !m->storage_pa || !m->loss_pa ||
+      !m->isotherm || !m->reduced_omega_rad_s)
+    return VL_ENOMEM;
+  return VL_OK;
+}
+
+/* Groups the points into isotherms (see dma.h); fills m->isotherm,
+ * n_isotherms, iso_temperature_c (increasing) and iso_points. */
+static vl_status group_isotherms(vl_measured *m, const double *set, const layout *lay,
+                                 vl_error *err) {
+  size_t n = m->n, ng = 0;
+  vl_status st = VL_OK;
+  size_t *gid = malloc(n * sizeof *gid), *map = NULL, *cnt = NULL;
+  double *sum = NULL, *gset = NULL, *tmin = NULL, *tmax = NULL;
+  size_t *first = NULL;
+  group_key *keys = NULL;
+  sum = malloc(n * sizeof *sum);
+  gset = malloc(n * sizeof *gset);
+  tmin = malloc(n * sizeof *tmin);
+  tmax = malloc(n * sizeof *tmax);
+  cnt = calloc(n, sizeof *cnt);
+  first = malloc(n * sizeof *first);
+  if (!gid || !sum || !gset || !tmin || !tmax || !cnt || !first) {
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  for (size_t k = 0; k < n; k++) {
+    double t = m->temperature_c[k];
+    size_t g = ng;
+    if (set) {
+      for (size_t j = 0; j < ng; j++)
+        if (gset[j] == set[k]) g = j;
+    } else if (ng > 0 && fabs(t - m->temperature_c[first[ng - 1]]) <= VL_DMA_ISOTHERM_TOL_K) {
+      g = ng - 1;
+    }
+    if (g == ng) {
+      gset[ng] = set ? set[k] : 0.0;
+      first[ng] = k;
+      sum[ng] = 0.0;
+      tmin[ng] = tmax[ng] = t;
+      ng++;
+    }
+    gid[k] = g;
+    sum[g] += t;
+    cnt[g]++;
+    tmin[g] = fmin(tmin[g], t);
+    tmax[g] = fmax(tmax[g], t);
+    if (set && tmax[g] - tmin[g] > 2.0 * VL_DMA_ISOTHERM_TOL_K) {
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %d): set %g spans %.4g to %.4g C; an isotherm "
+                   "must be measured at one temperature (within %g K)",
+                   m->source, m->line[k], lay->fields[lay->field_of_role[R_TEMP]].text,
+                   lay->field_of_role[R_TEMP] + 1, set[k], tmin[g], tmax[g],
+                   2.0 * VL_DMA_ISOTHERM_TOL_K);
+      st = VL_EINPUT;
+      goto cleanup;
+    }
+  }
+  /* sort groups by mean temperature; merge those within the tolerance */
+  keys = malloc(ng * sizeof *keys);
+  map = malloc(ng * sizeof *map);
+  if (!keys || !map) {
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  for (size_t g = 0; g < ng; g++)
+    keys[g] = (group_key){sum[g] / (double)cnt[g], g};
+  qsort(keys, ng, sizeof *keys, cmp_group);
+  size_t out = 0;
+  double msum = 0.0, mcnt = 0.0;
+  for (size_t i = 0; i < ng; i++) {
+    size_t g = keys[i].id;
+    if (i > 0 && keys[i].mean - msum / mcnt <= VL_DMA_ISOTHERM_TOL_K) {
+      map[g] = out - 1;
+    } else {
+      msum = mcnt = 0.0;
+      map[g] = out++;
+    }
+    msum += sum[g];
+    mcnt += (double)cnt[g];
+  }
+  m->n_isotherms = out;
+  m->iso_temperature_c = calloc(out, sizeof *m->iso_temperature_c);
+  m->iso_log10_a_t = calloc(out, sizeof *m->iso_log10_a_t);
+  m->iso_points = calloc(out, sizeof *m->iso_points);
+  if (!m->iso_temperature_c || !m->iso_log10_a_t || !m->iso_points) {
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  for (size_t k = 0; k < n; k++) {
+    size_t g = map[gid[k]];
+    m->isotherm[k] = g;
+    m->iso_temperature_c[g] += m->temperature_c[k];
+    m->iso_points[g]++;
+  }
+  for (size_t g = 0; g < out; g++)
+    m->iso_temperature_c[g] /= (double)m->iso_points[g];
+  for (size_t k = 0; k < n && out > 1; k++) {
+    if (m->iso_points[m->isotherm[k]] < 2) {
+      vl_error_set(err,
+                   "%s:%zu: the isotherm at %.4g C has a single point: each temperature needs a "
+                   "frequency sweep of several points",
+                   m->source, m->line[k], m->iso_temperature_c[m->isotherm[k]]);
+      st = VL_EINPUT;
+      goto cleanup;
+    }
+  }
+
+cleanup:
+  if (st == VL_ENOMEM) vl_error_set(err, "%s: out of memory grouping isotherms", m->source);
+  free(gid);
+  free(map);
+  free(cnt);
+  free(sum);
+  free(gset);
+  free(tmin);
+  free(tmax);
+  free(first);
+  free(keys);
+  return st;
+}
+
+/* E' must not fall with frequency within an isotherm (beyond scatter). */
+static vl_status check_increasing(const vl_measured *m, const order_key *ord, const layout *lay,
+                                  vl_error *err) {
+  size_t best = 0;
+  for (size_t i = 0; i < m->n; i++) {
+    size_t k = ord[i].idx;
+    if (i == 0 || ord[i].iso != ord[i - 1].iso) {
+      best = k;
+      continue;
+    }
+    if (m->storage_pa[k] < (1.0 - VL_DMA_DECREASE_TOL) * m->storage_pa[best]) {
+      int compl = m->kind == VL_DMA_COMPLIANCE;
+      int fld = lay->field_of_role[compl ? R_J1 : R_STORAGE];
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %d): the storage modulus%s decreases with "
+                   "frequency (%.4g Pa at %.4g rad/s, %.0f %% below %.4g Pa at %.4g rad/s on "
+                   "line %zu%s): a linear viscoelastic solid's E' never decreases with frequency",
+                   m->source, m->line[k], lay->fields[fld].text, fld + 1,
+                   compl ? " E' = J'/(J'^2 + J''^2)" : "", m->storage_pa[k], m->omega_rad_s[k],
+                   100.0 * (1.0 - m->storage_pa[k] / m->storage_pa[best]), m->storage_pa[best],
+                   m->omega_rad_s[best], m->line[best],
+                   m->has_temperature ? ", same isotherm" : "");
+      return VL_EINPUT;
+    }
+    if (m->storage_pa[k] > m->storage_pa[best]) best = k;
+  }
+  return VL_OK;
+}
+
+/* Shifts the isotherms to tref (see dma.h) and fills the reduced
+ * frequencies. */
+static vl_status superpose(vl_measured *m, const order_key *ord, double tref_c, vl_error *err) {
+  size_t ni = m->n_isotherms;
+  const double tol = VL_DMA_ISOTHERM_TOL_K;
+  double tmin = m->iso_temperature_c[0], tmax = m->iso_temperature_c[ni - 1];
+  if (!m->has_temperature) {
+    if (isnan(tref_c)) {
+      vl_error_set(err,
+                   "%s: no temperature column, so this is a master curve: give its reference "
+                   "temperature (--tref C)",
+                   m->source);
+      return VL_EINPUT;
+    }
+    m->tref_c = tref_c;
+    return VL_OK;
+  }
+  if (ni == 1) {
+    if (isnan(tref_c)) {
+      vl_error_set(err,
+                   "%s: every row is at one temperature (%.4g C): give --tref %.4g to take this "
+                   "isotherm as the master curve (one isotherm cannot be shifted)",
+                   m->source, tmin, tmin);
+      return VL_EINPUT;
+    }
+    if (fabs(tref_c - tmin) > tol) {
+      vl_error_set(err,
+                   "%s: a single isotherm at %.4g C cannot be shifted to %.4g C without WLF "
+                   "constants: measure more temperatures or use --tref %.4g",
+                   m->source, tmin, tref_c, tmin);
+      return VL_EINPUT;
+    }
+    m->tref_c = tref_c;
+    return VL_OK;
+  }
+  if (isnan(tref_c)) { /* default: the isotherm nearest room temperature */
+    tref_c = m->iso_temperature_c[0];
+    for (size_t g = 1; g < ni; g++)
+      if (fabs(m->iso_temperature_c[g] - DEFAULT_TREF_C) < fabs(tref_c - DEFAULT_TREF_C))
+        tref_c = m->iso_temperature_c[g];
+  }
+  if (tref_c < tmin - tol || tref_c > tmax + tol) {
+    vl_error_set(err,
+                 "%s: reference temperature %.4g C lies outside the measured %.4g to %.4g C: "
+                 "the shifts cannot be extrapolated",
+                 m->source, tref_c, tmin, tmax);
+    return VL_EINPUT;
+  }
+  size_t ref = 0;
+  for (size_t g = 1; g < ni; g++)
+    if (fabs(m->iso_temperature_c[g] - tref_c) < fabs(m->iso_temperature_c[ref] - tref_c)) ref = g;
+  if (ni == 2 && fabs(m->iso_temperature_c[ref] - tref_c) > tol) {
+    vl_error_set(err,
+                 "%s: with two isotherms (%.4g and %.4g C) there is no WLF fit to interpolate "
+                 "the shift: use one of their temperatures as --tref",
+                 m->source, tmin, tmax);
+    return VL_EINPUT;
+  }
+
+  vl_status st = VL_OK;
+  vl_tts_isotherm *iso = calloc(ni, sizeof *iso);
+  double *lw = malloc(m->n * sizeof *lw), *l1 = malloc(m->n * sizeof *l1);
+  double *l2 = malloc(m->n * sizeof *l2), *lat = malloc(ni * sizeof *lat);
+  if (!iso || !lw || !l1 || !l2 || !lat) {
+    vl_error_set(err, "%s: out of memory shifting isotherms", m->source);
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  for (size_t i = 0; i < m->n; i++) {
+    size_t k = ord[i].idx;
+    lw[i] = log10(m->omega_rad_s[k]);
+    l1[i] = log10(m->storage_pa[k]);
+    l2[i] = log10(m->loss_pa[k]);
+  }
+  for (size_t i = 0, g = 0; g < ni; g++) {
+    iso[g] = (vl_tts_isotherm){m->iso_temperature_c[g], m->iso_points[g], lw + i, l1 + i, l2 + i};
+    i += m->iso_points[g];
+  }
+  if ((st = vl_tts_chain(ni, iso, ref, lat, NULL, err)) != VL_OK) {
+    vl_error_prefix(err, "%s", m->source);
+    goto cleanup;
+  }
+  for (size_t g = 0; g + 1 < ni; g++) {
+    if (lat[g + 1] - lat[g] > WRONG_WAY_TOL) {
+      vl_error_set(err,
+                   "%s: the isotherm at %.4g C superposes %.2f decades above the colder one at "
+                   "%.4g C: warmer must mean softer (is the temperature column right, and the "
+                   "material thermorheologically simple?)",
+                   m->source, m->iso_temperature_c[g + 1], lat[g + 1] - lat[g],
+                   m->iso_temperature_c[g]);
+      st = VL_EINPUT;
+      goto cleanup;
+    }
+  }
+  double tr = m->iso_temperature_c[ref];
+  m->wlf_c1 = m->wlf_c2_k = m->wlf_rms = NAN;
+  if (ni >= 3) {
+    double c1, c2, rms;
+    if ((st = vl_wlf_fit(ni, m->iso_temperature_c, lat, tr, &c1, &c2, &rms, err)) != VL_OK) {
+      vl_error_prefix(err, "%s", m->source);
+      goto cleanup;
+    }
+    /* WLF about tr re-referred to tref exactly: with u = tref - tr,
+     * C2' = C2 + u, C1' = C1 C2 / C2', and every shift loses a_T(tref). */
+    double u = tref_c - tr, c2n = c2 + u;
+    if (!(c2n > 0.0)) {
+      vl_error_set(err, "%s: the WLF fit (C2 = %.4g K about %.4g C) does not reach %.4g C",
+                   m->source, c2, tr, tref_c);
+      st = VL_EINPUT;
+      goto cleanup;
+    }
+    double at_tref = vl_wlf_log10_shift(c1, c2, tref_c, tr);
+    for (size_t g = 0; g < ni; g++)
+      lat[g] -= at_tref;
+    m->wlf_c1 = c1 * c2 / c2n;
+    m->wlf_c2_k = c2n;
+    m->wlf_rms = rms;
+  }
+  for (size_t g = 0; g < ni; g++)
+    m->iso_log10_a_t[g] = lat[g];
+  for (size_t k = 0; k < m->n; k++)
+    m->reduced_omega_rad_s[k] = m->omega_rad_s[k] * pow(10.0, lat[m->isotherm[k]]);
+  m->tref_c = tref_c;
+
+cleanup:
+  free(iso);
+  free(lw);
+  free(l1);
+  free(l2);
+  free(lat);
+  return st;
+}
+
+vl_status vl_measured_read_text(const char *text, size_t len, const char *source,
+                                const vl_dma_options *opts, vl_measured *out, vl_error *err) {
+  vl_status st = VL_OK;
+  vl_dma_options o = opts ? *opts : vl_dma_options_default();
+  layout lay;
+  vl_csv csv;
+  vl_csv_column cols[R_COUNT];
+  char unit_lists[R_COUNT][160];
+  order_key *ord = NULL;
+  double *set = NULL;
+  memset(out, 0, sizeof *out);
+  memset(&csv, 0, sizeof csv);
+  memset(&lay, 0, sizeof lay);
+  out->wlf_c1 = out->wlf_c2_k = out->wlf_rms = NAN;
+  out->tref_c = NAN;
+  out->source = strdup(source ? source : "<text>");
+  if (!out->source) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  lay.src = out->source;
+  if (!text && len > 0) {
+    vl_error_set(err, "%s: no text", lay.src);
+    st = VL_EINTERNAL;
+    goto cleanup;
+  }
+  if ((st = scan_header(text ? text : "", len, &lay, err)) != VL_OK) goto cleanup;
+  if ((st = resolve_units(&lay, &o, err)) != VL_OK) goto cleanup;
+
+  /* the column list for the CSV reader, named as in this file */
+  size_t nc = 0;
+  for (int r = 0; r < R_COUNT; r++) {
+    int f = lay.field_of_role[r];
+    if (f < 0) continue;
+    family_list(roles[r].family, "|", unit_lists[r], sizeof unit_lists[r]);
+    cols[nc] = (vl_csv_column){.name = lay.fields[f].text,
+                               .units = unit_lists[r],
+                               .sign = (r == R_TEMP || r == R_SET) ? VL_CSV_ANY : VL_CSV_POSITIVE};
+    lay.col_of_role[r] = (int)nc++;
+  }
+  if ((st = vl_csv_read_text(text, len, lay.src, cols, nc, &csv, err)) != VL_OK) goto cleanup;
+  if (csv.n_rows > VL_DMA_MAX_POINTS) {
+    vl_error_set(err, "%s:%zu: more than %d data points: thin the data first", lay.src,
+                 csv.lines[VL_DMA_MAX_POINTS], VL_DMA_MAX_POINTS);
+    st = VL_EINPUT;
+    goto cleanup;
+  }
+
+  int *cr = lay.col_of_role;
+  vl_measured *m = out;
+  m->n = csv.n_rows;
+  m->kind = cr[R_J1] >= 0     ? VL_DMA_COMPLIANCE
+            : cr[R_LOSS] >= 0 ? VL_DMA_STORAGE_LOSS
+                              : VL_DMA_STORAGE_TAN_DELTA;
+  m->has_temperature = cr[R_TEMP] >= 0;
+  if ((st = alloc_arrays(m, m->n, m->kind == VL_DMA_COMPLIANCE)) != VL_OK) {
+    vl_error_set(err, "%s: out of memory", lay.src);
+    goto cleanup;
+  }
+  if (cr[R_SET] >= 0 && cr[R_TEMP] >= 0 && !(set = malloc(m->n * sizeof *set))) {
+    vl_error_set(err, "%s: out of memory", lay.src);
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  for (size_t k = 0; k < m->n; k++) {
+    m->line[k] = csv.lines[k];
+    m->omega_rad_s[k] = vl_csv_value(&csv, k, (size_t)cr[R_FREQ]) * lay.unit[R_FREQ]->factor;
+    if (m->kind == VL_DMA_COMPLIANCE) {
+      double j1 = vl_csv_value(&csv, k, (size_t)cr[R_J1]) * lay.unit[R_J1]->factor;
+      double j2 = vl_csv_value(&csv, k, (size_t)cr[R_J2]) * lay.unit[R_J2]->factor;
+      double mag2 = j1 * j1 + j2 * j2; /* E = 1/J with J = J' - i J'' */
+      m->j1_per_pa[k] = j1;
+      m->j2_per_pa[k] = j2;
+      m->storage_pa[k] = j1 / mag2;
+      m->loss_pa[k] = j2 / mag2;
+    } else {
+      double e1 = vl_csv_value(&csv, k, (size_t)cr[R_STORAGE]) * lay.unit[R_STORAGE]->factor;
+      m->storage_pa[k] = e1;
+      if (cr[R_LOSS] >= 0) {
+        m->loss_pa[k] = vl_csv_value(&csv, k, (size_t)cr[R_LOSS]) * lay.unit[R_LOSS]->factor;
+        if (cr[R_TAN] >= 0) {
+          double td = vl_csv_value(&csv, k, (size_t)cr[R_TAN]), ratio = m->loss_pa[k] / e1;
+          if (fabs(td - ratio) > TAN_CONSISTENCY * ratio) {
+            vl_error_set(err,
+                         "%s:%zu: column '%s' (field %d): tan delta %.6g differs from E''/E' = "
+                         "%.6g by more than %.0f %% (are the columns mixed up?)",
+                         lay.src, m->line[k], lay.fields[lay.field_of_role[R_TAN]].text,
+                         lay.field_of_role[R_TAN] + 1, td, ratio, 100.0 * TAN_CONSISTENCY);
+            st = VL_EINPUT;
+            goto cleanup;
+          }
+        }
+      } else {
+        m->loss_pa[k] = vl_csv_value(&csv, k, (size_t)cr[R_TAN]) * e1;
+      }
+    }
+    if (!(isfinite(m->omega_rad_s[k]) && isfinite(m->storage_pa[k]) && isfinite(m->loss_pa[k]) &&
+          m->storage_pa[k] > 0.0 && m->loss_pa[k] > 0.0 && m->omega_rad_s[k] > 0.0)) {
+      vl_error_set(err, "%s:%zu: a value is out of range after conversion to SI units", lay.src,
+                   m->line[k]);
+      st = VL_EINPUT;
+      goto cleanup;
+    }
+    if (m->has_temperature) {
+      double raw = vl_csv_value(&csv, k, (size_t)cr[R_TEMP]);
+      double t = raw + lay.unit[R_TEMP]->offset;
+      if (!(t > -273.15)) {
+        vl_error_set(err, "%s:%zu: column '%s' (field %d): %.6g %s is not above absolute zero",
+                     lay.src, m->line[k], lay.fields[lay.field_of_role[R_TEMP]].text,
+                     lay.field_of_role[R_TEMP] + 1, raw, lay.unit[R_TEMP]->name);
+        st = VL_EINPUT;
+        goto cleanup;
+      }
+      m->temperature_c[k] = t;
+      if (set) set[k] = vl_csv_value(&csv, k, (size_t)cr[R_SET]);
+    } else {
+      m->temperature_c[k] = isnan(o.tref_c) ? 0.0 : o.tref_c;
+    }
+  }
+
+  if (m->has_temperature) {
+    if ((st = group_isotherms(m, set, &lay, err)) != VL_OK) goto cleanup;
+  } else {
+    m->n_isotherms = 1;
+    m->iso_temperature_c = calloc(1, sizeof *m->iso_temperature_c);
+    m->iso_log10_a_t = calloc(1, sizeof *m->iso_log10_a_t);
+    m->iso_points = calloc(1, sizeof *m->iso_points);
+    if (!m->iso_temperature_c || !m->iso_log10_a_t || !m->iso_points) {
+      vl_error_set(err, "%s: out of memory", lay.src);
+      st = VL_ENOMEM;
+      goto cleanup;
+    }
+    m->iso_points[0] = m->n;
+    m->iso_temperature_c[0] = m->temperature_c[0];
+  }
+  if (!(ord = malloc(m->n * sizeof *ord))) {
+    vl_error_set(err, "%s: out of memory", lay.src);
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  for (size_t k = 0; k < m->n; k++)
+    ord[k] = (order_key){m->isotherm[k], m->omega_rad_s[k], k};
+  qsort(ord, m->n, sizeof *ord, cmp_key);
+  if ((st = check_increasing(m, ord, &lay, err)) != VL_OK) goto cleanup;
+  for (size_t k = 0; k < m->n; k++)
+    m->reduced_omega_rad_s[k] = m->omega_rad_s[k];
+  if ((st = superpose(m, ord, o.tref_c, err)) != VL_OK) goto cleanup;
+  if (!m->has_temperature) {
+    m->iso_temperature_c[0] = m->tref_c;
+  } else if (m->n_isotherms == 1) {
+    m->iso_log10_a_t[0] = 0.0;
+  }
+
+  /* the master curve and its fit */
+  double wmin = INFINITY, wmax = 0.0;
+  for (size_t k = 0; k < m->n; k++) {
+    wmin = fmin(wmin, m->reduced_omega_rad_s[k]);
+    wmax = fmax(wmax, m->reduced_omega_rad_s[k]);
+  }
+  if (!(wmax >= 10.0 * wmin * (1.0 - 1e-12))) {
+    vl_error_set(err,
+                 "%s: the %s spans %.2f decades of frequency (%.4g to %.4g rad/s): a Prony fit "
+                 "needs at least one decade",
+                 lay.src, m->n_isotherms > 1 ? "master curve" : "data", log10(wmax / wmin), wmin,
+                 wmax);
+    st = VL_EINPUT;
+    goto cleanup;
+  }
+  double per_decade =
+      o.terms_per_decade > 0.0 ? o.terms_per_decade : VL_PRONY_FIT_DEFAULT_PER_DECADE;
+  size_t ng = vl_prony_fit_grid(wmin, wmax, per_decade, NULL, 0);
+  if (ng > 0 && m->n < ng + 1) {
+    vl_error_set(err,
+                 "%s: %zu points cannot determine %zu Prony terms and Einf over %.2f decades at "
+                 "%g terms per decade: give more points or fewer terms per decade",
+                 lay.src, m->n, ng, log10(wmax / wmin), per_decade);
+    st = VL_EINPUT;
+    goto cleanup;
+  }
+  st = vl_prony_fit(m->n, m->reduced_omega_rad_s, m->storage_pa, m->loss_pa, o.terms_per_decade,
+                    o.weights, o.nu, &m->prony, &m->fit, err);
+  if (st != VL_OK) vl_error_prefix(err, "%s", lay.src);
+
+cleanup:
+  vl_csv_free(&csv);
+  free(ord);
+  free(set);
+  if (st != VL_OK) vl_measured_free(out);
+  return st;
+}
+
+vl_status vl_measured_read_file(const char *path, const vl_dma_options *opts, vl_measured *out,
+                                vl_error *err) {
+  memset(out, 0, sizeof *out);
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    vl_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    return VL_EIO;
+  }
+  char *buf = NULL;
+  size_t len = 0, cap = 0;
+  vl_status st = VL_OK;
+  for (;;) {
+    if (len == cap) {
+      /* a DMA export of VL_DMA_MAX_POINTS rows is a few MB at most */
+      if (cap >= ((size_t)64 << 20)) {
+        vl_error_set(err, "%s: larger than 64 MiB: not a DMA export", path);
+        st = VL_EINPUT;
+        break;
+      }
+      size_t ncap = cap ? 2 * cap : 65536;
+      char *nb = realloc(buf, ncap);
+      if (!nb) {
+        vl_error_set(err, "%s: out of memory", path);
+        st = VL_ENOMEM;
+        break;
+      }
+      buf = nb;
+      cap = ncap;
+    }
+    size_t got = fread(buf + len, 1, cap - len, f);
+    len += got;
+    if (got == 0) break;
+  }
+  if (st == VL_OK && ferror(f)) {
+    vl_error_set(err, "%s: cannot read: %s", path, strerror(errno));
+    st = VL_EIO;
+  }
+  fclose(f);
+  if (st == VL_OK) st = vl_measured_read_text(buf, len, path, opts, out, err);
+  free(buf);
+  return st;
+}

@@ -1,0 +1,366 @@
+/* Time-temperature superposition: pairwise shifts and the WLF fit (tts.h). */
+#include "viscolube/tts.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define COARSE_STEP 0.05 /* decades: the global scan */
+#define SCAN_STEP 0.005  /* decades: the fine scan around the coarse minimum */
+#define MIN_OVERLAP_FRAC 0.25
+#define MIN_OVERLAP_POINTS 3
+#define GOLDEN 0.6180339887498949
+/* The shift found with E' and E'' together stands when E' alone superposes
+ * there within this factor of its own best mismatch (plus a floor in log10
+ * for data without noise): E'' then tells the same story and adds the
+ * information E' lacks on its plateaus. Worse means E'' does not superpose
+ * (secondary relaxations below the glass transition), and E' decides. */
+#define CONSISTENT_RATIO 1.5
+#define CONSISTENT_FLOOR 1e-3
+#define WLF_C2_MAX 1e5 /* K: beyond this WLF is a straight line in T */
+#define WLF_SCAN 400
+
+/* A curve with distinct, increasing x (repeats averaged). */
+typedef struct {
+  size_t n;
+  double *x, *y1, *y2;
+} curve;
+
+static void curve_free(curve *c) {
+  free(c->x);
+  free(c->y1);
+  free(c->y2);
+  memset(c, 0, sizeof *c);
+}
+
+static vl_status curve_make(const vl_tts_isotherm *iso, curve *c) {
+  memset(c, 0, sizeof *c);
+  c->x = malloc(iso->n * sizeof *c->x);
+  c->y1 = malloc(iso->n * sizeof *c->y1);
+  c->y2 = malloc(iso->n * sizeof *c->y2);
+  if (!c->x || !c->y1 || !c->y2) {
+    curve_free(c);
+    return VL_ENOMEM;
+  }
+  for (size_t k = 0; k < iso->n;) {
+    size_t j = k;
+    double s1 = 0.0, s2 = 0.0;
+    while (j < iso->n && iso->log10_omega[j] == iso->log10_omega[k]) {
+      s1 += iso->log10_storage[j];
+      s2 += iso->log10_loss[j];
+      j++;
+    }
+    c->x[c->n] = iso->log10_omega[k];
+    c->y1[c->n] = s1 / (double)(j - k);
+    c->y2[c->n] = s2 / (double)(j - k);
+    c->n++;
+    k = j;
+  }
+  return VL_OK;
+}
+
+/* Piecewise-linear value of c at x (x within [x0, x_{n-1}]). */
+static void curve_at(const curve *c, double x, double *y1, double *y2) {
+  size_t lo = 0, hi = c->n - 1;
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (c->x[mid] <= x)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  double t = (x - c->x[lo]) / (c->x[hi] - c->x[lo]);
+  if (t < 0.0) t = 0.0;
+  if (t > 1.0) t = 1.0;
+  *y1 = c->y1[lo] + t * (c->y1[hi] - c->y1[lo]);
+  *y2 = c->y2[lo] + t * (c->y2[hi] - c->y2[lo]);
+}
+
+/* Sums of squared log mismatches of b shifted by d against a, both ways:
+ * *s1 for log E', *s2 for log E'', over *count residuals. Returns 0 when
+ * the overlap is too small to judge. */
+static int mismatch_parts(const curve *a, const curve *b, double d, double *s1, double *s2,
+                          size_t *count) {
+  *s1 = *s2 = 0.0;
+  *count = 0;
+  double lo = fmax(a->x[0], b->x[0] + d), hi = fmin(a->x[a->n - 1], b->x[b->n - 1] + d);
+  double wa = a->x[a->n - 1] - a->x[0], wb = b->x[b->n - 1] - b->x[0];
+  if (!(hi - lo >= MIN_OVERLAP_FRAC * fmin(wa, wb)) || !(hi > lo)) return 0;
+  for (size_t j = 0; j < b->n; j++) {
+    double xq = b->x[j] + d, y1, y2;
+    if (xq < lo || xq > hi) continue;
+    curve_at(a, xq, &y1, &y2);
+    *s1 += (b->y1[j] - y1) * (b->y1[j] - y1);
+    *s2 += (b->y2[j] - y2) * (b->y2[j] - y2);
+    (*count)++;
+  }
+  for (size_t i = 0; i < a->n; i++) {
+    double xq = a->x[i] - d, y1, y2;
+    if (a->x[i] < lo || a->x[i] > hi) continue;
+    curve_at(b, xq, &y1, &y2);
+    *s1 += (a->y1[i] - y1) * (a->y1[i] - y1);
+    *s2 += (a->y2[i] - y2) * (a->y2[i] - y2);
+    (*count)++;
+  }
+  return *count >= MIN_OVERLAP_POINTS;
+}
+
+/* Mean squared mismatch of log E' plus wl times that of log E'', or
+ * INFINITY when the overlap is too small to judge. */
+static double mismatch(const curve *a, const curve *b, double d, double wl) {
+  double s1, s2;
+  size_t n;
+  if (!mismatch_parts(a, b, d, &s1, &s2, &n)) return INFINITY;
+  return (s1 + wl * s2) / ((1.0 + wl) * (double)n);
+}
+
+/* The best shifts of cb onto ca for nw loss weights wl[] at once (one
+ * coarse scan serves all; see vl_tts_pair_shift); ta, tb name the
+ * isotherms in messages. */
+static vl_status shift_curves(const curve *ca, const curve *cb, size_t nw, const double *wl,
+                              double ta, double tb, double *shift, double *rms, vl_error *err) {
+  if (ca->n < 2 || cb->n < 2) {
+    vl_error_set(err, "the isotherm at %.4g C has fewer than 2 distinct frequencies",
+                 ca->n < 2 ? ta : tb);
+    return VL_EINPUT;
+  }
+  double d_lo = ca->x[0] - cb->x[cb->n - 1], d_hi = ca->x[ca->n - 1] - cb->x[0];
+  double best[2] = {NAN, NAN}, best_f[2] = {INFINITY, INFINITY};
+  /* coarse scan of the whole range */
+  size_t steps = (size_t)ceil((d_hi - d_lo) / COARSE_STEP);
+  for (size_t k = 0; k <= steps; k++) {
+    double d = d_lo + (d_hi - d_lo) * (double)k / (double)(steps ? steps : 1), s1, s2;
+    size_t n;
+    if (!mismatch_parts(ca, cb, d, &s1, &s2, &n)) continue;
+    for (size_t w = 0; w < nw; w++) {
+      double f = (s1 + wl[w] * s2) / ((1.0 + wl[w]) * (double)n);
+      if (f < best_f[w]) best_f[w] = f, best[w] = d;
+    }
+  }
+  if (!isfinite(best_f[0])) {
+    vl_error_set(err,
+                 "the isotherms at %.4g C and %.4g C cannot be superposed: their frequency "
+                 "windows cannot overlap by a quarter of the narrower one",
+                 ta, tb);
+    return VL_EINPUT;
+  }
+  for (size_t w = 0; w < nw; w++) {
+    /* a fine scan around the coarse minimum, then golden section */
+    double centre = best[w];
+    int half = (int)ceil(COARSE_STEP / SCAN_STEP);
+    for (int k = -half; k <= half; k++) {
+      double d = centre + k * SCAN_STEP;
+      if (d < d_lo || d > d_hi) continue;
+      double f = mismatch(ca, cb, d, wl[w]);
+      if (f < best_f[w]) best_f[w] = f, best[w] = d;
+    }
+    double lo = best[w] - SCAN_STEP, hi = best[w] + SCAN_STEP;
+    double c = hi - GOLDEN * (hi - lo), d = lo + GOLDEN * (hi - lo);
+    double fc = mismatch(ca, cb, c, wl[w]), fd = mismatch(ca, cb, d, wl[w]);
+    for (int it = 0; it < 30; it++) {
+      if (fc < fd) {
+        hi = d, d = c, fd = fc;
+        c = hi - GOLDEN * (hi - lo);
+        fc = mismatch(ca, cb, c, wl[w]);
+      } else {
+        lo = c, c = d, fc = fd;
+        d = lo + GOLDEN * (hi - lo);
+        fd = mismatch(ca, cb, d, wl[w]);
+      }
+    }
+    double mid = 0.5 * (lo + hi), fm = mismatch(ca, cb, mid, wl[w]);
+    if (fm < best_f[w]) best_f[w] = fm, best[w] = mid;
+    shift[w] = best[w];
+    if (rms) rms[w] = sqrt(best_f[w]);
+  }
+  return VL_OK;
+}
+
+vl_status vl_tts_pair_shift(const vl_tts_isotherm *a, const vl_tts_isotherm *b, double loss_weight,
+                            double *shift, double *rms, vl_error *err) {
+  curve ca, cb;
+  memset(&cb, 0, sizeof cb);
+  vl_status st;
+  if ((st = curve_make(a, &ca)) != VL_OK || (st = curve_make(b, &cb)) != VL_OK) {
+    curve_free(&ca);
+    vl_error_set(err, "out of memory shifting isotherms");
+    return st;
+  }
+  double r;
+  st = shift_curves(&ca, &cb, 1, &loss_weight, a->temperature_c, b->temperature_c, shift, &r, err);
+  if (st == VL_OK && rms) *rms = r;
+  curve_free(&ca);
+  curve_free(&cb);
+  return st;
+}
+
+/* Scatter of log E' along a curve: the rms residual (n - 3 degrees of
+ * freedom) of a least-squares quadratic in log w; 0 when there are too few
+ * points to tell. A curve that is not quadratic over its window reads as a
+ * little noisier than it is, which only makes E'' more welcome. */
+static double storage_scatter(const curve *c) {
+  size_t n = c->n;
+  if (n < 5) return 0.0;
+  double xm = 0.0;
+  for (size_t k = 0; k < n; k++)
+    xm += c->x[k] / (double)n;
+  double s[5] = {0}, r[3] = {0};
+  for (size_t k = 0; k < n; k++) {
+    double t = c->x[k] - xm, p = 1.0, y = c->y1[k];
+    for (int j = 0; j < 5; j++, p *= t)
+      s[j] += p;
+    r[0] += y, r[1] += y * t, r[2] += y * t * t;
+  }
+  double m[3][4] = {{s[0], s[1], s[2], r[0]}, {s[1], s[2], s[3], r[1]}, {s[2], s[3], s[4], r[2]}};
+  for (int i = 0; i < 3; i++) { /* Gauss-Jordan with partial pivoting */
+    int piv = i;
+    for (int j = i + 1; j < 3; j++)
+      if (fabs(m[j][i]) > fabs(m[piv][i])) piv = j;
+    for (int k = 0; k < 4; k++) {
+      double tmp = m[i][k];
+      m[i][k] = m[piv][k];
+      m[piv][k] = tmp;
+    }
+    if (m[i][i] == 0.0) return 0.0;
+    for (int j = 0; j < 3; j++) {
+      if (j == i) continue;
+      double f = m[j][i] / m[i][i];
+      for (int k = i; k < 4; k++)
+        m[j][k] -= f * m[i][k];
+    }
+  }
+  double c0 = m[0][3] / m[0][0], c1 = m[1][3] / m[1][1], c2 = m[2][3] / m[2][2], ss = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    double t = c->x[k] - xm, e = c->y1[k] - (c0 + c1 * t + c2 * t * t);
+    ss += e * e;
+  }
+  return sqrt(ss / (double)(n - 3));
+}
+
+/* The shift of one neighbouring pair by the policy of vl_tts_chain: the
+ * shift of log E' and log E'' together, d2, unless E' alone mismatches at
+ * d2 markedly more than at its own best shift d1 and more than its scatter
+ * explains (then E'' is not telling the story E' tells, and d1 stands).
+ * The scatter term keeps a noise-fitted minimum of a flat E' (few points in
+ * a small overlap) from looking better than it is. */
+static vl_status pair_auto(const vl_tts_isotherm *a, const vl_tts_isotherm *b, double *d, double *r,
+                           vl_error *err) {
+  curve ca, cb;
+  memset(&cb, 0, sizeof cb);
+  vl_status st;
+  if ((st = curve_make(a, &ca)) != VL_OK || (st = curve_make(b, &cb)) != VL_OK) {
+    curve_free(&ca);
+    vl_error_set(err, "out of memory shifting isotherms");
+    return st;
+  }
+  const double wl[2] = {0.0, 1.0};
+  double ds[2], rs[2];
+  st = shift_curves(&ca, &cb, 2, wl, a->temperature_c, b->temperature_c, ds, rs, err);
+  if (st == VL_OK) {
+    /* the mismatch E' would show from its scatter alone, had it no trend */
+    double noise = hypot(storage_scatter(&ca), storage_scatter(&cb));
+    double r1_at_d2 = sqrt(mismatch(&ca, &cb, ds[1], 0.0));
+    int both = r1_at_d2 <= CONSISTENT_RATIO * fmax(rs[0], noise) + CONSISTENT_FLOOR;
+    *d = ds[both];
+    *r = rs[both];
+  }
+  curve_free(&ca);
+  curve_free(&cb);
+  return st;
+}
+
+vl_status vl_tts_chain(size_t n, const vl_tts_isotherm *iso, size_t ref, double *log10_a_t,
+                       double *pair_rms, vl_error *err) {
+  if (n == 0 || ref >= n) {
+    vl_error_set(err, "no isotherms to shift");
+    return VL_EINPUT;
+  }
+  log10_a_t[ref] = 0.0;
+  for (size_t k = ref; k + 1 < n; k++) {
+    double d, r;
+    vl_status st = pair_auto(&iso[k], &iso[k + 1], &d, &r, err);
+    if (st != VL_OK) return st;
+    log10_a_t[k + 1] = log10_a_t[k] + d;
+    if (pair_rms) pair_rms[k] = r;
+  }
+  for (size_t k = ref; k > 0; k--) {
+    double d, r;
+    vl_status st = pair_auto(&iso[k - 1], &iso[k], &d, &r, err);
+    if (st != VL_OK) return st;
+    log10_a_t[k - 1] = log10_a_t[k] - d;
+    if (pair_rms) pair_rms[k - 1] = r;
+  }
+  return VL_OK;
+}
+
+/* For fixed C2: the least-squares C1 and the sum of squared residuals. */
+static double wlf_sse(size_t n, const double *u, const double *y, double c2, double *c1) {
+  double sgy = 0.0, sgg = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    double g = -u[k] / (c2 + u[k]);
+    sgy += g * y[k];
+    sgg += g * g;
+  }
+  double a = sgg > 0.0 ? sgy / sgg : 0.0, s = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    double r = y[k] + a * u[k] / (c2 + u[k]);
+    s += r * r;
+  }
+  *c1 = a;
+  return s;
+}
+
+vl_status vl_wlf_fit(size_t n, const double *t_c, const double *log10_a_t, double tref_c,
+                     double *c1, double *c2_k, double *rms, vl_error *err) {
+  if (n < 3) {
+    vl_error_set(err, "a WLF fit needs shifts at 3 or more temperatures (got %zu)", n);
+    return VL_EINPUT;
+  }
+  double *u = malloc(n * sizeof *u);
+  if (!u) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  double umin = INFINITY;
+  for (size_t k = 0; k < n; k++) {
+    if (!isfinite(t_c[k]) || !isfinite(log10_a_t[k])) {
+      free(u);
+      vl_error_set(err, "WLF fit: shift %zu is not finite", k + 1);
+      return VL_EINPUT;
+    }
+    u[k] = t_c[k] - tref_c;
+    umin = fmin(umin, u[k]);
+  }
+  /* C2 + (T - Tref) > 0 at every point: the WLF domain. */
+  double c2_lo = fmax(0.0, -umin) + 0.01;
+  double l_lo = log(c2_lo), l_hi = log(WLF_C2_MAX), best_l = l_lo, best_s = INFINITY, a;
+  for (int k = 0; k <= WLF_SCAN; k++) {
+    double l = l_lo + (l_hi - l_lo) * k / WLF_SCAN;
+    double s = wlf_sse(n, u, log10_a_t, exp(l), &a);
+    if (s < best_s) best_s = s, best_l = l;
+  }
+  double step = (l_hi - l_lo) / WLF_SCAN;
+  double lo = fmax(l_lo, best_l - step), hi = fmin(l_hi, best_l + step);
+  for (int it = 0; it < 80; it++) {
+    double c = hi - GOLDEN * (hi - lo), d = lo + GOLDEN * (hi - lo);
+    if (wlf_sse(n, u, log10_a_t, exp(c), &a) < wlf_sse(n, u, log10_a_t, exp(d), &a))
+      hi = d;
+    else
+      lo = c;
+  }
+  double l = 0.5 * (lo + hi);
+  double s = wlf_sse(n, u, log10_a_t, exp(l), &a);
+  if (s > best_s) s = wlf_sse(n, u, log10_a_t, exp(l = best_l), &a);
+  free(u);
+  if (!(a > 0.0)) {
+    vl_error_set(err,
+                 "the shifts do not decrease with temperature (best WLF C1 = %.3g <= 0): "
+                 "the isotherms do not follow time-temperature superposition",
+                 a);
+    return VL_EINPUT;
+  }
+  *c1 = a;
+  *c2_k = exp(l);
+  if (rms) *rms = sqrt(s / (double)n);
+  return VL_OK;
+}

@@ -1,0 +1,41 @@
+/* Fuzz target: a tabulated roughness spectrum (`surface add --psd FILE`),
+ * read by vl_csv_read_psd as the command line reads it, then the derived
+ * quantities the command prints and stores. Properties: a refused file gets
+ * one line naming the file and no PSD to free; an accepted one has n >= 2
+ * points, q > 0 strictly increasing, C > 0, all finite. */
+#include "vl_fuzz.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "viscolube/csv.h"
+#include "viscolube/roughness.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+  const char *path = vl_fuzz_file(data, size);
+  vl_psd psd;
+  vl_error err = {{0}};
+  vl_status st = vl_csv_read_psd(path, &psd, &err);
+  if (st != VL_OK) {
+    FUZZ_CHECK(st == VL_EINPUT, "status %d for a bad file: %s", (int)st, err.msg);
+    FUZZ_CHECK(!strncmp(err.msg, path, strlen(path)), "message does not name the file: %s",
+               err.msg);
+    for (const char *c = err.msg; *c; c++)
+      FUZZ_CHECK((unsigned char)*c >= 0x20 && *c != 0x7f, "control byte in message: %s", err.msg);
+    FUZZ_CHECK(psd.q == NULL && psd.C == NULL, "a refused file left arrays behind");
+    return 0;
+  }
+  FUZZ_CHECK(psd.kind == VL_PSD_TABULATED && psd.n >= 2, "kind %d, n %zu", (int)psd.kind, psd.n);
+  for (size_t k = 0; k < psd.n; k++) {
+    FUZZ_CHECK(isfinite(psd.q[k]) && psd.q[k] > 0.0, "q[%zu] = %g", k, psd.q[k]);
+    FUZZ_CHECK(isfinite(psd.C[k]) && psd.C[k] > 0.0, "C[%zu] = %g", k, psd.C[k]);
+    FUZZ_CHECK(k == 0 || psd.q[k] > psd.q[k - 1], "q not increasing at %zu", k);
+  }
+  FUZZ_CHECK(psd.q0 == psd.q[0] && psd.q1 == psd.q[psd.n - 1], "band is not [q_first, q_last]");
+  /* what `surface add` prints and the database derives: no crash, no hang */
+  (void)vl_psd_hrms(&psd);
+  (void)vl_psd_rms_slope(&psd);
+  (void)vl_psd_value(&psd, sqrt(psd.q0) * sqrt(psd.q1));
+  vl_psd_free(&psd);
+  return 0;
+}
