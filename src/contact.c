@@ -937,13 +937,15 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
   pt->converged = ok;
   if (!ok) {
     bool closed = smooth_wet && (flag == KIN_REPTD_SYSFUNC_ERR || flag == KIN_FIRST_SYSFUNC_ERR);
+    char *flag_name = KINGetReturnFlagName(flag); /* malloc'd by SUNDIALS */
     vl_error_set(err, "no convergence at v0 = %g m/s: KINSOL flag %d (%s), %ld iterations, "
                       "residual %.3g%s",
-                 v0_m_s, flag, KINGetReturnFlagName(flag), nni, fnorm,
+                 v0_m_s, flag, flag_name ? flag_name : "?", nni, fnorm,
                  closed ? " (Newton steps kept closing the film: the grid is probably too coarse "
                           "for the inlet and outlet zones of this soft EHL film; refine it or "
                           "narrow the domain)"
                         : "");
+    free(flag_name);
     /* back to the last converged state, its speed and scales */
     N_VScale(1.0, c->y_saved, c->y);
     if (saved_v == saved_v) contact_set_speed(c, saved_v);
