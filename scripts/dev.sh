@@ -2,7 +2,8 @@
 # The two set-up commands of the README.
 #   scripts/dev.sh run    install what is missing, build, run the main job
 #   scripts/dev.sh test   install what is missing, build, run all tests, then
-#                         rebuild and rerun them under ASan + UBSan
+#                         rebuild and rerun them under ASan + UBSan, then
+#                         fuzz every reader (scripts/fuzz.sh, 20 s a target)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -30,6 +31,9 @@ case "${1:-}" in
     build build-asan -DVL_SANITIZE=ON
     ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --test-dir build-asan --output-on-failure -j "$jobs"
+    # libFuzzer on every reader (tests/fuzz, clang, build-fuzz): each target
+    # for VL_FUZZ_SECONDS (default 20) over its corpus; see scripts/fuzz.sh.
+    scripts/fuzz.sh "${VL_FUZZ_SECONDS:-20}"
     ;;
   *)
     echo "usage: scripts/dev.sh run|test" >&2

@@ -64,6 +64,8 @@ struct vl_contact {
   double *D;          /* rough: elasticity residual U - G */
   double *theta;      /* film fraction (report only) */
   vl_contact *coarse; /* smooth wet: half-size grid for fresh starts (NULL when small) */
+  vl_contact *dry;    /* smooth wet viscoelastic, coarsest level: the dry contact on the same
+                       * grid, whose solution starts the wet one (NULL otherwise) */
   SUNContext ctx;
   N_Vector y, y_saved, ones, fwork;
   SUNMatrix J;
@@ -564,6 +566,13 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
     coarse.grid = n / 2;
     st = vl_contact_create(&coarse, &c->coarse, err);
     if (st != VL_OK) goto fail;
+  } else if (c->nc == 0 && nt > 0) {
+    /* the coarsest level of a viscoelastic film starts from the dry contact
+     * (wet_smooth_guess) */
+    vl_contact_config dry = c->cfg;
+    dry.eta_pa_s = 0.0;
+    st = vl_contact_create(&dry, &c->dry, err);
+    if (st != VL_OK) goto fail;
   }
   contact_set_speed(c, 0.0);
   vl_contact_reset(c);
@@ -580,6 +589,7 @@ fail:
 void vl_contact_free(vl_contact *c) {
   if (!c) return;
   vl_contact_free(c->coarse);
+  vl_contact_free(c->dry);
   if (c->kmem) KINFree(&c->kmem);
   if (c->LS) SUNLinSolFree(c->LS);
   if (c->J) SUNMatDestroy(c->J);
@@ -825,9 +835,20 @@ static void wet_smooth_guess(vl_contact *c, double v0) {
   double X_in = c->xi[0] / b - 0.5 * c->dxi / b, X_max = c->xi[n - 1] / b + 0.5 * c->dxi / b;
   double Xc = rigid ? rigid_outlet(X_in, X_max) : 0.0, Hc = 1.0 + Xc * Xc;
   double a2 = rigid_i2(X_in), a3 = rigid_i3(X_in), sum = 0.0;
+  /* a viscoelastic solid: the dry contact at this speed (same grid), the
+   * limit of a thin film; Hertz would leave the gap far from flat (the
+   * solid is stiffer and the pressure asymmetric at v0 tau ~ a0) */
+  bool dry = false;
+  if (!rigid && c->dry) {
+    vl_point dp;
+    vl_contact_reset(c->dry);
+    dry = vl_contact_solve(c->dry, v0, &dp, NULL) == VL_OK;
+  }
   for (size_t i = 0; i < n; i++) {
     double x = c->xi[i], p;
-    if (rigid) {
+    if (dry) {
+      p = fmax(c->dry->P[i], 0.0);
+    } else if (rigid) {
       double X = x / b;
       p = X < Xc ? fmax((rigid_i2(X) - a2) - Hc * (rigid_i3(X) - a3), 0.0) : 0.0;
     } else {
@@ -966,6 +987,55 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
   c->v_state = v0_m_s;
   contact_report(c, pt);
   return VL_OK;
+}
+
+vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err) {
+  if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s))) {
+    vl_error_set(err, "viscosity: a wet contact takes a finite eta > 0 (got %g Pa s%s)", eta_pa_s,
+                 c->wet ? "" : ", contact created dry");
+    return VL_EINPUT;
+  }
+  if (c->q_rolling > 0.0) c->q_rolling *= eta_pa_s / c->cfg.eta_pa_s; /* Q ~ eta */
+  c->cfg.eta_pa_s = eta_pa_s;
+  if (c->coarse) vl_contact_set_viscosity(c->coarse, eta_pa_s, NULL);
+  return VL_OK;
+}
+
+double vl_contact_viscosity(const vl_contact *c) { return c->cfg.eta_pa_s; }
+
+/* Log-spaced steps from the current viscosity to the target; a failed step
+ * is halved (in log eta) up to 6 times, each from the last converged state. */
+vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa_s,
+                                     double max_ratio, vl_point *pt, vl_error *err) {
+  memset(pt, 0, sizeof *pt);
+  pt->v0_m_s = v0_m_s;
+  if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s)) || !(max_ratio > 1.0)) {
+    vl_error_set(err, "viscosity continuation needs a wet contact, eta > 0 and max_ratio > 1 "
+                      "(got eta %g Pa s, max_ratio %g)", eta_pa_s, max_ratio);
+    return VL_EINPUT;
+  }
+  double eta = c->cfg.eta_pa_s, lstep = log(max_ratio);
+  long nni = 0;
+  vl_status st = VL_OK;
+  int halvings = 0;
+  for (;;) {
+    double gap = log(eta_pa_s / eta);
+    double step = fabs(gap) <= lstep ? gap : copysign(lstep, gap);
+    double eta_next = fabs(gap) <= lstep ? eta_pa_s : eta * exp(step);
+    vl_contact_set_viscosity(c, eta_next, NULL);
+    st = vl_contact_solve(c, v0_m_s, pt, err);
+    nni += pt->iterations;
+    if (st == VL_OK) {
+      eta = eta_next;
+      if (eta == eta_pa_s) break;
+      continue;
+    }
+    vl_contact_set_viscosity(c, eta, NULL); /* back to the converged state's */
+    if (st != VL_ENOCONV || ++halvings > 6) break;
+    lstep *= 0.5;
+  }
+  pt->iterations = nni;
+  return st;
 }
 
 void vl_contact_fields(const vl_contact *c, vl_fields *f) {

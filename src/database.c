@@ -52,14 +52,53 @@ static int bind_text_or_null(sqlite3_stmt *st, int idx, const char *s) {
                    : sqlite3_bind_null(st, idx);
 }
 
-/* Maps an SQLite failure to a status and one sentence naming the file. */
+/* Maps an SQLite failure to a status and one sentence naming the file.
+ * Every write is one transaction that SQLite rolls back when it fails (or,
+ * after a crash, on the next open), so a failure never changes the stored
+ * content: the messages say so. */
 static vl_status db_fail(const vl_db *db, int rc, const char *doing, vl_error *err) {
   const char *msg = db && db->h ? sqlite3_errmsg(db->h) : sqlite3_errstr(rc);
   const char *path = db ? db->path : "?";
+  /* the errno behind an I/O failure says more than "disk I/O error" */
+  int sys = db && db->h ? sqlite3_system_errno(db->h) : 0;
+  if ((rc & 0xff) == SQLITE_FULL || ((rc & 0xff) == SQLITE_IOERR &&
+                                     (sys == ENOSPC || sys == EFBIG || sys == EDQUOT))) {
+    vl_error_set(err,
+                 "database %s: %s: no room to write (%s): the disk is full or a file-size limit "
+                 "was reached; nothing was changed",
+                 path, doing, sys ? strerror(sys) : msg);
+    return VL_EIO;
+  }
+  /* SQLite's errno is often gone by the time the rollback has run; a
+   * failed write is then most likely a lack of space */
+  if (rc == SQLITE_IOERR_WRITE) {
+    vl_error_set(err,
+                 "database %s: %s: a write failed (%s%s%s): is the disk full or a file-size "
+                 "limit reached? nothing was changed",
+                 path, doing, msg, sys ? ": " : "", sys ? strerror(sys) : "");
+    return VL_EIO;
+  }
+  switch (rc) {
+  case SQLITE_READONLY_ROLLBACK:
+  case SQLITE_READONLY_RECOVERY:
+    vl_error_set(err,
+                 "database %s holds an interrupted write (a hot journal %s-journal, left by a "
+                 "crash) that must be rolled back before it can be read, but the file is "
+                 "read-only: make it writable and run the command again (nothing was changed)",
+                 path, path);
+    return VL_EDB;
+  case SQLITE_READONLY_DIRECTORY:
+    vl_error_set(err,
+                 "database %s: %s: its directory is not writable, so the rollback journal cannot "
+                 "be created next to it (nothing was changed)",
+                 path, doing);
+    return VL_EDB;
+  default: break;
+  }
   switch (rc & 0xff) {
   case SQLITE_NOMEM: vl_error_set(err, "out of memory while %s", doing); return VL_ENOMEM;
   case SQLITE_READONLY:
-    vl_error_set(err, "database %s is read-only: cannot %s (nothing was changed)", path, doing);
+    vl_error_set(err, "database %s is read-only: %s: nothing was changed", path, doing);
     return VL_EDB;
   case SQLITE_NOTADB:
   case SQLITE_CORRUPT:
@@ -72,8 +111,8 @@ static vl_status db_fail(const vl_db *db, int rc, const char *doing, vl_error *e
     return VL_EDB;
   case SQLITE_CANTOPEN:
   case SQLITE_IOERR:
-  case SQLITE_FULL:
-    vl_error_set(err, "database %s: I/O error while %s (%s)", path, doing, msg);
+    vl_error_set(err, "database %s: %s: I/O error (%s%s%s); nothing was changed", path, doing, msg,
+                 sys ? ": " : "", sys ? strerror(sys) : "");
     return VL_EIO;
   default: vl_error_set(err, "database %s: error while %s (%s)", path, doing, msg); return VL_EDB;
   }

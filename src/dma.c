@@ -1050,7 +1050,13 @@ cleanup:
   vl_csv_free(&csv);
   free(ord);
   free(set);
-  if (st != VL_OK) vl_measured_free(out);
+  if (st != VL_OK) {
+    vl_measured_free(out);
+    /* messages quote header cells and go to a terminal: no control bytes */
+    if (err)
+      for (char *c = err->msg; *c; c++)
+        if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+  }
   return st;
 }
 

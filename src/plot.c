@@ -42,8 +42,15 @@ static const rgb GRID = {222, 222, 222};
 static const rgb GREY = {120, 120, 120};
 /* Okabe & Ito's colour-blind safe set without its yellow (too pale on
  * white) and black (the axes), completed by two of Tol's. */
-static const rgb PALETTE[8] = {{0, 114, 178},  {213, 94, 0},   {0, 158, 115}, {204, 121, 167},
-                               {230, 159, 0},  {86, 180, 233}, {136, 34, 85}, {68, 170, 153}};
+static const rgb PALETTE[8] = {{0, 114, 178}, {213, 94, 0},   {0, 158, 115}, {204, 121, 167},
+                               {230, 159, 0}, {86, 180, 233}, {136, 34, 85}, {68, 170, 153}};
+
+/* c mixed with white: t = 0 is c, 1 is white */
+static rgb tint(rgb c, double t) {
+  return (rgb){(unsigned char)lround(c.r + t * (255 - c.r)),
+               (unsigned char)lround(c.g + t * (255 - c.g)),
+               (unsigned char)lround(c.b + t * (255 - c.b))};
+}
 
 typedef enum { M_NONE = 0, M_CIRCLE, M_SQUARE, M_DIAMOND, M_TRIANGLE } shape;
 
@@ -65,9 +72,9 @@ typedef struct {
 typedef struct {
   double lo, hi; /* window (log axes: log10 of the values) */
   bool log;
-  double step;   /* linear: tick step; log: decades between labels */
-  int nsub;      /* linear: minor intervals per step */
-  int decimals;  /* linear: label decimals */
+  double step;  /* linear: tick step; log: decades between labels */
+  int nsub;     /* linear: minor intervals per step */
+  int decimals; /* linear: label decimals */
 } axis;
 
 /* One figure being drawn. */
@@ -120,16 +127,22 @@ static double text_width_ch(const char *s) {
       char e = s[++i];
       if (e == 'u' || e == 'd') scale = scale < 1 ? 1 : 0.7; /* sub/superscript and back */
       if (e == '<')
-        while (s[i + 1] && s[i] != '>') i++;
+        while (s[i + 1] && s[i] != '>')
+          i++;
       continue;
     }
     if (c == '#') i++;
     double w;
-    if (strchr("ijlt.,:;!|' ()[]f/r", c)) w = 0.34;
-    else if (c >= '0' && c <= '9') w = 0.64;
-    else if (strchr("mwMW", c)) w = 0.90;
-    else if (c >= 'A' && c <= 'Z') w = 0.72;
-    else w = 0.60;
+    if (strchr("ijlt.,:;!|' ()[]f/r-", c))
+      w = 0.34;
+    else if (c >= '0' && c <= '9')
+      w = 0.64;
+    else if (strchr("mwMW", c))
+      w = 0.90;
+    else if (c >= 'A' && c <= 'Z')
+      w = 0.72;
+    else
+      w = 0.60;
     em += scale * w;
   }
   return 1.38 * em;
@@ -153,33 +166,33 @@ static const char *const SUPERSCRIPT[10] = {"⁰", "¹", "²", "³", "⁴", "⁵
 
 size_t vl_plot_format_value(char *buf, size_t size, double v) {
   if (!buf || size == 0) return 0;
-  if (!isfinite(v)) return (size_t)snprintf(buf, size, "%s", isnan(v) ? "NaN" : "inf") < size
-                             ? strlen(buf)
-                             : size - 1;
+  const char *sign = v < 0 ? "−" : ""; /* a true minus sign */
   double a = fabs(v);
   int n;
-  if (a == 0 || (a >= 1e-3 && a < 1e4)) {
+  if (!isfinite(v)) {
+    n = snprintf(buf, size, "%s", isnan(v) ? "NaN" : v > 0 ? "∞" : "−∞");
+  } else if (a == 0 || (a >= 1e-3 && a < 1e4)) {
     /* three significant digits without an exponent ("%.3g" gives 1.5e+03),
        trailing zeros dropped */
     int decimals = a == 0 ? 0 : 2 - (int)floor(log10(a));
     char tmp[64];
-    snprintf(tmp, sizeof tmp, "%.*f", decimals < 0 ? 0 : decimals, v);
+    snprintf(tmp, sizeof tmp, "%.*f", decimals < 0 ? 0 : decimals, a);
     if (strchr(tmp, '.')) {
       size_t len = strlen(tmp);
-      while (len > 0 && tmp[len - 1] == '0') tmp[--len] = '\0';
+      while (len > 0 && tmp[len - 1] == '0')
+        tmp[--len] = '\0';
       if (len > 0 && tmp[len - 1] == '.') tmp[--len] = '\0';
     }
-    n = snprintf(buf, size, "%s", tmp);
+    n = snprintf(buf, size, "%s%s", sign, tmp);
   } else {
     int e = (int)floor(log10(a));
-    double m = v / pow(10.0, e);
-    if (fabs(m) >= 9.995) { /* rounding carried into the next decade */
+    double m = a / pow(10.0, e);
+    if (m >= 9.995) { /* rounding carried into the next decade */
       m /= 10;
       e++;
     }
     char mant[32] = "";
-    if (fabs(fabs(m) - 1.0) >= 0.005) snprintf(mant, sizeof mant, "%.3g×", m);
-    else if (m < 0) snprintf(mant, sizeof mant, "−");
+    if (fabs(m - 1.0) >= 0.005) snprintf(mant, sizeof mant, "%.3g×", m);
     char ex[64] = "";
     size_t k = 0;
     if (e < 0) k += (size_t)snprintf(ex + k, sizeof ex - k, "⁻");
@@ -187,7 +200,7 @@ size_t vl_plot_format_value(char *buf, size_t size, double v) {
     snprintf(digits, sizeof digits, "%d", abs(e));
     for (size_t i = 0; digits[i] && k + 4 < sizeof ex; i++)
       k += (size_t)snprintf(ex + k, sizeof ex - k, "%s", SUPERSCRIPT[digits[i] - '0']);
-    n = snprintf(buf, size, "%s10%s", mant, ex);
+    n = snprintf(buf, size, "%s%s10%s", sign, mant, ex);
   }
   if (n < 0) {
     buf[0] = '\0';
@@ -201,11 +214,16 @@ static double nice_step(double raw, int *nsub) {
   double p = pow(10.0, floor(log10(raw)));
   double m = raw / p;
   double s;
-  if (m <= 1.0 + 1e-9) s = 1, *nsub = 5;
-  else if (m <= 2.0 + 1e-9) s = 2, *nsub = 4;
-  else if (m <= 2.5 + 1e-9) s = 2.5, *nsub = 5;
-  else if (m <= 5.0 + 1e-9) s = 5, *nsub = 5;
-  else s = 10, *nsub = 5;
+  if (m <= 1.0 + 1e-9)
+    s = 1, *nsub = 5;
+  else if (m <= 2.0 + 1e-9)
+    s = 2, *nsub = 4;
+  else if (m <= 2.5 + 1e-9)
+    s = 2.5, *nsub = 5;
+  else if (m <= 5.0 + 1e-9)
+    s = 5, *nsub = 5;
+  else
+    s = 10, *nsub = 5;
   return s * p;
 }
 
@@ -224,18 +242,22 @@ static void linear_label(char *buf, size_t size, double v, int decimals) {
 }
 
 static void log_label(char *buf, size_t size, int decade) {
-  if (decade == 0) snprintf(buf, size, "1");
-  else if (decade == 1) snprintf(buf, size, "10");
-  else snprintf(buf, size, "10#u%s%d#d", decade < 0 ? "−" : "", abs(decade));
+  if (decade == 0)
+    snprintf(buf, size, "1");
+  else if (decade == 1)
+    snprintf(buf, size, "10");
+  else
+    snprintf(buf, size, "10#u%s%d#d", decade < 0 ? "−" : "", abs(decade));
 }
 
 /* Linear axis over the data range [lo, hi] on len_mm of paper: the
  * smallest nice step whose labels do not crowd (at most ~9 ticks). tight:
  * the window is the data range (a spatial domain), else it is widened to
- * whole steps. */
+ * the next minor ticks. */
 static axis linear_axis(double lo, double hi, double len_mm, double ch_mm, bool tight,
                         bool vertical) {
   axis a = {0};
+  if (!isfinite(lo) || !isfinite(hi)) lo = 0, hi = 1;
   if (!(hi > lo)) {
     double d = fabs(lo) > 0 ? 0.1 * fabs(lo) : 1.0;
     lo -= d;
@@ -270,6 +292,7 @@ static axis linear_axis(double lo, double hi, double len_mm, double ch_mm, bool 
 static axis log_axis(double lo, double hi, double len_mm, double ch_mm, bool vertical) {
   axis a = {0};
   a.log = true;
+  if (!(lo > 0) || !(hi >= lo) || !isfinite(hi)) lo = 1, hi = 10;
   a.lo = floor(log10(lo) + 1e-9);
   a.hi = ceil(log10(hi) - 1e-9);
   if (a.hi - a.lo < 1) a.hi = a.lo + 1;
@@ -288,12 +311,8 @@ static axis log_axis(double lo, double hi, double len_mm, double ch_mm, bool ver
 
 /* ---- coordinates ------------------------------------------------------- */
 
-static double to_wx(const fig *f, double v) {
-  return f->x.log ? (v > 0 ? log10(v) : NAN) : v;
-}
-static double to_wy(const fig *f, double v) {
-  return f->y.log ? (v > 0 ? log10(v) : NAN) : v;
-}
+static double to_wx(const fig *f, double v) { return f->x.log ? (v > 0 ? log10(v) : NAN) : v; }
+static double to_wy(const fig *f, double v) { return f->y.log ? (v > 0 ? log10(v) : NAN) : v; }
 
 /* World units per mm on the page, in x and in y. */
 static double wx_per_mm(const fig *f) { return (f->x.hi - f->x.lo) / ((f->vx1 - f->vx0) * f->pw); }
@@ -321,12 +340,16 @@ static void for_ticks(const axis *a, void (*fn)(void *, double, bool, bool), voi
       bool labelled = ((d % (int)a->step) + (int)a->step) % (int)a->step == 0;
       fn(user, d, true, labelled);
       if (d < d1 && minors && decades <= 14)
-        for (int m = 2; m <= 9; m++) fn(user, d + log10(m), false, false);
+        for (int m = 2; m <= 9; m++)
+          fn(user, d + log10(m), false, false);
     }
   } else {
-    double first = ceil(a->lo / a->step - 1e-9) * a->step;
+    if (!(a->step > 0) || (a->hi - a->lo) / a->step > 1000) return;
     double minor = a->step / a->nsub;
-    for (double v = first - a->step; v <= a->hi + 1e-9 * a->step; v += a->step) {
+    /* multiples of the step by an integer: no drift from repeated sums */
+    for (long k = (long)ceil(a->lo / a->step - 1e-9) - 1;; k++) {
+      double v = (double)k * a->step;
+      if (v > a->hi + 1e-9 * a->step) break;
       if (v >= a->lo - 1e-9 * a->step) fn(user, v, true, true);
       for (int m = 1; m < a->nsub; m++) {
         double w = v + m * minor;
@@ -372,8 +395,10 @@ static void tick_mark(void *user, double v, bool major, bool labelled) {
   if (!labelled || !t->labels) return;
   const axis *a = t->is_x ? &f->x : &f->y;
   char buf[64];
-  if (a->log) log_label(buf, sizeof buf, (int)lround(v));
-  else linear_label(buf, sizeof buf, v, a->decimals);
+  if (a->log)
+    log_label(buf, sizeof buf, (int)lround(v));
+  else
+    linear_label(buf, sizeof buf, v, a->decimals);
   double pos = (v - a->lo) / (a->hi - a->lo);
   if (t->is_x) {
     plmtex("b", 1.5, pos, 0.5, buf);
@@ -389,8 +414,10 @@ static void label_width(void *user, double v, bool major, bool labelled) {
   const axis *a = &t->f->y;
   if (!major || !labelled || v < a->lo - 1e-9 || v > a->hi + 1e-9) return;
   char buf[64];
-  if (a->log) log_label(buf, sizeof buf, (int)lround(v));
-  else linear_label(buf, sizeof buf, v, a->decimals);
+  if (a->log)
+    log_label(buf, sizeof buf, (int)lround(v));
+  else
+    linear_label(buf, sizeof buf, v, a->decimals);
   double w = text_width_ch(buf) + (a->log ? 0.6 : 0);
   if (w > t->max_label_ch) t->max_label_ch = w;
 }
@@ -471,8 +498,7 @@ static void draw_marker(fig *f, double wx, double wy, shape s, double size_mm, r
       ys[i] = wy + 1.1 * ry * (sin(t) + 0.2);
     }
     break;
-  default:
-    return;
+  default: return;
   }
   xs[n] = xs[0];
   ys[n] = ys[0];
@@ -491,9 +517,11 @@ static void draw_marker(fig *f, double wx, double wy, shape s, double size_mm, r
 static void draw_runs(fig *f, size_t n, const double *wx, const double *wy, style st) {
   size_t i = 0;
   while (i < n) {
-    while (i < n && !(isfinite(wx[i]) && isfinite(wy[i]))) i++;
+    while (i < n && !(isfinite(wx[i]) && isfinite(wy[i])))
+      i++;
     size_t j = i;
-    while (j < n && isfinite(wx[j]) && isfinite(wy[j])) j++;
+    while (j < n && isfinite(wx[j]) && isfinite(wy[j]))
+      j++;
     if (j - i >= 2) {
       set_style(f, st);
       plline((PLINT)(j - i), wx + i, wy + i);
@@ -523,7 +551,7 @@ static size_t draw_failed(fig *f, size_t n, const double *wx, const bool *ok, rg
 
 static void draw_legend(fig *f, double top) {
   if (f->n_legend == 0) return;
-  double x0 = LEGEND_X0, x1 = 0.99;
+  double x0 = LEGEND_X0, x1 = 0.995;
   plvpor(x0, x1, f->vy0, top);
   /* world = mm from the legend's top-left corner */
   double wmm = (x1 - x0) * f->pw, hmm = (top - f->vy0) * f->ph;
@@ -558,7 +586,8 @@ static void draw_legend(fig *f, double top) {
       /* cut at a character boundary */
       size_t len = strlen(text);
       while (len > 0 && text_width_ch(text) > room_ch - 1) {
-        do len--;
+        do
+          len--;
         while (len > 0 && ((unsigned char)text[len] & 0xC0) == 0x80);
         text[len] = '\0';
       }
@@ -580,7 +609,8 @@ static void draw_title(fig *f, const char *title) {
   double room = 0.94 * f->pw / (CH_TITLE * f->ph);
   while (text_width_ch(t) > room && strlen(t) > 4) {
     size_t len = strlen(t);
-    do len--;
+    do
+      len--;
     while (len > 0 && ((unsigned char)t[len] & 0xC0) == 0x80);
     t[len] = '\0';
   }
@@ -621,7 +651,8 @@ static bool file_complete(const char *path, bool png) {
   FILE *f = fopen(path, "rb");
   if (!f) return false;
   unsigned char head[8] = {0}, tail[16] = {0};
-  bool ok = fread(head, 1, 8, f) == 8 && fseek(f, -12, SEEK_END) == 0 && fread(tail, 1, 12, f) == 12;
+  bool ok =
+      fread(head, 1, 8, f) == 8 && fseek(f, -12, SEEK_END) == 0 && fread(tail, 1, 12, f) == 12;
   fclose(f);
   if (!ok) return false;
   if (png)
@@ -644,8 +675,7 @@ static vl_status render(const char *stem, const vl_plot_options *opt_in, draw_fn
     vl_error_set(err, "plot: no file name");
     return VL_EINPUT;
   }
-  if (opt.width_px < 200 || opt.height_px < 150 || opt.width_px > 10000 ||
-      opt.height_px > 10000) {
+  if (opt.width_px < 200 || opt.height_px < 150 || opt.width_px > 10000 || opt.height_px > 10000) {
     vl_error_set(err, "plot: size %dx%d outside 200x150 .. 10000x10000", opt.width_px,
                  opt.height_px);
     return VL_EINPUT;
@@ -723,8 +753,7 @@ static const char *x_title(vl_sweep_quantity q) {
 static double x_value(const vl_point *p, const vl_curve_meta *m, vl_sweep_quantity q) {
   switch (q) {
   case VL_SWEEP_V0_ETA: return m->eta_pa_s > 0 ? p->v0_m_s * m->eta_pa_s : NAN;
-  case VL_SWEEP_DEBORAH:
-    return m->tau_s > 0 && m->a0_m > 0 ? p->v0_m_s * m->tau_s / m->a0_m : NAN;
+  case VL_SWEEP_DEBORAH: return m->tau_s > 0 && m->a0_m > 0 ? p->v0_m_s * m->tau_s / m->a0_m : NAN;
   default: return p->v0_m_s;
   }
 }
@@ -821,8 +850,8 @@ static void draw_numbered_marks(fig *f, size_t n_marks, const size_t *marks, con
     /* plptex centres the text vertically at y: above the dot, else below */
     double off = (2.4 + 0.5 * ch) * my;
     double y = wy[i] + off;
-    bool clash = isfinite(prev_x) && fabs(x - prev_x) / mx < 1.3 * ch &&
-                 fabs(y - prev_y) / my < 1.3 * ch;
+    bool clash =
+        isfinite(prev_x) && fabs(x - prev_x) / mx < 1.3 * ch && fabs(y - prev_y) / my < 1.3 * ch;
     if (clash || y + 0.6 * ch * my > f->y.hi) y = wy[i] - off;
     prev_x = x;
     prev_y = y;
@@ -892,8 +921,9 @@ static double component(const vl_point *p, int c) {
 static void draw_stribeck(fig *f, const void *vctx) {
   const curve_ctx *c = vctx;
   static const char *const names[5] = {
-      "#<0x11>μ#<0x01> total", "#<0x11>μ#<0x01>#dRc#u rolling, contact", "#<0x11>μ#<0x01>#dRf#u rolling, fluid",
-      "#<0x11>μ#<0x01>#dSc#u sliding, contact", "#<0x11>μ#<0x01>#dSf#u sliding, fluid"};
+      "#<0x11>μ#<0x01> total", "#<0x11>μ#<0x01>#dRc#u rolling, contact",
+      "#<0x11>μ#<0x01>#dRf#u rolling, fluid", "#<0x11>μ#<0x01>#dSc#u sliding, contact",
+      "#<0x11>μ#<0x01>#dSf#u sliding, fluid"};
   /* total in the seed's red, rolling dashed, contact blue, fluid orange */
   const style styles[5] = {{PALETTE[1], 1, 3.0},
                            {PALETTE[0], 3, 2.0},
@@ -908,9 +938,11 @@ static void draw_stribeck(fig *f, const void *vctx) {
     return;
   }
   layout_single(f);
-  for (size_t i = 0; i < n; i++) ok[i] = c->pts[i].converged;
+  for (size_t i = 0; i < n; i++)
+    ok[i] = c->pts[i].converged;
   double *xv = wy + 5 * n;
-  for (size_t i = 0; i < n; i++) xv[i] = x_value(&c->pts[i], c->meta, c->q);
+  for (size_t i = 0; i < n; i++)
+    xv[i] = x_value(&c->pts[i], c->meta, c->q);
   sweep_x_axis(f, n, xv);
   bool shown[5] = {true, false, false, false, false};
   double lo = NAN, hi = NAN;
@@ -929,19 +961,36 @@ static void draw_stribeck(fig *f, const void *vctx) {
     }
   }
   value_y_axis(f, lo, hi, true);
-  for (size_t i = 0; i < n; i++) wx[i] = to_wx(f, xv[i]);
+  /* a component that is the whole of mu (dry rolling) would hide under it:
+     named in the total's legend entry instead */
+  int alone = 0;
+  double scale = fmax(fabs(lo), fabs(hi));
+  for (int k = 1; k < 5; k++) {
+    if (!shown[k]) continue;
+    bool same = true;
+    for (size_t i = 0; i < n && same; i++)
+      if (ok[i] && fabs(wy[(size_t)k * n + i] - wy[i]) > 1e-9 * scale) same = false;
+    if (same) alone = k, shown[k] = false;
+  }
+  for (size_t i = 0; i < n; i++)
+    wx[i] = to_wx(f, xv[i]);
   draw_axes(f, x_title(c->q), "friction coefficient #<0x11>μ#<0x01>", true);
   use_data_area(f);
   bool half = draw_half_load(f, c, wx, wy);
-  /* the total first: a component equal to it (dry rolling) stays visible */
-  for (int k = 0; k < 5; k++) {
+  /* the components first, the total over them */
+  for (int k = 4; k >= 0; k--) {
     if (!shown[k]) continue;
     double *y = wy + (size_t)k * n;
     draw_runs(f, n, wx, y, styles[k]);
   }
   for (int k = 0; k < 5; k++) {
     if (!shown[k]) continue;
-    add_legend(f, names[k], true, styles[k], M_NONE, false, BLACK);
+    char label[2 * TEXT_MAX];
+    if (k == 0 && alone)
+      snprintf(label, sizeof label, "#<0x11>μ#<0x01> = %s", names[alone]);
+    else
+      snprintf(label, sizeof label, "%s", names[k]);
+    add_legend(f, label, true, styles[k], M_NONE, false, BLACK);
     f->series++;
   }
   if (half) add_legend(f, HALF_LOAD_TEXT, true, HALF_LOAD_STYLE, M_NONE, false, GREY);
@@ -960,8 +1009,8 @@ static void draw_stribeck(fig *f, const void *vctx) {
 
 vl_status vl_plot_stribeck(const char *stem, size_t n, const vl_point *pts,
                            const vl_curve_meta *meta, vl_sweep_quantity x, size_t n_marks,
-                           const size_t *marks, const vl_plot_options *opt,
-                           vl_plot_report *report, vl_error *err) {
+                           const size_t *marks, const vl_plot_options *opt, vl_plot_report *report,
+                           vl_error *err) {
   vl_status st = check_curve(n, pts, meta, x, "Stribeck curve", err);
   if (st == VL_OK) st = check_marks(n, n_marks, marks, err);
   if (st != VL_OK) return st;
@@ -999,7 +1048,8 @@ static void draw_separation(fig *f, const void *vctx) {
     wx[i] = to_wx(f, xv[i]);
     wy[i] = to_wy(f, wy[i]);
   }
-  const char *yt = c->h_rms_m > 0 ? "#<0x11>u#<0x01>#dmin#u/#<0x11>h#<0x01>#drms#u" : "#<0x11>u#<0x01>#dmin#u (µm)";
+  const char *yt = c->h_rms_m > 0 ? "#<0x11>u#<0x01>#dmin#u/#<0x11>h#<0x01>#drms#u"
+                                  : "#<0x11>u#<0x01>#dmin#u (µm)";
   draw_axes(f, x_title(c->q), yt, true);
   use_data_area(f);
   style st = {PALETTE[0], 1, 2.5};
@@ -1096,10 +1146,11 @@ static void draw_fields(fig *f, const void *vctx) {
   } else {
     value_y_axis(f, isfinite(lo) ? lo : 0, isfinite(hi) ? hi : 1, true);
   }
-  static const char *const ytitles[4] = {"#<0x11>p#<0x01>#dc#u/#<0x11>p#<0x01>#d0#u", "#<0x11>p#<0x01>#df#u/#<0x11>p#<0x01>#d0#u",
-                                         "#<0x11>u#<0x01>/#<0x11>h#<0x01>#drms#u", "#<0x11>A#<0x01>/#<0x11>A#<0x01>#d0#u"};
+  static const char *const ytitles[4] = {
+      "#<0x11>p#<0x01>#dc#u/#<0x11>p#<0x01>#d0#u", "#<0x11>p#<0x01>#df#u/#<0x11>p#<0x01>#d0#u",
+      "#<0x11>u#<0x01>/#<0x11>h#<0x01>#drms#u", "#<0x11>A#<0x01>/#<0x11>A#<0x01>#d0#u"};
   const char *yt = c->field == VL_PLOT_FIELD_U && !(c->sc.h_rms_m > 0) ? "#<0x11>u#<0x01> (µm)"
-                                                                          : ytitles[c->field];
+                                                                       : ytitles[c->field];
   draw_axes(f, "#<0x11>x#<0x01>/#<0x11>a#<0x01>#d0#u", yt, true);
   use_data_area(f);
   /* the Hertz contact edges */
@@ -1111,8 +1162,10 @@ static void draw_fields(fig *f, const void *vctx) {
     rgb col = sequential(j, c->k);
     style st = {col, 1, 2.2};
     char label[TEXT_MAX];
-    if (c->labels && c->labels[j]) plain_text(label, sizeof label, c->labels[j]);
-    else snprintf(label, sizeof label, "%zu", j + 1);
+    if (c->labels && c->labels[j])
+      plain_text(label, sizeof label, c->labels[j]);
+    else
+      snprintf(label, sizeof label, "%zu", j + 1);
     if (fl->n == 0) {
       char l2[TEXT_MAX + 32];
       snprintf(l2, sizeof l2, "%s (not converged)", label);
@@ -1138,10 +1191,9 @@ static void draw_fields(fig *f, const void *vctx) {
   draw_legend(f, f->vy1);
 }
 
-vl_status vl_plot_fields(const char *stem, vl_plot_field field, size_t k,
-                         const vl_fields *fields, const char *const *labels,
-                         const vl_plot_scales *scales, const vl_plot_options *opt,
-                         vl_plot_report *report, vl_error *err) {
+vl_status vl_plot_fields(const char *stem, vl_plot_field field, size_t k, const vl_fields *fields,
+                         const char *const *labels, const vl_plot_scales *scales,
+                         const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
   if (k == 0 || !fields || !scales) {
     vl_error_set(err, "plot: no fields");
     return VL_EINPUT;
@@ -1183,7 +1235,8 @@ static double y_value(const vl_plot_curve *c, const vl_point *p, vl_plot_y y) {
   case VL_PLOT_Y_MU_SC: return p->mu_Sc;
   case VL_PLOT_Y_MU_SF: return p->mu_Sf;
   case VL_PLOT_Y_MU_ROLLING: return p->mu_Rc + p->mu_Rf;
-  case VL_PLOT_Y_U_MIN: return p->u_min_m > 0 ? p->u_min_m * (c->h_rms_m > 0 ? 1 / c->h_rms_m : 1e6) : NAN;
+  case VL_PLOT_Y_U_MIN:
+    return p->u_min_m > 0 ? p->u_min_m * (c->h_rms_m > 0 ? 1 / c->h_rms_m : 1e6) : NAN;
   case VL_PLOT_Y_FLUID_LOAD: return p->fluid_load_fraction;
   default: return p->mu;
   }
@@ -1196,7 +1249,8 @@ static const char *y_title(vl_plot_y y, bool hrms) {
   case VL_PLOT_Y_MU_SC: return "#<0x11>μ#<0x01>#dSc#u";
   case VL_PLOT_Y_MU_SF: return "#<0x11>μ#<0x01>#dSf#u";
   case VL_PLOT_Y_MU_ROLLING: return "#<0x11>μ#<0x01>#dRc#u + #<0x11>μ#<0x01>#dRf#u";
-  case VL_PLOT_Y_U_MIN: return hrms ? "#<0x11>u#<0x01>#dmin#u/#<0x11>h#<0x01>#drms#u" : "#<0x11>u#<0x01>#dmin#u (µm)";
+  case VL_PLOT_Y_U_MIN:
+    return hrms ? "#<0x11>u#<0x01>#dmin#u/#<0x11>h#<0x01>#drms#u" : "#<0x11>u#<0x01>#dmin#u (µm)";
   case VL_PLOT_Y_FLUID_LOAD: return "share of the load carried by the fluid";
   default: return "friction coefficient #<0x11>μ#<0x01>";
   }
@@ -1206,7 +1260,8 @@ static void draw_compare(fig *f, const void *vctx) {
   const compare_ctx *c = vctx;
   layout_single(f);
   size_t total = 0;
-  for (size_t j = 0; j < c->k; j++) total += c->curves[j].n;
+  for (size_t j = 0; j < c->k; j++)
+    total += c->curves[j].n;
   double *xv = calloc(total, sizeof *xv), *yv = calloc(total, sizeof *yv);
   bool *ok = calloc(total, sizeof *ok);
   if (!xv || !yv || !ok) {
@@ -1244,9 +1299,12 @@ static void draw_compare(fig *f, const void *vctx) {
   for (size_t j = 0; j < c->k; j++) {
     const vl_plot_curve *cv = &c->curves[j];
     style st = {PALETTE[j % 8], 1 + (int)((j / 8) % 4) * 1, 2.4};
-    if (j / 8 % 4 == 1) st.dash = 3;
-    else if (j / 8 % 4 == 2) st.dash = 2;
-    else if (j / 8 % 4 == 3) st.dash = 4;
+    if (j / 8 % 4 == 1)
+      st.dash = 3;
+    else if (j / 8 % 4 == 2)
+      st.dash = 2;
+    else if (j / 8 % 4 == 3)
+      st.dash = 4;
     draw_runs(f, cv->n, xv + off, yv + off, st);
     char label[TEXT_MAX];
     plain_text(label, sizeof label, cv->label ? cv->label : "");
@@ -1305,7 +1363,7 @@ static void draw_modulus(fig *f, const void *vctx) {
     double e1 = i < n ? d->storage_pa[i] : d->fit_storage_pa[i - n];
     double e2 = i < n ? d->loss_pa[i] : d->fit_loss_pa[i - n];
     if (i >= n && (w < wlo || w > whi) && n > 0) continue; /* fit beyond the data: not widened */
-    if (i < n) wlo = fmin(wlo, w), whi = fmax(whi, w);
+    if (i < n || n == 0) wlo = fmin(wlo, w), whi = fmax(whi, w);
     elo = fmin(elo, fmin(e1, e2));
     ehi = fmax(ehi, fmax(e1, e2));
     tlo = fmin(tlo, e2 / e1);
@@ -1341,6 +1399,15 @@ static void draw_modulus(fig *f, const void *vctx) {
     int nq = panel == 0 ? 2 : 1;
     for (int q = 0; q < nq; q++) {
       style st = panel == 1 ? s3 : q == 0 ? s1 : s2;
+      /* markers first, the fit over them; many points, smaller markers */
+      shape sh = panel == 1 ? M_TRIANGLE : q == 0 ? M_CIRCLE : M_SQUARE;
+      double size = n > 60 ? 1.6 : 2.2;
+      rgb light = tint(st.color, 0.5); /* the fit's colour, lighter */
+      for (size_t i = 0; i < n; i++) {
+        double e1 = d->storage_pa[i], e2 = d->loss_pa[i];
+        double v = panel == 1 ? e2 / e1 : q == 0 ? e1 : e2;
+        draw_marker(f, to_wx(f, d->omega_rad_s[i]), log10(v), sh, size, light, light, true);
+      }
       if (m > 0) {
         for (size_t i = 0; i < m; i++) {
           double e1 = d->fit_storage_pa[i], e2 = d->fit_loss_pa[i];
@@ -1349,22 +1416,16 @@ static void draw_modulus(fig *f, const void *vctx) {
         }
         draw_runs(f, m, wx, wy, st);
       }
-      shape sh = panel == 1 ? M_TRIANGLE : q == 0 ? M_CIRCLE : M_SQUARE;
-      for (size_t i = 0; i < n; i++) {
-        double e1 = d->storage_pa[i], e2 = d->loss_pa[i];
-        double v = panel == 1 ? e2 / e1 : q == 0 ? e1 : e2;
-        draw_marker(f, to_wx(f, d->omega_rad_s[i]), log10(v), sh, 2.0, st.color, st.color, true);
-      }
       static const char *const qn[3] = {"#<0x11>E#<0x01>′ storage", "#<0x11>E#<0x01>″ loss",
                                         "tan #<0x11>δ#<0x01>"};
-      add_legend(f, qn[panel == 1 ? 2 : q], m > 0, st, sh, false, st.color);
-      f->series += m > 0 ? 2 : 1;
+      add_legend(f, qn[panel == 1 ? 2 : q], m > 0, st, n > 0 ? sh : M_NONE, false, light);
+      f->series += (m > 0) + (n > 0);
     }
   }
   /* what markers and lines stand for */
   char t[TEXT_MAX];
   plain_text(t, sizeof t, ml);
-  add_legend(f, t, false, s1, M_CIRCLE, false, GREY);
+  if (n > 0) add_legend(f, t, false, s1, M_CIRCLE, false, tint(GREY, 0.5));
   if (m > 0) {
     plain_text(t, sizeof t, fl);
     add_legend(f, t, true, (style){GREY, 1, 2.2}, M_NONE, false, GREY);
@@ -1383,8 +1444,8 @@ static bool positive_finite(size_t n, const double *v) {
 
 vl_status vl_plot_modulus(const char *stem, const vl_plot_modulus_data *d,
                           const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
-  if (!d || d->n == 0) {
-    vl_error_set(err, "plot: no measured moduli");
+  if (!d || (d->n == 0 && d->n_fit == 0)) {
+    vl_error_set(err, "plot: no moduli");
     return VL_EINPUT;
   }
   if (!positive_finite(d->n, d->omega_rad_s) || !positive_finite(d->n, d->storage_pa) ||
@@ -1414,8 +1475,8 @@ static void draw_shifts(fig *f, const void *vctx) {
   double xlo = fmin(tlo, c->tref), xhi = fmax(thi, c->tref), xpad = 0.04 * fmax(xhi - xlo, 1.0);
   f->x = linear_axis(xlo - xpad, xhi + xpad, len_x(f), CH_TICK * f->ph, false, false);
   double pad = 0.05 * fmax(ahi - alo, 1.0);
-  f->y = linear_axis(fmin(alo, 0) - pad, fmax(ahi, 0) + pad, len_y(f), CH_TICK * f->ph, false,
-                     true);
+  f->y =
+      linear_axis(fmin(alo, 0) - pad, fmax(ahi, 0) + pad, len_y(f), CH_TICK * f->ph, false, true);
   draw_axes(f, "temperature #<0x11>T#<0x01> (°C)", "log#d10#u #<0x11>a#<0x01>#dT#u", true);
   use_data_area(f);
   set_style(f, (style){GREY, 2, 1.0});

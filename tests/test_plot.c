@@ -2,7 +2,8 @@
  * (PNG signature and IHDR size; SVG from its XML header to </svg>), each
  * holds the expected number of series, points that did not converge break
  * their lines and are drawn as hollow markers, bad input is refused without
- * leaving files, and `viscolube run --plot` writes the documented figures.
+ * leaving files, and `viscolube run --plot` and `compound show --plot`
+ * write the documented figures.
  *
  * Series are counted in the SVG, independently of the report the library
  * returns: plot.h promises that series are the strokes of 2 px or more in
@@ -19,8 +20,8 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
-#include "vl_test_util.h"
 #include "viscolube/plot.h"
+#include "vl_test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -66,14 +67,17 @@ static char *read_svg(const char *path) {
   char *s = vl_test_read_file(path);
   assert_non_null(s);
   const char *p = s;
-  while (*p == ' ' || *p == '\n' || *p == '\r' || *p == '\t') p++;
+  while (*p == ' ' || *p == '\n' || *p == '\r' || *p == '\t')
+    p++;
   assert_true(!strncmp(p, "<?xml", 5) || !strncmp(p, "<svg", 4));
   assert_non_null(strstr(s, "<svg"));
   const char *end = strstr(s, "</svg>");
   assert_non_null(end);
-  for (const char *q = end + 6; *q; q++) assert_true(*q == ' ' || *q == '\n' || *q == '\r');
+  for (const char *q = end + 6; *q; q++)
+    assert_true(*q == ' ' || *q == '\n' || *q == '\r');
   size_t lt = 0, gt = 0;
-  for (const char *q = s; *q; q++) lt += *q == '<', gt += *q == '>';
+  for (const char *q = s; *q; q++)
+    lt += *q == '<', gt += *q == '>';
   assert_int_equal(lt, gt);
   return s;
 }
@@ -100,7 +104,8 @@ static int parse_rgb(const char *p, double c[3]) {
     c[k] = strtod(p, &end);
     if (end == p) return 0;
     p = end;
-    while (*p == '%' || *p == ',' || *p == ' ') p++;
+    while (*p == '%' || *p == ',' || *p == ' ')
+      p++;
   }
   return 1;
 }
@@ -113,7 +118,7 @@ typedef struct {
 typedef struct {
   color_count series[64]; /* distinct series colours and their paths */
   size_t n_series;
-  size_t white_fills;     /* paths filled white */
+  size_t white_fills; /* paths filled white */
 } svg_stats;
 
 static svg_stats svg_analyse(const char *svg) {
@@ -130,9 +135,9 @@ static svg_stats svg_analyse(const char *svg) {
     if (!parse_rgb(stroke, c) || !width || strtod(width, NULL) < 2.0) continue;
     if (fabs(c[0] - c[1]) < 0.5 && fabs(c[1] - c[2]) < 0.5) continue; /* grey or black */
     size_t k = 0;
-    while (k < s.n_series && (fabs(s.series[k].rgb[0] - c[0]) > 0.01 ||
-                              fabs(s.series[k].rgb[1] - c[1]) > 0.01 ||
-                              fabs(s.series[k].rgb[2] - c[2]) > 0.01))
+    while (k < s.n_series &&
+           (fabs(s.series[k].rgb[0] - c[0]) > 0.01 || fabs(s.series[k].rgb[1] - c[1]) > 0.01 ||
+            fabs(s.series[k].rgb[2] - c[2]) > 0.01))
       k++;
     if (k == s.n_series) {
       assert_true(s.n_series < 64);
@@ -204,6 +209,10 @@ static void test_format_value(void **state) {
   assert_string_equal(b, "10⁻⁴");
   vl_plot_format_value(b, sizeof b, 0);
   assert_string_equal(b, "0");
+  vl_plot_format_value(b, sizeof b, -2.5e-5);
+  assert_string_equal(b, "−2.5×10⁻⁵");
+  vl_plot_format_value(b, sizeof b, -0.5);
+  assert_string_equal(b, "−0.5");
   /* truncation keeps the string terminated */
   assert_int_equal(vl_plot_format_value(b, 4, 123456.0), 3);
   assert_int_equal(strlen(b), 3);
@@ -220,16 +229,16 @@ static void test_stribeck_files_and_series(void **state) {
   opt.title = "a # title with PLplot's escape character";
   vl_plot_report r;
   vl_error err = {{0}};
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "s"), NPTS, pts, &META, VL_SWEEP_V0_ETA, 3,
-                                    marks, &opt, &r, &err),
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "s"), NPTS, pts, &META, VL_SWEEP_V0_ETA, 3, marks,
+                                    &opt, &r, &err),
                    VL_OK);
   assert_int_equal(r.files, 2);
   assert_int_equal(r.series, 5);
   assert_int_equal(r.failed_markers, 0);
   check_png(path_in(dir, "s.png"), 1000, 750);
   svg_stats s = svg_file_stats(path_in(dir, "s.svg"));
-  assert_int_equal(s.n_series, 5);     /* mu and its four components */
-  assert_int_equal(s.white_fills, 0);  /* no hollow marker */
+  assert_int_equal(s.n_series, 5);    /* mu and its four components */
+  assert_int_equal(s.white_fills, 0); /* no hollow marker */
   assert_false(file_exists(path_in(dir, "s.png.tmp")));
   assert_false(file_exists(path_in(dir, "s.svg.tmp")));
 
@@ -237,8 +246,8 @@ static void test_stribeck_files_and_series(void **state) {
   opt.formats = VL_PLOT_PNG;
   opt.width_px = 640;
   opt.height_px = 480;
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "small"), NPTS, pts, &META, VL_SWEEP_V0, 0,
-                                    NULL, &opt, &r, &err),
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "small"), NPTS, pts, &META, VL_SWEEP_V0, 0, NULL,
+                                    &opt, &r, &err),
                    VL_OK);
   assert_int_equal(r.files, 1);
   check_png(path_in(dir, "small.png"), 640, 480);
@@ -250,11 +259,22 @@ static void test_stribeck_files_and_series(void **state) {
     pts[i].mu_Rf = pts[i].mu_Sf = 0;
   }
   vl_curve_meta dry = {0, 0.1, 1.6e-3};
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "dry"), NPTS, pts, &dry, VL_SWEEP_DEBORAH, 0,
-                                    NULL, NULL, &r, &err),
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "dry"), NPTS, pts, &dry, VL_SWEEP_DEBORAH, 0, NULL,
+                                    NULL, &r, &err),
                    VL_OK);
   assert_int_equal(r.series, 3);
   assert_int_equal(svg_file_stats(path_in(dir, "dry.svg")).n_series, 3);
+
+  /* dry and smooth: mu is mu_Rc alone, one series */
+  for (size_t i = 0; i < NPTS; i++) {
+    pts[i].mu = pts[i].mu_Rc;
+    pts[i].mu_Sc = 0;
+  }
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "rc"), NPTS, pts, &dry, VL_SWEEP_DEBORAH, 0, NULL,
+                                    NULL, &r, &err),
+                   VL_OK);
+  assert_int_equal(r.series, 1);
+  assert_int_equal(svg_file_stats(path_in(dir, "rc.svg")).n_series, 1);
 }
 
 /* Three points fail (one alone, two together), none at the ends: every
@@ -266,12 +286,12 @@ static void test_failed_points_break_lines(void **state) {
   make_curve(pts);
   vl_plot_report r;
   vl_error err = {{0}};
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "ok"), NPTS, pts, &META, VL_SWEEP_V0_ETA, 0,
-                                    NULL, NULL, &r, &err),
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "ok"), NPTS, pts, &META, VL_SWEEP_V0_ETA, 0, NULL,
+                                    NULL, &r, &err),
                    VL_OK);
   pts[6].converged = pts[15].converged = pts[16].converged = false;
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "bad"), NPTS, pts, &META, VL_SWEEP_V0_ETA, 0,
-                                    NULL, NULL, &r, &err),
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "bad"), NPTS, pts, &META, VL_SWEEP_V0_ETA, 0, NULL,
+                                    NULL, &r, &err),
                    VL_OK);
   assert_int_equal(r.failed_markers, 3);
   svg_stats a = svg_file_stats(path_in(dir, "ok.svg"));
@@ -305,8 +325,8 @@ static void test_separation(void **state) {
   size_t marks[2] = {3, 10}; /* the first on a failed point: skipped */
   vl_plot_report r;
   vl_error err = {{0}};
-  assert_int_equal(vl_plot_separation(path_in(dir, "u"), NPTS, pts, &META, VL_SWEEP_V0_ETA, 3e-6,
-                                      2, marks, &opt, &r, &err),
+  assert_int_equal(vl_plot_separation(path_in(dir, "u"), NPTS, pts, &META, VL_SWEEP_V0_ETA, 3e-6, 2,
+                                      marks, &opt, &r, &err),
                    VL_OK);
   assert_int_equal(r.series, 1);
   assert_int_equal(r.failed_markers, 1);
@@ -315,8 +335,8 @@ static void test_separation(void **state) {
   assert_int_equal(s.n_series, 1);
   assert_int_equal(s.white_fills, 1 + 1); /* on the plot and in the legend */
   /* smooth: u_min in um */
-  assert_int_equal(vl_plot_separation(path_in(dir, "u2"), NPTS, pts, &META, VL_SWEEP_V0, 0, 0,
-                                      NULL, NULL, &r, &err),
+  assert_int_equal(vl_plot_separation(path_in(dir, "u2"), NPTS, pts, &META, VL_SWEEP_V0, 0, 0, NULL,
+                                      NULL, &r, &err),
                    VL_OK);
 }
 
@@ -375,7 +395,8 @@ static void test_compare(void **state) {
   static const char *const names[K] = {"unfilled", "filled", "c", "d", "e"};
   for (int k = 0; k < K; k++) {
     make_curve(pts[k]);
-    for (size_t i = 0; i < NPTS; i++) pts[k][i].mu *= 1 + 0.2 * k;
+    for (size_t i = 0; i < NPTS; i++)
+      pts[k][i].mu *= 1 + 0.2 * k;
     c[k] = (vl_plot_curve){names[k], NPTS, pts[k], META, 3e-6};
   }
   pts[2][8].converged = pts[2][9].converged = false;
@@ -396,9 +417,8 @@ static void test_compare(void **state) {
   /* other quantities and axes */
   static const vl_plot_y ys[] = {VL_PLOT_Y_MU_ROLLING, VL_PLOT_Y_U_MIN, VL_PLOT_Y_FLUID_LOAD};
   for (size_t q = 0; q < 3; q++)
-    assert_int_equal(vl_plot_compare(path_in(dir, "q"), 2, c, VL_SWEEP_DEBORAH, ys[q], NULL, &r,
-                                     &err),
-                     VL_OK);
+    assert_int_equal(
+        vl_plot_compare(path_in(dir, "q"), 2, c, VL_SWEEP_DEBORAH, ys[q], NULL, &r, &err), VL_OK);
 }
 
 static void test_modulus_and_shifts(void **state) {
@@ -408,11 +428,14 @@ static void test_modulus_and_shifts(void **state) {
   double w[NM], e1[NM], e2[NM], fw[NF], f1[NF], f2[NF];
   /* a standard linear solid, E0 = 1 MPa, Einf = 10 MPa, tau = 0.01 s */
   for (int i = 0; i < NM + NF; i++) {
-    double om = i < NM ? pow(10, -1 + 5.0 * i / (NM - 1)) : pow(10, -1.5 + 6.0 * (i - NM) / (NF - 1));
+    double om =
+        i < NM ? pow(10, -1 + 5.0 * i / (NM - 1)) : pow(10, -1.5 + 6.0 * (i - NM) / (NF - 1));
     double wt = om * 0.01, e0 = 1e6, ei = 1e7;
     double re = (e0 + ei * wt * wt) / (1 + wt * wt), im = (ei - e0) * wt / (1 + wt * wt);
-    if (i < NM) w[i] = om, e1[i] = re * 1.02, e2[i] = im * 0.98;
-    else fw[i - NM] = om, f1[i - NM] = re, f2[i - NM] = im;
+    if (i < NM)
+      w[i] = om, e1[i] = re * 1.02, e2[i] = im * 0.98;
+    else
+      fw[i - NM] = om, f1[i - NM] = re, f2[i - NM] = im;
   }
   vl_plot_modulus_data d = {NM, w, e1, e2, NF, fw, f1, f2, "measured", NULL};
   vl_plot_report r;
@@ -428,7 +451,8 @@ static void test_modulus_and_shifts(void **state) {
   assert_int_equal(svg_file_stats(path_in(dir, "m2.svg")).n_series, 0);
 
   double t[5] = {-20, 0, 20, 40, 60}, a[5];
-  for (int i = 0; i < 5; i++) a[i] = -8.86 * (t[i] - 20) / (101.6 + t[i] - 20);
+  for (int i = 0; i < 5; i++)
+    a[i] = -8.86 * (t[i] - 20) / (101.6 + t[i] - 20);
   assert_int_equal(vl_plot_shifts(path_in(dir, "wlf"), 5, t, a, 20, 8.86, 101.6, NULL, &r, &err),
                    VL_OK);
   assert_int_equal(r.series, 2);
@@ -445,31 +469,31 @@ static void test_bad_input(void **state) {
   make_curve(pts);
   vl_error err = {{0}};
   vl_curve_meta no_eta = {0, 0.1, 1.6e-3};
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "x"), 0, pts, &META, VL_SWEEP_V0, 0, NULL, NULL,
-                                    NULL, &err),
-                   VL_EINPUT);
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "x"), NPTS, pts, &no_eta, VL_SWEEP_V0_ETA, 0,
-                                    NULL, NULL, NULL, &err),
+  assert_int_equal(
+      vl_plot_stribeck(path_in(dir, "x"), 0, pts, &META, VL_SWEEP_V0, 0, NULL, NULL, NULL, &err),
+      VL_EINPUT);
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "x"), NPTS, pts, &no_eta, VL_SWEEP_V0_ETA, 0, NULL,
+                                    NULL, NULL, &err),
                    VL_EINPUT);
   assert_non_null(strstr(err.msg, "v0_eta"));
   size_t bad_mark = NPTS;
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "x"), NPTS, pts, &META, VL_SWEEP_V0, 1,
-                                    &bad_mark, NULL, NULL, &err),
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "x"), NPTS, pts, &META, VL_SWEEP_V0, 1, &bad_mark,
+                                    NULL, NULL, &err),
                    VL_EINPUT);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.width_px = 20;
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "x"), NPTS, pts, &META, VL_SWEEP_V0, 0, NULL,
-                                    &opt, NULL, &err),
-                   VL_EINPUT);
+  assert_int_equal(
+      vl_plot_stribeck(path_in(dir, "x"), NPTS, pts, &META, VL_SWEEP_V0, 0, NULL, &opt, NULL, &err),
+      VL_EINPUT);
   assert_false(file_exists(path_in(dir, "x.png")));
   /* a directory that does not exist: an I/O error, nothing written */
-  assert_int_equal(vl_plot_stribeck(path_in(dir, "no/such/dir/x"), NPTS, pts, &META,
-                                    VL_SWEEP_V0, 0, NULL, NULL, NULL, &err),
+  assert_int_equal(vl_plot_stribeck(path_in(dir, "no/such/dir/x"), NPTS, pts, &META, VL_SWEEP_V0, 0,
+                                    NULL, NULL, NULL, &err),
                    VL_EIO);
   assert_non_null(strstr(err.msg, "no/such/dir/x.png"));
-  vl_plot_modulus_data d = {1, (double[]){1.0}, (double[]){-1.0}, (double[]){1.0}, 0,
-                            NULL, NULL, NULL, NULL, NULL};
+  vl_plot_modulus_data d = {
+      1, (double[]){1.0}, (double[]){-1.0}, (double[]){1.0}, 0, NULL, NULL, NULL, NULL, NULL};
   assert_int_equal(vl_plot_modulus(path_in(dir, "m"), &d, NULL, NULL, &err), VL_EINPUT);
   vl_plot_scales sc = {0, 1, 0};
   vl_fields f = {0};
@@ -532,6 +556,43 @@ static void test_cli_run_plot(void **state) {
   check_png(path_in(jdir, "stribeck.png"), 1000, 750);
 }
 
+/* `viscolube compound show NAME --plot --out DIR` on the shipped compounds:
+ * a fitted one (isotherms: moduli and shifts) and the one-term model. */
+static void test_cli_compound_plot(void **state) {
+  (void)state;
+  char dir[4096];
+  snprintf(dir, sizeof dir, "%s", vl_test_tmpdir());
+  char env[4200], args[9000], out_dir[4200];
+  snprintf(env, sizeof env, "VISCOLUBE_DB=%s/m.db", dir);
+  snprintf(out_dir, sizeof out_dir, "%s/filled", dir);
+  snprintf(args, sizeof args, "compound show sbr-filled --plot --out %s", out_dir);
+  char *out = NULL, *errs = NULL;
+  int rc = vl_test_cli(env, args, &out, &errs);
+  if (rc != 0) fprintf(stderr, "stdout: %s\nstderr: %s\n", out, errs);
+  assert_int_equal(rc, 0);
+  assert_non_null(strstr(out, "plots (png, svg)"));
+  assert_string_equal(errs, "");
+  free(out);
+  free(errs);
+  check_png(path_in(out_dir, "moduli.png"), 1000, 750);
+  check_png(path_in(out_dir, "shifts.png"), 1000, 750);
+  assert_int_equal(svg_file_stats(path_in(out_dir, "moduli.svg")).n_series, 3);
+  assert_int_equal(svg_file_stats(path_in(out_dir, "shifts.svg")).n_series, 1);
+
+  snprintf(out_dir, sizeof out_dir, "%s/model", dir);
+  snprintf(args, sizeof args, "compound show model-rubber --plot --out %s --json", out_dir);
+  rc = vl_test_cli(env, args, &out, NULL);
+  assert_int_equal(rc, 0);
+  assert_int_equal(out[0], '{');
+  assert_null(strstr(out, "plots"));
+  free(out);
+  assert_int_equal(svg_file_stats(path_in(out_dir, "moduli.svg")).n_series, 3);
+  assert_false(file_exists(path_in(out_dir, "shifts.svg"))); /* no isotherms */
+
+  snprintf(args, sizeof args, "compound show model-rubber --out %s", out_dir);
+  assert_int_not_equal(vl_test_cli(env, args, NULL, NULL), 0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_format_value),
@@ -543,6 +604,7 @@ int main(void) {
       cmocka_unit_test(test_modulus_and_shifts),
       cmocka_unit_test(test_bad_input),
       cmocka_unit_test(test_cli_run_plot),
+      cmocka_unit_test(test_cli_compound_plot),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -127,6 +127,24 @@ void vl_contact_free(vl_contact *c);
  * returned (err says why); never NaN. */
 vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err);
 
+/* Changes the fluid viscosity of a wet contact (eta > 0; VL_EINPUT for a
+ * contact created dry) and keeps the current state: the next
+ * vl_contact_solve continues from it (continuation in viscosity). The limit
+ * eta -> 0 of a smooth film is the dry contact, reached this way on a
+ * fixed grid; a fresh start at small eta would have to find the thin film's
+ * inlet and outlet zones from scratch. */
+vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err);
+double vl_contact_viscosity(const vl_contact *c); /* Pa s */
+
+/* Continuation in viscosity at speed v0: solves at log-spaced viscosities
+ * from the current one to eta_pa_s, steps at most a factor max_ratio (> 1),
+ * each from the last converged state; a failed step is halved (in log eta)
+ * up to 6 times. On success the contact holds the solution at eta_pa_s and
+ * *pt reports it (iterations: the total); on failure the viscosity and
+ * state are those of the last converged step, VL_ENOCONV (see err). */
+vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa_s,
+                                     double max_ratio, vl_point *pt, vl_error *err);
+
 /* Resets the internal state to the Hertz (relaxed) guess. */
 void vl_contact_reset(vl_contact *c);
 

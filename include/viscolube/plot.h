@@ -60,7 +60,8 @@ void vl_plot_options_defaults(vl_plot_options *opt);
 bool vl_plot_available(vl_error *err);
 
 /* Writes v as plain UTF-8 text with 3 significant digits: "0.25", "1500",
- * "1×10⁻⁷", "3.2×10⁵" (powers of ten outside [1e-3, 1e4)). Returns the
+ * "10⁻⁷", "3.2×10⁵" (powers of ten outside [1e-3, 1e4)), negative values
+ * with a true minus sign (U+2212). Returns the
  * length written (truncated to size - 1, always NUL-terminated). For the
  * labels callers build (speeds of marked curves, compound names...). */
 size_t vl_plot_format_value(char *buf, size_t size, double v);
@@ -69,17 +70,19 @@ size_t vl_plot_format_value(char *buf, size_t size, double v);
  * against the sweep quantity x (v0, v0*eta or v0 tau/a0, from pt->v0_m_s
  * and meta as in the CSV) on a logarithmic axis; friction on a linear axis.
  * A component that is zero at every converged point (no fluid, no sigma_s)
- * is left out. marks[0..n_marks) are indices into pts of the speeds whose
- * fields are plotted: they are numbered 1..n_marks on the mu curve, the
- * numbers vl_plot_fields labels should carry (a mark on a point that did
- * not converge is skipped; its number is not reused).
+ * is left out; one that is all of mu (dry, smooth: mu = mu_Rc) is named in
+ * mu's legend entry instead of being drawn under it. marks[0..n_marks)
+ * are indices into pts of the speeds whose fields are plotted: they are
+ * numbered 1..n_marks on the mu curve, the numbers vl_plot_fields labels
+ * should carry (a mark on a point that did not converge is skipped; its
+ * number is not reused).
  * VL_EINPUT: n = 0, x undefined (v0_eta without eta, deborah without tau
  * or a0), a mark out of range; VL_EIO: a file could not be written;
  * VL_EINTERNAL: PLplot reported an error. */
 vl_status vl_plot_stribeck(const char *stem, size_t n, const vl_point *pts,
                            const vl_curve_meta *meta, vl_sweep_quantity x, size_t n_marks,
-                           const size_t *marks, const vl_plot_options *opt,
-                           vl_plot_report *report, vl_error *err);
+                           const size_t *marks, const vl_plot_options *opt, vl_plot_report *report,
+                           vl_error *err);
 
 /* The minimum separation against x: u_min/h_rms when h_rms_m > 0, else
  * u_min in um; the y axis is logarithmic when the data span more than a
@@ -108,10 +111,9 @@ typedef struct {
  * NULL label draws "j+1"). fields[j].n == 0 stands for a speed that did not
  * converge: no curve, a hollow marker in the legend. Thin dotted lines mark
  * x = +-a0. VL_EINPUT: k = 0, bad scales, a field with NULL arrays. */
-vl_status vl_plot_fields(const char *stem, vl_plot_field field, size_t k,
-                         const vl_fields *fields, const char *const *labels,
-                         const vl_plot_scales *scales, const vl_plot_options *opt,
-                         vl_plot_report *report, vl_error *err);
+vl_status vl_plot_fields(const char *stem, vl_plot_field field, size_t k, const vl_fields *fields,
+                         const char *const *labels, const vl_plot_scales *scales,
+                         const vl_plot_options *opt, vl_plot_report *report, vl_error *err);
 
 /* One curve of vl_plot_compare. */
 typedef struct {
@@ -119,7 +121,7 @@ typedef struct {
   size_t n;
   const vl_point *pts;
   vl_curve_meta meta;
-  double h_rms_m;    /* for VL_PLOT_Y_U_MIN; 0 = u_min in um */
+  double h_rms_m; /* for VL_PLOT_Y_U_MIN; 0 = u_min in um */
 } vl_plot_curve;
 
 typedef enum {
@@ -128,9 +130,9 @@ typedef enum {
   VL_PLOT_Y_MU_RF,
   VL_PLOT_Y_MU_SC,
   VL_PLOT_Y_MU_SF,
-  VL_PLOT_Y_MU_ROLLING,  /* mu_Rc + mu_Rf (the seed's Fig. 13) */
-  VL_PLOT_Y_U_MIN,       /* u_min / h_rms */
-  VL_PLOT_Y_FLUID_LOAD   /* share of the load carried by the fluid */
+  VL_PLOT_Y_MU_ROLLING, /* mu_Rc + mu_Rf (the seed's Fig. 13) */
+  VL_PLOT_Y_U_MIN,      /* u_min / h_rms */
+  VL_PLOT_Y_FLUID_LOAD  /* share of the load carried by the fluid */
 } vl_plot_y;
 
 /* k curves of quantity y against x on one axis (8 distinguishable colours,
@@ -143,7 +145,7 @@ vl_status vl_plot_compare(const char *stem, size_t k, const vl_plot_curve *curve
 
 /* Measured and fitted moduli of a compound. */
 typedef struct {
-  size_t n; /* measured points (at reduced frequency when shifted) */
+  size_t n; /* measured points (at reduced frequency when shifted); may be 0 */
   const double *omega_rad_s, *storage_pa, *loss_pa;
   size_t n_fit; /* the fitted model on a frequency grid; 0 = none */
   const double *fit_omega_rad_s, *fit_storage_pa, *fit_loss_pa;
@@ -152,8 +154,10 @@ typedef struct {
 } vl_plot_modulus_data;
 
 /* Two panels against angular frequency, log-log: E' and E'' (top), tan
- * delta = E''/E' (bottom); measured as markers, fitted as lines of the same
- * colour. VL_EINPUT: no points, a non-positive or non-finite value. */
+ * delta = E''/E' (bottom); measured as markers (in a lighter shade), fitted
+ * as lines over them. The frequency axis spans the measured points (the
+ * fitted ones when there are none). VL_EINPUT: no points at all, a
+ * non-positive or non-finite value. */
 vl_status vl_plot_modulus(const char *stem, const vl_plot_modulus_data *d,
                           const vl_plot_options *opt, vl_plot_report *report, vl_error *err);
 

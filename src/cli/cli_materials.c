@@ -13,11 +13,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli.h"
 #include "viscolube/csv.h"
 #include "viscolube/database.h"
 #include "viscolube/dma.h"
+#include "viscolube/plot.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
 
@@ -111,6 +113,7 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
             noun, noun, noun);
   } else if (!strcmp(verb, "show") && kind == NOUN_COMPOUND) {
     fputs("usage: viscolube [--db PATH] compound show NAME [--json] [--curve FILE]\n"
+          "                                         [--plot [--out DIR]]\n"
           "\n"
           "Prints what is stored about compound NAME and the quantities derived from it:\n"
           "E0, Einf, nu, the loss-tangent peak, the Prony terms and, for a compound fitted\n"
@@ -122,7 +125,11 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
           "                reduced_omega_rad_s (a_T omega at tref), storage_pa and\n"
           "                storage_fit_pa, loss_pa and loss_fit_pa, tan_delta and\n"
           "                tan_delta_fit (fitted at the reduced frequency), source_line;\n"
-          "                plot measured against fitted over reduced_omega_rad_s.\n",
+          "                plot measured against fitted over reduced_omega_rad_s.\n"
+          "  --plot        also draw, as PNG and SVG in DIR (default out/compound-NAME):\n"
+          "                moduli (E', E'' and tan delta, measured on the master curve and\n"
+          "                the Prony series, log-log) and, for isotherms, shifts (log10 a_T\n"
+          "                of each isotherm against temperature with the WLF fit).\n",
           out);
   } else if (!strcmp(verb, "show")) {
     fprintf(out,
@@ -1024,15 +1031,105 @@ static int write_curve(const context *cx, vl_db *db, const vl_db_compound *c, co
   return -1;
 }
 
+/* mkdir -p */
+static int make_dirs(const char *path) {
+  char buf[4200];
+  snprintf(buf, sizeof buf, "%s", path);
+  for (char *p = buf + 1; *p; p++) {
+    if (*p != '/') continue;
+    *p = '\0';
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
+    *p = '/';
+  }
+  return mkdir(buf, 0777) != 0 && errno != EEXIST ? -1 : 0;
+}
+
+/* `compound show NAME --plot`: DIR/moduli and, with isotherms, DIR/shifts
+ * (plot.h). Returns -1 on success, else the exit code after the message. */
+static int plot_compound(const context *cx, vl_db *db, const vl_db_compound *c,
+                         const vl_db_compound_fit *fit, const char *dir, int quiet) {
+  vl_error err = {{0}};
+  vl_db_measured_point *pts = NULL;
+  size_t n = 0;
+  vl_status st = vl_db_compound_points(db, c->name, &pts, &n, &err);
+  if (st != VL_OK) return fail(cx, st, err.msg);
+  enum { NFIT = 240 };
+  /* the fit over the measured window, else over the series' own times */
+  double wlo = INFINITY, whi = 0;
+  for (size_t k = 0; k < n; k++) {
+    wlo = fmin(wlo, pts[k].reduced_omega_rad_s);
+    whi = fmax(whi, pts[k].reduced_omega_rad_s);
+  }
+  for (size_t k = 0; n == 0 && k < c->prony.n_terms; k++) {
+    wlo = fmin(wlo, 0.01 / c->prony.tau_s[k]);
+    whi = fmax(whi, 100 / c->prony.tau_s[k]);
+  }
+  size_t n_fit = c->prony.n_terms > 0 && whi > wlo ? NFIT : 0;
+  double *buf = malloc((3 * n + 3 * NFIT + 1) * sizeof *buf);
+  if (!buf) {
+    free(pts);
+    return fail(cx, VL_ENOMEM, "out of memory");
+  }
+  double *w = buf, *e1 = buf + n, *e2 = buf + 2 * n, *fw = buf + 3 * n, *f1 = fw + NFIT,
+         *f2 = f1 + NFIT;
+  for (size_t k = 0; k < n; k++) {
+    w[k] = pts[k].reduced_omega_rad_s;
+    e1[k] = pts[k].storage_pa;
+    e2[k] = pts[k].loss_pa;
+  }
+  for (size_t k = 0; k < n_fit; k++) {
+    fw[k] = wlo * pow(whi / wlo, (double)k / (NFIT - 1));
+    double complex e = vl_prony_modulus(&c->prony, fw[k]);
+    f1[k] = creal(e);
+    f2[k] = cimag(e);
+  }
+  char ml[96], fl[96], title[160], stem[4300];
+  snprintf(ml, sizeof ml, fit->n_isotherms > 1 ? "measured, shifted to %g °C" : "measured, %g °C",
+           c->tref_c);
+  snprintf(fl, sizeof fl, "Prony series, %zu term%s", c->prony.n_terms,
+           c->prony.n_terms == 1 ? "" : "s");
+  snprintf(title, sizeof title, "compound %s at %g °C", c->name, c->tref_c);
+  vl_plot_modulus_data d = {n, w, e1, e2, n_fit, fw, f1, f2, ml, fl};
+  vl_plot_options opt;
+  vl_plot_options_defaults(&opt);
+  opt.title = title;
+  int shifts = fit->has_fit && fit->n_shifts >= 2;
+  if (n + n_fit == 0) {
+    st = VL_EINPUT;
+    vl_error_set(&err, "option --plot: compound '%s' is elastic and has no measured data",
+                 c->name);
+  } else if (make_dirs(dir) != 0) {
+    st = VL_EIO;
+    vl_error_set(&err, "%s: cannot create directory: %s", dir, strerror(errno));
+  } else {
+    snprintf(stem, sizeof stem, "%s/moduli", dir);
+    st = vl_plot_modulus(stem, &d, &opt, NULL, &err);
+    if (st == VL_OK && shifts) {
+      snprintf(stem, sizeof stem, "%s/shifts", dir);
+      st = vl_plot_shifts(stem, fit->n_shifts, fit->shift_temperature_c, fit->shift_log10_a_t,
+                          c->tref_c, c->wlf_c1, c->wlf_c2_k, &opt, NULL, &err);
+    }
+  }
+  free(buf);
+  free(pts);
+  if (st != VL_OK) return fail(cx, st, err.msg);
+  if (!quiet) printf("plots (png, svg) in %s: moduli%s\n", dir, shifts ? ", shifts" : "");
+  return -1;
+}
+
 static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--json", NULL, NULL}, {"--curve", "FILE", NULL}};
-  size_t n_opts = cx->kind == NOUN_COMPOUND ? 2 : 1;
+  option opts[] = {{"--json", NULL, NULL},
+                   {"--curve", "FILE", NULL},
+                   {"--plot", NULL, NULL},
+                   {"--out", "DIR", NULL}};
+  size_t n_opts = cx->kind == NOUN_COMPOUND ? 4 : 1;
   const char *pos[1], *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
   if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
   int json = opts[0].value != NULL;
+  if (opts[3].value && !opts[2].value) return fail(cx, VL_EINPUT, "option --out goes with --plot");
   vl_db *db = NULL;
   if ((rc = open_db(cx, g, &db)) >= 0) return rc;
   vl_error err;
@@ -1056,6 +1153,19 @@ static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **
         compound_json(stdout, c, &f);
       } else {
         compound_text(stdout, c, &f);
+      }
+    }
+    if (st == VL_OK && opts[2].value) {
+      char dir[4200];
+      snprintf(dir, sizeof dir, "%s", opts[3].value ? opts[3].value : "");
+      if (!opts[3].value) snprintf(dir, sizeof dir, "out/compound-%s", c->name);
+      if (json) fputc('\n', stdout); /* the object is complete before any message */
+      rc = plot_compound(cx, db, c, &f, dir, json);
+      if (rc >= 0 || json) {
+        vl_db_compound_fit_free(&f);
+        free(c);
+        vl_db_close(db);
+        return rc >= 0 ? rc : 0;
       }
     }
     vl_db_compound_fit_free(&f);

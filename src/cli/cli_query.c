@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "viscolube/csv.h"
 #include "viscolube/database.h"
 #include "viscolube/output.h"
 #include "viscolube/scene.h"
@@ -25,11 +26,11 @@ typedef struct {
   int json;
 } conditions;
 
+/* The strict decimal syntax of every numeric option and CSV cell
+ * (vl_csv_parse_double): no hex floats, NaN, Inf or trailing units. */
 static int parse_number(const char *cmd, const char *opt, const char *v, double *out, int positive) {
-  char *end;
-  errno = 0;
-  double d = v ? strtod(v, &end) : 0.0;
-  if (!v || end == v || *end || errno || !isfinite(d) || (positive ? d <= 0.0 : d < 0.0)) {
+  double d = 0.0;
+  if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || (positive ? d <= 0.0 : d < 0.0)) {
     fprintf(stderr, "viscolube %s: option %s needs a %s number (got '%s')\n", cmd, opt,
             positive ? "positive" : "non-negative", v ? v : "");
     return 0;

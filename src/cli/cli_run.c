@@ -106,7 +106,8 @@ static vl_status keep_fields(run_ctx *ctx, size_t n, size_t grid, vl_error *err)
     if (!vl_simulation_wants_fields(ctx->sim, i)) continue;
     double *b = ctx->kept_buf + 6 * grid * k;
     ctx->kept_index[k] = i;
-    ctx->kept[k] = (vl_fields){0, b, b + grid, b + 2 * grid, b + 3 * grid, b + 4 * grid, b + 5 * grid};
+    ctx->kept[k] =
+        (vl_fields){0, b, b + grid, b + 2 * grid, b + 3 * grid, b + 4 * grid, b + 5 * grid};
     k++;
   }
   return VL_OK;

@@ -1,16 +1,17 @@
 /* Fuzz target: the command line's argument handling (`viscolube compound|
  * surface|fluid|run ...`), through the same entry points main() calls
- * (vl_cli_materials, vl_cli_run in src/cli). The input is the argument
- * vector, one argument per line (or NUL-separated), starting at the noun.
+ * (vl_cli_materials, vl_cli_run, vl_cli_friction, vl_cli_compare in
+ * src/cli). The input is the argument vector, one argument per line (or
+ * NUL-separated), starting at the noun.
  *
  * Confinement, so that no input can touch anything outside a private
  * directory: every '/' in an argument becomes '_' and the command runs with
  * that directory as its working directory, so file arguments (--prony,
  * --psd, scenes) can only name the seed files placed there (prony.csv,
  * psd.csv, scene.ini, bad.csv) or nothing. The material commands get a
- * database there whose permission bits are 0444 (opened read-only); `run`
- * gets a database path in a missing directory, so it stops before solving
- * or writing anything.
+ * database there whose permission bits are 0444 (opened read-only); `run`,
+ * `friction` and `compare` get a database path in a missing directory, so
+ * they stop before solving or writing anything (a solve takes seconds).
  *
  * Properties: the exit status is one of the documented codes; a command
  * that would write (add, remove) never reports success on the read-only
@@ -95,7 +96,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   argv[argc] = NULL;
   const char *noun = argv[0];
   int material = !strcmp(noun, "compound") || !strcmp(noun, "surface") || !strcmp(noun, "fluid");
-  if (!material && strcmp(noun, "run")) {
+  int (*entry)(const vl_cli_globals *, int, char **) =
+      material                    ? vl_cli_materials
+      : !strcmp(noun, "run")      ? vl_cli_run
+      : !strcmp(noun, "friction") ? vl_cli_friction
+      : !strcmp(noun, "compare")  ? vl_cli_compare
+                                  : NULL;
+  if (!entry) {
     free(buf);
     return 0;
   }
@@ -108,7 +115,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (!getcwd(cwd, sizeof cwd) || chdir(dir) != 0)
     vl_fuzz_fail(__FILE__, __LINE__, "cannot enter %s", dir);
   vl_cli_globals g = {.db_path = material ? db_ro : db_missing};
-  int rc = material ? vl_cli_materials(&g, argc, argv) : vl_cli_run(&g, argc, argv);
+  int rc = entry(&g, argc, argv);
   fflush(stdout);
   fflush(stderr);
   if (chdir(cwd) != 0) vl_fuzz_fail(__FILE__, __LINE__, "cannot return to %s", cwd);

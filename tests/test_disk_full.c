@@ -1,0 +1,439 @@
+/* Writes that cannot complete: a full disk, a file-size limit, a directory
+ * where the rollback journal cannot be created, a read-only file with an
+ * unfinished transaction in it. Each case runs the real command-line
+ * program (fork + exec) and asserts three things: the command fails with
+ * the I/O or database exit status and one clear sentence on stderr, the
+ * database file is byte-for-byte what it was (nothing lost, nothing half
+ * written, no hot journal), and the next command works once the cause is
+ * gone.
+ *
+ * Disk full, two ways:
+ *   - RLIMIT_FSIZE in the child (SIGXFSZ ignored), so every write past the
+ *     limit fails with EFBIG: portable, no privileges. The limit is swept
+ *     from the file's size upwards in 4 KiB steps while `surface add` writes
+ *     a 3000-point spectrum (about 30 pages), so that the write fails at
+ *     every stage of the transaction, until it fits; and a new database is
+ *     created under limits too small for it.
+ *   - a real full file system: a 256 KiB tmpfs (mount needs root and
+ *     CAP_SYS_ADMIN; skipped when mount fails), filled but for a few pages.
+ * Read-only: a directory without write permission, so SQLite cannot create
+ * the journal (the command runs as user nobody when the tests run as root,
+ * for whom permission bits do not apply); and a read-only file holding a
+ * hot journal, which SQLite must roll back before reading. */
+#define _POSIX_C_SOURCE 200809L
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h> /* after the four headers it needs */
+
+#include "vl_test_util.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <grp.h>
+#include <math.h>
+#include <signal.h>
+#include <sqlite3.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mount.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "viscolube/database.h"
+
+#define EXIT_EDB 5
+#define EXIT_EIO 6
+#define NOBODY 65534
+
+/* ---- helpers ---------------------------------------------------------- */
+
+typedef struct {
+  unsigned char *bytes;
+  size_t n;
+} snapshot;
+
+static snapshot take(const char *path) {
+  snapshot s = {NULL, 0};
+  FILE *f = fopen(path, "rb");
+  if (!f) fail_msg("cannot read %s", path);
+  size_t cap = 0;
+  for (;;) {
+    if (s.n == cap) s.bytes = realloc(s.bytes, cap = cap ? 2 * cap : 65536);
+    size_t got = fread(s.bytes + s.n, 1, cap - s.n, f);
+    s.n += got;
+    if (got == 0) break;
+  }
+  fclose(f);
+  return s;
+}
+
+static int same(const char *path, const snapshot *s) {
+  snapshot now = take(path);
+  int eq = now.n == s->n && memcmp(now.bytes, s->bytes, s->n) == 0;
+  free(now.bytes);
+  return eq;
+}
+
+/* 0 no journal, 1 cold (SQLite ignores it), 2 hot (would be rolled back). */
+static int journal_state(const char *db) {
+  char path[4200];
+  snprintf(path, sizeof path, "%s-journal", db);
+  FILE *f = fopen(path, "rb");
+  if (!f) return 0;
+  int c = fgetc(f);
+  fclose(f);
+  return c == EOF || c == 0 ? 1 : 2;
+}
+
+typedef struct {
+  long long fsize_limit; /* RLIMIT_FSIZE in bytes; < 0: none */
+  int as_nobody;         /* run as uid/gid 65534 (only when we are root) */
+} limits;
+
+/* Runs `$VL_CLI --db DB args...` (args NULL-terminated) under lim; stderr
+ * into *err_text (malloc'd). Returns the exit status, or -1 on a signal. */
+static int cli(const limits *lim, const char *db, char **err_text, ...) {
+  const char *cli_path = getenv("VL_CLI");
+  if (!cli_path) fail_msg("VL_CLI is not set (run the tests through ctest)");
+  char *argv[40];
+  int argc = 0;
+  argv[argc++] = (char *)cli_path;
+  argv[argc++] = "--db";
+  argv[argc++] = (char *)db;
+  va_list ap;
+  va_start(ap, err_text);
+  const char *a;
+  while ((a = va_arg(ap, const char *)) != NULL && argc < 39)
+    argv[argc++] = (char *)a;
+  va_end(ap);
+  argv[argc] = NULL;
+
+  /* stderr through a pipe: a file would itself hit the size limit */
+  int fds[2];
+  if (pipe(fds) != 0) fail_msg("pipe: %s", strerror(errno));
+  pid_t pid = fork();
+  if (pid == 0) {
+    int null = open("/dev/null", O_RDWR);
+    dup2(null, 0);
+    dup2(null, 1);
+    dup2(fds[1], 2);
+    close(fds[0]);
+    close(fds[1]);
+    if (lim && lim->fsize_limit >= 0) {
+      /* a write past the limit then fails with EFBIG instead of killing */
+      signal(SIGXFSZ, SIG_IGN);
+      struct rlimit rl = {(rlim_t)lim->fsize_limit, (rlim_t)lim->fsize_limit};
+      if (setrlimit(RLIMIT_FSIZE, &rl) != 0) _exit(120);
+    }
+    if (lim && lim->as_nobody && geteuid() == 0) {
+      if (setgroups(0, NULL) != 0 || setgid(NOBODY) != 0 || setuid(NOBODY) != 0) _exit(121);
+    }
+    execv(argv[0], argv);
+    _exit(127);
+  }
+  close(fds[1]);
+  size_t cap = 4096, n = 0;
+  char *text = malloc(cap);
+  ssize_t got;
+  while ((got = read(fds[0], text + n, cap - n - 1)) != 0) {
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      break;
+    }
+    n += (size_t)got;
+    if (n + 1 == cap) text = realloc(text, cap *= 2);
+  }
+  text[n] = '\0';
+  close(fds[0]);
+  int st;
+  while (waitpid(pid, &st, 0) < 0)
+    if (errno != EINTR) fail_msg("waitpid: %s", strerror(errno));
+  if (err_text)
+    *err_text = text;
+  else
+    free(text);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+/* A clear sentence for a failed write: says what failed and that nothing
+ * was changed. */
+static void assert_clear_write_error(const char *err, const char *what) {
+  if (!err || !strstr(err, what) || !strstr(err, "nothing was changed") || strchr(err, '\n') !=
+      strrchr(err, '\n'))
+    fail_msg("unclear message (wanted '%s' and 'nothing was changed', one line): %s", what,
+             err ? err : "(none)");
+}
+
+static char dir[4096], db[4200], psd[4200];
+
+static int setup(void **state) {
+  (void)state;
+  snprintf(dir, sizeof dir, "%s", vl_test_tmpdir());
+  chmod(dir, 0755); /* user nobody must reach it */
+  snprintf(db, sizeof db, "%s/materials.db", dir);
+  snprintf(psd, sizeof psd, "%s/psd.csv", dir);
+  vl_db *h = NULL;
+  vl_error err;
+  assert_int_equal(vl_db_open(db, &h, &err), VL_OK);
+  vl_db_close(h);
+  /* 3000 points: about 30 pages of new rows in one transaction */
+  FILE *f = fopen(psd, "w");
+  assert_non_null(f);
+  fprintf(f, "q_per_m,C_m4\n");
+  for (int k = 0; k < 3000; k++) {
+    double q = 1e3 * pow(1e6, k / 2999.0);
+    fprintf(f, "%.10g,%.10g\n", q, 1e-20 * pow(q / 1e3, -3.6));
+  }
+  fclose(f);
+  return 0;
+}
+
+static int teardown(void **state) {
+  (void)state;
+  char cmd[4300];
+  snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+  if (system(cmd) != 0) fprintf(stderr, "cannot remove %s\n", dir);
+  return 0;
+}
+
+/* ---- RLIMIT_FSIZE ----------------------------------------------------- */
+
+static void test_file_size_limit_sweep(void **state) {
+  (void)state;
+  snapshot before = take(db);
+  int failed = 0, limit_pages = 0;
+  char *err = NULL;
+  for (int k = 0; k <= 64; k++) {
+    limits lim = {(long long)before.n + 4096LL * k, 0};
+    int rc = cli(&lim, db, &err, "surface", "add", "big", "--psd", psd, NULL);
+    if (rc == 0) {
+      limit_pages = k;
+      break;
+    }
+    failed++;
+    if (rc != EXIT_EIO) fail_msg("limit +%d pages: exit %d, not the I/O status: %s", k, rc, err);
+    assert_clear_write_error(err, "full");
+    if (!same(db, &before)) fail_msg("limit +%d pages: the database file changed", k);
+    if (journal_state(db) == 2) fail_msg("limit +%d pages: a hot journal was left", k);
+    if (k == 0) printf("file size limit: message: %s", err);
+    free(err);
+    err = NULL;
+  }
+  free(err);
+  printf("file size limit: surface add of 3000 points failed cleanly under %d limits (file size "
+         "+0 to +%d KiB), database unchanged each time; succeeded with +%d KiB\n",
+         failed, 4 * (failed - 1), 4 * limit_pages);
+  assert_true(failed >= 3 && limit_pages > 0);
+  /* the add that fitted is complete, and everything else is still there */
+  vl_db *h = NULL;
+  vl_error e;
+  assert_int_equal(vl_db_open(db, &h, &e), VL_OK);
+  vl_db_surface s;
+  assert_int_equal(vl_db_surface_info(h, "big", &s, &e), VL_OK);
+  assert_int_equal(s.n_points, 3000);
+  assert_int_equal(vl_db_surface_info(h, "paper-1um", &s, &e), VL_OK);
+  vl_db_close(h);
+  free(before.bytes);
+}
+
+/* No growth allowed at all: a 128-term compound, and a fluid. */
+static void test_file_size_limit_compound(void **state) {
+  (void)state;
+  char prony[4200];
+  snprintf(prony, sizeof prony, "%s/prony.csv", dir);
+  FILE *f = fopen(prony, "w");
+  assert_non_null(f);
+  fprintf(f, "A,tau_s\n");
+  for (int i = 0; i < 128; i++)
+    fprintf(f, "%.6g,%.6g\n", 0.05 + 0.01 * i, 1e-9 * pow(10.0, 18.0 * i / 127.0));
+  fclose(f);
+  snapshot before = take(db);
+  limits lim = {(long long)before.n, 0};
+  char *err = NULL;
+  int rc = cli(&lim, db, &err, "compound", "add", "big", "--prony", prony, "--e-inf", "1e9",
+               "--nu", "0.5", NULL);
+  assert_int_equal(rc, EXIT_EIO);
+  assert_clear_write_error(err, "full");
+  free(err);
+  assert_true(same(db, &before));
+  assert_int_not_equal(journal_state(db), 2);
+  /* without the limit the same command works */
+  assert_int_equal(cli(NULL, db, NULL, "compound", "add", "big", "--prony", prony, "--e-inf",
+                       "1e9", "--nu", "0.5", NULL),
+                   0);
+  free(before.bytes);
+}
+
+/* A new database cannot be created under a small limit: clear error, and
+ * no file left behind (the program removes the file it created). */
+static void test_file_size_limit_create(void **state) {
+  (void)state;
+  char fresh[4200];
+  snprintf(fresh, sizeof fresh, "%s/new.db", dir);
+  const long long sizes[] = {0, 4096, 16384, 65536};
+  for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++) {
+    limits lim = {sizes[i], 0};
+    char *err = NULL;
+    int rc = cli(&lim, fresh, &err, "fluid", "list", NULL);
+    if (rc != EXIT_EIO) fail_msg("limit %lld: exit %d: %s", sizes[i], rc, err);
+    if (!strstr(err, "full")) fail_msg("limit %lld: unclear message: %s", sizes[i], err);
+    if (i == 0) printf("file size limit, new database: message: %s", err);
+    free(err);
+    struct stat sb;
+    char journal[4300];
+    snprintf(journal, sizeof journal, "%s-journal", fresh);
+    if (stat(fresh, &sb) == 0 || stat(journal, &sb) == 0)
+      fail_msg("limit %lld: a half-created database was left behind", sizes[i]);
+  }
+  assert_int_equal(cli(NULL, fresh, NULL, "fluid", "list", NULL), 0);
+}
+
+/* ---- a real full file system ------------------------------------------ */
+
+static void test_tmpfs_full(void **state) {
+  (void)state;
+  char mnt[4200], small[4300], filler[4300];
+  snprintf(mnt, sizeof mnt, "%s/tmpfs", dir);
+  assert_int_equal(mkdir(mnt, 0755), 0);
+  if (mount("tmpfs", mnt, "tmpfs", 0, "size=256k,mode=0755") != 0) {
+    printf("tmpfs: skipped, mount failed (%s): needs root with CAP_SYS_ADMIN\n", strerror(errno));
+    rmdir(mnt);
+    skip();
+  }
+  snprintf(small, sizeof small, "%s/materials.db", mnt);
+  snprintf(filler, sizeof filler, "%s/filler", mnt);
+  snapshot orig = take(db);
+  FILE *f = fopen(small, "wb");
+  int copied = f && fwrite(orig.bytes, 1, orig.n, f) == orig.n;
+  if (f) copied &= fclose(f) == 0;
+  free(orig.bytes);
+  if (!copied) {
+    umount(mnt);
+    fail_msg("the database does not fit the 256 KiB tmpfs");
+  }
+  /* fill the file system but for 3 pages */
+  f = fopen(filler, "wb");
+  char page[4096];
+  memset(page, 0xAB, sizeof page);
+  while (fwrite(page, 1, sizeof page, f) == sizeof page && fflush(f) == 0) {
+  }
+  fclose(f);
+  struct stat sb;
+  stat(filler, &sb);
+  truncate(filler, sb.st_size > 3 * 4096 ? sb.st_size - 3 * 4096 : 0);
+
+  snapshot before = take(small);
+  char *err = NULL;
+  int rc = cli(NULL, small, &err, "surface", "add", "big", "--psd", psd, NULL);
+  int unchanged = same(small, &before), js = journal_state(small);
+  printf("tmpfs full: surface add: exit %d, message: %s", rc, err);
+  /* room again: the same command works, on the same file */
+  unlink(filler);
+  int rc2 = cli(NULL, small, NULL, "surface", "add", "big", "--psd", psd, NULL);
+  umount(mnt); /* before any assertion: teardown removes the directory */
+  rmdir(mnt);
+  free(before.bytes);
+  assert_int_equal(rc, EXIT_EIO);
+  assert_clear_write_error(err, "full");
+  free(err);
+  assert_true(unchanged);
+  assert_int_not_equal(js, 2);
+  assert_int_equal(rc2, 0);
+}
+
+/* ---- read-only directory and read-only file --------------------------- */
+
+/* The file is writable, its directory is not: SQLite cannot create the
+ * rollback journal. Reads work; writes fail clearly; nothing changes. */
+static void test_readonly_directory(void **state) {
+  (void)state;
+  char sub[4200], path[4300];
+  snprintf(sub, sizeof sub, "%s/ro", dir);
+  snprintf(path, sizeof path, "%s/materials.db", sub);
+  assert_int_equal(mkdir(sub, 0755), 0);
+  snapshot orig = take(db);
+  FILE *f = fopen(path, "wb");
+  assert_non_null(f);
+  assert_int_equal(fwrite(orig.bytes, 1, orig.n, f), orig.n);
+  fclose(f);
+  free(orig.bytes);
+  assert_int_equal(chmod(path, 0666), 0);
+  assert_int_equal(chmod(sub, 0555), 0);
+  limits lim = {-1, 1};
+  snapshot before = take(path);
+  char *err = NULL;
+  int rc = cli(&lim, path, &err, "fluid", "show", "water", NULL);
+  if (rc != 0) fail_msg("reading as user nobody: exit %d: %s", rc, err);
+  free(err);
+  rc = cli(&lim, path, &err, "fluid", "add", "oil", "--viscosity", "0.1", NULL);
+  printf("read-only directory: fluid add: exit %d, message: %s", rc, err ? err : "(none)\n");
+  assert_true(rc == EXIT_EIO || rc == EXIT_EDB);
+  assert_clear_write_error(err, "journal");
+  free(err);
+  rc = cli(&lim, path, &err, "compound", "remove", "model-rubber", NULL);
+  assert_true(rc == EXIT_EIO || rc == EXIT_EDB);
+  free(err);
+  assert_true(same(path, &before));
+  chmod(sub, 0777); /* writable for nobody too: the same command works */
+  assert_int_equal(cli(&lim, path, NULL, "fluid", "add", "oil", "--viscosity", "0.1", NULL), 0);
+  free(before.bytes);
+}
+
+/* A crash left a hot journal (an interrupted write) and then the file was
+ * made read-only: the program cannot roll the journal back, so it must not
+ * read the half-written pages; it says what to do. */
+static void test_readonly_file_with_hot_journal(void **state) {
+  (void)state;
+  snapshot before = take(db);
+  /* a child that dies in the middle of a large write, after SQLite has
+   * spilled pages into the file (cache of 2 pages) */
+  pid_t pid = fork();
+  if (pid == 0) {
+    sqlite3 *h;
+    if (sqlite3_open(db, &h) != SQLITE_OK) _exit(1);
+    sqlite3_exec(h, "PRAGMA cache_size = 2; BEGIN; UPDATE surface SET description = "
+                    "printf('%.*c', 3000, 'x'); UPDATE fluid SET description = "
+                    "printf('%.*c', 3000, 'y');",
+                 NULL, NULL, NULL);
+    _exit(0); /* no COMMIT, no close: as a kill would leave it */
+  }
+  int st;
+  waitpid(pid, &st, 0);
+  assert_int_equal(journal_state(db), 2);
+  assert_false(same(db, &before)); /* the file itself was written */
+  assert_int_equal(chmod(db, 0444), 0);
+  char *err = NULL;
+  int rc = cli(NULL, db, &err, "fluid", "list", NULL);
+  printf("read-only file with a hot journal: fluid list: exit %d, message: %s", rc,
+         err ? err : "(none)\n");
+  assert_int_equal(rc, EXIT_EDB);
+  if (!strstr(err, "interrupted") || !strstr(err, "writable"))
+    fail_msg("unclear message: %s", err);
+  free(err);
+  assert_int_equal(journal_state(db), 2); /* still there: nothing lost */
+  /* writable again: the next run rolls the journal back, content as before */
+  assert_int_equal(chmod(db, 0644), 0);
+  assert_int_equal(cli(NULL, db, NULL, "fluid", "list", NULL), 0);
+  assert_int_equal(journal_state(db), 0);
+  assert_true(same(db, &before));
+  free(before.bytes);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test_setup_teardown(test_file_size_limit_sweep, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_file_size_limit_compound, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_file_size_limit_create, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_tmpfs_full, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_readonly_directory, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_readonly_file_with_hot_journal, setup, teardown),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
