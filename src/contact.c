@@ -127,24 +127,49 @@ static double fb_eps(double a, double b, double eps, double *da, double *db) {
 static double fb(double a, double b, double *da, double *db) { return fb_eps(a, b, FB_EPS, da, db); }
 
 /* Couette film carried across face f (0..n; face f lies between cells f-1
- * and f) as a combination sum_q w[q] cf[k[q]] of cell values; returns the
- * number of terms. Second-order upwind (the film of the cell the fluid
- * leaves, extrapolated linearly from the cell behind it): a centred film
- * would decouple odd and even cells where the Poiseuille flow vanishes (the
- * EHL contact zone), first-order upwind costs O(dx) in the film (13 % at 128
- * cells on Martin's rigid cylinder). The outlet face takes the upwind cell. */
-static int couette_stencil(const vl_contact *c, size_t f, size_t k[3], double w[3]) {
+ * and f): returns its value and writes the cells k[q] and the partial
+ * derivatives w[q] = d(value)/d(cf[k[q]]); returns the number m of terms
+ * in *m. Second-order upwind (the film of the cell the fluid leaves,
+ * extrapolated from the cell behind it): a centred film would decouple odd
+ * and even cells where the Poiseuille flow vanishes (the EHL contact zone),
+ * first-order upwind costs O(dx) in the film (13 % at 128 cells on Martin's
+ * rigid cylinder). A smooth film limits the extrapolation (van Albada,
+ * first order where the film has an extremum): the plain extrapolation
+ * 1.5 cf[C] - 0.5 cf[U] vanishes where the film drops by 3x per cell, and
+ * a thin viscoelastic film (whose inlet pressure rises within a few cells)
+ * then found a spurious discrete solution with no Couette flux at all and
+ * a film of 1e-11 m; the limited face value stays between 0 and the
+ * larger neighbour. The outlet face takes the upwind cell; the inflow
+ * faces 0 and 1 (far inlet, smooth film) are not limited. */
+static double couette_face(const vl_contact *c, size_t f, size_t k[3], double w[3], int *m) {
   size_t n = c->n;
+  const double *cf = c->cf;
   if (f == n) {
-    k[0] = n - 1, w[0] = 1.0;
-    return 1;
+    k[0] = n - 1, w[0] = 1.0, *m = 1;
+    return cf[n - 1];
   }
   if (f <= 1) { /* inflow face extrapolated from cells 0, 1; face 1 centred */
-    k[0] = 0, k[1] = 1, w[0] = f ? 0.5 : 1.5, w[1] = f ? 0.5 : -0.5;
-    return 2;
+    k[0] = 0, k[1] = 1, w[0] = f ? 0.5 : 1.5, w[1] = f ? 0.5 : -0.5, *m = 2;
+    return w[0] * cf[0] + w[1] * cf[1];
   }
-  k[0] = f - 1, k[1] = f - 2, w[0] = 1.5, w[1] = -0.5;
-  return 2;
+  if (c->rough) {
+    k[0] = f - 1, k[1] = f - 2, w[0] = 1.5, w[1] = -0.5, *m = 2;
+    return 1.5 * cf[f - 1] - 0.5 * cf[f - 2];
+  }
+  /* cells U = f-2, C = f-1, D = f; face = cf[C] + b psi(a/b)/2 with
+   * a = cf[D] - cf[C], b = cf[C] - cf[U], psi(r) = (r^2 + r)/(r^2 + 1) for
+   * r > 0, 0 otherwise: b psi(a/b) = a b (a + b)/(a^2 + b^2) */
+  double a = cf[f] - cf[f - 1], b = cf[f - 1] - cf[f - 2];
+  k[0] = f - 1, k[1] = f - 2, k[2] = f, *m = 3;
+  if (!(a * b > 0.0)) {
+    w[0] = 1.0, w[1] = 0.0, w[2] = 0.0;
+    return cf[f - 1];
+  }
+  double s = a * a + b * b, inc = 0.5 * a * b * (a + b) / s;
+  double da = 0.5 * b * b * (2.0 * a * b - a * a + b * b) / (s * s);
+  double db = 0.5 * a * a * (2.0 * a * b - b * b + a * a) / (s * s);
+  w[0] = 1.0 - da + db, w[1] = -db, w[2] = da;
+  return cf[f - 1] + inc;
 }
 
 /* Everything the residual needs from the unknowns y: contact pressure P (and
@@ -200,16 +225,15 @@ static void eval_state(vl_contact *c, const double *y) {
     c->dcf[i] = on * (1.0 + c->hrms * d.phi_s);
   }
   /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + Couette film at the face
-   * (couette_stencil); pf = 0 beyond both ends of the domain (half-cell
+   * (couette_face); pf = 0 beyond both ends of the domain (half-cell
    * distance) */
   const double *pf = y + c->of;
   double L = c->lambda, dx = c->dxi;
   for (size_t f = 0; f <= n; f++) {
     size_t k[3];
     double w[3];
-    int m = couette_stencil(c, f, k, w);
-    double jc = 0.0;
-    for (int q = 0; q < m; q++) jc += w[q] * c->cf[k[q]];
+    int m;
+    double jc = couette_face(c, f, k, w, &m);
     double jp = f == 0   ? -L * c->g[0] * pf[0] / (0.5 * dx)
                 : f == n ? L * c->g[n - 1] * pf[n - 1] / (0.5 * dx)
                          : -L * 0.5 * (c->g[f - 1] + c->g[f]) * (pf[f] - pf[f - 1]) / dx;
@@ -254,7 +278,8 @@ static void reynolds_weights(vl_contact *c) {
     for (int side = 0; side < 2; side++) {
       size_t k[3];
       double w[3];
-      int m = couette_stencil(c, i + (size_t)side, k, w);
+      int m;
+      couette_face(c, i + (size_t)side, k, w, &m);
       for (int q = 0; q < m; q++)
         elastic += (side ? 1.0 : -1.0) * w[q] * c->dcf[k[q]] * c->M[k[q] * n + i] * c->kappa;
     }
@@ -357,7 +382,8 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
       }
       size_t k[3];
       double cw[3];
-      int m = couette_stencil(c, f, k, cw);
+      int m;
+      couette_face(c, f, k, cw, &m);
       for (int q = 0; q < m; q++) du[k[q] + 2 - i] += sg * cw[q] * c->dcf[k[q]];
     }
     for (int q = 0; q < 3; q++)

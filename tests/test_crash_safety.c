@@ -18,8 +18,9 @@
  * 5 measured first), counted from the start; the rest wait for the journal
  * to appear (the program starts writing) and kill after a delay drawn
  * log-uniformly between 1 us and twice the journal's measured lifetime
- * (median; on a loaded machine it varies by 10x), so that enough kills
- * land inside the write transaction, including its commit. Campaigns:
+ * (median; on a loaded machine it varies by 10x) or uniformly up to 1.5
+ * times it, so that enough kills land inside the write transaction,
+ * including its commit (when the file itself is written). Campaigns:
  *   - `compound add` of a 128-term series into an existing database
  *     (200 tries);
  *   - creation of a new database (every migration, the seeds and the fits
@@ -414,10 +415,13 @@ static void run_campaign(const campaign *cp) {
   for (; tries < wanted && now_s() - t_start < CAMPAIGN_SECONDS; tries++) {
     copy_file(cp->before, cp->work);
     unlink(journal);
-    /* a third: uniform over the whole command; the rest: uniform over the
-     * write transaction, counted from the journal's appearance */
+    /* a third: uniform over the whole command; a third: log-uniform from
+     * the journal's appearance (the start of the writes); a third: uniform
+     * from there (reaches the commit at the end of the transaction) */
     int mode = tries % 3 == 0 ? 0 : 1;
-    double delay = mode == 0 ? uniform() * 1.2 * dur : 1e-6 * pow(2.0 * tx_len / 1e-6, uniform());
+    double delay = tries % 3 == 0   ? uniform() * 1.2 * dur
+                   : tries % 3 == 1 ? 1e-6 * pow(2.0 * tx_len / 1e-6, uniform())
+                                    : uniform() * 1.5 * tx_len;
     int st = run_killed(argv, journal, mode, delay);
     by_mode[mode]++;
     int was_killed = WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL;

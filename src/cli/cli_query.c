@@ -11,6 +11,7 @@
 #include "viscolube/csv.h"
 #include "viscolube/database.h"
 #include "viscolube/output.h"
+#include "viscolube/plot.h"
 #include "viscolube/scene.h"
 #include "viscolube/simulation.h"
 
@@ -24,6 +25,7 @@ typedef struct {
   size_t grid;
   const char *flow_factors;
   int json;
+  int plot;
 } conditions;
 
 /* The strict decimal syntax of every numeric option and CSV cell
@@ -47,6 +49,10 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
   double d;
   if (!strcmp(o, "--json")) {
     c->json = 1;
+    return 1;
+  }
+  if (!strcmp(o, "--plot") && !strcmp(cmd, "compare")) {
+    c->plot = 1;
     return 1;
   }
   if (!strcmp(o, "--surface") || !strcmp(o, "--fluid") || !strcmp(o, "--flow-factors")) {
@@ -137,7 +143,7 @@ static void friction_usage(FILE *out) {
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0, 0};
   const char *compound = NULL;
   double speed = 0.0;
   int have_speed = 0;
@@ -241,17 +247,20 @@ static void compare_usage(FILE *out) {
         "                         [--from V0ETA] [--to V0ETA] [--points N] [--out DIR]\n"
         "                         [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
         "                         [--flow-factors smooth|patir-cheng] [--grid N] [--json]\n"
+        "                         [--plot]\n"
         "\n"
         "Stribeck curves (mu vs v0*eta, Pa m) of several compounds on one surface in one\n"
         "fluid, side by side: mu and u_min/h_rms per compound. Writes DIR/compare.csv\n"
         "(one row per v0*eta; mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf, u_min_over_hrms, converged\n"
         "per compound) and DIR/<compound>/curve.csv. DIR defaults to out/compare.\n"
+        "With --plot also DIR/compare-mu.{png,svg} and DIR/compare-umin.{png,svg}: the\n"
+        "compounds' curves on one axis.\n"
         "Defaults: --from 1e-12 --to 0.1 --points 45, and those of `viscolube friction`.\n",
         out);
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0, 0};
   char list[MAX_COMPOUNDS * 128] = "";
   char *names[MAX_COMPOUNDS];
   size_t nc = 0;
@@ -395,7 +404,24 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
     st = VL_EIO;
     goto done;
   }
-  if (!c.json) printf("wrote %s and %s/<compound>/curve.csv\n", path, out_dir);
+  if (c.plot) {
+    vl_plot_curve curves[MAX_COMPOUNDS];
+    for (size_t k = 0; k < nc; k++)
+      curves[k] = (vl_plot_curve){names[k], n, pts + k * n, {eta, 0.0, 0.0}, hrms[k]};
+    vl_plot_options opt;
+    vl_plot_options_defaults(&opt);
+    opt.mark_half_load = true;
+    char stem[4300];
+    snprintf(stem, sizeof stem, "%s/compare-mu", out_dir);
+    st = vl_plot_compare(stem, nc, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_MU, &opt, NULL, &err);
+    if (st == VL_OK) {
+      snprintf(stem, sizeof stem, "%s/compare-umin", out_dir);
+      st = vl_plot_compare(stem, nc, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_U_MIN, &opt, NULL, &err);
+    }
+    if (st != VL_OK) goto done;
+  }
+  if (!c.json) printf("wrote %s and %s/<compound>/curve.csv%s\n", path, out_dir,
+                      c.plot ? " and compare-mu/compare-umin figures" : "");
   if (failed) rc = vl_status_exit_code(VL_ENOCONV);
 done:
   if (st != VL_OK) {
