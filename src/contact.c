@@ -64,10 +64,11 @@ struct vl_contact {
   double *D;          /* rough: elasticity residual U - G */
   double *theta;      /* film fraction (report only) */
   vl_contact *coarse; /* smooth wet: half-size grid for fresh starts (NULL when small) */
+  bool no_fallback;   /* inside the viscosity-continuation fallback of a fresh start */
   vl_contact *dry;    /* smooth wet viscoelastic, coarsest level: the dry contact on the same
                        * grid, whose solution starts the wet one (NULL otherwise) */
   SUNContext ctx;
-  N_Vector y, y_saved, ones, fwork;
+  N_Vector y, y_saved, y_outer, ones, fwork;
   SUNMatrix J;
   SUNLinearSolver LS;
   void *kmem;
@@ -172,6 +173,25 @@ static double couette_face(const vl_contact *c, size_t f, size_t k[3], double w[
   return cf[f - 1] + inc;
 }
 
+/* Poiseuille conductance of interior face f (between cells f-1 and f) and
+ * its derivatives with respect to g[f-1] and g[f]. A smooth film uses the
+ * harmonic mean (the two half-cells in series, as \int dx/u^3 does): with
+ * the arithmetic mean, a face next to a nearly closed cell kept the open
+ * cell's conductance, and a thin film's under-resolved inlet balanced the
+ * whole Couette inflow by backflow through that face, closing the contact
+ * to 1e-11 m (a spurious discrete solution). Rough films keep the
+ * arithmetic mean (their flow factors keep the film open). */
+static double face_g(const vl_contact *c, size_t f, double *dl, double *dr) {
+  double gl = c->g[f - 1], gr = c->g[f];
+  if (c->rough) {
+    *dl = 0.5, *dr = 0.5;
+    return 0.5 * (gl + gr);
+  }
+  double s = gl + gr;
+  *dl = 2.0 * gr * gr / (s * s), *dr = 2.0 * gl * gl / (s * s);
+  return 2.0 * gl * gr / s;
+}
+
 /* Everything the residual needs from the unknowns y: contact pressure P (and
  * dP/dU), fluid pressure F, separation U, flow quantities and face fluxes. */
 static void eval_state(vl_contact *c, const double *y) {
@@ -233,10 +253,10 @@ static void eval_state(vl_contact *c, const double *y) {
     size_t k[3];
     double w[3];
     int m;
-    double jc = couette_face(c, f, k, w, &m);
+    double jc = couette_face(c, f, k, w, &m), dl, dr;
     double jp = f == 0   ? -L * c->g[0] * pf[0] / (0.5 * dx)
                 : f == n ? L * c->g[n - 1] * pf[n - 1] / (0.5 * dx)
-                         : -L * 0.5 * (c->g[f - 1] + c->g[f]) * (pf[f] - pf[f - 1]) / dx;
+                         : -L * face_g(c, f, &dl, &dr) * (pf[f] - pf[f - 1]) / dx;
     c->Jf[f] = jp + jc;
   }
 }
@@ -272,8 +292,9 @@ static void reynolds_weights(vl_contact *c) {
   }
   double L = c->lambda, dx = c->dxi;
   for (size_t i = 0; i < n; i++) {
-    double gl = i > 0 ? 0.5 * (c->g[i - 1] + c->g[i]) : 2.0 * c->g[0];
-    double gr = i + 1 < n ? 0.5 * (c->g[i] + c->g[i + 1]) : 2.0 * c->g[n - 1];
+    double d1, d2;
+    double gl = i > 0 ? face_g(c, i, &d1, &d2) : 2.0 * c->g[0];
+    double gr = i + 1 < n ? face_g(c, i + 1, &d1, &d2) : 2.0 * c->g[n - 1];
     double poiseuille = L * (gl + gr) / dx, elastic = 0.0;
     for (int side = 0; side < 2; side++) {
       size_t k[3];
@@ -373,12 +394,12 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
         dpf[1] += sg * (L * c->g[n - 1] / (0.5 * dx));
         du[2] += sg * (L * c->dg[n - 1] * pf[n - 1] / (0.5 * dx));
       } else {
-        double gf = 0.5 * (c->g[f - 1] + c->g[f]), dp = (pf[f] - pf[f - 1]) / dx;
+        double dl, dr, gf = face_g(c, f, &dl, &dr), dp = (pf[f] - pf[f - 1]) / dx;
         /* cells f-1 and f are i-1, i (left face) or i, i+1 (right face) */
         dpf[side] += sg * (L * gf / dx);
         dpf[side + 1] += sg * (-L * gf / dx);
-        du[side + 1] += sg * (-L * 0.5 * c->dg[f - 1] * dp);
-        du[side + 2] += sg * (-L * 0.5 * c->dg[f] * dp);
+        du[side + 1] += sg * (-L * dl * c->dg[f - 1] * dp);
+        du[side + 2] += sg * (-L * dr * c->dg[f] * dp);
       }
       size_t k[3];
       double cw[3];
@@ -563,10 +584,11 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   if (SUNContext_Create(NULL, &c->ctx) != 0) goto nomem;
   c->y = N_VNew_Serial((sunindextype)c->nunk, c->ctx);
   c->y_saved = N_VNew_Serial((sunindextype)c->nunk, c->ctx);
+  c->y_outer = N_VNew_Serial((sunindextype)c->nunk, c->ctx);
   c->ones = N_VNew_Serial((sunindextype)c->nunk, c->ctx);
   c->fwork = N_VNew_Serial((sunindextype)c->nunk, c->ctx);
   c->J = SUNDenseMatrix((sunindextype)c->nunk, (sunindextype)c->nunk, c->ctx);
-  if (!c->y || !c->y_saved || !c->ones || !c->fwork || !c->J) goto nomem;
+  if (!c->y || !c->y_saved || !c->y_outer || !c->ones || !c->fwork || !c->J) goto nomem;
   N_VConst(1.0, c->ones);
   c->LS = cfg->linear_solver == VL_LINSOL_SUNDIALS ? SUNLinSol_Dense(c->y, c->J, c->ctx)
                                                    : vl_linsol_lapack_create((long)c->nunk, c->ctx);
@@ -622,6 +644,7 @@ void vl_contact_free(vl_contact *c) {
   if (c->ones) N_VDestroy(c->ones);
   if (c->fwork) N_VDestroy(c->fwork);
   if (c->y_saved) N_VDestroy(c->y_saved);
+  if (c->y_outer) N_VDestroy(c->y_outer);
   if (c->y) N_VDestroy(c->y);
   if (c->ctx) SUNContext_Free(&c->ctx);
   vl_toeplitz_free(&c->kern);
@@ -978,6 +1001,35 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
     /* continuation from the previous speed failed: start afresh */
     smooth_wet_start(c, v0_m_s, &nni);
     ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  }
+  if (!ok && smooth_wet && !c->no_fallback) {
+    /* a thin film that a fresh start misses: start afresh at a viscosity
+     * 10, 100, ... times larger (thicker film, wider inlet and outlet
+     * zones) and come down by continuation in viscosity */
+    double eta = c->cfg.eta_pa_s, v_state = c->v_state;
+    N_VScale(1.0, c->y_saved, c->y_outer); /* the inner solves reuse y_saved */
+    c->no_fallback = true;
+    for (int k = 1; k <= 6 && !ok; k++) {
+      vl_point tp;
+      vl_contact_set_viscosity(c, eta * pow(10.0, k), NULL);
+      c->v_state = 0.0;
+      if (vl_contact_solve(c, v0_m_s, &tp, NULL) != VL_OK) {
+        nni += tp.iterations;
+        continue;
+      }
+      nni += tp.iterations;
+      ok = vl_contact_solve_viscosity(c, v0_m_s, eta, 10.0, &tp, NULL) == VL_OK;
+      nni += tp.iterations;
+      if (ok) {
+        fnorm = tp.residual;
+        flag = 0;
+      }
+      break;
+    }
+    c->no_fallback = false;
+    vl_contact_set_viscosity(c, eta, NULL);
+    N_VScale(1.0, c->y_outer, c->y_saved);
+    if (!ok) c->v_state = v_state;
   }
   pt->iterations = nni;
   pt->residual = fnorm;

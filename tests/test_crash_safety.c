@@ -13,14 +13,16 @@
  * then be the old one (SQLite rolls the journal back on the next open). A
  * run that exited normally must have completed the change.
  *
- * Delays, in microseconds: a third of the tries kill after a delay drawn
+ * Delays, in microseconds: a quarter of the tries kill after a delay drawn
  * uniformly over 1.2 times the duration of an uninterrupted run (median of
  * 5 measured first), counted from the start; the rest wait for the journal
  * to appear (the program starts writing) and kill after a delay drawn
  * log-uniformly between 1 us and twice the journal's measured lifetime
  * (median; on a loaded machine it varies by 10x) or uniformly up to 1.5
- * times it, so that enough kills land inside the write transaction,
- * including its commit (when the file itself is written). Campaigns:
+ * times it; and a quarter wait for the journal to turn hot (its header
+ * written: the commit has begun and the database file itself is being
+ * overwritten) and kill within 10 us. So enough kills land inside the
+ * write transaction, and some inside its commit. Campaigns:
  *   - `compound add` of a 128-term series into an existing database
  *     (200 tries);
  *   - creation of a new database (every migration, the seeds and the fits
@@ -30,8 +32,9 @@
  *     with one fluid in it) to the latest, by `fluid list` (200 tries);
  *     skipped while the program knows a single version.
  * $VL_CRASH_TRIES overrides the tries; each campaign stops after 30 s of
- * wall time (reported); seed $VL_CRASH_SEED (default: the time). The files
- * live in /dev/shm when it exists. */
+ * wall time (reported); seed $VL_CRASH_SEED (default: the time). The
+ * `compound add` files live in $TMPDIR (real fsyncs make its commit long
+ * enough to be hit), the others in /dev/shm when it exists (faster). */
 #define _POSIX_C_SOURCE 200809L
 
 #include <setjmp.h>
@@ -303,17 +306,29 @@ static void wait_until(double t) {
   }
 }
 
-/* Starts argv and kills it: after delay_s from the start (after_journal 0),
- * or delay_s after its journal first appears (after_journal 1; a run that
- * ends first is not killed). Returns the wait status. */
-static int run_killed(char *const argv[], const char *journal, int after_journal,
-                      double delay_s) {
+/* Has the journal's header been written (first byte nonzero)? From then
+ * on SQLite considers the journal hot: the commit has begun and the
+ * database file itself is being written. */
+static int journal_hot(const char *journal) {
+  int fd = open(journal, O_RDONLY);
+  if (fd < 0) return 0;
+  unsigned char c = 0;
+  ssize_t n = pread(fd, &c, 1, 0);
+  close(fd);
+  return n == 1 && c != 0;
+}
+
+/* Starts argv and kills it delay_s after: the start (trigger 0), the
+ * journal's appearance (trigger 1) or the journal turning hot (trigger 2).
+ * A run that ends before its trigger is not killed. Returns the wait
+ * status. */
+static int run_killed(char *const argv[], const char *journal, int trigger, double delay_s) {
   double t0 = now_s();
   pid_t pid = spawn(argv);
   int st;
-  if (after_journal) {
+  if (trigger) {
     for (;;) {
-      if (access(journal, F_OK) == 0) break;
+      if (trigger == 1 ? access(journal, F_OK) == 0 : journal_hot(journal)) break;
       pid_t w = waitpid(pid, &st, WNOHANG);
       if (w == pid) return st;
       if (w < 0) fail_msg("waitpid: %s", strerror(errno));
@@ -408,7 +423,7 @@ static void run_campaign(const campaign *cp) {
   double tx_len = (n_tx ? tx[n_tx / 2] : 0.0) + 100e-6;
 
   int wanted = cp->tries, tries = 0, killed = 0, exited = 0, journal_left = 0, hot_left = 0;
-  int raw_changed = 0, ended_old = 0, ended_new = 0, by_mode[2] = {0, 0}, hits[2] = {0, 0};
+  int raw_changed = 0, ended_old = 0, ended_new = 0, by_mode[3] = {0, 0, 0}, hits[3] = {0, 0, 0};
   const char *env = getenv("VL_CRASH_TRIES");
   if (env && atoi(env) > 0) wanted = atoi(env);
   double t_start = now_s();
@@ -418,10 +433,11 @@ static void run_campaign(const campaign *cp) {
     /* a third: uniform over the whole command; a third: log-uniform from
      * the journal's appearance (the start of the writes); a third: uniform
      * from there (reaches the commit at the end of the transaction) */
-    int mode = tries % 3 == 0 ? 0 : 1;
-    double delay = tries % 3 == 0   ? uniform() * 1.2 * dur
-                   : tries % 3 == 1 ? 1e-6 * pow(2.0 * tx_len / 1e-6, uniform())
-                                    : uniform() * 1.5 * tx_len;
+    int mode = tries % 4 == 0 ? 0 : tries % 4 == 3 ? 2 : 1;
+    double delay = tries % 4 == 0   ? uniform() * 1.2 * dur
+                   : tries % 4 == 1 ? 1e-6 * pow(2.0 * tx_len / 1e-6, uniform())
+                   : tries % 4 == 2 ? uniform() * 1.5 * tx_len
+                                    : uniform() * 10e-6;
     int st = run_killed(argv, journal, mode, delay);
     by_mode[mode]++;
     int was_killed = WIFSIGNALED(st) && WTERMSIG(st) == SIGKILL;
@@ -476,12 +492,12 @@ static void run_campaign(const campaign *cp) {
   double elapsed = now_s() - t_start;
   printf("%s: %d tries in %.1f s (uninterrupted: %.1f ms, journal for %.3f ms): %d killed, "
          "%d finished first; %d kills interrupted the write transaction (%d of %d with delays "
-         "over the whole run, %d of %d within the transaction), %d of them left a hot journal "
-         "and %d a changed file, restored on the next open; all %d consistent, integrity ok "
-         "(%d with the old content, %d with the new)%s\n",
+         "over the whole run, %d of %d from the first write, %d of %d from the commit), %d of "
+         "them left a hot journal and %d a changed file, restored on the next open; all %d "
+         "consistent, integrity ok (%d with the old content, %d with the new)%s\n",
          cp->label, tries, elapsed, dur * 1e3, (tx_len - 100e-6) * 1e3, killed, exited,
-         journal_left, hits[0], by_mode[0], hits[1], by_mode[1], hot_left, raw_changed, tries,
-         ended_old, ended_new, tries < wanted ? " (time budget reached)" : "");
+         journal_left, hits[0], by_mode[0], hits[1], by_mode[1], hits[2], by_mode[2], hot_left,
+         raw_changed, tries, ended_old, ended_new, tries < wanted ? " (time budget reached)" : "");
   fflush(stdout);
   /* enough tries, and enough of them inside the transaction, for the check
    * to mean something */
@@ -499,16 +515,28 @@ static void run_campaign(const campaign *cp) {
 
 static char dir[4096], before[4200], work[4200], prony[4200];
 
-static int setup(void **state) {
-  (void)state;
-  /* In memory when possible: a kill is a process death, not a power loss,
-   * so fsync plays no part in what is tested, and without its waits the
-   * campaigns are several times faster. */
-  snprintf(dir, sizeof dir, "/dev/shm/vlcrash.XXXXXX");
-  if (!mkdtemp(dir)) snprintf(dir, sizeof dir, "%s", vl_test_tmpdir());
+static void set_paths(const char *d) {
+  snprintf(dir, sizeof dir, "%s", d);
   snprintf(before, sizeof before, "%s/before.db", dir);
   snprintf(work, sizeof work, "%s/work.db", dir);
   snprintf(prony, sizeof prony, "%s/prony.csv", dir);
+}
+
+/* On the disk of $TMPDIR: the commit's fsyncs last long enough for kills to
+ * land inside it (the file itself half overwritten). */
+static int setup_disk(void **state) {
+  (void)state;
+  set_paths(vl_test_tmpdir());
+  return 0;
+}
+
+/* In memory when possible: a kill is a process death, not a power loss,
+ * so fsync plays no part in what is tested, and without its waits the
+ * long campaigns are several times faster. */
+static int setup_memory(void **state) {
+  (void)state;
+  char d[64] = "/dev/shm/vlcrash.XXXXXX";
+  set_paths(mkdtemp(d) ? d : vl_test_tmpdir());
   return 0;
 }
 
@@ -612,9 +640,9 @@ int main(void) {
   printf("crash safety: seed %llu (set VL_CRASH_SEED to repeat)\n",
          (unsigned long long)rng_state);
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test_setup_teardown(test_kill_compound_add, setup, teardown),
-      cmocka_unit_test_setup_teardown(test_kill_create, setup, teardown),
-      cmocka_unit_test_setup_teardown(test_kill_upgrade, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_kill_compound_add, setup_disk, teardown),
+      cmocka_unit_test_setup_teardown(test_kill_create, setup_memory, teardown),
+      cmocka_unit_test_setup_teardown(test_kill_upgrade, setup_memory, teardown),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

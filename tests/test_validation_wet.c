@@ -328,9 +328,10 @@ static void test_invariants(void **state) {
  * theta-weighted Couette shear on both sides). The dissipation here is a
  * face quadrature of the fields (Poiseuille part on the faces, pf = 0
  * half a cell beyond both ends), the friction the solver's node quadrature:
- * they differ by the discretisation only, O(dx^2). Measured: soft 1.4e-4
- * at 256 cells, 1.8e-5 at 512; rigid 2e-7. Asserted: 5e-4 at 256 and a
- * drop by more than 4 to 512 (2.5x margin on the level). The wrong
+ * they differ by the discretisation only, O(dx^2). Measured (harmonic
+ * face conductance, as the solver's): soft 4.1e-5 at 256 cells, 1.15e-5 at
+ * 512 (ratio 3.6); rigid 2e-7. Asserted: 5e-4 at 256 and a drop by more
+ * than 3 to 512 (second order: 4; first order would give 2). The wrong
  * Poiseuille sign in mu_Sf misses by tens of percent. */
 static double energy_mismatch(vl_contact *c, const vl_point *pt, double v0, double eta,
                               double load) {
@@ -345,7 +346,9 @@ static double energy_mismatch(vl_contact *c, const vl_point *pt, double v0, doub
     double pl = k > 0 ? f.p_f_pa[k - 1] : 0.0, pr = k < n ? f.p_f_pa[k] : 0.0;
     double ul = f.u_m[k > 0 ? k - 1 : 0], ur = f.u_m[k < n ? k : n - 1];
     double h = (k == 0 || k == n) ? 0.5 * dx : dx, g = (pr - pl) / h;
-    double u3 = 0.5 * (ul * ul * ul + ur * ur * ur);
+    /* harmonic mean of u^3: the two half-cells in series, as the solver's
+     * face conductance (the arithmetic mean differs by O(dx^2)) */
+    double gl = ul * ul * ul, gr = ur * ur * ur, u3 = 2.0 * gl * gr / (gl + gr);
     poiseuille += u3 / (12.0 * eta) * g * g * h;
   }
   free(buf);
@@ -369,7 +372,7 @@ static void test_energy_balance(void **state) {
     vl_contact_free(c);
   }
   assert_true(e[0] < 5e-4);
-  assert_true(e[1] < e[0] / 4.0);
+  assert_true(e[1] < e[0] / 3.0); /* O(dx^2): 4 asymptotically, first order 2 */
 
   double e0 = 1e13, a0 = hertz_a0(e0, 1000.0), lh = inlet_length(e0, 1000.0, 0.1, 1.0);
   vl_contact *c = make_wet(e0, 1000.0, 0.1, 256, -30.0 * lh / a0, 2.0 * lh / a0);
@@ -378,12 +381,76 @@ static void test_energy_balance(void **state) {
   vl_contact_free(c);
 }
 
+/* ---- Viscoelastic smooth film: the dry limit (issue 5) ------------------
+ * The model rubber (E0 3.6 MPa, Einf/E0 = 10, tau 0.1 s), no roughness, at
+ * v0 tau/a0 = 0.1, 1, 10. As eta -> 0 the film vanishes and the fluid
+ * pressure becomes the dry contact pressure, so the rolling friction
+ * mu_R = mu_Rc + mu_Rf (mu_Rc = 0: a smooth film has no solid contact)
+ * must tend to the dry solver's mu_Rc (itself validated against Hunter's
+ * exact solution in test_validation_dry). That is the comparison: the
+ * viscous shear mu_Sf = eta v0 \int dx/u / fN + Poiseuille part vanishes
+ * too, but only as the film allows (h ~ (eta v0)^0.6 for a soft film, so
+ * mu_Sf ~ (eta v0)^0.4: still 1 % of mu at eta = 1e-3, measured), so the
+ * total mu approaches the dry value much more slowly and is reported, not
+ * asserted. Same grid and domain for both solvers, so the discretisation
+ * is common. Path: a fresh solve at eta = 1e-2 Pa s, then continuation in
+ * viscosity to 1e-3, 1e-4, 1e-5. Asserted: |mu_R/mu_dry - 1| falls with
+ * eta at every step and is below 1e-3 (the issue's 0.1 %) at 1e-5 Pa s
+ * (measured 2.0e-5, 1.8e-5, 4.9e-4 at v0 tau/a0 = 0.1, 1, 10; the error
+ * falls as about eta^0.35-0.6 between 1e-3 and 1e-5). Sign convention (MODEL.md section 1)
+ * at eta = 1e-2: the constriction (minimum film) on the outlet side and
+ * mu_Rf > 0. */
+static void test_viscoelastic_dry_limit(void **state) {
+  (void)state;
+  const double de[3] = {0.1, 1.0, 10.0}, tau = 0.1;
+  for (int k = 0; k < 3; k++) {
+    vl_contact_config cfg;
+    vl_contact_config_defaults(&cfg);
+    cfg.rubber = vl_prony_single(SOFT_E0, 10.0, tau, NU);
+    cfg.radius_m = RADIUS;
+    cfg.load_n_per_m = 1000.0;
+    cfg.grid = 256;
+    cfg.x_min_a0 = -2.5, cfg.x_max_a0 = 1.5;
+    vl_contact *dry = NULL, *wet = NULL;
+    vl_error err;
+    assert_int_equal(vl_contact_create(&cfg, &dry, &err), VL_OK);
+    double v0 = de[k] * vl_contact_a0(dry) / tau;
+    vl_point pd = solve_one(dry, v0);
+    cfg.eta_pa_s = 1e-2;
+    assert_int_equal(vl_contact_create(&cfg, &wet, &err), VL_OK);
+    vl_point pw = solve_one(wet, v0);
+    printf("  v0 tau/a0 = %g: dry mu_Rc = %.6f; eta 1e-2: minimum film %.3g m at x = %+.3f a0, "
+           "mu_Rf = %.6f (%ld iterations, fresh)\n",
+           de[k], pd.mu_Rc, pw.u_min_m, pw.x_min_film_m / vl_contact_a0(wet), pw.mu_Rf,
+           pw.iterations);
+    assert_true(pw.x_min_film_m > 0.0);
+    assert_true(pw.mu_Rf > 0.0);
+    double prev = fabs(pw.mu_Rc + pw.mu_Rf - pd.mu_Rc) / pd.mu_Rc;
+    printf("    %8s %12s %12s %10s %5s\n", "eta", "mu_R/dry-1", "mu/dry-1", "mu_Sf", "iter");
+    printf("    %8.0e %+12.3e %+12.3e %10.3e %5ld\n", 1e-2, prev, pw.mu / pd.mu_Rc - 1.0, pw.mu_Sf,
+           pw.iterations);
+    for (double eta = 1e-3; eta > 0.5e-5; eta *= 0.1) {
+      if (vl_contact_solve_viscosity(wet, v0, eta, 10.0, &pw, &err) != VL_OK)
+        fail_msg("eta %g: %s", eta, err.msg);
+      double e = fabs(pw.mu_Rc + pw.mu_Rf - pd.mu_Rc) / pd.mu_Rc;
+      printf("    %8.0e %+12.3e %+12.3e %10.3e %5ld\n", eta, (pw.mu_Rc + pw.mu_Rf) / pd.mu_Rc - 1.0,
+             pw.mu / pd.mu_Rc - 1.0, pw.mu_Sf, pw.iterations);
+      assert_true(e < prev);
+      if (eta < 2e-5) assert_true(e < 1e-3);
+      prev = e;
+    }
+    vl_contact_free(dry);
+    vl_contact_free(wet);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_martin_rigid_cylinder),
       cmocka_unit_test(test_invariants),
       cmocka_unit_test(test_energy_balance),
       cmocka_unit_test(test_soft_ehl_exponents),
+      cmocka_unit_test(test_viscoelastic_dry_limit),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
