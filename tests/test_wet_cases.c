@@ -300,8 +300,59 @@ static void test_fig12(void **state) {
   printf("\n");
 }
 
+/* MODEL.md section 5: the inlet must reach well beyond the contact; friction
+ * at high v0 eta depends on it. Measured on the fig05 contact at v0 eta = 0.3
+ * and 1 Pa m (mixed and hydrodynamic) for inlets of 2, 3 and 5 a0 at equal
+ * cell size: more inlet entrains more fluid (mu grows), with a shrinking
+ * increment per a0 of inlet. The printed changes are the price of the
+ * default 3 a0 (several per cent at 1 Pa m: an accuracy-study item). */
+static void test_domain_length(void **state) {
+  (void)state;
+  double inlets[] = {-2.0, -3.0, -5.0};
+  double mu[3][2];
+  vl_psd psd;
+  vl_persson *tab;
+  vl_error err;
+  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, HRMS, &err), VL_OK);
+  assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
+  for (int k = 0; k < 3; k++) {
+    vl_contact_config cfg;
+    vl_contact_config_defaults(&cfg);
+    cfg.rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
+    cfg.radius_m = 0.01;
+    cfg.load_n_per_m = 1000.0;
+    cfg.sigma_s_pa = 1e6;
+    cfg.roughness = tab;
+    cfg.eta_pa_s = 1e-4;
+    cfg.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
+    cfg.x_min_a0 = inlets[k];
+    cfg.x_max_a0 = 1.6;
+    /* the same cell size for every domain, so only the inlet changes */
+    cfg.grid = (size_t)lround((1.6 - inlets[k]) / (4.6 / 256.0));
+    vl_contact *c;
+    assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
+    double v[] = {1e-4 / 1e-4, 1e-3 / 1e-4, 1e-2 / 1e-4, 0.1 / 1e-4, 0.3 / 1e-4, 1.0 / 1e-4};
+    vl_point pt[6];
+    assert_int_equal(vl_sweep_run(c, 6, v, NULL, pt, NULL, NULL, NULL, &err), VL_OK);
+    for (int i = 0; i < 6; i++) assert_true(pt[i].converged);
+    mu[k][0] = pt[4].mu;
+    mu[k][1] = pt[5].mu;
+    printf("  inlet %4.1f a0 (grid %zu): mu = %.5f at 0.3 Pa m, %.5f at 1 Pa m\n", -inlets[k],
+           cfg.grid, mu[k][0], mu[k][1]);
+    vl_contact_free(c);
+  }
+  for (int j = 0; j < 2; j++) {
+    printf("  relative change of mu, inlet 2 -> 3 a0: %.2e, 3 -> 5 a0: %.2e\n",
+           mu[1][j] / mu[0][j] - 1, mu[2][j] / mu[1][j] - 1);
+    assert_true(mu[2][j] > mu[1][j] && mu[1][j] > mu[0][j]);
+    assert_true((mu[2][j] - mu[1][j]) / 2.0 < (mu[1][j] - mu[0][j]) / 1.0);
+  }
+  vl_persson_free(tab);
+  vl_psd_free(&psd);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_fig05), cmocka_unit_test(test_fig10),
-                                     cmocka_unit_test(test_fig12)};
+                                     cmocka_unit_test(test_fig12), cmocka_unit_test(test_domain_length)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
