@@ -120,6 +120,19 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
   return 1;
 }
 
+/* mkdir -p */
+static int make_dirs(const char *path) {
+  char buf[4200];
+  snprintf(buf, sizeof buf, "%s", path);
+  for (char *p = buf + 1; *p; p++) {
+    if (*p != '/') continue;
+    *p = '\0';
+    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
+    *p = '/';
+  }
+  return mkdir(buf, 0777) != 0 && errno != EEXIST ? -1 : 0;
+}
+
 static int need(const char *cmd, const char *what, const void *value) {
   if (value) return 1;
   fprintf(stderr, "viscolube %s: missing %s (see viscolube %s --help)\n", cmd, what, cmd);
@@ -315,6 +328,15 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   int rc = 0;
   size_t failed = 0;
   if (!pts || !hrms) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
+  /* every name must exist before anything is computed or written */
+  for (size_t k = 0; st == VL_OK && k < nc; k++) {
+    vl_prony probe;
+    st = vl_db_compound_get(db, names[k], &probe, &err);
+  }
+  if (st == VL_OK && make_dirs(out_dir) != 0) {
+    vl_error_set(&err, "%s: cannot create: %s", out_dir, strerror(errno));
+    st = VL_EIO;
+  }
   for (size_t k = 0; st == VL_OK && k < nc; k++) {
     vl_scene sc;
     if (!make_scene("compare", &c, names[k], &sc)) {
@@ -334,11 +356,7 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
     failed += stats.failed;
     char dir[4200], path[4300];
     snprintf(dir, sizeof dir, "%s/%s", out_dir, names[k]);
-    if (st == VL_OK && (mkdir(out_dir, 0777) != 0 && errno != EEXIST)) {
-      vl_error_set(&err, "%s: cannot create: %s", out_dir, strerror(errno));
-      st = VL_EIO;
-    }
-    if (st == VL_OK && (mkdir(dir, 0777) != 0 && errno != EEXIST)) {
+    if (st == VL_OK && make_dirs(dir) != 0) {
       vl_error_set(&err, "%s: cannot create: %s", dir, strerror(errno));
       st = VL_EIO;
     }

@@ -1,0 +1,177 @@
+/* `viscolube friction` and `viscolube compare` end to end, on the shipped
+ * materials: answers, their consistency with a scene run, the filled vs
+ * unfilled statement of the seed (Figs. 15-17), figures, and bad input. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "vl_test_util.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static char g_db[4200];
+
+static int setup(void **state) {
+  (void)state;
+  snprintf(g_db, sizeof g_db, "%s/materials.db", vl_test_tmpdir());
+  return 0;
+}
+
+/* Value of "key": number in a flat JSON object (NAN if absent or null). */
+static double json_number(const char *json, const char *key) {
+  char pat[128];
+  snprintf(pat, sizeof pat, "\"%s\": ", key);
+  const char *p = strstr(json, pat);
+  if (!p) return NAN;
+  p += strlen(pat);
+  if (!strncmp(p, "null", 4)) return NAN;
+  return strtod(p, NULL);
+}
+
+static void test_friction_point(void **state) {
+  (void)state;
+  char args[8192], *out = NULL, *err = NULL;
+  /* the fig05 contact at v0 eta = 1e-6 Pa m (the mu_Rc peak region) */
+  snprintf(args, sizeof args,
+           "--db %s friction --compound model-rubber --surface paper-3um --fluid model-1e-4 "
+           "--speed 0.01 --radius 0.01 --load 1000 --grid 128 --json",
+           g_db);
+  int rc = vl_test_cli(NULL, args, &out, &err);
+  if (rc != 0) fail_msg("exit %d: %s", rc, err);
+  double mu = json_number(out, "mu"), rc_ = json_number(out, "mu_Rc"),
+         rf = json_number(out, "mu_Rf"), sc = json_number(out, "mu_Sc"),
+         sf = json_number(out, "mu_Sf");
+  printf("  friction: mu %.5f = Rc %.5f + Rf %.2g + Sc %.5f + Sf %.2g\n", mu, rc_, rf, sc, sf);
+  assert_true(strstr(out, "\"converged\": true") != NULL);
+  assert_true(fabs(mu - (rc_ + rf + sc + sf)) < 1e-9);
+  /* boundary regime, rolling friction dominant near its peak (fig05) */
+  assert_true(strstr(out, "\"regime\": \"boundary\"") != NULL);
+  assert_true(rc_ > sc && rc_ > 0.03);
+  free(out);
+  free(err);
+
+  /* the text form names the components */
+  snprintf(args, sizeof args,
+           "--db %s friction --compound model-rubber --surface paper-3um --fluid model-1e-4 "
+           "--speed 0.01 --radius 0.01 --load 1000 --grid 128",
+           g_db);
+  assert_int_equal(vl_test_cli(NULL, args, &out, &err), 0);
+  assert_non_null(strstr(out, "mu_Rc"));
+  assert_non_null(strstr(out, "regime: boundary"));
+  free(out);
+  free(err);
+}
+
+static void test_friction_bad_input(void **state) {
+  (void)state;
+  struct {
+    const char *args;
+    int rc;
+    const char *needle;
+  } cases[] = {
+      {"friction --compound nope --surface paper-3um --fluid water --speed 1 --grid 64", 3, "nope"},
+      {"friction --compound model-rubber --surface nope --fluid water --speed 1 --grid 64", 3,
+       "nope"},
+      {"friction --compound model-rubber --surface paper-3um --fluid nope --speed 1 --grid 64", 3,
+       "nope"},
+      {"friction --compound model-rubber --surface paper-3um --fluid water", 2, "--speed"},
+      {"friction --compound model-rubber --surface paper-3um --fluid water --speed -1", 2,
+       "--speed"},
+      {"friction --compound model-rubber --surface paper-3um --fluid water --speed 1 --load 0",
+       2, "--load"},
+      {"friction --compound model-rubber --surface paper-3um --fluid water --speed 1 --grid 3", 2,
+       "--grid"},
+      {"friction --compound model-rubber --surface paper-3um --fluid water --speed 1 --bogus", 2,
+       "--bogus"},
+      {"compare --surface paper-3um --fluid water", 2, "--compounds"},
+      {"compare --compounds model-rubber,nope --surface paper-3um --fluid water --points 3 "
+       "--grid 64 --from 1e-12 --to 1e-10",
+       3, "nope"},
+      {"compare --compounds model-rubber --surface paper-3um --fluid water --from 1 --to 0.1", 2,
+       "--from"},
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    char args[8192], *out = NULL, *err = NULL;
+    snprintf(args, sizeof args, "--db %s %s", g_db, cases[i].args);
+    int rc = vl_test_cli(NULL, args, &out, &err);
+    if (rc != cases[i].rc || !strstr(err, cases[i].needle))
+      fail_msg("'%s': exit %d (wanted %d), stderr: %s", cases[i].args, rc, cases[i].rc, err);
+    free(out);
+    free(err);
+  }
+  char *out = NULL;
+  assert_int_equal(vl_test_cli(NULL, "friction --help", &out, NULL), 0);
+  assert_non_null(strstr(out, "--compound"));
+  free(out);
+  assert_int_equal(vl_test_cli(NULL, "compare --help", &out, NULL), 0);
+  assert_non_null(strstr(out, "--compounds"));
+  free(out);
+}
+
+/* Seed Figs. 15-17: the unfilled rubber has larger friction than the filled
+ * one over (almost) all speeds. Coarse (grid 96, 7 points over 10 decades)
+ * but every point must converge; smooth flow factors (see the cases). */
+static void test_compare_filled_unfilled(void **state) {
+  (void)state;
+  char dir[2048], args[8192], path[4400], *out = NULL, *err = NULL;
+  snprintf(dir, sizeof dir, "%s/cmp", vl_test_tmpdir());
+  snprintf(args, sizeof args,
+           "--db %s compare --compounds sbr-unfilled,sbr-filled --surface paper-0.5um --fluid "
+           "water --from 1e-11 --to 1e-1 --points 6 --grid 96 --flow-factors smooth --plot "
+           "--out %s",
+           g_db, dir);
+  int rc = vl_test_cli(NULL, args, &out, &err);
+  if (rc != 0) fail_msg("exit %d: %s", rc, err);
+  snprintf(path, sizeof path, "%s/compare.csv", dir);
+  char *csv = vl_test_read_file(path);
+  assert_non_null(csv);
+  assert_non_null(strstr(csv, "v0_eta_pa_m,mu_sbr-unfilled,"));
+  /* rows: v0eta, then 7 columns per compound */
+  int rows = 0, above = 0;
+  char *line = strchr(csv, '\n');
+  while (line && line[1]) {
+    double v[15];
+    char *p = line + 1;
+    for (int k = 0; k < 15; k++) {
+      v[k] = strtod(p, &p);
+      if (*p == ',') p++;
+    }
+    assert_true(v[7] == 1.0 && v[14] == 1.0); /* converged */
+    rows++;
+    if (v[1] > v[8]) above++;
+    line = strchr(line + 1, '\n');
+  }
+  printf("  unfilled above filled at %d of %d speeds\n", above, rows);
+  assert_int_equal(rows, 6);
+  assert_true(above >= rows - 1);
+  free(csv);
+  /* figures, both formats */
+  const char *files[] = {"compare-mu.png", "compare-mu.svg", "compare-umin.png", "compare-umin.svg",
+                         "sbr-filled/curve.csv", "sbr-unfilled/curve.csv"};
+  for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+    struct stat st;
+    snprintf(path, sizeof path, "%s/%s", dir, files[i]);
+    if (stat(path, &st) != 0 || st.st_size < 100) fail_msg("missing or empty: %s", path);
+  }
+  snprintf(path, sizeof path, "%s/compare-mu.png", dir);
+  char *png = vl_test_read_file(path);
+  assert_true(png && !memcmp(png, "\x89PNG\r\n\x1a\n", 8));
+  free(png);
+  free(out);
+  free(err);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_friction_point),
+      cmocka_unit_test(test_friction_bad_input),
+      cmocka_unit_test(test_compare_filled_unfilled),
+  };
+  return cmocka_run_group_tests(tests, setup, NULL);
+}
