@@ -19,9 +19,12 @@ case "${1:-}" in
   run)
     build build
     # The main job on the embedded default database (created on first use):
-    # the wet Stribeck curve of the seed's Fig. 5, written to out/fig05/.
+    # filled against unfilled rubber in water (the seed's Figs. 15-17), with
+    # the Stribeck curves side by side and figures in out/compare/.
     build/viscolube compound list
-    exec build/viscolube run cases/fig05.ini --out out/fig05
+    exec build/viscolube compare --compounds sbr-unfilled,sbr-filled --surface paper-0.5um \
+      --fluid water --from 1e-12 --to 0.1 --points 45 --flow-factors smooth --plot \
+      --out out/compare
     ;;
   test)
     # ctest runs tests in parallel on the cores: one BLAS thread per test
