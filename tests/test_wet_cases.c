@@ -48,6 +48,23 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt, con
   free(b);
 }
 
+/* The contact of the fig05/fig10/fig12 scenes: model rubber, paper surface
+ * (tab), sigma_s 1 MPa, Patir-Cheng factors, domain [x_min, 1.6] a0. */
+static void scene_config(vl_contact_config *cfg, const vl_persson *tab, double eta, size_t grid,
+                         double x_min_a0) {
+  vl_contact_config_defaults(cfg);
+  cfg->rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
+  cfg->radius_m = 0.01;
+  cfg->load_n_per_m = 1000.0;
+  cfg->sigma_s_pa = 1e6;
+  cfg->roughness = tab;
+  cfg->eta_pa_s = eta;
+  cfg->flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
+  cfg->grid = grid;
+  cfg->x_min_a0 = x_min_a0;
+  cfg->x_max_a0 = 1.6;
+}
+
 /* The fig05/fig10 scene (model rubber, paper surface 3 um, sigma_s 1 MPa). */
 static void stribeck(double eta, curve *cv) {
   vl_psd psd;
@@ -56,17 +73,7 @@ static void stribeck(double eta, curve *cv) {
   assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, HRMS, &err), VL_OK);
   assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
   vl_contact_config cfg;
-  vl_contact_config_defaults(&cfg);
-  cfg.rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
-  cfg.radius_m = 0.01;
-  cfg.load_n_per_m = 1000.0;
-  cfg.sigma_s_pa = 1e6;
-  cfg.roughness = tab;
-  cfg.eta_pa_s = eta;
-  cfg.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
-  cfg.grid = 256;
-  cfg.x_min_a0 = -3.0;
-  cfg.x_max_a0 = 1.6;
+  scene_config(&cfg, tab, eta, 256, -3.0);
   vl_contact *c;
   assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
   cv->eta = eta;
@@ -227,17 +234,7 @@ static void test_fig12(void **state) {
   for (int k = 0; k < K; k++) {
     double eta = pow(10.0, -4.0 + k);
     vl_contact_config cfg;
-    vl_contact_config_defaults(&cfg);
-    cfg.rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
-    cfg.radius_m = 0.01;
-    cfg.load_n_per_m = 1000.0;
-    cfg.sigma_s_pa = 1e6;
-    cfg.roughness = tab;
-    cfg.eta_pa_s = eta;
-    cfg.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
-    cfg.grid = 128;
-    cfg.x_min_a0 = -3.0;
-    cfg.x_max_a0 = 1.6;
+    scene_config(&cfg, tab, eta, 128, -3.0);
     vl_contact *c;
     assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
     double v[M];
@@ -317,18 +314,8 @@ static void test_domain_length(void **state) {
   assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
   for (int k = 0; k < 3; k++) {
     vl_contact_config cfg;
-    vl_contact_config_defaults(&cfg);
-    cfg.rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
-    cfg.radius_m = 0.01;
-    cfg.load_n_per_m = 1000.0;
-    cfg.sigma_s_pa = 1e6;
-    cfg.roughness = tab;
-    cfg.eta_pa_s = 1e-4;
-    cfg.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
-    cfg.x_min_a0 = inlets[k];
-    cfg.x_max_a0 = 1.6;
     /* the same cell size for every domain, so only the inlet changes */
-    cfg.grid = (size_t)lround((1.6 - inlets[k]) / (4.6 / 256.0));
+    scene_config(&cfg, tab, 1e-4, (size_t)lround((1.6 - inlets[k]) / (4.6 / 256.0)), inlets[k]);
     vl_contact *c;
     assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
     double v[] = {1e-4 / 1e-4, 1e-3 / 1e-4, 1e-2 / 1e-4, 0.1 / 1e-4, 0.3 / 1e-4, 1.0 / 1e-4};

@@ -18,4 +18,8 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv);
 /* `compare --compounds A,B --surface S --fluid F ...`. */
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv);
 
+/* mkdir -p: creates path and its missing parents (0 on success, -1 with
+ * errno set). */
+int vl_cli_make_dirs(const char *path);
+
 #endif

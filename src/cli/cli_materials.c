@@ -1031,19 +1031,6 @@ static int write_curve(const context *cx, vl_db *db, const vl_db_compound *c, co
   return -1;
 }
 
-/* mkdir -p */
-static int make_dirs(const char *path) {
-  char buf[4200];
-  snprintf(buf, sizeof buf, "%s", path);
-  for (char *p = buf + 1; *p; p++) {
-    if (*p != '/') continue;
-    *p = '\0';
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
-    *p = '/';
-  }
-  return mkdir(buf, 0777) != 0 && errno != EEXIST ? -1 : 0;
-}
-
 /* `compound show NAME --plot`: DIR/moduli and, with isotherms, DIR/shifts
  * (plot.h). Returns -1 on success, else the exit code after the message. */
 static int plot_compound(const context *cx, vl_db *db, const vl_db_compound *c,
@@ -1098,7 +1085,7 @@ static int plot_compound(const context *cx, vl_db *db, const vl_db_compound *c,
     st = VL_EINPUT;
     vl_error_set(&err, "option --plot: compound '%s' is elastic and has no measured data",
                  c->name);
-  } else if (make_dirs(dir) != 0) {
+  } else if (vl_cli_make_dirs(dir) != 0) {
     st = VL_EIO;
     vl_error_set(&err, "%s: cannot create directory: %s", dir, strerror(errno));
   } else {

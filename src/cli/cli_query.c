@@ -120,19 +120,6 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
   return 1;
 }
 
-/* mkdir -p */
-static int make_dirs(const char *path) {
-  char buf[4200];
-  snprintf(buf, sizeof buf, "%s", path);
-  for (char *p = buf + 1; *p; p++) {
-    if (*p != '/') continue;
-    *p = '\0';
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
-    *p = '/';
-  }
-  return mkdir(buf, 0777) != 0 && errno != EEXIST ? -1 : 0;
-}
-
 static int need(const char *cmd, const char *what, const void *value) {
   if (value) return 1;
   fprintf(stderr, "viscolube %s: missing %s (see viscolube %s --help)\n", cmd, what, cmd);
@@ -333,7 +320,7 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
     vl_prony probe;
     st = vl_db_compound_get(db, names[k], &probe, &err);
   }
-  if (st == VL_OK && make_dirs(out_dir) != 0) {
+  if (st == VL_OK && vl_cli_make_dirs(out_dir) != 0) {
     vl_error_set(&err, "%s: cannot create: %s", out_dir, strerror(errno));
     st = VL_EIO;
   }
@@ -356,7 +343,7 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
     failed += stats.failed;
     char dir[4200], path[4300];
     snprintf(dir, sizeof dir, "%s/%s", out_dir, names[k]);
-    if (st == VL_OK && make_dirs(dir) != 0) {
+    if (st == VL_OK && vl_cli_make_dirs(dir) != 0) {
       vl_error_set(&err, "%s: cannot create: %s", dir, strerror(errno));
       st = VL_EIO;
     }

@@ -40,20 +40,6 @@ static void run_usage(FILE *out) {
         out);
 }
 
-/* mkdir -p */
-static int make_dirs(const char *path) {
-  char buf[4096];
-  snprintf(buf, sizeof buf, "%s", path);
-  for (char *p = buf + 1; *p; p++) {
-    if (*p != '/') continue;
-    *p = '\0';
-    if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
-    *p = '/';
-  }
-  if (mkdir(buf, 0777) != 0 && errno != EEXIST) return -1;
-  return 0;
-}
-
 typedef struct {
   vl_simulation *sim;
   const char *out_dir;
@@ -213,7 +199,7 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
   size_t n = vl_simulation_points(sim), grid = vl_contact_grid(vl_simulation_contact(sim));
   char fields_dir[4200];
   snprintf(fields_dir, sizeof fields_dir, "%s/fields", out_dir);
-  if (make_dirs(out_dir) != 0 || (scene->n_fields_at && make_dirs(fields_dir) != 0)) {
+  if (vl_cli_make_dirs(out_dir) != 0 || (scene->n_fields_at && vl_cli_make_dirs(fields_dir) != 0)) {
     vl_error_set(err, "%s: cannot create output directory: %s", out_dir, strerror(errno));
     st = VL_EIO;
     goto done;
