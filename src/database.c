@@ -1308,21 +1308,27 @@ static vl_status all_ids(vl_db *db, const char *table, sqlite3_int64 **ids, size
   return s;
 }
 
-vl_status vl_db_compound_list(vl_db *db, vl_db_compound **items, size_t *n, vl_error *err) {
+/* Every row of table read by by_id into a calloc'd array of count items of
+ * item_size bytes (*items, caller frees; NULL and *n = 0 when the table is
+ * empty or on any failure). plural names the rows in the out-of-memory
+ * message. */
+static vl_status list_all(vl_db *db, const char *table, const char *plural, size_t item_size,
+                          vl_status (*by_id)(vl_db *, sqlite3_int64, void *, vl_error *),
+                          void **items, size_t *n, vl_error *err) {
   sqlite3_int64 *ids;
   size_t count;
   *items = NULL;
   *n = 0;
-  vl_status s = all_ids(db, "compound", &ids, &count, err);
+  vl_status s = all_ids(db, table, &ids, &count, err);
   if (s != VL_OK || count == 0) return s;
-  vl_db_compound *arr = calloc(count, sizeof *arr);
+  unsigned char *arr = calloc(count, item_size);
   if (!arr) {
     free(ids);
-    vl_error_set(err, "out of memory listing compounds");
+    vl_error_set(err, "out of memory listing %s", plural);
     return VL_ENOMEM;
   }
   for (size_t i = 0; i < count && s == VL_OK; i++)
-    s = compound_by_id(db, ids[i], &arr[i], err);
+    s = by_id(db, ids[i], arr + i * item_size, err);
   free(ids);
   if (s != VL_OK) {
     free(arr);
@@ -1331,6 +1337,18 @@ vl_status vl_db_compound_list(vl_db *db, vl_db_compound **items, size_t *n, vl_e
   *items = arr;
   *n = count;
   return VL_OK;
+}
+
+/* list_all's reader of one compound, typed for its generic array. */
+static vl_status compound_at(vl_db *db, sqlite3_int64 id, void *out, vl_error *err) {
+  return compound_by_id(db, id, out, err);
+}
+
+vl_status vl_db_compound_list(vl_db *db, vl_db_compound **items, size_t *n, vl_error *err) {
+  void *arr = NULL;
+  vl_status s = list_all(db, "compound", "compounds", sizeof **items, compound_at, &arr, n, err);
+  *items = arr;
+  return s;
 }
 
 /* ---- surfaces --------------------------------------------------------- */
@@ -1487,29 +1505,16 @@ vl_status vl_db_surface_remove(vl_db *db, const char *name, vl_error *err) {
   return remove_named(db, "surface", name, err);
 }
 
+/* list_all's reader of one surface, typed for its generic array. */
+static vl_status surface_at(vl_db *db, sqlite3_int64 id, void *out, vl_error *err) {
+  return surface_by_id(db, id, out, err);
+}
+
 vl_status vl_db_surface_list(vl_db *db, vl_db_surface **items, size_t *n, vl_error *err) {
-  sqlite3_int64 *ids;
-  size_t count;
-  *items = NULL;
-  *n = 0;
-  vl_status s = all_ids(db, "surface", &ids, &count, err);
-  if (s != VL_OK || count == 0) return s;
-  vl_db_surface *arr = calloc(count, sizeof *arr);
-  if (!arr) {
-    free(ids);
-    vl_error_set(err, "out of memory listing surfaces");
-    return VL_ENOMEM;
-  }
-  for (size_t i = 0; i < count && s == VL_OK; i++)
-    s = surface_by_id(db, ids[i], &arr[i], err);
-  free(ids);
-  if (s != VL_OK) {
-    free(arr);
-    return s;
-  }
+  void *arr = NULL;
+  vl_status s = list_all(db, "surface", "surfaces", sizeof **items, surface_at, &arr, n, err);
   *items = arr;
-  *n = count;
-  return VL_OK;
+  return s;
 }
 
 /* ---- fluids ----------------------------------------------------------- */
@@ -1607,27 +1612,14 @@ vl_status vl_db_fluid_remove(vl_db *db, const char *name, vl_error *err) {
   return remove_named(db, "fluid", name, err);
 }
 
+/* list_all's reader of one fluid, typed for its generic array. */
+static vl_status fluid_at(vl_db *db, sqlite3_int64 id, void *out, vl_error *err) {
+  return fluid_by_id(db, id, out, err);
+}
+
 vl_status vl_db_fluid_list(vl_db *db, vl_db_fluid **items, size_t *n, vl_error *err) {
-  sqlite3_int64 *ids;
-  size_t count;
-  *items = NULL;
-  *n = 0;
-  vl_status s = all_ids(db, "fluid", &ids, &count, err);
-  if (s != VL_OK || count == 0) return s;
-  vl_db_fluid *arr = calloc(count, sizeof *arr);
-  if (!arr) {
-    free(ids);
-    vl_error_set(err, "out of memory listing fluids");
-    return VL_ENOMEM;
-  }
-  for (size_t i = 0; i < count && s == VL_OK; i++)
-    s = fluid_by_id(db, ids[i], &arr[i], err);
-  free(ids);
-  if (s != VL_OK) {
-    free(arr);
-    return s;
-  }
+  void *arr = NULL;
+  vl_status s = list_all(db, "fluid", "fluids", sizeof **items, fluid_at, &arr, n, err);
   *items = arr;
-  *n = count;
-  return VL_OK;
+  return s;
 }

@@ -25,119 +25,6 @@
 
 #define PI 3.14159265358979323846
 
-/* ---- a strict JSON validator (RFC 8259 grammar), independent of the
- * program's writer ----------------------------------------------------- */
-
-static int j_value(const char **p, int depth);
-
-static void j_ws(const char **p) {
-  while (**p == ' ' || **p == '\t' || **p == '\n' || **p == '\r')
-    (*p)++;
-}
-
-static int j_string(const char **p) {
-  if (**p != '"') return 0;
-  (*p)++;
-  while (**p != '"') {
-    unsigned char c = (unsigned char)**p;
-    if (c == '\0' || c < 0x20) return 0;
-    if (c == '\\') {
-      (*p)++;
-      if (**p && strchr("\"\\/bfnrt", **p)) {
-        (*p)++;
-      } else if (**p == 'u') {
-        (*p)++;
-        for (int k = 0; k < 4; k++, (*p)++)
-          if (!strchr("0123456789abcdefABCDEF", **p) || !**p) return 0;
-      } else {
-        return 0;
-      }
-    } else {
-      (*p)++;
-    }
-  }
-  (*p)++;
-  return 1;
-}
-
-static int j_digits(const char **p) {
-  const char *s = *p;
-  while (**p >= '0' && **p <= '9')
-    (*p)++;
-  return *p > s;
-}
-
-static int j_number(const char **p) {
-  if (**p == '-') (*p)++;
-  if (**p == '0')
-    (*p)++;
-  else if (!(**p >= '1' && **p <= '9') || !j_digits(p))
-    return 0;
-  if (**p == '.') {
-    (*p)++;
-    if (!j_digits(p)) return 0;
-  }
-  if (**p == 'e' || **p == 'E') {
-    (*p)++;
-    if (**p == '+' || **p == '-') (*p)++;
-    if (!j_digits(p)) return 0;
-  }
-  return 1;
-}
-
-static int j_word(const char **p, const char *w) {
-  size_t n = strlen(w);
-  if (strncmp(*p, w, n)) return 0;
-  *p += n;
-  return 1;
-}
-
-static int j_value(const char **p, int depth) {
-  if (depth > 32) return 0;
-  j_ws(p);
-  if (**p == '{' || **p == '[') {
-    char close = **p == '{' ? '}' : ']';
-    int object = **p == '{';
-    (*p)++;
-    j_ws(p);
-    if (**p == close) {
-      (*p)++;
-      return 1;
-    }
-    for (;;) {
-      if (object) {
-        j_ws(p);
-        if (!j_string(p)) return 0;
-        j_ws(p);
-        if (**p != ':') return 0;
-        (*p)++;
-      }
-      if (!j_value(p, depth + 1)) return 0;
-      j_ws(p);
-      if (**p == ',') {
-        (*p)++;
-        continue;
-      }
-      if (**p != close) return 0;
-      (*p)++;
-      return 1;
-    }
-  }
-  if (**p == '"') return j_string(p);
-  if (**p == 't') return j_word(p, "true");
-  if (**p == 'f') return j_word(p, "false");
-  if (**p == 'n') return j_word(p, "null");
-  return j_number(p);
-}
-
-static int json_valid(const char *s) {
-  if (!s) return 0;
-  const char *p = s;
-  if (!j_value(&p, 0)) return 0;
-  j_ws(&p);
-  return *p == '\0';
-}
-
 /* The number after the n-th (0-based) occurrence of "key" (NAN for null). */
 static double json_get(const char *json, const char *key, int nth) {
   char pat[128];
@@ -167,96 +54,14 @@ static size_t count_of(const char *s, const char *needle) {
 
 /* ---- running the program ---------------------------------------------- */
 
-static char g_dir[1024]; /* per-test scratch directory */
-static char g_db[1200];  /* the database of the test */
-
-static int setup(void **state) {
-  (void)state;
-  snprintf(g_dir, sizeof g_dir, "%s", vl_test_tmpdir());
-  snprintf(g_db, sizeof g_db, "%s/m.db", g_dir);
-  return 0;
-}
-
-/* Runs `viscolube --db g_db ARGS` (printf-style). */
-static int run(char **out, char **err, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static int run(char **out, char **err, const char *fmt, ...) {
-  char args[8192];
-  int k = snprintf(args, sizeof args, "--db %s ", g_db);
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(args + k, sizeof args - (size_t)k, fmt, ap);
-  va_end(ap);
-  return vl_test_cli("env -u VISCOLUBE_DB", args, out, err);
-}
-
 /* Runs and requires success; returns stdout (caller frees). */
 static char *run_ok(const char *fmt, const char *arg) {
   char *out = NULL, *err = NULL;
-  int rc = run(&out, &err, fmt, arg);
+  int rc = vl_test_run(&out, &err, fmt, arg);
   if (rc != 0) fail_msg("`%s` (%s) exited %d: %s", fmt, arg, rc, err ? err : "");
   assert_string_equal(err, "");
   free(err);
   return out;
-}
-
-static const char *scratch(const char *name, const char *text) {
-  static char path[1300];
-  snprintf(path, sizeof path, "%s/%s", g_dir, name);
-  if (text) vl_test_write_file(path, text);
-  return path;
-}
-
-typedef struct {
-  unsigned char *bytes;
-  size_t n;
-} snapshot;
-
-static snapshot take(const char *path) {
-  snapshot s = {NULL, 0};
-  FILE *f = fopen(path, "rb");
-  if (!f) fail_msg("cannot read %s", path);
-  size_t cap = 0;
-  for (;;) {
-    if (s.n == cap) s.bytes = realloc(s.bytes, cap = cap ? 2 * cap : 65536);
-    size_t got = fread(s.bytes + s.n, 1, cap - s.n, f);
-    s.n += got;
-    if (got == 0) break;
-  }
-  fclose(f);
-  return s;
-}
-
-static int same(const char *path, const snapshot *s) {
-  snapshot now = take(path);
-  int eq = now.n == s->n && memcmp(now.bytes, s->bytes, s->n) == 0;
-  free(now.bytes);
-  char journal[1300];
-  snprintf(journal, sizeof journal, "%s-journal", path);
-  return eq && access(journal, F_OK) != 0;
-}
-
-/* One failing command: exit status `code`, nothing on stdout, exactly one
- * line on stderr holding both needles, and the database file unchanged. */
-static void expect_fail(int code, const char *needle1, const char *needle2, const char *fmt, ...) {
-  char args[8192];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(args, sizeof args, fmt, ap);
-  va_end(ap);
-  snapshot before = take(g_db);
-  char *out = NULL, *err = NULL;
-  int rc = run(&out, &err, "%s", args);
-  if (rc != code) fail_msg("`%s`: exit %d, expected %d (stderr: %s)", args, rc, code, err);
-  if (!out || out[0]) fail_msg("`%s`: unexpected stdout: %s", args, out);
-  size_t len = err ? strlen(err) : 0;
-  if (len < 2 || err[len - 1] != '\n' || strchr(err, '\n') != err + len - 1)
-    fail_msg("`%s`: stderr is not exactly one line: '%s'", args, err);
-  if (needle1 && !strstr(err, needle1)) fail_msg("`%s`: '%s' lacks '%s'", args, err, needle1);
-  if (needle2 && !strstr(err, needle2)) fail_msg("`%s`: '%s' lacks '%s'", args, err, needle2);
-  if (!same(g_db, &before)) fail_msg("`%s` changed the database file", args);
-  free(before.bytes);
-  free(out);
-  free(err);
 }
 
 static void create_db(void) { free(run_ok("compound list%s", "")); }
@@ -277,11 +82,11 @@ static void test_help_everywhere(void **state) {
   const char *nouns[] = {"compound", "surface", "fluid"};
   const char *verbs[] = {"list", "show", "add", "remove"};
   char *out, *err;
-  assert_int_equal(run(&out, &err, "--help"), 0);
+  assert_int_equal(vl_test_run(&out, &err, "--help"), 0);
   assert_non_null(strstr(out, "usage: viscolube"));
   free(out), free(err);
   for (int n = 0; n < 3; n++) {
-    assert_int_equal(run(&out, &err, "%s --help", nouns[n]), 0);
+    assert_int_equal(vl_test_run(&out, &err, "%s --help", nouns[n]), 0);
     assert_non_null(strstr(out, "usage: viscolube"));
     for (int v = 0; v < 4; v++)
       assert_non_null(strstr(out, verbs[v]));
@@ -289,7 +94,7 @@ static void test_help_everywhere(void **state) {
     free(out), free(err);
     for (int v = 0; v < 4; v++) {
       /* help wins over anything else on the line, and opens no database */
-      assert_int_equal(run(&out, &err, "%s %s --bogus --help", nouns[n], verbs[v]), 0);
+      assert_int_equal(vl_test_run(&out, &err, "%s %s --bogus --help", nouns[n], verbs[v]), 0);
       char want[64];
       snprintf(want, sizeof want, "%s %s", nouns[n], verbs[v]);
       if (!strstr(out, want)) fail_msg("help of %s lacks '%s': %s", want, want, out);
@@ -297,17 +102,17 @@ static void test_help_everywhere(void **state) {
       free(out), free(err);
     }
     /* a noun without a verb: usage on stderr, status 2 */
-    assert_int_equal(run(&out, &err, "%s", nouns[n]), 2);
+    assert_int_equal(vl_test_run(&out, &err, "%s", nouns[n]), 2);
     assert_string_equal(out, "");
     assert_non_null(strstr(err, "usage:"));
     free(out), free(err);
   }
-  assert_int_not_equal(access(g_db, F_OK), 0);
+  assert_int_not_equal(access(vl_test_db, F_OK), 0);
   /* the add help documents the file formats */
-  assert_int_equal(run(&out, &err, "compound add --help"), 0);
+  assert_int_equal(vl_test_run(&out, &err, "compound add --help"), 0);
   assert_non_null(strstr(out, "A,tau_s"));
   free(out), free(err);
-  assert_int_equal(run(&out, &err, "surface add --help"), 0);
+  assert_int_equal(vl_test_run(&out, &err, "surface add --help"), 0);
   assert_non_null(strstr(out, "q_per_m,C_m4"));
   free(out), free(err);
 }
@@ -315,17 +120,17 @@ static void test_help_everywhere(void **state) {
 static void test_list_fresh_database(void **state) {
   (void)state;
   char *out = run_ok("compound list --json%s", "");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_true(out[0] == '[');
   assert_int_equal(count_of(out, "\"name\""), 3); /* + the shipped sbr-filled, sbr-unfilled */
   assert_non_null(strstr(out, "\"model-rubber\""));
   free(out);
   out = run_ok("surface list --json%s", "");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_int_equal(count_of(out, "\"name\""), 7);
   free(out);
   out = run_ok("fluid list --json%s", "");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_int_equal(count_of(out, "\"name\""), 7);
   free(out);
 
@@ -351,7 +156,7 @@ static void test_list_fresh_database(void **state) {
 static void test_show_model_rubber(void **state) {
   (void)state;
   char *out = run_ok("compound show model-rubber --json%s", "");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   /* Fig. 5 caption: E0 = 3.6 MPa, Einf/E0 = 10, nu = 0.5, tau = 0.1 s */
   assert_true(vl_test_rel(json_get(out, "e0_pa", 0), 3.6e6) < 1e-14);
   assert_true(vl_test_rel(json_get(out, "e_inf_pa", 0), 36e6) < 1e-14);
@@ -391,7 +196,7 @@ static void test_show_loss_peak(void **state) {
 static void test_show_surface_and_fluid(void **state) {
   (void)state;
   char *out = run_ok("surface show %s --json", "paper-3um");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_true(vl_test_rel(json_get(out, "hrms_m", 0), 3e-6) < 1e-12);
   assert_true(vl_test_rel(json_get(out, "c0_m4", 0), closed_c0(0.8, 2e5, 7.8e9, 3e-6)) < 1e-12);
   assert_true(vl_test_rel(json_get(out, "rms_slope", 0), closed_slope(0.8, 2e5, 7.8e9, 3e-6)) <
@@ -405,7 +210,7 @@ static void test_show_surface_and_fluid(void **state) {
   assert_non_null(strstr(out, "C0"));
   free(out);
   out = run_ok("fluid show %s --json", "water");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_true(json_get(out, "viscosity_pa_s", 0) == 1e-3);
   assert_true(json_get(out, "tref_c", 0) == 20.0);
   free(out);
@@ -418,17 +223,18 @@ static void test_show_surface_and_fluid(void **state) {
 
 static void test_compound_add_show_remove(void **state) {
   (void)state;
-  const char *csv = scratch("terms.csv", "# fitted 2024\nA,tau_s\n1,s\n2.5,1e-4\n7.5,0.02\n");
+  const char *csv =
+      vl_test_scratch("terms.csv", "# fitted 2024\nA,tau_s\n1,s\n2.5,1e-4\n7.5,0.02\n");
   char *out, *err;
-  int rc = run(&out, &err,
-               "compound add sbr-1 --prony %s --e-inf 1e9 --nu 0.49 --class filled "
-               "--description 'lab \"B\" \\ 2024' --tref 25 --wlf-c1 8.86 --wlf-c2 101.6",
-               csv);
+  int rc = vl_test_run(&out, &err,
+                       "compound add sbr-1 --prony %s --e-inf 1e9 --nu 0.49 --class filled "
+                       "--description 'lab \"B\" \\ 2024' --tref 25 --wlf-c1 8.86 --wlf-c2 101.6",
+                       csv);
   if (rc != 0) fail_msg("add failed (%d): %s", rc, err);
   assert_non_null(strstr(out, "sbr-1"));
   free(out), free(err);
   out = run_ok("compound show %s --json", "sbr-1");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   /* E0 = Einf / (1 + sum A) = 1e9 / 11 */
   assert_true(vl_test_rel(json_get(out, "e0_pa", 0), 1e9 / 11.0) < 1e-14);
   assert_true(json_get(out, "A", 1) == 7.5 && json_get(out, "tau_s", 1) == 0.02);
@@ -441,17 +247,17 @@ static void test_compound_add_show_remove(void **state) {
   assert_int_equal(count_of(out, "\n"), 4);
   free(out);
   out = run_ok("compound list --json%s", "");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   free(out);
   free(run_ok("compound remove %s", "sbr-1"));
-  expect_fail(3, "'sbr-1'", NULL, "compound show sbr-1");
+  vl_test_expect_fail(3, "'sbr-1'", NULL, "compound show sbr-1");
 }
 
 static void test_surface_add_show_remove(void **state) {
   (void)state;
   free(run_ok("surface add %s --self-affine --hurst 0.7 --q0 1e4 --q1 1e9 --hrms 2e-6", "road"));
   char *out = run_ok("surface show %s --json", "road");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_true(vl_test_rel(json_get(out, "c0_m4", 0), closed_c0(0.7, 1e4, 1e9, 2e-6)) < 1e-12);
   assert_true(vl_test_rel(json_get(out, "rms_slope", 0), closed_slope(0.7, 1e4, 1e9, 2e-6)) <
               1e-12);
@@ -462,13 +268,13 @@ static void test_surface_add_show_remove(void **state) {
   const double H = 0.8, qa = 1e5, qb = 1e8, Cs = 1e-20, Cb = Cs * pow(qb / qa, -2.0 * (1.0 + H));
   char text[256];
   snprintf(text, sizeof text, "q_per_m,C_m4\n1/m,m^4\n%.17g,%.17g\n%.17g,%.17g\n", qa, Cs, qb, Cb);
-  const char *csv = scratch("psd.csv", text);
+  const char *csv = vl_test_scratch("psd.csv", text);
   char *err;
-  int rc = run(&out, &err, "surface add measured --psd %s --description 'scan 3'", csv);
+  int rc = vl_test_run(&out, &err, "surface add measured --psd %s --description 'scan 3'", csv);
   if (rc != 0) fail_msg("add failed (%d): %s", rc, err);
   free(out), free(err);
   out = run_ok("surface show %s --json", "measured");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   double h2 = PI * Cs * qa * qa / H * (1.0 - pow(qa / qb, 2.0 * H));
   assert_true(vl_test_rel(json_get(out, "hrms_m", 0), sqrt(h2)) < 1e-12);
   assert_true(json_get(out, "n_points", 0) == 2.0);
@@ -489,12 +295,12 @@ static void test_fluid_add_show_remove(void **state) {
   (void)state;
   free(run_ok("fluid add %s --viscosity 0.35 --tref 40 --description 'PAO 40'", "pao-40"));
   char *out = run_ok("fluid show %s --json", "pao-40");
-  if (!json_valid(out)) fail_msg("invalid JSON: %s", out);
+  if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_true(json_get(out, "viscosity_pa_s", 0) == 0.35);
   assert_true(json_get(out, "tref_c", 0) == 40.0);
   free(out);
   free(run_ok("fluid remove %s", "pao-40"));
-  expect_fail(3, "pao-40", NULL, "fluid show pao-40");
+  vl_test_expect_fail(3, "pao-40", NULL, "fluid show pao-40");
 }
 
 /* ---- bad input: one message, non-zero status, file unchanged --------- */
@@ -522,8 +328,8 @@ static void test_bad_files(void **state) {
       {"header.csv", "A,tau_s\n", "header.csv:1:", "no data rows"},
   };
   for (size_t i = 0; i < sizeof prony / sizeof *prony; i++)
-    expect_fail(2, prony[i].where, prony[i].what, "%s %s", add,
-                scratch(prony[i].file, prony[i].text));
+    vl_test_expect_fail(2, prony[i].where, prony[i].what, "%s %s", add,
+                        vl_test_scratch(prony[i].file, prony[i].text));
 
   struct {
     const char *file, *text, *where, *what;
@@ -541,79 +347,84 @@ static void test_bad_files(void **state) {
       {"psdnan.csv", "q_per_m,C_m4\n1e5,nan\n1e6,1e-21\n", "psdnan.csv:2:", "NaN"},
   };
   for (size_t i = 0; i < sizeof psd / sizeof *psd; i++)
-    expect_fail(2, psd[i].where, psd[i].what, "surface add s --psd %s",
-                scratch(psd[i].file, psd[i].text));
+    vl_test_expect_fail(2, psd[i].where, psd[i].what, "surface add s --psd %s",
+                        vl_test_scratch(psd[i].file, psd[i].text));
 
-  expect_fail(6, "missing.csv", "cannot open", "%s %s/missing.csv", add, g_dir);
-  expect_fail(6, "missing.csv", NULL, "surface add s --psd %s/missing.csv", g_dir);
+  vl_test_expect_fail(6, "missing.csv", "cannot open", "%s %s/missing.csv", add, vl_test_dir);
+  vl_test_expect_fail(6, "missing.csv", NULL, "surface add s --psd %s/missing.csv", vl_test_dir);
 }
 
 static void test_bad_options(void **state) {
   (void)state;
   create_db();
-  const char *ok = scratch("ok.csv", "A,tau_s\n9,0.1\n");
+  const char *ok = vl_test_scratch("ok.csv", "A,tau_s\n9,0.1\n");
   const char *pre = "compound add r --prony";
-  expect_fail(2, "--e-inf", "> 0", "%s %s --e-inf -1 --nu 0.5", pre, ok);
-  expect_fail(2, "--e-inf", "> 0", "%s %s --e-inf 0 --nu 0.5", pre, ok);
-  expect_fail(2, "--e-inf", "not a number", "%s %s --e-inf 36MPa --nu 0.5", pre, ok);
-  expect_fail(2, "--e-inf", "NaN", "%s %s --e-inf nan --nu 0.5", pre, ok);
-  expect_fail(2, "--e-inf", "needs a value", "%s %s --nu 0.5 --e-inf", pre, ok);
-  expect_fail(2, "--e-inf", "needs a value", "%s %s --e-inf --nu 0.5", pre, ok);
-  expect_fail(2, "--nu", "[0, 0.5]", "%s %s --e-inf 1e6 --nu -0.3", pre, ok);
-  expect_fail(2, "--nu", "[0, 0.5]", "%s %s --e-inf 1e6 --nu 0.7", pre, ok);
-  expect_fail(2, "--nu", "required", "%s %s --e-inf 1e6", pre, ok);
-  expect_fail(2, "--prony", "required", "compound add r --e-inf 1e6 --nu 0.5");
-  expect_fail(2, "--class", "rubbery", "%s %s --e-inf 1e6 --nu 0.5 --class rubbery", pre, ok);
-  expect_fail(2, "unknown option '--frobnicate'", NULL, "%s %s --e-inf 1e6 --nu 0.5 --frobnicate",
-              pre, ok);
-  expect_fail(2, "--nu", "twice", "%s %s --e-inf 1e6 --nu 0.5 --nu 0.4", pre, ok);
-  expect_fail(2, "--wlf-c1", "--wlf-c2", "%s %s --e-inf 1e6 --nu 0.5 --wlf-c1 8", pre, ok);
-  expect_fail(2, "missing NAME", NULL, "compound add --prony %s --e-inf 1e6 --nu 0.5", ok);
-  expect_fail(2, "'a/b'", NULL, "compound add a/b --prony %s --e-inf 1e6 --nu 0.5", ok);
-  expect_fail(2, "unexpected argument 'extra'", NULL, "fluid show water extra");
-  expect_fail(2, "unknown verb 'frob'", NULL, "compound frob");
-  expect_fail(2, "missing NAME", NULL, "surface show");
-  expect_fail(2, "unknown option '--xml'", NULL, "fluid list --xml");
+  vl_test_expect_fail(2, "--e-inf", "> 0", "%s %s --e-inf -1 --nu 0.5", pre, ok);
+  vl_test_expect_fail(2, "--e-inf", "> 0", "%s %s --e-inf 0 --nu 0.5", pre, ok);
+  vl_test_expect_fail(2, "--e-inf", "not a number", "%s %s --e-inf 36MPa --nu 0.5", pre, ok);
+  vl_test_expect_fail(2, "--e-inf", "NaN", "%s %s --e-inf nan --nu 0.5", pre, ok);
+  vl_test_expect_fail(2, "--e-inf", "needs a value", "%s %s --nu 0.5 --e-inf", pre, ok);
+  vl_test_expect_fail(2, "--e-inf", "needs a value", "%s %s --e-inf --nu 0.5", pre, ok);
+  vl_test_expect_fail(2, "--nu", "[0, 0.5]", "%s %s --e-inf 1e6 --nu -0.3", pre, ok);
+  vl_test_expect_fail(2, "--nu", "[0, 0.5]", "%s %s --e-inf 1e6 --nu 0.7", pre, ok);
+  vl_test_expect_fail(2, "--nu", "required", "%s %s --e-inf 1e6", pre, ok);
+  vl_test_expect_fail(2, "--prony", "required", "compound add r --e-inf 1e6 --nu 0.5");
+  vl_test_expect_fail(2, "--class", "rubbery", "%s %s --e-inf 1e6 --nu 0.5 --class rubbery", pre,
+                      ok);
+  vl_test_expect_fail(2, "unknown option '--frobnicate'", NULL,
+                      "%s %s --e-inf 1e6 --nu 0.5 --frobnicate", pre, ok);
+  vl_test_expect_fail(2, "--nu", "twice", "%s %s --e-inf 1e6 --nu 0.5 --nu 0.4", pre, ok);
+  vl_test_expect_fail(2, "--wlf-c1", "--wlf-c2", "%s %s --e-inf 1e6 --nu 0.5 --wlf-c1 8", pre, ok);
+  vl_test_expect_fail(2, "missing NAME", NULL, "compound add --prony %s --e-inf 1e6 --nu 0.5", ok);
+  vl_test_expect_fail(2, "'a/b'", NULL, "compound add a/b --prony %s --e-inf 1e6 --nu 0.5", ok);
+  vl_test_expect_fail(2, "unexpected argument 'extra'", NULL, "fluid show water extra");
+  vl_test_expect_fail(2, "unknown verb 'frob'", NULL, "compound frob");
+  vl_test_expect_fail(2, "missing NAME", NULL, "surface show");
+  vl_test_expect_fail(2, "unknown option '--xml'", NULL, "fluid list --xml");
 
   const char *sa = "surface add s --self-affine";
-  expect_fail(2, "--hurst", "(0, 1]", "%s --hurst 0 --q0 2e5 --q1 7.8e9 --hrms 1e-6", sa);
-  expect_fail(2, "--hurst", "(0, 1]", "%s --hurst 1.5 --q0 2e5 --q1 7.8e9 --hrms 1e-6", sa);
-  expect_fail(2, "--hurst", "(0, 1]", "%s --hurst -0.2 --q0 2e5 --q1 7.8e9 --hrms 1e-6", sa);
-  expect_fail(2, "--q1", "--q0", "%s --hurst 0.8 --q0 7.8e9 --q1 2e5 --hrms 1e-6", sa);
-  expect_fail(2, "--q1", "--q0", "%s --hurst 0.8 --q0 2e5 --q1 2e5 --hrms 1e-6", sa);
-  expect_fail(2, "--q0", "> 0", "%s --hurst 0.8 --q0 -2e5 --q1 7.8e9 --hrms 1e-6", sa);
-  expect_fail(2, "--q0", "> 0", "%s --hurst 0.8 --q0 0 --q1 7.8e9 --hrms 1e-6", sa);
-  expect_fail(2, "--hrms", "> 0", "%s --hurst 0.8 --q0 2e5 --q1 7.8e9 --hrms 0", sa);
-  expect_fail(2, "--hrms", "> 0", "%s --hurst 0.8 --q0 2e5 --q1 7.8e9 --hrms -1e-6", sa);
-  expect_fail(2, "--hrms", NULL, "%s --hurst 0.8 --q0 2e5 --q1 7.8e9", sa);
-  expect_fail(2, "--q1", "infinity", "%s --hurst 0.8 --q0 2e5 --q1 inf --hrms 1e-6", sa);
-  expect_fail(2, "--psd", "--self-affine", "surface add s --self-affine --psd %s", ok);
-  expect_fail(2, "--hurst", "--psd", "surface add s --psd %s --hurst 0.8", ok);
-  expect_fail(2, "--self-affine", "--psd", "surface add s --description x");
+  vl_test_expect_fail(2, "--hurst", "(0, 1]", "%s --hurst 0 --q0 2e5 --q1 7.8e9 --hrms 1e-6", sa);
+  vl_test_expect_fail(2, "--hurst", "(0, 1]", "%s --hurst 1.5 --q0 2e5 --q1 7.8e9 --hrms 1e-6", sa);
+  vl_test_expect_fail(2, "--hurst", "(0, 1]", "%s --hurst -0.2 --q0 2e5 --q1 7.8e9 --hrms 1e-6",
+                      sa);
+  vl_test_expect_fail(2, "--q1", "--q0", "%s --hurst 0.8 --q0 7.8e9 --q1 2e5 --hrms 1e-6", sa);
+  vl_test_expect_fail(2, "--q1", "--q0", "%s --hurst 0.8 --q0 2e5 --q1 2e5 --hrms 1e-6", sa);
+  vl_test_expect_fail(2, "--q0", "> 0", "%s --hurst 0.8 --q0 -2e5 --q1 7.8e9 --hrms 1e-6", sa);
+  vl_test_expect_fail(2, "--q0", "> 0", "%s --hurst 0.8 --q0 0 --q1 7.8e9 --hrms 1e-6", sa);
+  vl_test_expect_fail(2, "--hrms", "> 0", "%s --hurst 0.8 --q0 2e5 --q1 7.8e9 --hrms 0", sa);
+  vl_test_expect_fail(2, "--hrms", "> 0", "%s --hurst 0.8 --q0 2e5 --q1 7.8e9 --hrms -1e-6", sa);
+  vl_test_expect_fail(2, "--hrms", NULL, "%s --hurst 0.8 --q0 2e5 --q1 7.8e9", sa);
+  vl_test_expect_fail(2, "--q1", "infinity", "%s --hurst 0.8 --q0 2e5 --q1 inf --hrms 1e-6", sa);
+  vl_test_expect_fail(2, "--psd", "--self-affine", "surface add s --self-affine --psd %s", ok);
+  vl_test_expect_fail(2, "--hurst", "--psd", "surface add s --psd %s --hurst 0.8", ok);
+  vl_test_expect_fail(2, "--self-affine", "--psd", "surface add s --description x");
 
-  expect_fail(2, "--viscosity", "> 0", "fluid add oil --viscosity 0");
-  expect_fail(2, "--viscosity", "> 0", "fluid add oil --viscosity -1e-3");
-  expect_fail(2, "--viscosity", "infinity", "fluid add oil --viscosity inf");
-  expect_fail(2, "--viscosity", "not a number", "fluid add oil --viscosity thick");
-  expect_fail(2, "--viscosity", "required", "fluid add oil");
-  expect_fail(2, "--tref", "absolute zero", "fluid add oil --viscosity 1 --tref -300");
+  vl_test_expect_fail(2, "--viscosity", "> 0", "fluid add oil --viscosity 0");
+  vl_test_expect_fail(2, "--viscosity", "> 0", "fluid add oil --viscosity -1e-3");
+  vl_test_expect_fail(2, "--viscosity", "infinity", "fluid add oil --viscosity inf");
+  vl_test_expect_fail(2, "--viscosity", "not a number", "fluid add oil --viscosity thick");
+  vl_test_expect_fail(2, "--viscosity", "required", "fluid add oil");
+  vl_test_expect_fail(2, "--tref", "absolute zero", "fluid add oil --viscosity 1 --tref -300");
 }
 
 static void test_unknown_and_duplicate_names(void **state) {
   (void)state;
   create_db();
-  expect_fail(3, "'model-ruber'", "did you mean 'model-rubber'", "compound show model-ruber");
-  expect_fail(3, "'paper-3umm'", "did you mean 'paper-3um'", "surface show paper-3umm --json");
-  expect_fail(3, "'watr'", "did you mean 'water'", "fluid show watr");
-  expect_fail(3, "'nothing'", NULL, "compound remove nothing");
-  expect_fail(3, "'nothing'", NULL, "surface remove nothing");
-  expect_fail(3, "'nothing'", NULL, "fluid remove nothing");
-  const char *ok = scratch("ok.csv", "A,tau_s\n9,0.1\n");
-  expect_fail(4, "'model-rubber'", "already exists",
-              "compound add model-rubber --prony %s --e-inf 1e6 --nu 0.5", ok);
-  expect_fail(4, "'paper-1um'", "already exists",
-              "surface add paper-1um --self-affine --hurst 0.8 --q0 2e5 --q1 7.8e9 --hrms 1e-6");
-  expect_fail(4, "'water'", "already exists", "fluid add water --viscosity 1e-3");
+  vl_test_expect_fail(3, "'model-ruber'", "did you mean 'model-rubber'",
+                      "compound show model-ruber");
+  vl_test_expect_fail(3, "'paper-3umm'", "did you mean 'paper-3um'",
+                      "surface show paper-3umm --json");
+  vl_test_expect_fail(3, "'watr'", "did you mean 'water'", "fluid show watr");
+  vl_test_expect_fail(3, "'nothing'", NULL, "compound remove nothing");
+  vl_test_expect_fail(3, "'nothing'", NULL, "surface remove nothing");
+  vl_test_expect_fail(3, "'nothing'", NULL, "fluid remove nothing");
+  const char *ok = vl_test_scratch("ok.csv", "A,tau_s\n9,0.1\n");
+  vl_test_expect_fail(4, "'model-rubber'", "already exists",
+                      "compound add model-rubber --prony %s --e-inf 1e6 --nu 0.5", ok);
+  vl_test_expect_fail(
+      4, "'paper-1um'", "already exists",
+      "surface add paper-1um --self-affine --hurst 0.8 --q0 2e5 --q1 7.8e9 --hrms 1e-6");
+  vl_test_expect_fail(4, "'water'", "already exists", "fluid add water --viscosity 1e-3");
 }
 
 /* ---- database files the program must not touch ------------------------ */
@@ -622,12 +433,12 @@ static void test_newer_schema(void **state) {
   (void)state;
   create_db();
   sqlite3 *h;
-  assert_int_equal(sqlite3_open(g_db, &h), SQLITE_OK);
+  assert_int_equal(sqlite3_open(vl_test_db, &h), SQLITE_OK);
   assert_int_equal(sqlite3_exec(h, "PRAGMA user_version = 999", NULL, NULL, NULL), SQLITE_OK);
   sqlite3_close(h);
-  expect_fail(5, "newer", "999", "compound list");
-  expect_fail(5, "newer", NULL, "fluid add oil --viscosity 1");
-  expect_fail(5, "newer", NULL, "fluid remove water");
+  vl_test_expect_fail(5, "newer", "999", "compound list");
+  vl_test_expect_fail(5, "newer", NULL, "fluid add oil --viscosity 1");
+  vl_test_expect_fail(5, "newer", NULL, "fluid remove water");
 }
 
 /* chmod 0444 on the database. The tests run as root, for whom the kernel
@@ -635,19 +446,19 @@ static void test_newer_schema(void **state) {
 static void test_readonly_database(void **state) {
   (void)state;
   create_db();
-  assert_int_equal(chmod(g_db, 0444), 0);
-  snapshot before = take(g_db);
+  assert_int_equal(chmod(vl_test_db, 0444), 0);
+  vl_test_snapshot before = vl_test_take(vl_test_db);
   char *out = run_ok("fluid list%s", "");
   assert_int_equal(count_of(out, "\n"), 7);
   free(out);
-  expect_fail(5, "read-only", NULL, "fluid add oil --viscosity 0.1");
-  expect_fail(5, "read-only", NULL, "compound remove model-rubber");
-  expect_fail(5, "read-only", NULL,
-              "surface add s --self-affine --hurst 0.8 --q0 2e5 --q1 7.8e9 --hrms 1e-6");
-  expect_fail(5, "read-only", NULL, "fluid remove water");
-  assert_true(same(g_db, &before));
+  vl_test_expect_fail(5, "read-only", NULL, "fluid add oil --viscosity 0.1");
+  vl_test_expect_fail(5, "read-only", NULL, "compound remove model-rubber");
+  vl_test_expect_fail(5, "read-only", NULL,
+                      "surface add s --self-affine --hurst 0.8 --q0 2e5 --q1 7.8e9 --hrms 1e-6");
+  vl_test_expect_fail(5, "read-only", NULL, "fluid remove water");
+  assert_true(vl_test_same_db(vl_test_db, &before));
   free(before.bytes);
-  chmod(g_db, 0644);
+  chmod(vl_test_db, 0644);
 }
 
 static void test_corrupt_database(void **state) {
@@ -658,19 +469,19 @@ static void test_corrupt_database(void **state) {
     x ^= x << 13, x ^= x >> 17, x ^= x << 5;
     junk[i] = (unsigned char)(x >> 3);
   }
-  FILE *f = fopen(g_db, "wb");
+  FILE *f = fopen(vl_test_db, "wb");
   fwrite(junk, 1, sizeof junk, f);
   fclose(f);
-  expect_fail(5, g_db, "not a valid viscolube database", "compound list --json");
-  expect_fail(5, g_db, NULL, "fluid add oil --viscosity 0.1");
-  expect_fail(5, g_db, NULL, "surface remove paper-1um");
+  vl_test_expect_fail(5, vl_test_db, "not a valid viscolube database", "compound list --json");
+  vl_test_expect_fail(5, vl_test_db, NULL, "fluid add oil --viscosity 0.1");
+  vl_test_expect_fail(5, vl_test_db, NULL, "surface remove paper-1um");
   /* another program's SQLite file */
-  unlink(g_db);
+  unlink(vl_test_db);
   sqlite3 *h;
-  assert_int_equal(sqlite3_open(g_db, &h), SQLITE_OK);
+  assert_int_equal(sqlite3_open(vl_test_db, &h), SQLITE_OK);
   assert_int_equal(sqlite3_exec(h, "CREATE TABLE t (x)", NULL, NULL, NULL), SQLITE_OK);
   sqlite3_close(h);
-  expect_fail(5, "not a viscolube database", NULL, "fluid list");
+  vl_test_expect_fail(5, "not a viscolube database", NULL, "fluid list");
 }
 
 /* ---- which database: --db, $VISCOLUBE_DB, XDG, HOME ------------------- */
@@ -678,8 +489,8 @@ static void test_corrupt_database(void **state) {
 static void test_database_selection(void **state) {
   (void)state;
   char env[4096], args[4096], a[1300], b[1300];
-  snprintf(a, sizeof a, "%s/a.db", g_dir);
-  snprintf(b, sizeof b, "%s/b.db", g_dir);
+  snprintf(a, sizeof a, "%s/a.db", vl_test_dir);
+  snprintf(b, sizeof b, "%s/b.db", vl_test_dir);
   /* --db wins over $VISCOLUBE_DB */
   snprintf(env, sizeof env, "VISCOLUBE_DB=%s", a);
   snprintf(args, sizeof args, "--db %s fluid list", b);
@@ -690,20 +501,21 @@ static void test_database_selection(void **state) {
   assert_int_equal(vl_test_cli(env, "fluid list", NULL, NULL), 0);
   assert_int_equal(access(a, F_OK), 0);
   /* $XDG_DATA_HOME, directories created */
-  snprintf(env, sizeof env, "env -u VISCOLUBE_DB XDG_DATA_HOME=%s/xdg HOME=%s/home", g_dir, g_dir);
+  snprintf(env, sizeof env, "env -u VISCOLUBE_DB XDG_DATA_HOME=%s/xdg HOME=%s/home", vl_test_dir,
+           vl_test_dir);
   assert_int_equal(vl_test_cli(env, "compound list", NULL, NULL), 0);
-  snprintf(a, sizeof a, "%s/xdg/viscolube/materials.db", g_dir);
+  snprintf(a, sizeof a, "%s/xdg/viscolube/materials.db", vl_test_dir);
   assert_int_equal(access(a, F_OK), 0);
   /* $HOME/.local/share */
-  snprintf(env, sizeof env, "env -u VISCOLUBE_DB -u XDG_DATA_HOME HOME=%s/home", g_dir);
+  snprintf(env, sizeof env, "env -u VISCOLUBE_DB -u XDG_DATA_HOME HOME=%s/home", vl_test_dir);
   char *out = NULL;
   assert_int_equal(vl_test_cli(env, "compound list --json", &out, NULL), 0);
   assert_non_null(strstr(out, "model-rubber"));
   free(out);
-  snprintf(a, sizeof a, "%s/home/.local/share/viscolube/materials.db", g_dir);
+  snprintf(a, sizeof a, "%s/home/.local/share/viscolube/materials.db", vl_test_dir);
   assert_int_equal(access(a, F_OK), 0);
   /* a bad add never creates the database */
-  snprintf(b, sizeof b, "%s/never.db", g_dir);
+  snprintf(b, sizeof b, "%s/never.db", vl_test_dir);
   snprintf(args, sizeof args, "--db %s fluid add oil --viscosity -1", b);
   assert_int_equal(vl_test_cli(NULL, args, NULL, NULL), 2);
   assert_int_not_equal(access(b, F_OK), 0);
@@ -711,21 +523,21 @@ static void test_database_selection(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test_setup(test_help_everywhere, setup),
-      cmocka_unit_test_setup(test_list_fresh_database, setup),
-      cmocka_unit_test_setup(test_show_model_rubber, setup),
-      cmocka_unit_test_setup(test_show_loss_peak, setup),
-      cmocka_unit_test_setup(test_show_surface_and_fluid, setup),
-      cmocka_unit_test_setup(test_compound_add_show_remove, setup),
-      cmocka_unit_test_setup(test_surface_add_show_remove, setup),
-      cmocka_unit_test_setup(test_fluid_add_show_remove, setup),
-      cmocka_unit_test_setup(test_bad_files, setup),
-      cmocka_unit_test_setup(test_bad_options, setup),
-      cmocka_unit_test_setup(test_unknown_and_duplicate_names, setup),
-      cmocka_unit_test_setup(test_newer_schema, setup),
-      cmocka_unit_test_setup(test_readonly_database, setup),
-      cmocka_unit_test_setup(test_corrupt_database, setup),
-      cmocka_unit_test_setup(test_database_selection, setup),
+      cmocka_unit_test_setup(test_help_everywhere, vl_test_setup_db),
+      cmocka_unit_test_setup(test_list_fresh_database, vl_test_setup_db),
+      cmocka_unit_test_setup(test_show_model_rubber, vl_test_setup_db),
+      cmocka_unit_test_setup(test_show_loss_peak, vl_test_setup_db),
+      cmocka_unit_test_setup(test_show_surface_and_fluid, vl_test_setup_db),
+      cmocka_unit_test_setup(test_compound_add_show_remove, vl_test_setup_db),
+      cmocka_unit_test_setup(test_surface_add_show_remove, vl_test_setup_db),
+      cmocka_unit_test_setup(test_fluid_add_show_remove, vl_test_setup_db),
+      cmocka_unit_test_setup(test_bad_files, vl_test_setup_db),
+      cmocka_unit_test_setup(test_bad_options, vl_test_setup_db),
+      cmocka_unit_test_setup(test_unknown_and_duplicate_names, vl_test_setup_db),
+      cmocka_unit_test_setup(test_newer_schema, vl_test_setup_db),
+      cmocka_unit_test_setup(test_readonly_database, vl_test_setup_db),
+      cmocka_unit_test_setup(test_corrupt_database, vl_test_setup_db),
+      cmocka_unit_test_setup(test_database_selection, vl_test_setup_db),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -52,128 +52,6 @@ static const char *const COLUMNS[] = {
 static const char *const FIELD_COLUMNS =
     "x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction";
 
-/* ---- a strict JSON validator (RFC 8259 grammar), independent of the
- * program's writer (as in test_cli_materials.c) -------------------------- */
-
-static int j_value(const char **p, int depth);
-
-static void j_ws(const char **p) {
-  while (**p == ' ' || **p == '\t' || **p == '\n' || **p == '\r')
-    (*p)++;
-}
-
-static int j_string(const char **p) {
-  if (**p != '"') return 0;
-  (*p)++;
-  while (**p != '"') {
-    unsigned char c = (unsigned char)**p;
-    if (c == '\0' || c < 0x20) return 0;
-    if (c == '\\') {
-      (*p)++;
-      if (**p && strchr("\"\\/bfnrt", **p)) {
-        (*p)++;
-      } else if (**p == 'u') {
-        (*p)++;
-        for (int k = 0; k < 4; k++, (*p)++)
-          if (!**p || !strchr("0123456789abcdefABCDEF", **p)) return 0;
-      } else {
-        return 0;
-      }
-    } else {
-      (*p)++;
-    }
-  }
-  (*p)++;
-  return 1;
-}
-
-static int j_digits(const char **p) {
-  const char *s = *p;
-  while (**p >= '0' && **p <= '9')
-    (*p)++;
-  return *p > s;
-}
-
-static int j_number(const char **p) {
-  if (**p == '-') (*p)++;
-  if (**p == '0')
-    (*p)++;
-  else if (!(**p >= '1' && **p <= '9') || !j_digits(p))
-    return 0;
-  if (**p == '.') {
-    (*p)++;
-    if (!j_digits(p)) return 0;
-  }
-  if (**p == 'e' || **p == 'E') {
-    (*p)++;
-    if (**p == '+' || **p == '-') (*p)++;
-    if (!j_digits(p)) return 0;
-  }
-  return 1;
-}
-
-static int j_word(const char **p, const char *w) {
-  size_t n = strlen(w);
-  if (strncmp(*p, w, n)) return 0;
-  *p += n;
-  return 1;
-}
-
-/* Counts the objects directly inside a top-level array in *objects. */
-static int j_value_count(const char **p, int depth, size_t *objects) {
-  if (depth > 32) return 0;
-  j_ws(p);
-  if (**p == '{' || **p == '[') {
-    char close = **p == '{' ? '}' : ']';
-    int object = **p == '{';
-    if (object && depth == 1 && objects) (*objects)++;
-    (*p)++;
-    j_ws(p);
-    if (**p == close) {
-      (*p)++;
-      return 1;
-    }
-    for (;;) {
-      if (object) {
-        j_ws(p);
-        if (!j_string(p)) return 0;
-        j_ws(p);
-        if (**p != ':') return 0;
-        (*p)++;
-      }
-      if (!j_value_count(p, depth + 1, objects)) return 0;
-      j_ws(p);
-      if (**p == ',') {
-        (*p)++;
-        continue;
-      }
-      if (**p != close) return 0;
-      (*p)++;
-      return 1;
-    }
-  }
-  if (**p == '"') return j_string(p);
-  if (**p == 't') return j_word(p, "true");
-  if (**p == 'f') return j_word(p, "false");
-  if (**p == 'n') return j_word(p, "null");
-  return j_number(p);
-}
-
-static int j_value(const char **p, int depth) { return j_value_count(p, depth, NULL); }
-
-/* Valid JSON whose top level is an array; *objects = its object elements. */
-static int json_array_valid(const char *s, size_t *objects) {
-  if (!s) return 0;
-  const char *p = s;
-  j_ws(&p);
-  if (*p != '[') return 0;
-  *objects = 0;
-  if (!j_value_count(&p, 0, objects)) return 0;
-  j_ws(&p);
-  (void)j_value;
-  return *p == '\0';
-}
-
 /* The number after the n-th (0-based) occurrence of "key" (NAN for null). */
 static double json_get(const char *json, const char *key, size_t nth) {
   char pat[128];
@@ -285,38 +163,6 @@ static double num(const csv_table *t, size_t row, const char *name) {
 
 /* ---- running the program -------------------------------------------------- */
 
-static char g_dir[1024]; /* per-test scratch directory */
-static char g_db[1200];  /* the database of the test */
-
-static int setup(void **state) {
-  (void)state;
-  snprintf(g_dir, sizeof g_dir, "%s", vl_test_tmpdir());
-  snprintf(g_db, sizeof g_db, "%s/m.db", g_dir);
-  return 0;
-}
-
-/* Runs `viscolube --db g_db ARGS` (printf-style). */
-static int run(char **out, char **err, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static int run(char **out, char **err, const char *fmt, ...) {
-  char args[8192];
-  int k = snprintf(args, sizeof args, "--db %s ", g_db);
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(args + k, sizeof args - (size_t)k, fmt, ap);
-  va_end(ap);
-  return vl_test_cli("env -u VISCOLUBE_DB", args, out, err);
-}
-
-/* Path of a file in the scratch directory, written when text is given. */
-static const char *scratch(const char *name, const char *text) {
-  static char path[8][1300];
-  static int next;
-  char *p = path[next++ % 8];
-  snprintf(p, sizeof path[0], "%s/%s", g_dir, name);
-  if (text) vl_test_write_file(p, text);
-  return p;
-}
-
 static int exists(const char *path) { return access(path, F_OK) == 0; }
 
 /* A scene from its parts (one or more lines each, without the last
@@ -348,11 +194,11 @@ static const char *scene_text(const char *materials, const char *contact, const 
 
 /* Runs a scene that must succeed; returns the curve (caller frees). */
 static csv_table run_scene(const char *name, const char *text, const char *out_name) {
-  const char *scene = scratch(name, text);
+  const char *scene = vl_test_scratch(name, text);
   char out_dir[1300];
-  snprintf(out_dir, sizeof out_dir, "%s/%s", g_dir, out_name);
+  snprintf(out_dir, sizeof out_dir, "%s/%s", vl_test_dir, out_name);
   char *out = NULL, *err = NULL;
-  int rc = run(&out, &err, "run %s --out %s", scene, out_dir);
+  int rc = vl_test_run(&out, &err, "run %s --out %s", scene, out_dir);
   if (rc != 0) fail_msg("run %s exited %d: %s", name, rc, err);
   /* stderr is not a terminal here: no progress line, nothing at all */
   assert_string_equal(err, "");
@@ -360,7 +206,7 @@ static csv_table run_scene(const char *name, const char *text, const char *out_n
   free(out), free(err);
   char path[1400];
   snprintf(path, sizeof path, "%s/curve.csv", out_dir);
-  assert_false(exists(scratch("curve.csv.tmp", NULL)));
+  assert_false(exists(vl_test_scratch("curve.csv.tmp", NULL)));
   return csv_read(path);
 }
 
@@ -513,7 +359,7 @@ static void test_smooth_sweep(void **state) {
     if (num(&t, r, "mu_Rc") > num(&t, peak, "mu_Rc")) peak = r;
   assert_true(peak > 0 && peak + 1 < t.rows);
   char out_dir[1300];
-  snprintf(out_dir, sizeof out_dir, "%s/out", g_dir);
+  snprintf(out_dir, sizeof out_dir, "%s/out", vl_test_dir);
   check_fields_set(out_dir, half, one);
   check_fields(out_dir, half, 128, 1.5, 0);
   check_fields(out_dir, one, 128, 1.5, 0);
@@ -550,7 +396,7 @@ static void test_rough_sweep(void **state) {
   /* ... and lowers the peak of mu_Rc */
   if (!(peak_rough < peak_smooth)) fail_msg("rough peak %g >= smooth peak %g", peak_rough, peak_smooth);
   char out_dir[1300];
-  snprintf(out_dir, sizeof out_dir, "%s/rough", g_dir);
+  snprintf(out_dir, sizeof out_dir, "%s/rough", vl_test_dir);
   check_fields_set(out_dir, half, one);
   check_fields(out_dir, half, 128, 1.8, 1);
   csv_free(&rough);
@@ -562,11 +408,12 @@ static void test_json(void **state) {
   (void)state;
   csv_table t = run_scene("smooth.ini", SMOOTH, "out");
   char *out = NULL, *err = NULL;
-  int rc = run(&out, &err, "run %s --out %s/json --json", scratch("smooth.ini", NULL), g_dir);
+  int rc = vl_test_run(&out, &err, "run %s --out %s/json --json",
+                       vl_test_scratch("smooth.ini", NULL), vl_test_dir);
   if (rc != 0) fail_msg("run --json exited %d: %s", rc, err);
   assert_string_equal(err, "");
   size_t objects = 0;
-  if (!json_array_valid(out, &objects)) fail_msg("invalid JSON on stdout:\n%s", out);
+  if (!vl_test_json_array_valid(out, &objects)) fail_msg("invalid JSON on stdout:\n%s", out);
   assert_int_equal(objects, t.rows);
   no_bad_numbers("JSON", out);
   for (size_t r = 0; r < t.rows; r++) {
@@ -583,7 +430,7 @@ static void test_json(void **state) {
   free(out), free(err);
   /* the curve is written with --json too */
   char path[1400];
-  snprintf(path, sizeof path, "%s/json/curve.csv", g_dir);
+  snprintf(path, sizeof path, "%s/json/curve.csv", vl_test_dir);
   assert_true(exists(path));
   csv_free(&t);
 }
@@ -630,15 +477,15 @@ static void test_elastic(void **state) {
  * the working directory; a dot inside the name stays. */
 static void test_default_out_dir(void **state) {
   (void)state;
-  const char *scene = scratch("rough-0.1um.ini", SMOOTH);
+  const char *scene = vl_test_scratch("rough-0.1um.ini", SMOOTH);
   char env[2048], path[1400];
-  snprintf(env, sizeof env, "cd %s && env -u VISCOLUBE_DB", g_dir);
+  snprintf(env, sizeof env, "cd %s && env -u VISCOLUBE_DB", vl_test_dir);
   char args[4096];
-  snprintf(args, sizeof args, "--db %s run %s", g_db, scene);
+  snprintf(args, sizeof args, "--db %s run %s", vl_test_db, scene);
   assert_int_equal(vl_test_cli(env, args, NULL, NULL), 0);
-  snprintf(path, sizeof path, "%s/out/rough-0.1um/curve.csv", g_dir);
+  snprintf(path, sizeof path, "%s/out/rough-0.1um/curve.csv", vl_test_dir);
   if (!exists(path)) fail_msg("%s not written", path);
-  snprintf(path, sizeof path, "%s/out/rough-0.1um/fields", g_dir);
+  snprintf(path, sizeof path, "%s/out/rough-0.1um/fields", vl_test_dir);
   assert_true(exists(path));
 }
 
@@ -648,10 +495,10 @@ static void test_default_out_dir(void **state) {
  * and no curve in DIR. */
 static void expect_fail(int code, const char *needle1, const char *needle2, const char *scene) {
   char out_dir[1300], curve[1400];
-  snprintf(out_dir, sizeof out_dir, "%s/failed", g_dir);
+  snprintf(out_dir, sizeof out_dir, "%s/failed", vl_test_dir);
   snprintf(curve, sizeof curve, "%s/curve.csv", out_dir);
   char *out = NULL, *err = NULL;
-  int rc = run(&out, &err, "run %s --out %s", scene, out_dir);
+  int rc = vl_test_run(&out, &err, "run %s --out %s", scene, out_dir);
   if (rc != code) fail_msg("run %s: exit %d, expected %d (stderr: %s)", scene, rc, code, err);
   size_t len = err ? strlen(err) : 0;
   if (len < 2 || err[len - 1] != '\n' || strchr(err, '\n') != err + len - 1)
@@ -667,82 +514,84 @@ static void test_errors(void **state) {
   (void)state;
   char where[1400];
   /* a typo in a key, on line 7 */
-  const char *bad = scratch("typo.ini", scene_text(RUBBER, "raduis_m = 0.01\nload_n_per_m = 1000",
-                                                   SWEEP7, "viscoelastic = on", "grid = 128"));
+  const char *bad =
+      vl_test_scratch("typo.ini", scene_text(RUBBER, "raduis_m = 0.01\nload_n_per_m = 1000", SWEEP7,
+                                             "viscoelastic = on", "grid = 128"));
   snprintf(where, sizeof where, "%s:7:", bad);
   expect_fail(2, where, "raduis_m", bad);
   /* the output directory is not even created */
-  snprintf(where, sizeof where, "%s/failed", g_dir);
+  snprintf(where, sizeof where, "%s/failed", vl_test_dir);
   assert_false(exists(where));
   /* a key in the wrong section (line 19: [numerics] is line 17) */
-  bad = scratch("wrongsection.ini",
-                scene_text(RUBBER, CONTACT, SWEEP7, "viscoelastic = on", "grid = 128\npoints = 9"));
+  bad = vl_test_scratch("wrongsection.ini", scene_text(RUBBER, CONTACT, SWEEP7, "viscoelastic = on",
+                                                       "grid = 128\npoints = 9"));
   snprintf(where, sizeof where, "%s:19:", bad);
   expect_fail(2, where, "belongs in [sweep]", bad);
   /* an inconsistent effect: roughness without a surface (line 16) */
-  bad = scratch("nosurface.ini", scene_text(RUBBER, CONTACT, SWEEP7, "roughness = on", "grid = 128"));
+  bad = vl_test_scratch("nosurface.ini",
+                        scene_text(RUBBER, CONTACT, SWEEP7, "roughness = on", "grid = 128"));
   snprintf(where, sizeof where, "%s:16: [effects] roughness", bad);
   expect_fail(2, where, "surface", bad);
   /* an unknown compound, surface and fluid: named, with the scene */
-  bad = scratch("nocompound.ini", scene_text("compound = model-ruber", CONTACT, SWEEP7,
-                                             "viscoelastic = on", "grid = 128"));
+  bad = vl_test_scratch("nocompound.ini", scene_text("compound = model-ruber", CONTACT, SWEEP7,
+                                                     "viscoelastic = on", "grid = 128"));
   expect_fail(3, "'model-ruber'", "[materials] compound", bad);
-  bad = scratch("nosurface2.ini", scene_text(RUBBER "\nsurface = paper-4um", CONTACT, SWEEP7,
-                                             "roughness = on", "grid = 128"));
+  bad = vl_test_scratch("nosurface2.ini", scene_text(RUBBER "\nsurface = paper-4um", CONTACT,
+                                                     SWEEP7, "roughness = on", "grid = 128"));
   expect_fail(3, "'paper-4um'", "[materials] surface", bad);
-  bad = scratch("nofluid.ini", scene_text(RUBBER "\nfluid = watr", CONTACT, SWEEP7,
-                                          "viscoelastic = on", "grid = 128"));
+  bad = vl_test_scratch("nofluid.ini", scene_text(RUBBER "\nfluid = watr", CONTACT, SWEEP7,
+                                                  "viscoelastic = on", "grid = 128"));
   expect_fail(3, "'watr'", "[materials] fluid", bad);
   /* deborah needs a one-term compound */
-  const char *terms = scratch("terms.csv", "A,tau_s\n1,s\n4,0.01\n5,1\n");
+  const char *terms = vl_test_scratch("terms.csv", "A,tau_s\n1,s\n4,0.01\n5,1\n");
   char *out = NULL, *err = NULL;
-  int rc = run(&out, &err, "compound add two-term --prony %s --e-inf 36e6 --nu 0.5", terms);
+  int rc = vl_test_run(&out, &err, "compound add two-term --prony %s --e-inf 36e6 --nu 0.5", terms);
   if (rc != 0) fail_msg("compound add: %d %s", rc, err);
   free(out), free(err);
-  bad = scratch("twoterm.ini", scene_text("compound = two-term", CONTACT, SWEEP7,
-                                          "viscoelastic = on", "grid = 128"));
+  bad = vl_test_scratch("twoterm.ini", scene_text("compound = two-term", CONTACT, SWEEP7,
+                                                  "viscoelastic = on", "grid = 128"));
   expect_fail(2, "one-term", "two-term", bad);
   /* a missing scene file */
-  snprintf(where, sizeof where, "%s/absent.ini", g_dir);
+  snprintf(where, sizeof where, "%s/absent.ini", vl_test_dir);
   expect_fail(6, where, "cannot open", where);
 }
 
 static void test_usage(void **state) {
   (void)state;
   char *out = NULL, *err = NULL;
-  assert_int_equal(run(&out, &err, "run --help"), 0);
+  assert_int_equal(vl_test_run(&out, &err, "run --help"), 0);
   assert_non_null(strstr(out, "usage: viscolube run SCENE"));
   assert_non_null(strstr(out, "curve.csv"));
   assert_string_equal(err, "");
   free(out), free(err);
-  assert_false(exists(g_db)); /* help opens no database */
+  assert_false(exists(vl_test_db)); /* help opens no database */
   /* no scene, an unknown option, two scenes, --out without a directory */
-  assert_int_equal(run(&out, &err, "run"), 2);
+  assert_int_equal(vl_test_run(&out, &err, "run"), 2);
   assert_non_null(strstr(err, "usage:"));
   assert_string_equal(out, "");
   free(out), free(err);
-  const char *scene = scratch("smooth.ini", SMOOTH);
-  assert_int_equal(run(&out, &err, "run %s --frobnicate", scene), 2);
+  const char *scene = vl_test_scratch("smooth.ini", SMOOTH);
+  assert_int_equal(vl_test_run(&out, &err, "run %s --frobnicate", scene), 2);
   assert_non_null(strstr(err, "'--frobnicate'"));
   free(out), free(err);
-  assert_int_equal(run(&out, &err, "run %s %s", scene, scene), 2);
+  assert_int_equal(vl_test_run(&out, &err, "run %s %s", scene, scene), 2);
   assert_non_null(strstr(err, "one scene"));
   free(out), free(err);
-  assert_int_equal(run(&out, &err, "run %s --out", scene), 2);
+  assert_int_equal(vl_test_run(&out, &err, "run %s --out", scene), 2);
   assert_non_null(strstr(err, "--out"));
   free(out), free(err);
-  assert_false(exists(g_db));
+  assert_false(exists(vl_test_db));
 }
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test_setup(test_smooth_sweep, setup),
-      cmocka_unit_test_setup(test_rough_sweep, setup),
-      cmocka_unit_test_setup(test_json, setup),
-      cmocka_unit_test_setup(test_elastic, setup),
-      cmocka_unit_test_setup(test_default_out_dir, setup),
-      cmocka_unit_test_setup(test_errors, setup),
-      cmocka_unit_test_setup(test_usage, setup),
+      cmocka_unit_test_setup(test_smooth_sweep, vl_test_setup_db),
+      cmocka_unit_test_setup(test_rough_sweep, vl_test_setup_db),
+      cmocka_unit_test_setup(test_json, vl_test_setup_db),
+      cmocka_unit_test_setup(test_elastic, vl_test_setup_db),
+      cmocka_unit_test_setup(test_default_out_dir, vl_test_setup_db),
+      cmocka_unit_test_setup(test_errors, vl_test_setup_db),
+      cmocka_unit_test_setup(test_usage, vl_test_setup_db),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

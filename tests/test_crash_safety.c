@@ -25,16 +25,19 @@
  * write transaction, and some inside its commit. Campaigns:
  *   - `compound add` of a 128-term series into an existing database
  *     (200 tries);
+ *   - `compound add --measured` of a shipped DMA file (273 points, 21
+ *     isotherms: points, shifts, series and fit report in one transaction;
+ *     100 tries);
  *   - creation of a new database (every migration, the seeds and the fits
  *     of the shipped measured compounds in one transaction), by
  *     `compound list` on a missing file (60 tries);
  *   - schema upgrade from version latest-1 (built from materials/NNNN_*.sql,
  *     with one fluid in it) to the latest, by `fluid list` (200 tries);
  *     skipped while the program knows a single version.
- * $VL_CRASH_TRIES overrides the tries; each campaign stops after 30 s of
+ * $VL_CRASH_TRIES overrides the tries; each campaign stops after 20 s of
  * wall time (reported); seed $VL_CRASH_SEED (default: the time). The
- * `compound add` files live in $TMPDIR (real fsyncs make its commit long
- * enough to be hit), the others in /dev/shm when it exists (faster). */
+ * files live in $TMPDIR (real fsyncs make the commits long enough to be
+ * hit), those of the slow creation campaign in /dev/shm when it exists. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <setjmp.h>
@@ -62,7 +65,7 @@
 
 #include "viscolube/database.h"
 
-#define CAMPAIGN_SECONDS 30.0
+#define CAMPAIGN_SECONDS 20.0
 #define CALIBRATION_RUNS 5
 
 /* ---- small helpers ---------------------------------------------------- */
@@ -568,6 +571,19 @@ static void test_kill_compound_add(void **state) {
   run_campaign(&cp);
 }
 
+static void test_kill_measured_add(void **state) {
+  (void)state;
+  vl_db *db = NULL;
+  vl_error err;
+  assert_int_equal(vl_db_open(before, &db, &err), VL_OK);
+  vl_db_close(db);
+  char file[4200];
+  snprintf(file, sizeof file, "%s", vl_test_source_path("materials/sbr-filled-synthetic.csv"));
+  campaign cp = {"compound add --measured (273 points)", before, work, 100,
+                 {"compound", "add", "crash-test", "--measured", file, NULL}};
+  run_campaign(&cp);
+}
+
 static void test_kill_create(void **state) {
   (void)state;
   unlink(before); /* no file: the command creates, migrates and seeds it */
@@ -641,8 +657,9 @@ int main(void) {
          (unsigned long long)rng_state);
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup_teardown(test_kill_compound_add, setup_disk, teardown),
+      cmocka_unit_test_setup_teardown(test_kill_measured_add, setup_disk, teardown),
       cmocka_unit_test_setup_teardown(test_kill_create, setup_memory, teardown),
-      cmocka_unit_test_setup_teardown(test_kill_upgrade, setup_memory, teardown),
+      cmocka_unit_test_setup_teardown(test_kill_upgrade, setup_disk, teardown),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -26,33 +26,10 @@
 
 /* ---- helpers ---------------------------------------------------------- */
 
-typedef struct {
-  unsigned char *bytes;
-  size_t n;
-} snapshot;
-
-static snapshot take(const char *path) {
-  snapshot s = {NULL, 0};
-  FILE *f = fopen(path, "rb");
-  if (!f) fail_msg("cannot read %s", path);
-  size_t cap = 0;
-  for (;;) {
-    if (s.n == cap) {
-      cap = cap ? 2 * cap : 65536;
-      s.bytes = realloc(s.bytes, cap);
-    }
-    size_t got = fread(s.bytes + s.n, 1, cap - s.n, f);
-    s.n += got;
-    if (got == 0) break;
-  }
-  fclose(f);
-  return s;
-}
-
 /* The file at path must hold exactly the bytes of s (then s is freed), and
  * no rollback journal may be left behind. */
-static void assert_unchanged(const char *path, snapshot *s) {
-  snapshot now = take(path);
+static void assert_unchanged(const char *path, vl_test_snapshot *s) {
+  vl_test_snapshot now = vl_test_take(path);
   if (now.n != s->n || memcmp(now.bytes, s->bytes, s->n) != 0)
     fail_msg("database file %s changed (%zu -> %zu bytes)", path, s->n, now.n);
   free(now.bytes);
@@ -157,7 +134,7 @@ static void test_create_and_seed(void **state) {
                             "'compound_shift', 'surface', 'surface_point', 'fluid')") == 5);
 
   /* Reopening an up-to-date database (reads only) changes nothing. */
-  snapshot s = take(path);
+  vl_test_snapshot s = vl_test_take(path);
   db = open_new(path);
   vl_prony p;
   vl_error err;
@@ -320,7 +297,7 @@ static void test_compound_roundtrip(void **state) {
   db = open_new(path);
 
   /* a duplicate is refused and changes nothing */
-  snapshot s = take(path);
+  vl_test_snapshot s = vl_test_take(path);
   assert_int_equal(vl_db_compound_add(db, &c, &err), VL_EEXIST);
   assert_non_null(strstr(err.msg, "'sbr-lab'"));
   assert_unchanged(path, &s);
@@ -407,7 +384,7 @@ static void test_invalid_adds_change_nothing(void **state) {
   const char *path = db_path();
   vl_db *db = open_new(path);
   vl_error err;
-  snapshot s = take(path);
+  vl_test_snapshot s = vl_test_take(path);
 
   const char *bad_names[] = {"", "-x", "a b", "a/b", "caf\xc3\xa9", "x;DROP"};
   assert_int_equal(
@@ -535,7 +512,7 @@ static void test_rollback_mid_transaction(void **state) {
                  "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;"
                  "CREATE TRIGGER no_second_point BEFORE INSERT ON surface_point WHEN NEW.idx = 2 "
                  "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;");
-  snapshot s = take(path);
+  vl_test_snapshot s = vl_test_take(path);
   vl_db *db = open_new(path);
   vl_error err;
   vl_db_compound c = sample_compound("half");
@@ -561,7 +538,7 @@ static void test_newer_schema_refused(void **state) {
   char sql[64];
   snprintf(sql, sizeof sql, "PRAGMA user_version = %d", vl_db_schema_version() + 1);
   sql_exec(path, sql);
-  snapshot s = take(path);
+  vl_test_snapshot s = vl_test_take(path);
   vl_db *db = (vl_db *)1;
   vl_error err;
   assert_int_equal(vl_db_open(path, &db, &err), VL_EDB);
@@ -586,7 +563,7 @@ static void test_foreign_and_corrupt_refused(void **state) {
   FILE *f = fopen(path, "wb");
   fwrite(junk, 1, sizeof junk, f);
   fclose(f);
-  snapshot s = take(path);
+  vl_test_snapshot s = vl_test_take(path);
   assert_int_equal(vl_db_open(path, &db, &err), VL_EDB);
   assert_non_null(strstr(err.msg, path));
   assert_unchanged(path, &s);
@@ -594,7 +571,7 @@ static void test_foreign_and_corrupt_refused(void **state) {
   /* another program's SQLite file */
   path = db_path();
   sql_exec(path, "CREATE TABLE notes (x TEXT); INSERT INTO notes VALUES ('keep me');");
-  s = take(path);
+  s = vl_test_take(path);
   assert_int_equal(vl_db_open(path, &db, &err), VL_EDB);
   assert_non_null(strstr(err.msg, "not a viscolube database"));
   assert_unchanged(path, &s);
@@ -602,12 +579,12 @@ static void test_foreign_and_corrupt_refused(void **state) {
   /* a valid database cut short: refused at open or at the first read */
   path = db_path();
   vl_db_close(open_new(path));
-  snapshot full = take(path);
+  vl_test_snapshot full = vl_test_take(path);
   f = fopen(path, "wb");
   fwrite(full.bytes, 1, 4096 + 100, f); /* header page plus a torn page */
   fclose(f);
   free(full.bytes);
-  s = take(path);
+  s = vl_test_take(path);
   vl_status st = vl_db_open(path, &db, &err);
   if (st == VL_OK) {
     vl_db_surface *items = NULL;
@@ -631,7 +608,7 @@ static void test_readonly_file(void **state) {
   const char *path = db_path();
   vl_db_close(open_new(path));
   assert_int_equal(chmod(path, 0444), 0);
-  snapshot s = take(path);
+  vl_test_snapshot s = vl_test_take(path);
   vl_db *db = open_new(path);
   assert_int_equal(vl_db_readonly(db), 1);
   vl_error err;

@@ -11,9 +11,10 @@
  *   - RLIMIT_FSIZE in the child (SIGXFSZ ignored), so every write past the
  *     limit fails with EFBIG: portable, no privileges. The limit is swept
  *     from the file's size upwards in 4 KiB steps while `surface add` writes
- *     a 3000-point spectrum (about 30 pages), so that the write fails at
- *     every stage of the transaction, until it fits; and a new database is
- *     created under limits too small for it.
+ *     a 3000-point spectrum (about 30 pages), or `compound add --measured`
+ *     a DMA file, so that the write fails at every stage of the
+ *     transaction, until it fits; a 128-term compound without room to grow;
+ *     and a new database created under limits too small for it.
  *   - a real full file system: a 256 KiB tmpfs (mount needs root and
  *     CAP_SYS_ADMIN; skipped when mount fails), filled but for a few pages.
  * Read-only: a directory without write permission, so SQLite cannot create
@@ -54,33 +55,6 @@
 
 /* ---- helpers ---------------------------------------------------------- */
 
-typedef struct {
-  unsigned char *bytes;
-  size_t n;
-} snapshot;
-
-static snapshot take(const char *path) {
-  snapshot s = {NULL, 0};
-  FILE *f = fopen(path, "rb");
-  if (!f) fail_msg("cannot read %s", path);
-  size_t cap = 0;
-  for (;;) {
-    if (s.n == cap) s.bytes = realloc(s.bytes, cap = cap ? 2 * cap : 65536);
-    size_t got = fread(s.bytes + s.n, 1, cap - s.n, f);
-    s.n += got;
-    if (got == 0) break;
-  }
-  fclose(f);
-  return s;
-}
-
-static int same(const char *path, const snapshot *s) {
-  snapshot now = take(path);
-  int eq = now.n == s->n && memcmp(now.bytes, s->bytes, s->n) == 0;
-  free(now.bytes);
-  return eq;
-}
-
 /* 0 no journal, 1 cold (SQLite ignores it), 2 hot (would be rolled back). */
 static int journal_state(const char *db) {
   char path[4200];
@@ -99,7 +73,7 @@ typedef struct {
 
 /* Runs `$VL_CLI --db DB args...` (args NULL-terminated) under lim; stderr
  * into *err_text (malloc'd). Returns the exit status, or -1 on a signal. */
-static int cli(const limits *lim, const char *db, char **err_text, ...) {
+static int cli_v(const limits *lim, const char *db, char **err_text, char *const args[]) {
   const char *cli_path = getenv("VL_CLI");
   if (!cli_path) fail_msg("VL_CLI is not set (run the tests through ctest)");
   char *argv[40];
@@ -107,12 +81,8 @@ static int cli(const limits *lim, const char *db, char **err_text, ...) {
   argv[argc++] = (char *)cli_path;
   argv[argc++] = "--db";
   argv[argc++] = (char *)db;
-  va_list ap;
-  va_start(ap, err_text);
-  const char *a;
-  while ((a = va_arg(ap, const char *)) != NULL && argc < 39)
-    argv[argc++] = (char *)a;
-  va_end(ap);
+  for (int i = 0; args[i] && argc < 39; i++)
+    argv[argc++] = args[i];
   argv[argc] = NULL;
 
   /* stderr through a pipe: a file would itself hit the size limit */
@@ -162,6 +132,20 @@ static int cli(const limits *lim, const char *db, char **err_text, ...) {
   return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
 }
 
+/* cli_v with the arguments listed, NULL-terminated. */
+static int cli(const limits *lim, const char *db, char **err_text, ...) {
+  char *args[36];
+  int n = 0;
+  va_list ap;
+  va_start(ap, err_text);
+  char *a;
+  while ((a = va_arg(ap, char *)) != NULL && n < 35)
+    args[n++] = a;
+  va_end(ap);
+  args[n] = NULL;
+  return cli_v(lim, db, err_text, args);
+}
+
 /* A clear sentence for a failed write: says what failed and that nothing
  * was changed. */
 static void assert_clear_write_error(const char *err, const char *what) {
@@ -205,32 +189,44 @@ static int teardown(void **state) {
 
 /* ---- RLIMIT_FSIZE ----------------------------------------------------- */
 
-static void test_file_size_limit_sweep(void **state) {
-  (void)state;
-  snapshot before = take(db);
-  int failed = 0, limit_pages = 0;
+/* Runs args under file-size limits from the database's size upwards in
+ * 4 KiB steps until the command fits: each failure must be clean. Returns
+ * the number of limits that failed. */
+static int limit_sweep(const char *label, char *const args[]) {
+  vl_test_snapshot before = vl_test_take(db);
+  int failed = 0, fit_pages = -1;
   char *err = NULL;
   for (int k = 0; k <= 64; k++) {
     limits lim = {(long long)before.n + 4096LL * k, 0};
-    int rc = cli(&lim, db, &err, "surface", "add", "big", "--psd", psd, NULL);
+    int rc = cli_v(&lim, db, &err, args);
     if (rc == 0) {
-      limit_pages = k;
+      fit_pages = k;
       break;
     }
     failed++;
-    if (rc != EXIT_EIO) fail_msg("limit +%d pages: exit %d, not the I/O status: %s", k, rc, err);
+    if (rc != EXIT_EIO) fail_msg("%s, limit +%d pages: exit %d, not the I/O status: %s", label, k,
+                                 rc, err);
     assert_clear_write_error(err, "full");
-    if (!same(db, &before)) fail_msg("limit +%d pages: the database file changed", k);
-    if (journal_state(db) == 2) fail_msg("limit +%d pages: a hot journal was left", k);
-    if (k == 0) printf("file size limit: message: %s", err);
+    if (!vl_test_same_bytes(db, &before))
+      fail_msg("%s, limit +%d pages: the database file changed", label, k);
+    if (journal_state(db) == 2) fail_msg("%s, limit +%d pages: a hot journal was left", label, k);
+    if (k == 0) printf("file size limit: %s: message: %s", label, err);
     free(err);
     err = NULL;
   }
   free(err);
-  printf("file size limit: surface add of 3000 points failed cleanly under %d limits (file size "
-         "+0 to +%d KiB), database unchanged each time; succeeded with +%d KiB\n",
-         failed, 4 * (failed - 1), 4 * limit_pages);
-  assert_true(failed >= 3 && limit_pages > 0);
+  free(before.bytes);
+  printf("file size limit: %s failed cleanly under %d limits (file size +0 to +%d KiB), database "
+         "unchanged each time; succeeded with +%d KiB\n",
+         label, failed, 4 * (failed - 1), 4 * fit_pages);
+  if (fit_pages < 0) fail_msg("%s never fitted", label);
+  return failed;
+}
+
+static void test_file_size_limit_sweep(void **state) {
+  (void)state;
+  char *args[] = {"surface", "add", "big", "--psd", psd, NULL};
+  assert_true(limit_sweep("surface add of 3000 points", args) >= 3);
   /* the add that fitted is complete, and everything else is still there */
   vl_db *h = NULL;
   vl_error e;
@@ -240,7 +236,24 @@ static void test_file_size_limit_sweep(void **state) {
   assert_int_equal(s.n_points, 3000);
   assert_int_equal(vl_db_surface_info(h, "paper-1um", &s, &e), VL_OK);
   vl_db_close(h);
-  free(before.bytes);
+}
+
+/* A compound fitted to measured DMA data: points, shifts, series and fit
+ * report in one transaction. */
+static void test_file_size_limit_measured(void **state) {
+  (void)state;
+  char file[4200];
+  snprintf(file, sizeof file, "%s", vl_test_source_path("materials/sbr-filled-synthetic.csv"));
+  char *args[] = {"compound", "add", "measured", "--measured", file, NULL};
+  assert_true(limit_sweep("compound add --measured (273 points)", args) >= 2);
+  vl_db *h = NULL;
+  vl_error e;
+  assert_int_equal(vl_db_open(db, &h, &e), VL_OK);
+  vl_db_compound *c = malloc(sizeof *c);
+  assert_int_equal(vl_db_compound_info(h, "measured", c, &e), VL_OK);
+  assert_true(c->prony.n_terms > 0);
+  free(c);
+  vl_db_close(h);
 }
 
 /* No growth allowed at all: a 128-term compound, and a fluid. */
@@ -254,7 +267,7 @@ static void test_file_size_limit_compound(void **state) {
   for (int i = 0; i < 128; i++)
     fprintf(f, "%.6g,%.6g\n", 0.05 + 0.01 * i, 1e-9 * pow(10.0, 18.0 * i / 127.0));
   fclose(f);
-  snapshot before = take(db);
+  vl_test_snapshot before = vl_test_take(db);
   limits lim = {(long long)before.n, 0};
   char *err = NULL;
   int rc = cli(&lim, db, &err, "compound", "add", "big", "--prony", prony, "--e-inf", "1e9",
@@ -262,7 +275,7 @@ static void test_file_size_limit_compound(void **state) {
   assert_int_equal(rc, EXIT_EIO);
   assert_clear_write_error(err, "full");
   free(err);
-  assert_true(same(db, &before));
+  assert_true(vl_test_same_bytes(db, &before));
   assert_int_not_equal(journal_state(db), 2);
   /* without the limit the same command works */
   assert_int_equal(cli(NULL, db, NULL, "compound", "add", "big", "--prony", prony, "--e-inf",
@@ -309,7 +322,7 @@ static void test_tmpfs_full(void **state) {
   }
   snprintf(small, sizeof small, "%s/materials.db", mnt);
   snprintf(filler, sizeof filler, "%s/filler", mnt);
-  snapshot orig = take(db);
+  vl_test_snapshot orig = vl_test_take(db);
   FILE *f = fopen(small, "wb");
   int copied = f && fwrite(orig.bytes, 1, orig.n, f) == orig.n;
   if (f) copied &= fclose(f) == 0;
@@ -329,10 +342,10 @@ static void test_tmpfs_full(void **state) {
   stat(filler, &sb);
   truncate(filler, sb.st_size > 3 * 4096 ? sb.st_size - 3 * 4096 : 0);
 
-  snapshot before = take(small);
+  vl_test_snapshot before = vl_test_take(small);
   char *err = NULL;
   int rc = cli(NULL, small, &err, "surface", "add", "big", "--psd", psd, NULL);
-  int unchanged = same(small, &before), js = journal_state(small);
+  int unchanged = vl_test_same_bytes(small, &before), js = journal_state(small);
   printf("tmpfs full: surface add: exit %d, message: %s", rc, err);
   /* room again: the same command works, on the same file */
   unlink(filler);
@@ -358,7 +371,7 @@ static void test_readonly_directory(void **state) {
   snprintf(sub, sizeof sub, "%s/ro", dir);
   snprintf(path, sizeof path, "%s/materials.db", sub);
   assert_int_equal(mkdir(sub, 0755), 0);
-  snapshot orig = take(db);
+  vl_test_snapshot orig = vl_test_take(db);
   FILE *f = fopen(path, "wb");
   assert_non_null(f);
   assert_int_equal(fwrite(orig.bytes, 1, orig.n, f), orig.n);
@@ -367,7 +380,7 @@ static void test_readonly_directory(void **state) {
   assert_int_equal(chmod(path, 0666), 0);
   assert_int_equal(chmod(sub, 0555), 0);
   limits lim = {-1, 1};
-  snapshot before = take(path);
+  vl_test_snapshot before = vl_test_take(path);
   char *err = NULL;
   int rc = cli(&lim, path, &err, "fluid", "show", "water", NULL);
   if (rc != 0) fail_msg("reading as user nobody: exit %d: %s", rc, err);
@@ -380,7 +393,7 @@ static void test_readonly_directory(void **state) {
   rc = cli(&lim, path, &err, "compound", "remove", "model-rubber", NULL);
   assert_true(rc == EXIT_EIO || rc == EXIT_EDB);
   free(err);
-  assert_true(same(path, &before));
+  assert_true(vl_test_same_bytes(path, &before));
   chmod(sub, 0777); /* writable for nobody too: the same command works */
   assert_int_equal(cli(&lim, path, NULL, "fluid", "add", "oil", "--viscosity", "0.1", NULL), 0);
   free(before.bytes);
@@ -391,7 +404,7 @@ static void test_readonly_directory(void **state) {
  * read the half-written pages; it says what to do. */
 static void test_readonly_file_with_hot_journal(void **state) {
   (void)state;
-  snapshot before = take(db);
+  vl_test_snapshot before = vl_test_take(db);
   /* a child that dies in the middle of a large write, after SQLite has
    * spilled pages into the file (cache of 2 pages) */
   pid_t pid = fork();
@@ -407,7 +420,7 @@ static void test_readonly_file_with_hot_journal(void **state) {
   int st;
   waitpid(pid, &st, 0);
   assert_int_equal(journal_state(db), 2);
-  assert_false(same(db, &before)); /* the file itself was written */
+  assert_false(vl_test_same_bytes(db, &before)); /* the file itself was written */
   assert_int_equal(chmod(db, 0444), 0);
   char *err = NULL;
   int rc = cli(NULL, db, &err, "fluid", "list", NULL);
@@ -422,13 +435,14 @@ static void test_readonly_file_with_hot_journal(void **state) {
   assert_int_equal(chmod(db, 0644), 0);
   assert_int_equal(cli(NULL, db, NULL, "fluid", "list", NULL), 0);
   assert_int_equal(journal_state(db), 0);
-  assert_true(same(db, &before));
+  assert_true(vl_test_same_bytes(db, &before));
   free(before.bytes);
 }
 
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup_teardown(test_file_size_limit_sweep, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_file_size_limit_measured, setup, teardown),
       cmocka_unit_test_setup_teardown(test_file_size_limit_compound, setup, teardown),
       cmocka_unit_test_setup_teardown(test_file_size_limit_create, setup, teardown),
       cmocka_unit_test_setup_teardown(test_tmpfs_full, setup, teardown),

@@ -552,41 +552,6 @@ static void test_pyvisco_master(void **state) {
 
 /* ---- storage: one transaction ------------------------------------------ */
 
-typedef struct {
-  unsigned char *bytes;
-  size_t n;
-} snapshot;
-
-static snapshot take(const char *path) {
-  snapshot s = {NULL, 0};
-  char *t = NULL;
-  FILE *f = fopen(path, "rb");
-  if (!f) fail_msg("cannot read %s", path);
-  size_t cap = 0;
-  for (;;) {
-    if (s.n == cap) {
-      cap = cap ? 2 * cap : 65536;
-      t = realloc(s.bytes, cap);
-      if (!t) fail_msg("out of memory");
-      s.bytes = (unsigned char *)t;
-    }
-    size_t got = fread(s.bytes + s.n, 1, cap - s.n, f);
-    s.n += got;
-    if (got == 0) break;
-  }
-  fclose(f);
-  return s;
-}
-
-static int same(const char *path, const snapshot *s) {
-  snapshot now = take(path);
-  int eq = now.n == s->n && memcmp(now.bytes, s->bytes, s->n) == 0;
-  free(now.bytes);
-  char journal[1300];
-  snprintf(journal, sizeof journal, "%s-journal", path);
-  return eq && access(journal, F_OK) != 0;
-}
-
 static double sql_num(const char *path, const char *sql) {
   sqlite3 *h;
   sqlite3_stmt *st;
@@ -632,12 +597,12 @@ static void test_store_one_transaction(void **state) {
 
   sql_exec(path, "CREATE TRIGGER no_fit BEFORE INSERT ON compound_fit "
                  "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;");
-  snapshot before = take(path);
+  vl_test_snapshot before = vl_test_take(path);
   if (vl_db_open(path, &db, &err) != VL_OK) fail_msg("%s", err.msg);
   assert_int_equal(vl_db_compound_add_measured(db, &meta, &m, &err), VL_EDB);
   assert_non_null(strstr(err.msg, "injected failure"));
   vl_db_close(db);
-  assert_true(same(path, &before));
+  assert_true(vl_test_same_db(path, &before));
   free(before.bytes);
   sql_exec(path, "DROP TRIGGER no_fit;");
 
@@ -727,59 +692,6 @@ static void test_migrate_from_schema_1(void **state) {
 
 /* ---- the command line -------------------------------------------------- */
 
-static char g_dir[1024], g_db[1200];
-
-static int setup(void **state) {
-  (void)state;
-  snprintf(g_dir, sizeof g_dir, "%s", vl_test_tmpdir());
-  snprintf(g_db, sizeof g_db, "%s/m.db", g_dir);
-  return 0;
-}
-
-static int run(char **out, char **err, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
-static int run(char **out, char **err, const char *fmt, ...) {
-  char args[8192];
-  int k = snprintf(args, sizeof args, "--db %s ", g_db);
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(args + k, sizeof args - (size_t)k, fmt, ap);
-  va_end(ap);
-  return vl_test_cli("env -u VISCOLUBE_DB", args, out, err);
-}
-
-static const char *scratch(const char *name, const char *body) {
-  static char path[1300];
-  snprintf(path, sizeof path, "%s/%s", g_dir, name);
-  if (body) vl_test_write_file(path, body);
-  return path;
-}
-
-/* One failing command: exit status code, nothing on stdout, one line on
- * stderr holding both needles, the database file unchanged. */
-static void expect_fail(int code, const char *n1, const char *n2, const char *fmt, ...)
-    __attribute__((format(printf, 4, 5)));
-static void expect_fail(int code, const char *n1, const char *n2, const char *fmt, ...) {
-  char args[8192];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(args, sizeof args, fmt, ap);
-  va_end(ap);
-  snapshot before = take(g_db);
-  char *out = NULL, *err = NULL;
-  int rc = run(&out, &err, "%s", args);
-  if (rc != code) fail_msg("`%s`: exit %d, expected %d (stderr: %s)", args, rc, code, err);
-  if (!out || out[0]) fail_msg("`%s`: unexpected stdout: %s", args, out);
-  size_t len = err ? strlen(err) : 0;
-  if (len < 2 || err[len - 1] != '\n' || strchr(err, '\n') != err + len - 1)
-    fail_msg("`%s`: stderr is not exactly one line: '%s'", args, err);
-  if (n1 && !strstr(err, n1)) fail_msg("`%s`: '%s' lacks '%s'", args, err, n1);
-  if (n2 && !strstr(err, n2)) fail_msg("`%s`: '%s' lacks '%s'", args, err, n2);
-  if (!same(g_db, &before)) fail_msg("`%s` changed the database file", args);
-  free(before.bytes);
-  free(out);
-  free(err);
-}
-
 /* Register, show, write the curve; the curve file's measured columns are
  * the file's values in SI and its fitted columns reproduce the stored fit
  * report (the rms of the relative differences recomputed from the file
@@ -787,25 +699,25 @@ static void expect_fail(int code, const char *n1, const char *n2, const char *fm
 static void test_cli_add_show_curve(void **state) {
   (void)state;
   char *txt = isotherm_text(&unfilled, 0, 0, 0.01, 0.0, 10.0, 11);
-  const char *file = scratch("sbr.csv", txt);
+  const char *file = vl_test_scratch("sbr.csv", txt);
   free(txt);
   char *out = NULL, *err = NULL;
-  int rc = run(&out, &err,
-               "compound add my-sbr --measured %s --class unfilled --tref 20 "
-               "--description 'lab 2024'",
-               file);
+  int rc = vl_test_run(&out, &err,
+                       "compound add my-sbr --measured %s --class unfilled --tref 20 "
+                       "--description 'lab 2024'",
+                       file);
   if (rc != 0) fail_msg("add failed (%d): %s", rc, err);
   assert_non_null(strstr(out, "my-sbr"));
   assert_non_null(strstr(out, "error E'"));
   assert_non_null(strstr(out, "WLF"));
   free(out), free(err);
-  rc = run(&out, &err, "compound show my-sbr");
+  rc = vl_test_run(&out, &err, "compound show my-sbr");
   assert_int_equal(rc, 0);
   assert_non_null(strstr(out, "fit to data   143 points (storage-loss), 11 isotherms"));
   assert_non_null(strstr(out, "shifts"));
   assert_non_null(strstr(out, "method        dma-fit"));
   free(out), free(err);
-  rc = run(&out, &err, "compound show my-sbr --json");
+  rc = vl_test_run(&out, &err, "compound show my-sbr --json");
   assert_int_equal(rc, 0);
   assert_non_null(strstr(out, "\"fit\": {\"input_kind\": \"storage-loss\""));
   assert_non_null(strstr(out, "\"shifts\": [{\"temperature_c\": 0,"));
@@ -814,8 +726,8 @@ static void test_cli_add_show_curve(void **state) {
   double rms_stored = strtod(p + strlen("\"rms_rel_storage\": "), NULL);
   free(out), free(err);
 
-  const char *curve = scratch("curve.csv", NULL);
-  rc = run(&out, &err, "compound show my-sbr --curve %s", curve);
+  const char *curve = vl_test_scratch("curve.csv", NULL);
+  rc = vl_test_run(&out, &err, "compound show my-sbr --curve %s", curve);
   if (rc != 0) fail_msg("show --curve failed: %s", err);
   free(out), free(err);
   char *c = vl_test_read_file(curve);
@@ -844,28 +756,29 @@ static void test_cli_add_show_curve(void **state) {
   assert_int_equal(rows, 143);
   assert_true(fabs(sqrt(s2 / (double)rows) - rms_stored) < 1e-6);
 
-  expect_fail(2, "no measured data", NULL, "compound show model-rubber --curve %s", curve);
-  expect_fail(6, "cannot write", NULL, "compound show my-sbr --curve %s/no/dir/c.csv", g_dir);
-  rc = run(&out, &err, "compound remove my-sbr");
+  vl_test_expect_fail(2, "no measured data", NULL, "compound show model-rubber --curve %s", curve);
+  vl_test_expect_fail(6, "cannot write", NULL, "compound show my-sbr --curve %s/no/dir/c.csv",
+                      vl_test_dir);
+  rc = vl_test_run(&out, &err, "compound remove my-sbr");
   assert_int_equal(rc, 0);
   free(out), free(err);
   char sql[256];
   snprintf(sql, sizeof sql, "SELECT count(*) FROM compound_measurement");
-  assert_true(sql_num(g_db, sql) == 2.0 * 273.0); /* only the shipped compounds' points */
+  assert_true(sql_num(vl_test_db, sql) == 2.0 * 273.0); /* only the shipped compounds' points */
 }
 
 /* The help documents the file format and the unit options. */
 static void test_cli_help(void **state) {
   (void)state;
   char *out = NULL, *err = NULL;
-  assert_int_equal(run(&out, &err, "compound add --help"), 0);
+  assert_int_equal(vl_test_run(&out, &err, "compound add --help"), 0);
   const char *needles[] = {
       "--measured FILE", "--freq-unit", "--modulus-unit", "--temp-unit", "--terms-per-decade",
       "--fit-weights",   "tan delta",   "J_stor",         "--tref"};
   for (size_t i = 0; i < sizeof needles / sizeof *needles; i++)
     if (!strstr(out, needles[i])) fail_msg("compound add --help lacks '%s'", needles[i]);
   free(out), free(err);
-  assert_int_equal(run(&out, &err, "compound show --help"), 0);
+  assert_int_equal(vl_test_run(&out, &err, "compound show --help"), 0);
   assert_non_null(strstr(out, "--curve FILE"));
   free(out), free(err);
 }
@@ -876,7 +789,7 @@ static void test_cli_help(void **state) {
 static void test_cli_bad_files(void **state) {
   (void)state;
   char *out = NULL, *err = NULL;
-  assert_int_equal(run(&out, &err, "compound list"), 0); /* create the database */
+  assert_int_equal(vl_test_run(&out, &err, "compound list"), 0); /* create the database */
   free(out), free(err);
   struct {
     const char *file, *body, *extra, *where, *what;
@@ -930,34 +843,38 @@ static void test_cli_bad_files(void **state) {
        "--tref"},
   };
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
-    expect_fail(2, bad[i].where, bad[i].what, "compound add x --measured %s %s",
-                scratch(bad[i].file, bad[i].body), bad[i].extra);
+    vl_test_expect_fail(2, bad[i].where, bad[i].what, "compound add x --measured %s %s",
+                        vl_test_scratch(bad[i].file, bad[i].body), bad[i].extra);
 
   /* isotherm-level refusals, on model data */
   char f1[1300], f2[1300], f6[1300], fl[1300], fs[1300], fw[1300];
   char *one = isotherm_text(&unfilled, 0, 0, 0.0, 20.0, 5.0, 1);
-  snprintf(f1, sizeof f1, "%s", scratch("single.csv", one));
+  snprintf(f1, sizeof f1, "%s", vl_test_scratch("single.csv", one));
   free(one);
-  expect_fail(2, "single.csv", "--tref 20", "compound add x --measured %s", f1);
-  expect_fail(2, "single.csv", "cannot be shifted", "compound add x --measured %s --tref 40", f1);
+  vl_test_expect_fail(2, "single.csv", "--tref 20", "compound add x --measured %s", f1);
+  vl_test_expect_fail(2, "single.csv", "cannot be shifted",
+                      "compound add x --measured %s --tref 40", f1);
   char *two = isotherm_text(&unfilled, 0, 0, 0.0, 20.0, 5.0, 2);
-  snprintf(f2, sizeof f2, "%s", scratch("two.csv", two));
+  snprintf(f2, sizeof f2, "%s", vl_test_scratch("two.csv", two));
   free(two);
-  expect_fail(2, "two.csv", "two isotherms", "compound add x --measured %s --tref 22.5", f2);
+  vl_test_expect_fail(2, "two.csv", "two isotherms", "compound add x --measured %s --tref 22.5",
+                      f2);
   char *six = isotherm_text(&unfilled, 0, 0, 0.0, 10.0, 5.0, 6);
-  snprintf(f6, sizeof f6, "%s", scratch("six.csv", six));
-  expect_fail(2, "six.csv", "outside the measured", "compound add x --measured %s --tref 80", f6);
+  snprintf(f6, sizeof f6, "%s", vl_test_scratch("six.csv", six));
+  vl_test_expect_fail(2, "six.csv", "outside the measured",
+                      "compound add x --measured %s --tref 80", f6);
   /* a lone point at another temperature */
   text t = {0};
   add(&t, "%s0.1,1e9,1e8,60\n", six);
-  snprintf(fl, sizeof fl, "%s", scratch("lone.csv", t.s));
+  snprintf(fl, sizeof fl, "%s", vl_test_scratch("lone.csv", t.s));
   free(t.s);
-  expect_fail(2, "lone.csv:81:", "single point", "compound add x --measured %s", fl);
+  vl_test_expect_fail(2, "lone.csv:81:", "single point", "compound add x --measured %s", fl);
   /* a set that spans temperatures */
   snprintf(fs, sizeof fs, "%s",
-           scratch("span.csv", "f,E_stor,E_loss,T,set\nHz,MPa,MPa,C,-\n"
-                               "0.1,10,1,20,1\n1,11,1,20,1\n10,12,1,30,1\n"));
-  expect_fail(2, "span.csv:5: column 'T' (field 4)", "spans", "compound add x --measured %s", fs);
+           vl_test_scratch("span.csv", "f,E_stor,E_loss,T,set\nHz,MPa,MPa,C,-\n"
+                                       "0.1,10,1,20,1\n1,11,1,20,1\n10,12,1,30,1\n"));
+  vl_test_expect_fail(2, "span.csv:5: column 'T' (field 4)", "spans",
+                      "compound add x --measured %s", fs);
   /* a warmer isotherm that is stiffer: not thermorheologically simple */
   text w = {0};
   add(&w, "f,E_stor,E_loss,T\nHz,Pa,Pa,C\n");
@@ -968,32 +885,37 @@ static void test_cli_bad_files(void **state) {
       add(&w, "%.9g,%.9g,%.9g,%d\n", fr, creal(e), cimag(e), 20 + 10 * j);
     }
   }
-  snprintf(fw, sizeof fw, "%s", scratch("wrong.csv", w.s));
+  snprintf(fw, sizeof fw, "%s", vl_test_scratch("wrong.csv", w.s));
   free(w.s);
-  expect_fail(2, "wrong.csv", "warmer must mean softer", "compound add x --measured %s", fw);
+  vl_test_expect_fail(2, "wrong.csv", "warmer must mean softer", "compound add x --measured %s",
+                      fw);
 
   /* options */
-  expect_fail(2, "--prony", "does not go with --measured",
-              "compound add x --measured %s --prony %s", f6, f6);
-  expect_fail(2, "--wlf-c1", "does not go with",
-              "compound add x --measured %s --wlf-c1 8 "
-              "--wlf-c2 100",
-              f6);
-  expect_fail(2, "--freq-unit", "Hz or rad/s", "compound add x --measured %s --freq-unit kHz", f6);
-  expect_fail(2, "--modulus-unit", "psi", "compound add x --measured %s --modulus-unit psi", f6);
-  expect_fail(2, "--temp-unit", "F", "compound add x --measured %s --temp-unit F", f6);
-  expect_fail(2, "--terms-per-decade", "(0, 8]",
-              "compound add x --measured %s --terms-per-decade 20", f6);
-  expect_fail(2, "--fit-weights", "relative or modulus",
-              "compound add x --measured %s --fit-weights equal", f6);
-  expect_fail(2, "--tref", "not a number", "compound add x --measured %s --tref warm", f6);
-  expect_fail(2, "--nu", "[0, 0.5]", "compound add x --measured %s --nu 0.7", f6);
-  expect_fail(2, "--freq-unit", "belongs to --measured",
-              "compound add x --prony %s --e-inf 1e9 --nu 0.5 --freq-unit Hz", f6);
-  expect_fail(4, "'sbr-filled'", "already exists", "compound add sbr-filled --measured %s", f6);
-  expect_fail(6, "missing.csv", "cannot open", "compound add x --measured %s/missing.csv", g_dir);
+  vl_test_expect_fail(2, "--prony", "does not go with --measured",
+                      "compound add x --measured %s --prony %s", f6, f6);
+  vl_test_expect_fail(2, "--wlf-c1", "does not go with",
+                      "compound add x --measured %s --wlf-c1 8 "
+                      "--wlf-c2 100",
+                      f6);
+  vl_test_expect_fail(2, "--freq-unit", "Hz or rad/s",
+                      "compound add x --measured %s --freq-unit kHz", f6);
+  vl_test_expect_fail(2, "--modulus-unit", "psi", "compound add x --measured %s --modulus-unit psi",
+                      f6);
+  vl_test_expect_fail(2, "--temp-unit", "F", "compound add x --measured %s --temp-unit F", f6);
+  vl_test_expect_fail(2, "--terms-per-decade", "(0, 8]",
+                      "compound add x --measured %s --terms-per-decade 20", f6);
+  vl_test_expect_fail(2, "--fit-weights", "relative or modulus",
+                      "compound add x --measured %s --fit-weights equal", f6);
+  vl_test_expect_fail(2, "--tref", "not a number", "compound add x --measured %s --tref warm", f6);
+  vl_test_expect_fail(2, "--nu", "[0, 0.5]", "compound add x --measured %s --nu 0.7", f6);
+  vl_test_expect_fail(2, "--freq-unit", "belongs to --measured",
+                      "compound add x --prony %s --e-inf 1e9 --nu 0.5 --freq-unit Hz", f6);
+  vl_test_expect_fail(4, "'sbr-filled'", "already exists", "compound add sbr-filled --measured %s",
+                      f6);
+  vl_test_expect_fail(6, "missing.csv", "cannot open", "compound add x --measured %s/missing.csv",
+                      vl_test_dir);
   free(six);
-  assert_true(sql_num(g_db, "SELECT count(*) FROM compound") == 3.0);
+  assert_true(sql_num(vl_test_db, "SELECT count(*) FROM compound") == 3.0);
 }
 
 int main(void) {
@@ -1007,9 +929,9 @@ int main(void) {
       cmocka_unit_test(test_pyvisco_master),
       cmocka_unit_test(test_store_one_transaction),
       cmocka_unit_test(test_migrate_from_schema_1),
-      cmocka_unit_test_setup(test_cli_add_show_curve, setup),
-      cmocka_unit_test_setup(test_cli_help, setup),
-      cmocka_unit_test_setup(test_cli_bad_files, setup),
+      cmocka_unit_test_setup(test_cli_add_show_curve, vl_test_setup_db),
+      cmocka_unit_test_setup(test_cli_help, vl_test_setup_db),
+      cmocka_unit_test_setup(test_cli_bad_files, vl_test_setup_db),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -73,3 +73,215 @@ const char *vl_test_source_path(const char *rel) {
 double vl_test_rel(double a, double b) {
   return fabs(a - b) / fmax(fabs(b), 1e-300);
 }
+
+/* ---- JSON --------------------------------------------------------------- */
+
+static void j_ws(const char **p) {
+  while (**p == ' ' || **p == '\t' || **p == '\n' || **p == '\r')
+    (*p)++;
+}
+
+static int j_string(const char **p) {
+  if (**p != '"') return 0;
+  (*p)++;
+  while (**p != '"') {
+    unsigned char c = (unsigned char)**p;
+    if (c == '\0' || c < 0x20) return 0;
+    if (c == '\\') {
+      (*p)++;
+      if (**p && strchr("\"\\/bfnrt", **p)) {
+        (*p)++;
+      } else if (**p == 'u') {
+        (*p)++;
+        for (int k = 0; k < 4; k++, (*p)++)
+          if (!**p || !strchr("0123456789abcdefABCDEF", **p)) return 0;
+      } else {
+        return 0;
+      }
+    } else {
+      (*p)++;
+    }
+  }
+  (*p)++;
+  return 1;
+}
+
+static int j_digits(const char **p) {
+  const char *s = *p;
+  while (**p >= '0' && **p <= '9')
+    (*p)++;
+  return *p > s;
+}
+
+static int j_number(const char **p) {
+  if (**p == '-') (*p)++;
+  if (**p == '0')
+    (*p)++;
+  else if (!(**p >= '1' && **p <= '9') || !j_digits(p))
+    return 0;
+  if (**p == '.') {
+    (*p)++;
+    if (!j_digits(p)) return 0;
+  }
+  if (**p == 'e' || **p == 'E') {
+    (*p)++;
+    if (**p == '+' || **p == '-') (*p)++;
+    if (!j_digits(p)) return 0;
+  }
+  return 1;
+}
+
+static int j_word(const char **p, const char *w) {
+  size_t n = strlen(w);
+  if (strncmp(*p, w, n)) return 0;
+  *p += n;
+  return 1;
+}
+
+/* One value at *p; counts in *objects (if not NULL) the objects directly
+ * inside a top-level container. */
+static int j_value(const char **p, int depth, size_t *objects) {
+  if (depth > 32) return 0;
+  j_ws(p);
+  if (**p == '{' || **p == '[') {
+    char close = **p == '{' ? '}' : ']';
+    int object = **p == '{';
+    if (object && depth == 1 && objects) (*objects)++;
+    (*p)++;
+    j_ws(p);
+    if (**p == close) {
+      (*p)++;
+      return 1;
+    }
+    for (;;) {
+      if (object) {
+        j_ws(p);
+        if (!j_string(p)) return 0;
+        j_ws(p);
+        if (**p != ':') return 0;
+        (*p)++;
+      }
+      if (!j_value(p, depth + 1, objects)) return 0;
+      j_ws(p);
+      if (**p == ',') {
+        (*p)++;
+        continue;
+      }
+      if (**p != close) return 0;
+      (*p)++;
+      return 1;
+    }
+  }
+  if (**p == '"') return j_string(p);
+  if (**p == 't') return j_word(p, "true");
+  if (**p == 'f') return j_word(p, "false");
+  if (**p == 'n') return j_word(p, "null");
+  return j_number(p);
+}
+
+int vl_test_json_valid(const char *s) {
+  if (!s) return 0;
+  const char *p = s;
+  if (!j_value(&p, 0, NULL)) return 0;
+  j_ws(&p);
+  return *p == '\0';
+}
+
+int vl_test_json_array_valid(const char *s, size_t *objects) {
+  if (!s) return 0;
+  const char *p = s;
+  j_ws(&p);
+  if (*p != '[') return 0;
+  *objects = 0;
+  if (!j_value(&p, 0, objects)) return 0;
+  j_ws(&p);
+  return *p == '\0';
+}
+
+/* ---- files byte for byte ---------------------------------------------- */
+
+vl_test_snapshot vl_test_take(const char *path) {
+  vl_test_snapshot s = {NULL, 0};
+  FILE *f = fopen(path, "rb");
+  if (!f) fail_msg("cannot read %s", path);
+  size_t cap = 0;
+  for (;;) {
+    if (s.n == cap) {
+      cap = cap ? 2 * cap : 65536;
+      unsigned char *t = realloc(s.bytes, cap);
+      if (!t) fail_msg("out of memory");
+      s.bytes = t;
+    }
+    size_t got = fread(s.bytes + s.n, 1, cap - s.n, f);
+    s.n += got;
+    if (got == 0) break;
+  }
+  fclose(f);
+  return s;
+}
+
+int vl_test_same_bytes(const char *path, const vl_test_snapshot *s) {
+  vl_test_snapshot now = vl_test_take(path);
+  int eq = now.n == s->n && memcmp(now.bytes, s->bytes, s->n) == 0;
+  free(now.bytes);
+  return eq;
+}
+
+int vl_test_same_db(const char *path, const vl_test_snapshot *s) {
+  char journal[4200];
+  snprintf(journal, sizeof journal, "%s-journal", path);
+  return vl_test_same_bytes(path, s) && access(journal, F_OK) != 0;
+}
+
+/* ---- the command line on a per-test scratch database -------------------- */
+
+char vl_test_dir[1024];
+char vl_test_db[1200];
+
+int vl_test_setup_db(void **state) {
+  (void)state;
+  snprintf(vl_test_dir, sizeof vl_test_dir, "%s", vl_test_tmpdir());
+  snprintf(vl_test_db, sizeof vl_test_db, "%s/m.db", vl_test_dir);
+  return 0;
+}
+
+int vl_test_run(char **out, char **err, const char *fmt, ...) {
+  char args[8192];
+  int k = snprintf(args, sizeof args, "--db %s ", vl_test_db);
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(args + k, sizeof args - (size_t)k, fmt, ap);
+  va_end(ap);
+  return vl_test_cli("env -u VISCOLUBE_DB", args, out, err);
+}
+
+const char *vl_test_scratch(const char *name, const char *text) {
+  static char path[8][1300];
+  static int next;
+  char *p = path[next++ % 8];
+  snprintf(p, sizeof path[0], "%s/%s", vl_test_dir, name);
+  if (text) vl_test_write_file(p, text);
+  return p;
+}
+
+void vl_test_expect_fail(int code, const char *needle1, const char *needle2, const char *fmt, ...) {
+  char args[8192];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(args, sizeof args, fmt, ap);
+  va_end(ap);
+  vl_test_snapshot before = vl_test_take(vl_test_db);
+  char *out = NULL, *err = NULL;
+  int rc = vl_test_run(&out, &err, "%s", args);
+  if (rc != code) fail_msg("`%s`: exit %d, expected %d (stderr: %s)", args, rc, code, err);
+  if (!out || out[0]) fail_msg("`%s`: unexpected stdout: %s", args, out);
+  size_t len = err ? strlen(err) : 0;
+  if (len < 2 || err[len - 1] != '\n' || strchr(err, '\n') != err + len - 1)
+    fail_msg("`%s`: stderr is not exactly one line: '%s'", args, err);
+  if (needle1 && !strstr(err, needle1)) fail_msg("`%s`: '%s' lacks '%s'", args, err, needle1);
+  if (needle2 && !strstr(err, needle2)) fail_msg("`%s`: '%s' lacks '%s'", args, err, needle2);
+  if (!vl_test_same_db(vl_test_db, &before)) fail_msg("`%s` changed the database file", args);
+  free(before.bytes);
+  free(out);
+  free(err);
+}
