@@ -6,7 +6,8 @@
 # tests/fuzz/corpus/<target> (read only; new inputs go to
 # build-fuzz/fuzz-corpus/<target>). Fails on any crash, sanitizer report,
 # leak, hang (-timeout) or memory blow-up (-rss_limit_mb); the input is saved
-# in build-fuzz/fuzz-artifacts/. Prints the executions per target.
+# in build-fuzz/fuzz-artifacts/ (replay: build-fuzz/tests/fuzz/TARGET FILE).
+# Prints the executions per target.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -40,12 +41,13 @@ for t in "${targets[@]}"; do
      UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
      OPENBLAS_NUM_THREADS=1 "$build/tests/fuzz/$t" "${args[@]}" "$work" "$seeds" >"$log" 2>&1; then
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
-    cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 || true)
+    cov=$(grep -a -o 'cov: [0-9]*' "$log" | tail -1 || true)
     echo "fuzz $t: ok, ${execs:-?} executions in ${seconds} s, ${cov:-cov: ?}"
   else
     failed=1
     echo "fuzz $t: FAILED (log: $log)" >&2
-    grep -E -A30 'ERROR|FUZZ CHECK|deadly signal|timeout|leak' "$log" | head -60 >&2 || tail -40 "$log" >&2
+    grep -a -E -A30 'ERROR|FUZZ CHECK|deadly signal|timeout|leak' "$log" | head -60 >&2 ||
+      tail -40 "$log" >&2
   fi
 done
 exit $failed

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -67,6 +68,7 @@ struct vl_contact {
   bool no_fallback;   /* inside the viscosity-continuation fallback of a fresh start */
   vl_contact *dry;    /* smooth wet viscoelastic, coarsest level: the dry contact on the same
                        * grid, whose solution starts the wet one (NULL otherwise) */
+  vl_contact_timing timing; /* cost counters (vl_contact_timing_get) */
   SUNContext ctx;
   N_Vector y, y_saved, y_outer, ones, fwork;
   SUNMatrix J;
@@ -309,8 +311,97 @@ static void reynolds_weights(vl_contact *c) {
   }
 }
 
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A SUNLinearSolver that forwards to an inner one and times its set-up
+ * (factorisation) and solves: the cost split of vl_contact_timing. */
+typedef struct {
+  SUNLinearSolver inner;
+  vl_contact_timing *timing;
+} timed_ls;
+
+static SUNLinearSolver_Type timed_gettype(SUNLinearSolver S) {
+  return SUNLinSolGetType(((timed_ls *)S->content)->inner);
+}
+static SUNLinearSolver_ID timed_getid(SUNLinearSolver S) {
+  return SUNLinSolGetID(((timed_ls *)S->content)->inner);
+}
+static int timed_initialize(SUNLinearSolver S) {
+  return SUNLinSolInitialize(((timed_ls *)S->content)->inner);
+}
+static int timed_setup(SUNLinearSolver S, SUNMatrix A) {
+  timed_ls *t = S->content;
+  double t0 = now_s();
+  int r = SUNLinSolSetup(t->inner, A);
+  t->timing->t_setup_s += now_s() - t0;
+  t->timing->setups++;
+  return r;
+}
+static int timed_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realtype tol) {
+  timed_ls *t = S->content;
+  double t0 = now_s();
+  int r = SUNLinSolSolve(t->inner, A, x, b, tol);
+  t->timing->t_solve_s += now_s() - t0;
+  t->timing->solves++;
+  return r;
+}
+static sunindextype timed_lastflag(SUNLinearSolver S) {
+  return SUNLinSolLastFlag(((timed_ls *)S->content)->inner);
+}
+static int timed_space(SUNLinearSolver S, long *lenrw, long *leniw) {
+  return SUNLinSolSpace(((timed_ls *)S->content)->inner, lenrw, leniw);
+}
+static int timed_free(SUNLinearSolver S) {
+  if (!S) return SUNLS_SUCCESS;
+  if (S->content) {
+    SUNLinSolFree(((timed_ls *)S->content)->inner);
+    free(S->content);
+    S->content = NULL;
+  }
+  SUNLinSolFreeEmpty(S);
+  return SUNLS_SUCCESS;
+}
+
+/* Wraps inner (owned from here on, freed with the wrapper, also on failure). */
+static SUNLinearSolver timed_ls_create(SUNLinearSolver inner, vl_contact_timing *timing,
+                                       SUNContext ctx) {
+  if (!inner) return NULL;
+  SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
+  timed_ls *t = S ? malloc(sizeof *t) : NULL;
+  if (!t) {
+    if (S) SUNLinSolFreeEmpty(S);
+    SUNLinSolFree(inner);
+    return NULL;
+  }
+  t->inner = inner, t->timing = timing;
+  S->content = t;
+  S->ops->gettype = timed_gettype;
+  S->ops->getid = timed_getid;
+  S->ops->initialize = timed_initialize;
+  S->ops->setup = timed_setup;
+  S->ops->solve = timed_solve;
+  S->ops->lastflag = timed_lastflag;
+  S->ops->space = timed_space;
+  S->ops->free = timed_free;
+  return S;
+}
+
+static int residual_impl(N_Vector yv, N_Vector fv, vl_contact *c);
+
 static int residual_fn(N_Vector yv, N_Vector fv, void *user) {
   vl_contact *c = user;
+  double t0 = now_s();
+  int r = residual_impl(yv, fv, c);
+  c->timing.t_residual_s += now_s() - t0;
+  c->timing.residuals++;
+  return r;
+}
+
+static int residual_impl(N_Vector yv, N_Vector fv, vl_contact *c) {
   const double *y = N_VGetArrayPointer(yv);
   double *f = N_VGetArrayPointer(fv);
   size_t nc = c->nc, nf = c->nf, of = c->of;
@@ -347,10 +438,20 @@ static void add_dU(vl_contact *c, double *Jd, size_t ld, size_t row, size_t k, d
   Jd[c->ih * ld + row] += w;
 }
 
+static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c);
+
 static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vector t1,
                        N_Vector t2) {
   (void)fv, (void)t1, (void)t2;
   vl_contact *c = user;
+  double t0 = now_s();
+  jacobian_impl(yv, J, c);
+  c->timing.t_jacobian_s += now_s() - t0;
+  c->timing.jacobians++;
+  return 0;
+}
+
+static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c) {
   const double *y = N_VGetArrayPointer(yv);
   size_t n = c->n, nc = c->nc, nf = c->nf, of = c->of, ld = c->nunk, ih = c->ih;
   double *Jd = SUNDenseMatrix_Data(J);
@@ -416,7 +517,6 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
   double lw = c->dxi / (0.5 * M_PI);
   for (size_t j = 0; j < nc; j++) Jd[j * ld + ih] = lw * (c->rough ? c->dPdU[j] : 1.0);
   for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + ih] = lw * c->kappa;
-  return 0;
 }
 
 /* Rebuilds the influence matrix for speed v0 (viscoelastic kernels only). */
@@ -428,12 +528,15 @@ static void contact_set_speed(vl_contact *c, double v0) {
   c->sfac = c->e_abs / c->p0;
   size_t nt = c->cfg.rubber.n_terms;
   if (nt == 0 && c->kernel_ready) return; /* elastic: one kernel for all speeds */
+  double t0 = now_s();
   c->kernel_ready = true;
   for (size_t k = 0; k < nt; k++) c->beta[k] = v0 * c->cfg.rubber.tau_s[k] / c->a0;
   vl_toeplitz_refill(&c->kern, c->A, c->beta, nt);
   size_t n = c->n;
   for (size_t i = 0; i < n; i++)
     for (size_t j = 0; j < n; j++) c->M[i * n + j] = -c->kfac * vl_toeplitz_at(&c->kern, i, j);
+  c->timing.t_kernel_s += now_s() - t0;
+  c->timing.kernels++;
 }
 
 /* Hertz gap outside a contact of half-width 1 (units a0^2/R, x in a0). */
@@ -590,8 +693,10 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->J = SUNDenseMatrix((sunindextype)c->nunk, (sunindextype)c->nunk, c->ctx);
   if (!c->y || !c->y_saved || !c->y_outer || !c->ones || !c->fwork || !c->J) goto nomem;
   N_VConst(1.0, c->ones);
-  c->LS = cfg->linear_solver == VL_LINSOL_SUNDIALS ? SUNLinSol_Dense(c->y, c->J, c->ctx)
-                                                   : vl_linsol_lapack_create((long)c->nunk, c->ctx);
+  c->LS = timed_ls_create(cfg->linear_solver == VL_LINSOL_SUNDIALS
+                              ? SUNLinSol_Dense(c->y, c->J, c->ctx)
+                              : vl_linsol_lapack_create((long)c->nunk, c->ctx),
+                          &c->timing, c->ctx);
   if (!c->LS) goto nomem;
   c->kmem = KINCreate(c->ctx);
   if (!c->kmem) goto nomem;
@@ -971,7 +1076,10 @@ static void smooth_wet_start(vl_contact *c, double v0, long *nni) {
  * small). */
 static bool newton(vl_contact *c, double v0, long *nni, int *flag, double *fnorm) {
   fluid_scales(c, v0);
+  double t0 = now_s();
   *flag = KINSol(c->kmem, c->y, KIN_LINESEARCH, c->ones, c->ones);
+  c->timing.t_newton_s += now_s() - t0;
+  c->timing.newtons++;
   long it = 0;
   KINGetNumNonlinSolvIters(c->kmem, &it);
   *nni += it;
@@ -1175,6 +1283,28 @@ size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap
   double unit = 0.5 * c->v0 * c->uscale; /* J is stored in units of v0 us/2 */
   for (size_t f = 0; f <= c->n && f < cap; f++) flux_m2_s[f] = c->Jf[f] * unit;
   return c->n + 1;
+}
+
+void vl_contact_timing_get(const vl_contact *c, vl_contact_timing *t) {
+  memset(t, 0, sizeof *t);
+  for (int k = 0; k < 3; k++) {
+    /* c, then its helper contacts (which may own helpers in turn) */
+    const vl_contact *h = k == 0 ? c : k == 1 ? c->coarse : c->dry;
+    if (!h) continue;
+    vl_contact_timing s = h->timing;
+    if (k > 0) vl_contact_timing_get(h, &s);
+    t->residuals += s.residuals, t->jacobians += s.jacobians, t->setups += s.setups;
+    t->solves += s.solves, t->kernels += s.kernels, t->newtons += s.newtons;
+    t->t_residual_s += s.t_residual_s, t->t_jacobian_s += s.t_jacobian_s;
+    t->t_setup_s += s.t_setup_s, t->t_solve_s += s.t_solve_s;
+    t->t_kernel_s += s.t_kernel_s, t->t_newton_s += s.t_newton_s;
+  }
+}
+
+void vl_contact_timing_reset(vl_contact *c) {
+  memset(&c->timing, 0, sizeof c->timing);
+  if (c->coarse) vl_contact_timing_reset(c->coarse);
+  if (c->dry) vl_contact_timing_reset(c->dry);
 }
 
 size_t vl_contact_grid(const vl_contact *c) { return c->n; }

@@ -5,6 +5,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <float.h>
 #include <math.h>
 #include <sqlite3.h>
 #include <stdio.h>
@@ -849,6 +850,16 @@ static vl_status compound_check(const vl_db_compound *c, vl_error *err) {
   if ((s = vl_prony_validate(&c->prony, err)) != VL_OK) return s;
   if (c->prony.n_terms == 0) {
     vl_error_set(err, "compound '%s' has no Prony terms", c->name);
+    return VL_EINPUT;
+  }
+  /* finite terms can still sum to infinity: E0 = Einf / (1 + sum A) would
+   * then be 0 (or subnormal), and so every contact scale built on it */
+  double sum_a = vl_prony_sum_A(&c->prony), e0 = vl_prony_e0(&c->prony);
+  if (!(isfinite(sum_a) && e0 >= DBL_MIN)) {
+    vl_error_set(err,
+                 "compound '%s': the relaxed modulus E0 = Einf / (1 + sum A) = %g Pa is not a "
+                 "positive number (sum A = %g)",
+                 c->name, e0, sum_a);
     return VL_EINPUT;
   }
   if (!isfinite(c->tref_c) || c->tref_c < -273.15) {

@@ -174,6 +174,25 @@ size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap
  * Hc = 1.226 (0.6 % at X = 20). Reads rubber, radius, load, viscosity. */
 double vl_contact_inlet_length_m(const vl_contact_config *cfg, double v0_m_s);
 
+/* Cost instrumentation (benchmarks): wall-clock seconds (CLOCK_MONOTONIC)
+ * and call counts of the solver's parts since creation or the last reset,
+ * summed over the coarse-grid and dry helper contacts a smooth wet contact
+ * owns. Reading the clock costs ~50 ns per call and allocates nothing. */
+typedef struct {
+  long residuals, jacobians, setups, solves, kernels, newtons;
+  double t_residual_s;  /* residual evaluations (including KINSOL's line search) */
+  double t_jacobian_s;  /* analytic Jacobian assembly */
+  double t_setup_s;     /* linear solver set-up: the LU factorisation */
+  double t_solve_s;     /* linear solver solves: the triangular solves */
+  double t_kernel_s;    /* influence-matrix builds at a new speed */
+  double t_newton_s;    /* KINSol calls in total (includes the four above) */
+} vl_contact_timing;
+
+/* Sums the counters of c (and its helper contacts) into *t (overwritten). */
+void vl_contact_timing_get(const vl_contact *c, vl_contact_timing *t);
+/* Zeroes the counters of c and its helper contacts. */
+void vl_contact_timing_reset(vl_contact *c);
+
 size_t vl_contact_grid(const vl_contact *c);
 double vl_contact_a0(const vl_contact *c); /* m */
 double vl_contact_p0(const vl_contact *c); /* Pa */

@@ -15,7 +15,8 @@
  *
  * Properties: the exit status is one of the documented codes; a command
  * that would write (add, remove) never reports success on the read-only
- * database, and the database file is never modified.
+ * database, the database file is never modified, and no command creates a
+ * file or directory (each fails before writing its output).
  * Under libFuzzer run with -close_fd_mask=3 (the commands print). */
 #ifndef _GNU_SOURCE
 #define _GNU_SOURCE
@@ -23,6 +24,8 @@
 
 #include "vl_fuzz.h"
 
+#include <dirent.h>
+#include <ftw.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,15 +49,25 @@ static void put(const char *name, const char *text) {
     vl_fuzz_fail(__FILE__, __LINE__, "cannot write %s", path);
 }
 
-static void cleanup(void) {
-  static const char *const files[] = {"prony.csv", "psd.csv", "scene.ini", "bad.csv",
-                                      "materials.db"};
-  char path[PATH_MAX + 64];
-  for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
-    snprintf(path, sizeof path, "%s/%s", dir, files[i]);
-    unlink(path);
-  }
-  rmdir(dir);
+static int remove_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
+  (void)sb;
+  (void)flag;
+  (void)ftw;
+  return remove(path);
+}
+
+static void cleanup(void) { nftw(dir, remove_entry, 16, FTW_DEPTH | FTW_PHYS); }
+
+/* Entries in the private directory (the seed files: 5). */
+static int entries(void) {
+  DIR *d = opendir(dir);
+  if (!d) return -1;
+  int n = 0;
+  struct dirent *e;
+  while ((e = readdir(d)) != NULL)
+    n += strcmp(e->d_name, ".") && strcmp(e->d_name, "..");
+  closedir(d);
+  return n;
 }
 
 static void setup(void) {
@@ -123,6 +136,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   FUZZ_CHECK(rc == 0 || rc == 2 || rc == 3 || rc == 4 || rc == 5 || rc == 6 || rc == 70,
              "undocumented exit status %d", rc);
   FUZZ_CHECK(!(writes && rc == 0 && !help), "a write reported success on a read-only database");
+  /* every command here fails before its output (no database, or a
+   * read-only one): none may have created a file or directory */
+  FUZZ_CHECK(entries() == 5, "the command created files (%d entries in %s)", entries(), dir);
   struct stat now;
   FUZZ_CHECK(stat(db_ro, &now) == 0 && now.st_size == db_stat.st_size &&
                  now.st_mtim.tv_sec == db_stat.st_mtim.tv_sec &&

@@ -23,7 +23,7 @@ _Noreturn void vl_fuzz_fail(const char *file, int line, const char *fmt, ...)
 /* A property of the code under test that must hold for every input. */
 #define FUZZ_CHECK(cond, ...)                                                                      \
   do {                                                                                             \
-    if (!(cond)) vl_fuzz_fail(__FILE__, __LINE__, __VA_ARGS__);                                     \
+    if (!(cond)) vl_fuzz_fail(__FILE__, __LINE__, __VA_ARGS__);                                    \
   } while (0)
 
 /* The contract of a reader refusing the file at path (status st, message
