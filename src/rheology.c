@@ -26,13 +26,6 @@ vl_status vl_prony_validate(const vl_prony *prony, vl_error *err) {
       return VL_EINPUT;
     }
   }
-  /* the relaxed modulus Einf/(1 + sum A) must stay a positive number */
-  double e0 = vl_prony_e0(prony);
-  if (!(isfinite(e0) && e0 > 0.0)) {
-    vl_error_set(err, "the Prony strengths sum to %g: the relaxed modulus is not positive",
-                 vl_prony_sum_A(prony));
-    return VL_EINPUT;
-  }
   return VL_OK;
 }
 
