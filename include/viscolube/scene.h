@@ -15,7 +15,7 @@
 #define VL_FIELDS_AT_MAX 32
 #define VL_FLUIDS_MAX 8
 /* default domain of wet scenes, in a0 (dry: -1.5, 1.5) */
-#define VL_WET_DOMAIN_MIN_A0 -5.0
+#define VL_WET_DOMAIN_MIN_A0 -3.0
 #define VL_WET_DOMAIN_MAX_A0 1.6
 
 typedef enum {
