@@ -255,6 +255,25 @@ typedef struct {
   const char *value;   /* set by parse_args: the value, or "" for a flag */
 } option;
 
+/* The text options both `compound add` forms share: --class from the known
+ * list, --description and the data file's name (file->name is --prony or
+ * --measured) short enough to store. Returns -1 when they are fine, else the
+ * exit code after the message. */
+static int check_compound_texts(const context *cx, const option *cls, const option *desc,
+                                const option *file) {
+  if (cls->value && strcmp(cls->value, "model") && strcmp(cls->value, "filled") &&
+      strcmp(cls->value, "unfilled") && strcmp(cls->value, "other"))
+    return failf(cx, VL_EINPUT, "option --class: '%s' is not one of model, filled, unfilled, other",
+                 cls->value);
+  if (desc->value && strlen(desc->value) >= VL_DB_TEXT_MAX)
+    return failf(cx, VL_EINPUT, "option --description: longer than %d characters",
+                 VL_DB_TEXT_MAX - 1);
+  if (strlen(file->value) >= VL_DB_TEXT_MAX)
+    return failf(cx, VL_EINPUT, "option %s: file name longer than %d characters", file->name,
+                 VL_DB_TEXT_MAX - 1);
+  return -1;
+}
+
 /* Parses argv[first..argc) into options and at most max_pos positional
  * arguments. Returns -1 on success, else the exit code after printing the
  * one error message. */
@@ -579,16 +598,7 @@ static int compound_add_measured(const context *cx, const vl_cli_globals *g, con
       return failf(cx, VL_EINPUT, "option --fit-weights: '%s' is not relative or modulus",
                    fw->value);
   }
-  if (cls->value && strcmp(cls->value, "model") && strcmp(cls->value, "filled") &&
-      strcmp(cls->value, "unfilled") && strcmp(cls->value, "other"))
-    return failf(cx, VL_EINPUT, "option --class: '%s' is not one of model, filled, unfilled, other",
-                 cls->value);
-  if (desc->value && strlen(desc->value) >= VL_DB_TEXT_MAX)
-    return failf(cx, VL_EINPUT, "option --description: longer than %d characters",
-                 VL_DB_TEXT_MAX - 1);
-  if (strlen(file->value) >= VL_DB_TEXT_MAX)
-    return failf(cx, VL_EINPUT, "option --measured: file name longer than %d characters",
-                 VL_DB_TEXT_MAX - 1);
+  if ((rc = check_compound_texts(cx, cls, desc, file)) >= 0) return rc;
 
   vl_error err;
   vl_measured m;
@@ -678,16 +688,7 @@ static int compound_add(const context *cx, const vl_cli_globals *g, int argc, ch
   if (!(nu_v >= 0.0 && nu_v <= 0.5))
     return failf(cx, VL_EINPUT, "option --nu: the Poisson ratio must lie in [0, 0.5] (got '%s')",
                  nu->value);
-  if (cls->value && strcmp(cls->value, "model") && strcmp(cls->value, "filled") &&
-      strcmp(cls->value, "unfilled") && strcmp(cls->value, "other"))
-    return failf(cx, VL_EINPUT, "option --class: '%s' is not one of model, filled, unfilled, other",
-                 cls->value);
-  if (desc->value && strlen(desc->value) >= VL_DB_TEXT_MAX)
-    return failf(cx, VL_EINPUT, "option --description: longer than %d characters",
-                 VL_DB_TEXT_MAX - 1);
-  if (strlen(file->value) >= VL_DB_TEXT_MAX)
-    return failf(cx, VL_EINPUT, "option --prony: file name longer than %d characters",
-                 VL_DB_TEXT_MAX - 1);
+  if ((rc = check_compound_texts(cx, cls, desc, file)) >= 0) return rc;
   if (tref->value) {
     if ((rc = number_opt(cx, tref, &tref_c)) >= 0) return rc;
     if (tref_c < -273.15)
