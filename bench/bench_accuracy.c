@@ -402,7 +402,8 @@ static row *run_fig05(const fig05_setting *s, vl_point *out, const char *setting
   vl_contact_timing_get(c, &r->timing);
   snprintf(r->scene, sizeof r->scene, "fig05");
   snprintf(r->setting, sizeof r->setting, "%s", setting);
-  snprintf(r->linsol, sizeof r->linsol, "%s", s->ls == VL_LINSOL_SUNDIALS ? "sundials" : "lapack");
+  snprintf(r->linsol, sizeof r->linsol, "%s",
+           s->ls == VL_LINSOL_SUNDIALS ? "sundials" : s->ls == VL_LINSOL_SCHUR ? "schur" : "lapack");
   r->grid = s->grid, r->unknowns = 2 * s->grid + 1, r->inlet_a0 = s->inlet_a0;
   r->tolerance = s->tol, r->n_table = s->n_table, r->points = s->count;
   r->failed = st.failed, r->iterations = st.newton_iterations, r->repeats = reps;
@@ -451,7 +452,7 @@ static void bench_fig05(const char *dir, bool quick) {
          "## reference: N = %zu, inlet %g a0, tolerance %g, Persson table %zu entries\n",
          NP, ref_grid, ref_inlet, ref_tol, ref_table);
   vl_point ref[NP], pts[NP];
-  fig05_setting s = {ref_grid, ref_table, ref_inlet, ref_tol, VL_LINSOL_LAPACK, NP, 0, NP, 1};
+  fig05_setting s = {ref_grid, ref_table, ref_inlet, ref_tol, VL_LINSOL_SCHUR, NP, 0, NP, 1};
   row *rr = run_fig05(&s, ref, "reference");
   fig05_errors(rr, ref, ref, NP);
   print_header();
@@ -465,7 +466,7 @@ static void bench_fig05(const char *dir, bool quick) {
       for (int t = 0; t < 2; t++) {
         /* N 512 costs ~1 s per point: inlet 3 only, one repeat */
         if (grids[g] == 512 && il != 1) continue;
-        fig05_setting q = {grids[g], 256, inlets[il], tols[t], VL_LINSOL_LAPACK, NP, 0, NP,
+        fig05_setting q = {grids[g], 256, inlets[il], tols[t], VL_LINSOL_SCHUR, NP, 0, NP,
                            grids[g] <= 128 ? 3 : grids[g] <= 256 ? 2 : 1};
         if (quick) q.repeats = 1;
         char name[48];
@@ -477,7 +478,7 @@ static void bench_fig05(const char *dir, bool quick) {
   /* Persson table resolution at N 256, inlet 3, tolerance 1e-9 */
   size_t tabs[] = {64, 128, 1024};
   for (int k = 0; k < 3; k++) {
-    fig05_setting q = {256, tabs[k], 3.0, 1e-9, VL_LINSOL_LAPACK, NP, 0, NP, quick ? 1 : 2};
+    fig05_setting q = {256, tabs[k], 3.0, 1e-9, VL_LINSOL_SCHUR, NP, 0, NP, quick ? 1 : 2};
     char name[48];
     snprintf(name, sizeof name, "N256/in3/tol1e-09/table%zu", tabs[k]);
     row *r = run_fig05(&q, pts, name);
@@ -558,28 +559,33 @@ static void bench_fig05(const char *dir, bool quick) {
 }
 
 static void bench_linsol(bool quick) {
-  printf("\n## LAPACK vs SUNDIALS dense: fig05, inlet 3, tolerance 1e-9, 7 points "
-         "v0 eta = 1e-8 ... 1e-5 (N 512: 3 points, 1e-8 ... 1e-7) of the 25-point sweep\n");
+  printf("\n## linear solvers: fig05, inlet 3, tolerance 1e-9, 7 points "
+         "v0 eta = 1e-8 ... 1e-5 (N 512: 3 points, 1e-8 ... 1e-7) of the 25-point sweep\n"
+         "#   schur: Reynolds block eliminated, LAPACK LU of the (N+1)^2 complement (default)\n"
+         "#   lapack: LAPACK LU of the full (2N+1)^2 Jacobian; sundials: SUNLinSol_Dense\n");
   print_header();
   vl_point pts[NP];
   size_t grids[] = {256, 512};
-  for (int g = 0; g < (quick ? 1 : 1); g++) { /* N 512: SUNDIALS ~1.5 s per LU */
-    double tl = 0, ts = 0;
-    for (int ls = 0; ls < 2; ls++) {
-      fig05_setting q = {grids[g], 256, 3.0, 1e-9, ls ? VL_LINSOL_SUNDIALS : VL_LINSOL_LAPACK,
-                         NP, 8, g ? 3 : 7, ls || g ? 1 : 3};
+  const vl_linear_solver kinds[] = {VL_LINSOL_SCHUR, VL_LINSOL_LAPACK, VL_LINSOL_SUNDIALS};
+  for (int g = 0; g < (quick ? 1 : 2); g++) {
+    double t[3] = {0, 0, 0};
+    for (int ls = 0; ls < 3; ls++) {
+      if (g == 1 && ls == 2) continue; /* SUNDIALS at N 512: ~1.5 s per LU */
+      fig05_setting q = {grids[g], 256, 3.0, 1e-9, kinds[ls], NP, 8, g ? 3 : 7, ls == 2 ? 1 : 3};
       char name[48];
       snprintf(name, sizeof name, "N%zu/in3/tol1e-09/%dpt", grids[g], g ? 3 : 7);
       row *r = run_fig05(&q, pts, name);
       snprintf(r->scene, sizeof r->scene, "linsol");
       print_row(r);
       double lu = 1e3 * r->timing.t_setup_s / (double)r->timing.setups;
-      printf("#   %s: LU set-up %.2f ms per call, solve %.3f ms per call\n", r->linsol, lu,
-             1e3 * r->timing.t_solve_s / (double)r->timing.solves);
-      if (ls) ts = r->t_point_ms;
-      else tl = r->t_point_ms;
+      printf("#   %s: set-up (LU) %.2f ms per call, solve %.3f ms per call, %ld fallbacks\n",
+             r->linsol, lu, 1e3 * r->timing.t_solve_s / (double)r->timing.solves,
+             r->timing.linsol_fallbacks);
+      t[ls] = r->t_point_ms;
     }
-    printf("# N = %zu: SUNDIALS / LAPACK time per point = %.1f\n", grids[g], ts / tl);
+    printf("# N = %zu: time per point lapack / schur = %.1f", grids[g], t[1] / t[0]);
+    if (t[2] > 0) printf(", sundials / lapack = %.1f", t[2] / t[1]);
+    printf("\n");
   }
 }
 
@@ -588,7 +594,7 @@ static void bench_targets(void) {
          "61 points as cases/fig05.ini\n");
   print_header();
   vl_point pts[61];
-  fig05_setting q = {512, 256, 3.0, 1e-9, VL_LINSOL_LAPACK, 61, 0, 61, 3};
+  fig05_setting q = {512, 256, 3.0, 1e-9, VL_LINSOL_SCHUR, 61, 0, 61, 3};
   row *r = run_fig05(&q, pts, "N512/in3/tol1e-09/61pt");
   snprintf(r->scene, sizeof r->scene, "target");
   print_row(r);

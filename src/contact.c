@@ -15,6 +15,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "linsol_lapack.h"
+#include "linsol_schur.h"
 #include "viscolube/kernel.h"
 
 /* Smoothing of the Fischer-Burmeister function: p u = FB_EPS at the contact
@@ -73,6 +74,7 @@ struct vl_contact {
   N_Vector y, y_saved, y_outer, ones, fwork;
   SUNMatrix J;
   SUNLinearSolver LS;
+  SUNLinearSolver schur; /* the inner solver of LS when VL_LINSOL_SCHUR applies (not owned) */
   void *kmem;
 };
 
@@ -93,7 +95,7 @@ void vl_contact_config_defaults(vl_contact_config *cfg) {
   cfg->x_max_a0 = 1.4;
   cfg->tolerance = 1e-9;
   cfg->max_iterations = 100;
-  cfg->linear_solver = VL_LINSOL_LAPACK;
+  cfg->linear_solver = VL_LINSOL_SCHUR;
 }
 
 void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
@@ -455,21 +457,30 @@ static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c) {
   const double *y = N_VGetArrayPointer(yv);
   size_t n = c->n, nc = c->nc, nf = c->nf, of = c->of, ld = c->nunk, ih = c->ih;
   double *Jd = SUNDenseMatrix_Data(J);
-  memset(Jd, 0, ld * ld * sizeof *Jd);
   eval_state(c, y);
-  /* contact / elasticity rows */
-  for (size_t i = 0; i < nc; i++) {
-    const double *row = c->M + i * n;
-    if (!c->rough) {
+  if (c->rough) {
+    /* elasticity rows U_i - G_i, written column by column (the matrix is
+     * column-major) and every entry once, so no zeroing pass: column j of
+     * the influence matrix is the Toeplitz coefficients from n-1-j on */
+    for (size_t j = 0; j < ld; j++) {
+      double *col = Jd + j * ld;
+      double w = j < n ? c->kfac * c->dPdU[j] : j < of + nf ? c->kfac * c->kappa : 0.0;
+      if (j < ih) {
+        const double *t = c->kern.coef + (n - 1 - (j < n ? j : j - of));
+        for (size_t i = 0; i < n; i++) col[i] = w * t[i];
+        if (j < n) col[j] += 1.0;
+      } else {
+        for (size_t i = 0; i < n; i++) col[i] = -1.0;
+      }
+      memset(col + n, 0, (ld - n) * sizeof *col);
+    }
+  } else {
+    memset(Jd, 0, ld * ld * sizeof *Jd);
+    for (size_t i = 0; i < nc; i++) { /* smooth contact: complementarity rows */
       double dfdp, dfdu;
       fb(c->P[i], c->U[i], &dfdp, &dfdu);
       add_dU(c, Jd, ld, i, i, dfdu);
       Jd[i * ld + i] += dfdp;
-    } else {
-      for (size_t j = 0; j < n; j++) Jd[j * ld + i] = -row[j] * c->dPdU[j];
-      for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + i] = -row[j] * c->kappa;
-      Jd[i * ld + i] += 1.0;
-      Jd[ih * ld + i] = -1.0;
     }
   }
   /* Reynolds rows: the fluxes of faces i (left) and i+1 (right) depend on
@@ -579,6 +590,11 @@ void vl_contact_reset(vl_contact *c) {
     }
   }
   y[c->ih] = cnt ? sum / (double)cnt : 0.0;
+}
+
+static int skip_zero(SUNMatrix A) {
+  (void)A;
+  return SUNMAT_SUCCESS;
 }
 
 /* The library never prints: KINSOL's messages are dropped, its return flags
@@ -693,10 +709,19 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->J = SUNDenseMatrix((sunindextype)c->nunk, (sunindextype)c->nunk, c->ctx);
   if (!c->y || !c->y_saved || !c->y_outer || !c->ones || !c->fwork || !c->J) goto nomem;
   N_VConst(1.0, c->ones);
-  c->LS = timed_ls_create(cfg->linear_solver == VL_LINSOL_SUNDIALS
-                              ? SUNLinSol_Dense(c->y, c->J, c->ctx)
-                              : vl_linsol_lapack_create((long)c->nunk, c->ctx),
-                          &c->timing, c->ctx);
+  /* KINSOL zeroes the matrix before every Jacobian call, element by
+   * element (a fifth of a rough wet solve's time at N = 512); jacobian_impl
+   * writes every entry itself (rough) or zeroes by memset */
+  c->J->ops->zero = skip_zero;
+  SUNLinearSolver inner;
+  if (cfg->linear_solver == VL_LINSOL_SUNDIALS) {
+    inner = SUNLinSol_Dense(c->y, c->J, c->ctx);
+  } else if (cfg->linear_solver == VL_LINSOL_SCHUR && c->rough && c->wet) {
+    inner = c->schur = vl_linsol_schur_create((long)n, (long)c->of, (long)c->ih, c->ctx);
+  } else {
+    inner = vl_linsol_lapack_create((long)c->nunk, c->ctx);
+  }
+  c->LS = timed_ls_create(inner, &c->timing, c->ctx);
   if (!c->LS) goto nomem;
   c->kmem = KINCreate(c->ctx);
   if (!c->kmem) goto nomem;
@@ -931,7 +956,7 @@ static void fluid_scales(vl_contact *c, double v0) {
     double h_martin = 2.447 * eta * v0 * c->cfg.radius_m / c->cfg.load_n_per_m;
     c->u_ref = fmax(umin, fmax(1e-3 * c->hrms, h_martin) / us);
     if (fmax_p0 > 0.0 && c->v_state > 0.0) {
-      kappa = fmax_p0 * v0 / c->v_state;
+      kappa = fmax_p0; /* the predictor (predict_state) has scaled pf to v0 */
     } else {
       /* hydrodynamic estimate 6 eta v0 a0 / u^2, at most p0 */
       double u = c->u_ref * us;
@@ -1070,6 +1095,22 @@ static void smooth_wet_start(vl_contact *c, double v0, long *nni) {
   wet_smooth_guess(c, v0);
 }
 
+/* Predictor of a continuation step to speed v0 from the converged state at
+ * v_state (rough films; a smooth film has its own fresh starts). At a fixed
+ * film the hydrodynamic pressure grows like v0 (the Reynolds equation is
+ * linear in pf and eta v0), so pf starts scaled by v0/v_state: in boundary
+ * lubrication, where the film does not change, that is the solution. fig05
+ * at N = 512: 946 Newton iterations for 62 points down to 515 (13 per
+ * boundary point down to 1-3). A secant in log v0 on the separation and pf
+ * (from the state before) was tried and cost more (544-735 iterations): the
+ * cavitation boundary, not the predictor, limits the steps near the
+ * transition. */
+static void predict_state(vl_contact *c, double v0) {
+  if (!c->rough || !(c->v_state > 0.0)) return;
+  double *y = N_VGetArrayPointer(c->y), grow = v0 / c->v_state;
+  for (size_t i = 0; i < c->nf; i++) y[c->of + i] *= grow;
+}
+
 /* Newton (KINSOL) from the current y at speed v0; scales set here. Adds
  * the iterations to *nni; returns whether our own residual check passed
  * (KINSOL also returns success when the step, not the residual, became
@@ -1104,6 +1145,7 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
   int flag;
   double fnorm;
   if (fresh) smooth_wet_start(c, v0_m_s, &nni);
+  predict_state(c, v0_m_s);
   bool ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
   if (!ok && smooth_wet && !fresh) {
     /* continuation from the previous speed failed: start afresh */
@@ -1298,6 +1340,7 @@ void vl_contact_timing_get(const vl_contact *c, vl_contact_timing *t) {
     t->t_residual_s += s.t_residual_s, t->t_jacobian_s += s.t_jacobian_s;
     t->t_setup_s += s.t_setup_s, t->t_solve_s += s.t_solve_s;
     t->t_kernel_s += s.t_kernel_s, t->t_newton_s += s.t_newton_s;
+    t->linsol_fallbacks += k > 0 ? s.linsol_fallbacks : vl_linsol_schur_fallbacks(h->schur);
   }
 }
 

@@ -48,7 +48,11 @@
 
 typedef enum {
   VL_LINSOL_LAPACK = 0, /* LAPACK dgetrf/dgetrs on the SUNDIALS dense matrix */
-  VL_LINSOL_SUNDIALS    /* SUNLinSol_Dense (SUNDIALS' own dense LU) */
+  VL_LINSOL_SUNDIALS,   /* SUNLinSol_Dense (SUNDIALS' own dense LU) */
+  VL_LINSOL_SCHUR       /* rough wet contacts: the Reynolds rows (a tridiagonal block in pf)
+                         * eliminated first, LAPACK LU of the (N+1)^2 Schur complement, the
+                         * residual checked against the full matrix (plain LAPACK when that
+                         * fails, and for every other contact). The default. */
 } vl_linear_solver;
 
 typedef struct {
@@ -69,7 +73,7 @@ typedef struct {
 } vl_contact_config;
 
 /* Fills cfg with the defaults (grid 512, domain [-1.6, 1.4] a0, tolerance 1e-9,
- * LAPACK) for the given rubber and geometry; the caller sets the rest. */
+ * VL_LINSOL_SCHUR) for the given rubber and geometry; the caller sets the rest. */
 void vl_contact_config_defaults(vl_contact_config *cfg);
 
 #define VL_WARN_MAX 256
@@ -186,6 +190,7 @@ typedef struct {
   double t_solve_s;     /* linear solver solves: the triangular solves */
   double t_kernel_s;    /* influence-matrix builds at a new speed */
   double t_newton_s;    /* KINSol calls in total (includes the four above) */
+  long linsol_fallbacks;/* VL_LINSOL_SCHUR: set-ups or solves that fell back to the full LU */
 } vl_contact_timing;
 
 /* Sums the counters of c (and its helper contacts) into *t (overwritten). */
