@@ -5,6 +5,9 @@
 
 #include "cli.h"
 
+/* `flattening ...` (src/cli/cli_flattening.c); belongs in cli.h */
+int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
+
 static void usage(FILE *out) {
   fputs("usage: viscolube [--db PATH] NOUN VERB ...\n"
         "\n"
@@ -18,6 +21,7 @@ static void usage(FILE *out) {
         "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
         "  friction   one operating point of a stored compound/surface/fluid triple\n"
         "  compare    Stribeck curves of several compounds side by side\n"
+        "  flattening viscous flattening of the asperities, epsilon_f vs u/h_rms (seed Figs. 19-20)\n"
         "\n"
         "options:\n"
         "  --db PATH  database file (default: $VISCOLUBE_DB, else\n"
@@ -56,6 +60,7 @@ int main(int argc, char **argv) {
   if (!strcmp(noun, "run")) return vl_cli_run(&g, argc - i, argv + i);
   if (!strcmp(noun, "friction")) return vl_cli_friction(&g, argc - i, argv + i);
   if (!strcmp(noun, "compare")) return vl_cli_compare(&g, argc - i, argv + i);
+  if (!strcmp(noun, "flattening")) return vl_cli_flattening(&g, argc - i, argv + i);
   fprintf(stderr, "viscolube: unknown noun '%s' (see viscolube --help)\n", noun);
   return 2;
 }
