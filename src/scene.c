@@ -353,7 +353,8 @@ static int handler(void *user, const char *section, const char *key, const char 
   case K_LINEAR_SOLVER:
     if (!strcmp(value, "lapack")) sc->linear_solver = VL_LINSOL_LAPACK;
     else if (!strcmp(value, "sundials")) sc->linear_solver = VL_LINSOL_SUNDIALS;
-    else return fail(ps, section, key, "expected lapack or sundials, got '%s'", value);
+    else if (!strcmp(value, "schur")) sc->linear_solver = VL_LINSOL_SCHUR;
+    else return fail(ps, section, key, "expected schur, lapack or sundials, got '%s'", value);
     return 1;
   case K_PERSSON_TABLE:
     if (!parse_size(value, &sc->persson_table) || sc->persson_table < 64 || sc->persson_table > 100000)
@@ -421,7 +422,7 @@ void vl_scene_defaults(vl_scene *sc) {
   sc->domain_min_a0 = -1.5;
   sc->domain_max_a0 = 1.5;
   sc->tolerance = 1e-9;
-  sc->linear_solver = VL_LINSOL_LAPACK;
+  sc->linear_solver = VL_LINSOL_SCHUR;
   sc->persson_table = 0;
 }
 
@@ -487,8 +488,14 @@ static vl_status scene_check(parse_state *ps) {
   /* Effects of later issues: refuse rather than silently ignore them. */
   if (sc->effects.viscous_flattening)
     return check_fail(ps, K_VISCOUS_FLATTENING, "on is not available in this version");
-  if (sc->effects.temperature)
-    return check_fail(ps, K_TEMPERATURE, "on is not available in this version");
+  /* the temperature effect shifts the compound (WLF) and the fluid (its
+   * viscosity law) to one stated temperature: there is no default */
+  if (sc->effects.temperature && !ps->key_line[K_TEMPERATURE_C])
+    return check_fail(ps, K_TEMPERATURE, "on needs [effects] temperature_c (Celsius)");
+  if (!sc->effects.temperature && ps->key_line[K_TEMPERATURE_C])
+    return check_fail(ps, K_TEMPERATURE_C,
+                      "applies to [effects] temperature = on only (the materials are taken "
+                      "at their reference temperatures)");
   return VL_OK;
 }
 

@@ -12,6 +12,8 @@ struct vl_simulation {
   vl_psd psd;
   vl_persson *table;
   double eta_pa_s;
+  double temperature_c; /* [effects] temperature: the scene's; NAN when off */
+  double a_T;           /* WLF shift applied to the compound's times (1 when off) */
   vl_contact *contact;
   size_t n;
   double *v0;
@@ -66,6 +68,89 @@ static vl_status build_speeds(vl_simulation *sim, vl_error *err) {
   return VL_OK;
 }
 
+vl_status vl_compound_at_temperature(const vl_db_compound *c, double t_c, vl_prony *out,
+                                     double *a_T, vl_error *err) {
+  /* the reference temperature is where the series was measured: no law
+   * is needed, and the series comes back bit for bit */
+  if (t_c == c->tref_c) {
+    *out = c->prony;
+    *a_T = 1.0;
+    return VL_OK;
+  }
+  if (!isfinite(t_c)) {
+    vl_error_set(err, "invalid temperature %g C", t_c);
+    return VL_EINPUT;
+  }
+  if (!(isfinite(c->wlf_c1) && isfinite(c->wlf_c2_k))) {
+    vl_error_set(err,
+                 "compound '%s' has no WLF constants: its Prony series is known at %g C only "
+                 "(asked for %g C)",
+                 c->name, c->tref_c, t_c);
+    return VL_EINPUT;
+  }
+  double log10_a = vl_wlf_log10_shift(c->wlf_c1, c->wlf_c2_k, t_c, c->tref_c);
+  if (isnan(log10_a)) {
+    vl_error_set(err,
+                 "%g C is at or below the WLF singularity Tref - C2 = %g C of compound '%s' "
+                 "(C1 %g, C2 %g K at %g C): WLF holds from about the glass transition upwards",
+                 t_c, c->tref_c - c->wlf_c2_k, c->name, c->wlf_c1, c->wlf_c2_k, c->tref_c);
+    return VL_EINPUT;
+  }
+  vl_prony p = c->prony;
+  double a = pow(10.0, log10_a);
+  vl_prony_shift(&p, a);
+  /* near the singularity a_T overflows, or a time underflows far above */
+  vl_error why;
+  if (!(isfinite(a) && a > 0.0) || vl_prony_validate(&p, &why) != VL_OK) {
+    vl_error_set(err,
+                 "compound '%s' at %g C: the WLF shift log10 a_T = %g puts its times out of "
+                 "range",
+                 c->name, t_c, log10_a);
+    return VL_EINPUT;
+  }
+  *out = p;
+  *a_T = a;
+  return VL_OK;
+}
+
+/* [effects] temperature = on: the compound shifted to the scene's
+ * temperature by its WLF constants (only when viscoelastic: an elastic
+ * scene uses E0 or Einf, which a horizontal shift leaves alone), and the
+ * viscosity of the fluid by its law (only when the fluid is simulated: a
+ * dry scene needs no viscosity). */
+static vl_status apply_temperature(vl_simulation *sim, vl_db *db, vl_error *err) {
+  const vl_scene *sc = &sim->scene;
+  double t = sc->effects.temperature_c;
+  vl_status st = VL_OK;
+  if (sc->effects.viscoelastic) {
+    vl_db_compound *c = malloc(sizeof *c); /* ~4 kB of names and texts */
+    if (!c) {
+      vl_error_set(err, "out of memory");
+      return VL_ENOMEM;
+    }
+    st = vl_db_compound_info(db, sc->compound, c, err);
+    if (st == VL_OK) st = vl_compound_at_temperature(c, t, &sim->rubber, &sim->a_T, err);
+    free(c);
+    if (st != VL_OK) {
+      vl_error_prefix(err, "%s: [effects] temperature = on at %g C", sc->path, t);
+      return st;
+    }
+  }
+  sim->temperature_c = t;
+  if (sc->effects.fluid && sc->fluid[0]) {
+    vl_db_fluid f;
+    st = vl_db_fluid_info(db, sc->fluid, &f, err);
+    if (st == VL_OK)
+      st = vl_fluid_viscosity(&f.law, f.viscosity_pa_s, f.tref_c, t, &sim->eta_pa_s, err);
+    if (st != VL_OK) {
+      vl_error_prefix(err, "%s: [effects] temperature = on at %g C: fluid '%s'", sc->path, t,
+                      sc->fluid);
+      return st;
+    }
+  }
+  return VL_OK;
+}
+
 vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation **out,
                                vl_error *err) {
   *out = NULL;
@@ -75,6 +160,8 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     return VL_ENOMEM;
   }
   sim->scene = *scene;
+  sim->temperature_c = NAN;
+  sim->a_T = 1.0;
   vl_status st = vl_db_compound_get(db, scene->compound, &sim->rubber, err);
   if (st != VL_OK) {
     if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] compound", scene->path);
@@ -93,6 +180,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
       goto fail;
     }
   }
+  if (scene->effects.temperature && (st = apply_temperature(sim, db, err)) != VL_OK) goto fail;
   if (scene->effects.roughness) {
     st = vl_db_surface_get(db, scene->surface, &sim->psd, err);
     if (st != VL_OK) {
@@ -162,6 +250,8 @@ double vl_simulation_tau(const vl_simulation *sim) {
   return sim->rubber.n_terms == 1 ? sim->rubber.tau_s[0] : 0.0;
 }
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim) { return &sim->rubber; }
+double vl_simulation_temperature_c(const vl_simulation *sim) { return sim->temperature_c; }
+double vl_simulation_shift_factor(const vl_simulation *sim) { return sim->a_T; }
 const vl_psd *vl_simulation_psd(const vl_simulation *sim) {
   return sim->have_psd ? &sim->psd : NULL;
 }

@@ -99,11 +99,11 @@ static void test_defaults(void **state) {
   parse_ok("[materials]\ncompound = model-rubber\n"
            "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
            "[sweep]\nquantity = v0\nfrom = 1e-3\nto = 1\npoints = 4\n");
-  /* README: grid 512, domain -1.5..1.5 (symmetric), tolerance 1e-9, lapack */
+  /* README: grid 512, domain -1.5..1.5 (symmetric), tolerance 1e-9, schur */
   assert_int_equal(g_scene.grid, 512);
   assert_true(g_scene.domain_min_a0 == -1.5 && g_scene.domain_max_a0 == 1.5);
   assert_true(g_scene.tolerance == 1e-9);
-  assert_int_equal(g_scene.linear_solver, VL_LINSOL_LAPACK);
+  assert_int_equal(g_scene.linear_solver, VL_LINSOL_SCHUR);
   /* only the viscoelastic effect is on by default */
   assert_true(g_scene.effects.viscoelastic);
   assert_false(g_scene.effects.roughness || g_scene.effects.fluid || g_scene.effects.solid_shear ||
@@ -491,8 +491,13 @@ static void test_inconsistent_effects(void **state) {
               "[effects] flow_factors", "roughness = on");
   parse_fails(edit(BASE, fx, "viscoelastic = on\nviscous_flattening = on"), 16,
               "[effects] viscous_flattening", "not available");
+  /* temperature = on needs the temperature; temperature_c alone is refused */
   parse_fails(edit(BASE, fx, "viscoelastic = on\ntemperature = on"), 16, "[effects] temperature",
-              "not available");
+              "needs [effects] temperature_c");
+  parse_fails(edit(BASE, fx, "viscoelastic = on\ntemperature_c = 40"), 16,
+              "[effects] temperature_c", "temperature = on only");
+  parse_ok(edit(BASE, fx, "viscoelastic = on\ntemperature = on\ntemperature_c = 40"));
+  assert_true(g_scene.effects.temperature && g_scene.effects.temperature_c == 40.0);
   /* flow factors with roughness are fine */
   parse_ok(edit(edit(BASE, fx, "viscoelastic = on\nroughness = on\nflow_factors = patir-cheng"),
                 "compound = model-rubber", "compound = model-rubber\nsurface = paper-3um"));

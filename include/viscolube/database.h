@@ -30,6 +30,7 @@
 #include <stddef.h>
 
 #include "viscolube/dma.h"
+#include "viscolube/fluid.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
 #include "viscolube/status.h"
@@ -75,6 +76,7 @@ typedef struct {
   char name[VL_DB_NAME_MAX];
   double viscosity_pa_s; /* low-shear viscosity at tref_c */
   double tref_c;
+  vl_viscosity_law law;  /* viscosity vs temperature (fluid.h); kind NONE = none stored */
   char description[VL_DB_TEXT_MAX];
   char source_file[VL_DB_TEXT_MAX];
   char created_at[32];
@@ -215,11 +217,13 @@ vl_status vl_db_surface_list(vl_db *db, vl_db_surface **items, size_t *n, vl_err
  * VL_ENOTFOUND. */
 vl_status vl_db_fluid_get(vl_db *db, const char *name, double *eta_pa_s, vl_error *err);
 
-/* Everything stored about fluid `name`. VL_ENOTFOUND. */
+/* Everything stored about fluid `name`, its viscosity law included (a
+ * stored law that fails vl_viscosity_law_validate: VL_EDB). VL_ENOTFOUND. */
 vl_status vl_db_fluid_info(vl_db *db, const char *name, vl_db_fluid *out, vl_error *err);
 
-/* Adds a fluid (viscosity > 0 and finite, tref finite). created_at is
- * ignored. VL_EINPUT, VL_EEXIST, VL_EDB. */
+/* Adds a fluid (viscosity > 0 and finite, tref finite, the law valid by
+ * vl_viscosity_law_validate; a zeroed law is NONE). created_at is ignored.
+ * VL_EINPUT, VL_EEXIST, VL_EDB. */
 vl_status vl_db_fluid_add(vl_db *db, const vl_db_fluid *fluid, vl_error *err);
 
 /* Removes fluid `name`. VL_ENOTFOUND, VL_EDB. */

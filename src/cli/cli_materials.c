@@ -236,12 +236,20 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
           out);
   } else {
     fputs("usage: viscolube [--db PATH] fluid add NAME --viscosity PA_S [--tref C]\n"
+          "                 [--vogel-b K --vogel-c K --law-range TMIN_C,TMAX_C]\n"
           "                 [--description TEXT]\n"
           "\n"
           "Registers a Newtonian lubricant.\n"
           "  --viscosity PA_S   low-shear viscosity > 0, Pa s (water at 20 C: 1.0e-3)\n"
           "  --tref C           temperature the viscosity was measured at, Celsius\n"
           "                     (default 20)\n"
+          "  --vogel-b K, --vogel-c K, --law-range TMIN_C,TMAX_C\n"
+          "                     optional viscosity-temperature law (all three or none):\n"
+          "                     log10 eta = A + B/(T - C), T in K, anchored at the viscosity\n"
+          "                     at tref, trusted from TMIN to TMAX C (the range of its data;\n"
+          "                     it must hold tref). Without a law the fluid is known at tref\n"
+          "                     only (scenes with temperature = on at another temperature\n"
+          "                     are refused). Water: B 247.8, C 140, range 0,100.\n"
           "  --description TEXT free text; note the source of the data here\n",
           out);
   }
@@ -868,6 +876,13 @@ static void fluid_json(FILE *out, const vl_db_fluid *f) {
   json_key_str(out, &first, "name", f->name, 0);
   json_key_num(out, &first, "viscosity_pa_s", f->viscosity_pa_s);
   json_key_num(out, &first, "tref_c", f->tref_c);
+  /* the viscosity law: all null when none is stored */
+  int law = f->law.kind != VL_VISCOSITY_LAW_NONE;
+  json_key_str(out, &first, "viscosity_law", law ? vl_viscosity_law_name(f->law.kind) : "", 1);
+  json_key_num(out, &first, "vogel_b_k", law ? f->law.vogel_b_k : NAN);
+  json_key_num(out, &first, "vogel_c_k", law ? f->law.vogel_c_k : NAN);
+  json_key_num(out, &first, "law_tmin_c", law ? f->law.tmin_c : NAN);
+  json_key_num(out, &first, "law_tmax_c", law ? f->law.tmax_c : NAN);
   json_key_str(out, &first, "description", f->description, 0);
   json_key_str(out, &first, "source_file", f->source_file, 1);
   json_key_str(out, &first, "created_at", f->created_at, 0);
@@ -878,6 +893,20 @@ static void fluid_text(FILE *out, const vl_db_fluid *f) {
   fprintf(out, "fluid %s\n", f->name);
   if (f->description[0]) fprintf(out, "  description   %s\n", f->description);
   fprintf(out, "  viscosity     %.6g Pa s at %.6g C\n", f->viscosity_pa_s, f->tref_c);
+  if (f->law.kind == VL_VISCOSITY_LAW_VOGEL) {
+    const vl_viscosity_law *l = &f->law;
+    fprintf(out, "  law           Vogel: log10 eta = A + %.6g K / (T - %.6g K), %.6g to %.6g C\n",
+            l->vogel_b_k, l->vogel_c_k, l->tmin_c, l->tmax_c);
+    /* the law's ends, so its size is seen at a glance */
+    double lo = NAN, hi = NAN;
+    if (vl_fluid_viscosity(l, f->viscosity_pa_s, f->tref_c, l->tmin_c, &lo, NULL) == VL_OK &&
+        vl_fluid_viscosity(l, f->viscosity_pa_s, f->tref_c, l->tmax_c, &hi, NULL) == VL_OK)
+      fprintf(out, "                (through the viscosity above; %.4g Pa s at %.6g C, "
+                   "%.4g Pa s at %.6g C)\n",
+              lo, l->tmin_c, hi, l->tmax_c);
+  } else {
+    fprintf(out, "  law           none (known at %.6g C only)\n", f->tref_c);
+  }
   fprintf(out, "  created       %s\n", f->created_at);
 }
 
@@ -886,8 +915,9 @@ static void fluid_line(FILE *out, const vl_db_fluid *f) {
 }
 
 static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {
-      {"--viscosity", "PA_S", NULL}, {"--tref", "C", NULL}, {"--description", "TEXT", NULL}};
+  option opts[] = {{"--viscosity", "PA_S", NULL},   {"--tref", "C", NULL},
+                   {"--vogel-b", "K", NULL},          {"--vogel-c", "K", NULL},
+                   {"--law-range", "TMIN_C,TMAX_C", NULL}, {"--description", "TEXT", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -914,6 +944,27 @@ static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char 
                    sizeof f.description - 1);
     snprintf(f.description, sizeof f.description, "%s", o->value);
   }
+  /* the viscosity law: all three options or none */
+  option *vb = find_opt(opts, n_opts, "--vogel-b"), *vc = find_opt(opts, n_opts, "--vogel-c"),
+         *vr = find_opt(opts, n_opts, "--law-range");
+  int n_law = (vb->value != NULL) + (vc->value != NULL) + (vr->value != NULL);
+  if (n_law != 0 && n_law != 3)
+    return fail(cx, VL_EINPUT, "options --vogel-b, --vogel-c and --law-range go together");
+  if (n_law == 3) {
+    f.law.kind = VL_VISCOSITY_LAW_VOGEL;
+    if ((rc = number_opt(cx, vb, &f.law.vogel_b_k)) >= 0) return rc;
+    if ((rc = number_opt(cx, vc, &f.law.vogel_c_k)) >= 0) return rc;
+    char lo[64], *comma = strchr(vr->value, ',');
+    size_t len = comma ? (size_t)(comma - vr->value) : 0;
+    if (!comma || len >= sizeof lo || vl_csv_parse_double(comma + 1, &f.law.tmax_c, NULL) != VL_OK)
+      return failf(cx, VL_EINPUT, "option --law-range: expected TMIN_C,TMAX_C (got '%s')",
+                   vr->value);
+    memcpy(lo, vr->value, len);
+    lo[len] = '\0';
+    if (vl_csv_parse_double(lo, &f.law.tmin_c, NULL) != VL_OK)
+      return failf(cx, VL_EINPUT, "option --law-range: expected TMIN_C,TMAX_C (got '%s')",
+                   vr->value);
+  }
   vl_db *db = NULL;
   vl_error err;
   if ((rc = open_db(cx, g, &db)) < 0) {
@@ -921,8 +972,9 @@ static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char 
     if (st != VL_OK) {
       rc = fail(cx, st, err.msg);
     } else {
-      printf("added fluid '%s' to %s: viscosity %.6g Pa s at %.6g C\n", f.name, vl_db_path(db),
-             f.viscosity_pa_s, f.tref_c);
+      printf("added fluid '%s' to %s: viscosity %.6g Pa s at %.6g C%s\n", f.name, vl_db_path(db),
+             f.viscosity_pa_s, f.tref_c,
+             f.law.kind != VL_VISCOSITY_LAW_NONE ? ", with a Vogel viscosity law" : "");
       rc = 0;
     }
   }

@@ -26,6 +26,8 @@ typedef struct {
   const char *flow_factors;
   int json;
   int plot;
+  int have_temperature; /* --temperature: compound (WLF) and fluid (its law) at temperature_c */
+  double temperature_c;
 } conditions;
 
 /* The strict decimal syntax of every numeric option and CSV cell
@@ -83,11 +85,45 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
     return 1;
   }
   if (!strcmp(o, "--temperature")) {
-    fprintf(stderr, "viscolube %s: --temperature is not available in this version (reference "
-                    "temperatures only)\n", cmd);
-    return -1;
+    if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || d < -273.15) {
+      fprintf(stderr, "viscolube %s: option --temperature needs a temperature in C (got '%s')\n",
+              cmd, v ? v : "");
+      return -1;
+    }
+    c->have_temperature = 1;
+    c->temperature_c = d;
+    (*i)++;
+    return 1;
   }
   return 0;
+}
+
+/* The viscosity the run uses: the stored one, or with --temperature the
+ * fluid's law at that temperature (fluid.h; the same call the simulation
+ * makes, so both agree exactly). */
+static vl_status fluid_eta(vl_db *db, const conditions *c, double *eta, vl_error *err) {
+  if (!c->have_temperature) return vl_db_fluid_get(db, c->fluid, eta, err);
+  vl_db_fluid f;
+  vl_status st = vl_db_fluid_info(db, c->fluid, &f, err);
+  if (st == VL_OK) st = vl_fluid_viscosity(&f.law, f.viscosity_pa_s, f.tref_c, c->temperature_c,
+                                           eta, err);
+  if (st == VL_EINPUT)
+    vl_error_prefix(err, "--temperature %g: fluid '%s'", c->temperature_c, c->fluid);
+  return st;
+}
+
+/* With --temperature: VL_OK if compound can be taken there (WLF constants,
+ * above the WLF singularity), checked before anything is computed so the
+ * message names the option. Without: VL_OK. */
+static vl_status compound_at(vl_db *db, const conditions *c, const char *compound, vl_error *err) {
+  if (!c->have_temperature) return VL_OK;
+  vl_db_compound info;
+  vl_prony shifted;
+  double a_T;
+  vl_status st = vl_db_compound_info(db, compound, &info, err);
+  if (st == VL_OK) st = vl_compound_at_temperature(&info, c->temperature_c, &shifted, &a_T, err);
+  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature %g", c->temperature_c);
+  return st;
 }
 
 /* A wet rough scene for compound at the given conditions. */
@@ -117,6 +153,10 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
   sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
   sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
   sc->quantity = VL_SWEEP_V0_ETA;
+  if (c->have_temperature) {
+    sc->effects.temperature = true;
+    sc->effects.temperature_c = c->temperature_c;
+  }
   return 1;
 }
 
@@ -129,7 +169,8 @@ static int need(const char *cmd, const char *what, const void *value) {
 static void friction_usage(FILE *out) {
   fputs("usage: viscolube friction --compound C --surface S --fluid F --speed V_M_S\n"
         "                          [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
-        "                          [--flow-factors smooth|patir-cheng] [--grid N] [--json]\n"
+        "                          [--flow-factors smooth|patir-cheng] [--grid N]\n"
+        "                          [--temperature C] [--json]\n"
         "\n"
         "Friction of one operating point: a smooth rigid cylinder (radius, load per unit\n"
         "length) sliding at V on the stored compound with the stored rough surface in the\n"
@@ -137,13 +178,18 @@ static void friction_usage(FILE *out) {
         "the minimum separation, the share of the load carried by solid contact and the\n"
         "regime. The point is reached by continuation in speed from the boundary regime\n"
         "(v0 eta = 1e-12 Pa m) when a direct solve does not converge.\n"
+        "--temperature C takes the compound to C by its WLF constants (every Prony time\n"
+        "times a_T) and the fluid's viscosity to C by its stored law (`viscolube fluid\n"
+        "show`); without it both are at their reference temperatures. A compound without\n"
+        "WLF constants or a fluid without a law (other than at its reference\n"
+        "temperature) is refused. The output states the temperature, a_T and viscosity.\n"
         "Defaults (the seed's real-rubber scenes): --load 117, --radius 0.001,\n"
         "--sigma-s 1e6, --flow-factors patir-cheng, --grid 256.\n",
         out);
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0, 0};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0, 0, 0, NAN};
   const char *compound = NULL;
   double speed = 0.0;
   int have_speed = 0;
@@ -178,7 +224,8 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
   vl_simulation *sim = NULL;
   vl_status st = vl_db_open(g->db_path, &db, &err);
   double eta = 0.0;
-  if (st == VL_OK) st = vl_db_fluid_get(db, c.fluid, &eta, &err);
+  if (st == VL_OK) st = compound_at(db, &c, compound, &err);
+  if (st == VL_OK) st = fluid_eta(db, &c, &eta, &err);
   vl_point pt = {0};
   vl_sweep_stats stats = {0};
   /* first a direct solve from the Hertz guess; if it fails, continuation
@@ -214,12 +261,32 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
     const vl_psd *psd = vl_simulation_psd(sim);
     double hrms = psd ? psd->hrms_m : 0.0;
     vl_curve_meta meta = {eta, 0.0, vl_contact_a0(vl_simulation_contact(sim))};
-    if (c.json) {
+    if (c.json && c.have_temperature) {
+      /* the point's object with the temperature, shift and viscosity first */
+      char *obj = NULL;
+      size_t len = 0;
+      FILE *m = open_memstream(&obj, &len);
+      if (m) {
+        vl_print_point_json(m, &pt, &meta);
+        fclose(m);
+      }
+      if (!m || !obj) {
+        fprintf(stderr, "viscolube friction: out of memory\n");
+        rc = vl_status_exit_code(VL_ENOMEM);
+      } else {
+        printf("{\"temperature_c\": %.10g, \"a_T\": %.10g, \"eta_pa_s\": %.10g, %s\n",
+               c.temperature_c, vl_simulation_shift_factor(sim), eta, obj + 1);
+      }
+      free(obj);
+    } else if (c.json) {
       vl_print_point_json(stdout, &pt, &meta);
       fputc('\n', stdout);
     } else if (pt.converged) {
       printf("%s on %s in %s at v0 = %g m/s (v0 eta = %g Pa m), R = %g m, fN = %g N/m\n",
              compound, c.surface, c.fluid, speed, speed * eta, c.radius, c.load);
+      if (c.have_temperature)
+        printf("  at %g C: compound times x a_T = %.4g (WLF), fluid viscosity %.4g Pa s\n",
+               c.temperature_c, vl_simulation_shift_factor(sim), eta);
       printf("  mu      = %.5g\n  mu_Rc   = %.5g   (hysteresis under the solid contact)\n"
              "  mu_Rf   = %.5g   (asymmetry of the fluid pressure)\n"
              "  mu_Sc   = %.5g   (shear in the real contact area)\n"
@@ -247,7 +314,7 @@ static void compare_usage(FILE *out) {
         "                         [--from V0ETA] [--to V0ETA] [--points N] [--out DIR]\n"
         "                         [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
         "                         [--flow-factors smooth|patir-cheng] [--grid N] [--json]\n"
-        "                         [--plot]\n"
+        "                         [--plot] [--temperature C]\n"
         "\n"
         "Stribeck curves (mu vs v0*eta, Pa m) of several compounds on one surface in one\n"
         "fluid, side by side: mu and u_min/h_rms per compound. Writes DIR/compare.csv\n"
@@ -255,12 +322,15 @@ static void compare_usage(FILE *out) {
         "per compound) and DIR/<compound>/curve.csv. DIR defaults to out/compare.\n"
         "With --plot also DIR/compare-mu.{png,svg} and DIR/compare-umin.{png,svg}: the\n"
         "compounds' curves on one axis.\n"
+        "--temperature C: every compound and the fluid at C, as for `viscolube friction`\n"
+        "(v0*eta then uses the fluid's viscosity at C); compare.csv gets the columns\n"
+        "temperature_c and eta_pa_s, the JSON the keys of the same names.\n"
         "Defaults: --from 1e-12 --to 0.1 --points 45, and those of `viscolube friction`.\n",
         out);
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0, 0};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0, 0, 0, NAN};
   char list[MAX_COMPOUNDS * 128] = "";
   char *names[MAX_COMPOUNDS];
   size_t nc = 0;
@@ -320,6 +390,9 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
     vl_prony probe;
     st = vl_db_compound_get(db, names[k], &probe, &err);
   }
+  /* and, with --temperature, be usable there (WLF constants, fluid law) */
+  for (size_t k = 0; st == VL_OK && k < nc; k++) st = compound_at(db, &c, names[k], &err);
+  if (st == VL_OK && c.have_temperature) st = fluid_eta(db, &c, &eta, &err);
   if (st == VL_OK && vl_cli_make_dirs(out_dir) != 0) {
     vl_error_set(&err, "%s: cannot create: %s", out_dir, strerror(errno));
     st = VL_EIO;
@@ -368,13 +441,22 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   for (size_t k = 0; k < nc; k++)
     fprintf(f, ",mu_%s,mu_Rc_%s,mu_Rf_%s,mu_Sc_%s,mu_Sf_%s,u_min_over_hrms_%s,converged_%s",
             names[k], names[k], names[k], names[k], names[k], names[k], names[k]);
+  /* with --temperature the rows say at which temperature and viscosity
+   * (appended: the columns of a reference-temperature run are unchanged) */
+  if (c.have_temperature) fputs(",temperature_c,eta_pa_s", f);
   fputc('\n', f);
   if (!c.json) {
+    if (c.have_temperature)
+      printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", c.temperature_c,
+             eta);
     printf("%12s", "v0_eta_pa_m");
     for (size_t k = 0; k < nc; k++) printf(" %14.14s %14s", names[k], "u_min/h_rms");
     printf("\n");
   } else {
-    printf("{\"v0_eta_pa_m\": [");
+    printf("{");
+    if (c.have_temperature)
+      printf("\"temperature_c\": %.10g, \"eta_pa_s\": %.10g, ", c.temperature_c, eta);
+    printf("\"v0_eta_pa_m\": [");
     for (size_t i = 0; i < n; i++) printf("%s%.6g", i ? ", " : "", pts[i].v0_m_s * eta);
     printf("]");
   }
@@ -393,6 +475,7 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
         if (!c.json) printf(" %14s %14s", "-", "-");
       }
     }
+    if (c.have_temperature) fprintf(f, ",%.10g,%.10g", c.temperature_c, eta);
     fputc('\n', f);
     if (!c.json) printf("\n");
   }
