@@ -115,7 +115,8 @@ static void test_friction_bad_input(void **state) {
 }
 
 /* Seed Figs. 15-17: the unfilled rubber has larger friction than the filled
- * one over (almost) all speeds. Coarse (grid 96, 7 points over 10 decades)
+ * one over (almost) all speeds, and the filled one's u_min/h_rms grows
+ * monotonically with speed. Coarse (grid 96, 7 points over 10 decades)
  * but every point must converge; smooth flow factors (see the cases). */
 static void test_compare_filled_unfilled(void **state) {
   (void)state;
@@ -134,6 +135,7 @@ static void test_compare_filled_unfilled(void **state) {
   assert_non_null(strstr(csv, "v0_eta_pa_m,mu_sbr-unfilled,"));
   /* rows: v0eta, then 7 columns per compound */
   int rows = 0, above = 0;
+  double filled_umin_before = 0.0;
   char *line = strchr(csv, '\n');
   while (line && line[1]) {
     double v[15];
@@ -145,6 +147,9 @@ static void test_compare_filled_unfilled(void **state) {
     assert_true(v[7] == 1.0 && v[14] == 1.0); /* converged */
     rows++;
     if (v[1] > v[8]) above++;
+    /* Seed Fig. 16: the filled rubber's u_min/h_rms grows monotonically */
+    assert_true(v[13] > filled_umin_before);
+    filled_umin_before = v[13];
     line = strchr(line + 1, '\n');
   }
   printf("  unfilled above filled at %d of %d speeds\n", above, rows);
