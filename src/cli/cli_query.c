@@ -141,7 +141,7 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
   sc->effects.roughness = true;
   sc->effects.fluid = true;
   sc->effects.solid_shear = c->sigma_s > 0.0;
-  sc->effects.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
+  sc->effects.flow_factors = VL_FLOW_FACTORS_SMOOTH;
   if (c->flow_factors) {
     vl_error err;
     if (vl_flow_factors_parse(c->flow_factors, &sc->effects.flow_factors, &err) != VL_OK) {
@@ -184,7 +184,8 @@ static void friction_usage(FILE *out) {
         "WLF constants or a fluid without a law (other than at its reference\n"
         "temperature) is refused. The output states the temperature, a_T and viscosity.\n"
         "Defaults (the seed's real-rubber scenes): --load 117, --radius 0.001,\n"
-        "--sigma-s 1e6, --flow-factors patir-cheng, --grid 256.\n",
+        "--sigma-s 1e6, --flow-factors smooth (Patir-Cheng fails below\n"
+        "u ~ 0.3 h_rms: README, Known limitations), --grid 256.\n",
         out);
 }
 
