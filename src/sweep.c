@@ -44,6 +44,17 @@ vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_s
   for (size_t i = 0; i < n; i++) {
     vl_error e;
     vl_status s = reach(c, last_ok, v0_m_s[i], 0, opt->max_subdivisions, &out[i], &st, &e);
+    if (s == VL_ENOCONV) {
+      /* continuation can lose the branch where the solution changes fast (a
+       * stiff rubber through its transition: 7 consecutive dry points failed
+       * at Einf/E0 = 1e4 that a start from Hertz solves); the contact then
+       * holds the last converged state, which the fresh start gives up */
+      vl_contact_reset(c);
+      st.fresh_starts++;
+      s = vl_contact_solve(c, v0_m_s[i], &out[i], &e);
+      st.newton_iterations += out[i].iterations;
+      if (s == VL_ENOCONV) last_ok = 0.0; /* the state is the Hertz guess now */
+    }
     if (s == VL_OK) {
       st.converged++;
       last_ok = v0_m_s[i];

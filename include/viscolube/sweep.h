@@ -20,6 +20,7 @@ typedef struct {
   size_t converged, failed;
   long newton_iterations;  /* all solves, including sub-steps */
   size_t substeps;         /* extra solves inserted by step control */
+  size_t fresh_starts;     /* points retried from the Hertz guess after continuation failed */
   double seconds;
 } vl_sweep_stats;
 
@@ -27,9 +28,10 @@ void vl_sweep_options_defaults(vl_sweep_options *opt);
 
 /* Solves at v0[0..n-1] in order (increasing speed recommended), each from the
  * previous converged solution. A failed step is retried through
- * geometrically spaced intermediate speeds (step halving in log v0); a point
- * that still fails is reported with converged = false, the state goes back
- * to the last converged solution and the sweep goes on. out[n] is filled.
+ * geometrically spaced intermediate speeds (step halving in log v0), then
+ * once from the Hertz guess (vl_contact_reset); a point that still fails is
+ * reported with converged = false and the sweep goes on from the Hertz
+ * guess. out[n] is filled.
  * Returns VL_OK even when some points failed (see stats); errors only for
  * bad input. */
 vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_sweep_options *opt,
