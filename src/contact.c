@@ -64,6 +64,8 @@ struct vl_contact {
   double *g, *dg, *cf, *dcf; /* conductance u^3 phi_p and Couette film u + h phi_s, /us^3, /us */
   double *Jf;         /* face fluxes, n + 1 */
   double *D;          /* rough: elasticity residual U - G */
+  double *sf, *dsf;   /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
+                       * NULL when off */
   double *theta;      /* film fraction (report only) */
   vl_contact *coarse; /* smooth wet: half-size grid for fresh starts (NULL when small) */
   bool no_fallback;   /* inside the viscosity-continuation fallback of a fresh start */
@@ -196,12 +198,52 @@ static double face_g(const vl_contact *c, size_t f, double *dl, double *dr) {
   return 2.0 * gl * gr / s;
 }
 
+/* Viscous flattening (seed Appendix C) replaces the surface's PSD C(q) by
+ * eps C(q), eps = epsilon_f(u, v0) at the node's separation u. In Persson's
+ * theory (MODEL.md section 4, seed Eq. 8) that is an exact rescaling:
+ *   w(q) = (pi \int^q q'^3 eps C dq')^(-1/2) = eps^(-1/2) w(q), so
+ *   u_eps(p) = (sqrt(pi)/2) \int dq q^2 (eps C)(eps^(-1/2) w) E1((eps^(-1/2) w p/|Er|)^2)
+ *            = sqrt(eps) u(p/sqrt(eps)),
+ * i.e. with s = sqrt(eps) the pressure at separation u is
+ *   p_eps(u) = s p(u/s),
+ * and G = (pi/4)|Er|^2 \int q^3 C dq scales as eps, so
+ *   A_eps/A0 (p) = erf(p/(2 sqrt(eps G))) = A/A0 (p/s) = A/A0 (p(u/s)):
+ * the area of the unflattened surface at separation u/s. The flow factors
+ * see h_rms^2 -> eps h_rms^2, i.e. h_rms -> s h_rms. eps depends on u only
+ * (at a fixed speed), so the chain rule through ds/du adds to the diagonal
+ * d/du terms of pc and of the node's flow quantities: no new coupling (the
+ * Reynolds rows' pf block stays tridiagonal). Off: s = 1, ds/du = 0. */
+static double flat_scale(const vl_contact *c, double u_m, double *ds_du) {
+  *ds_du = 0.0;
+  if (!c->cfg.flattening) return 1.0;
+  double de, e = vl_flattening_eps(c->cfg.flattening, u_m, &de);
+  if (!(e > 0.0)) return 0.0; /* u <= 0: every wavelength flattened */
+  double s = sqrt(e);
+  *ds_du = 0.5 * de / s;
+  return s;
+}
+
 /* Everything the residual needs from the unknowns y: contact pressure P (and
  * dP/dU), fluid pressure F, separation U, flow quantities and face fluxes. */
 static void eval_state(vl_contact *c, const double *y) {
   size_t n = c->n;
   double h0 = y[c->ih];
-  if (c->rough) {
+  if (c->rough && c->sf) {
+    /* flattened: P = sfac s p(u/s) (flat_scale), dP/du = sfac (s' p + p' (1 - u s'/s));
+     * s -> 0 (u -> 0+) sends u/s -> inf and P -> 0 smoothly */
+    for (size_t i = 0; i < n; i++) {
+      double u = y[i] * c->uscale, ds, s = flat_scale(c, u, &ds);
+      double v = s > 0.0 ? u / s : INFINITY;
+      c->sf[i] = s, c->dsf[i] = ds;
+      if (isfinite(v)) {
+        double dp, p = vl_persson_pressure(c->cfg.roughness, v, &dp);
+        c->P[i] = c->sfac * s * p;
+        c->dPdU[i] = c->sfac * (ds * p + dp * (1.0 - u * ds / s)) * c->uscale;
+      } else {
+        c->P[i] = 0.0, c->dPdU[i] = 0.0;
+      }
+    }
+  } else if (c->rough) {
     for (size_t i = 0; i < n; i++) {
       double dsdu;
       double s = vl_persson_pressure(c->cfg.roughness, y[i] * c->uscale, &dsdu);
@@ -241,6 +283,29 @@ static void eval_state(vl_contact *c, const double *y) {
                                                           * factors extend to u <= 0 smoothly */
     double u = (c->rough ? c->U[i] : fmax(c->U[i], 0.0)) * us;
     vl_flow_factor_values v, d;
+    if (c->sf) {
+      /* flattened: h = s h_rms. The factors are functions of u/h only (u
+       * clamped at 0 as vl_flow_factors_eval does), so d/dh = -(u/h) d/du and
+       * the total d/du is the partial one times k = 1 - u s'/s */
+      double h = c->hrms * c->sf[i], dh = c->hrms * c->dsf[i];
+      vl_flow_factors_eval(c->cfg.flow_factors, u, h, &v, &d);
+      if (!(h > 0.0)) {
+        /* u <= 0: fully flattened, a closed smooth film (the limit u -> 0+,
+         * where u/h -> inf); no negative conductance */
+        double up = fmax(u, 0.0);
+        c->g[i] = up * up * up / (us * us * us) + floor_g;
+        c->dg[i] = 3.0 * up * up / (us * us);
+        c->cf[i] = u / us;
+        c->dcf[i] = 1.0;
+        continue;
+      }
+      double k = 1.0 - fmax(u, 0.0) * c->dsf[i] / c->sf[i], u3 = u * u * u;
+      c->g[i] = u3 * v.phi_p / (us * us * us) + floor_g;
+      c->dg[i] = (3.0 * u * u * v.phi_p + u3 * k * d.phi_p) / (us * us);
+      c->cf[i] = (u + h * v.phi_s) / us;
+      c->dcf[i] = 1.0 + dh * v.phi_s + h * k * d.phi_s;
+      continue;
+    }
     vl_flow_factors_eval(c->cfg.flow_factors, u, c->hrms, &v, &d);
     double u3 = u * u * u;
     c->g[i] = u3 * v.phi_p / (us * us * us) + floor_g;
@@ -541,6 +606,8 @@ static void contact_set_speed(vl_contact *c, double v0) {
   vl_asperity_state(&c->cfg.rubber, c->cfg.load_n_per_m, c->cfg.radius_m, v0, &c->e_abs, &c->a_h,
                     &c->omega_h);
   c->sfac = c->e_abs / c->p0;
+  /* v0 was validated (finite): set_speed cannot fail */
+  if (c->cfg.flattening) vl_flattening_set_speed(c->cfg.flattening, v0, NULL);
   size_t nt = c->cfg.rubber.n_terms;
   if (nt == 0 && c->kernel_ready) return; /* elastic: one kernel for all speeds */
   double t0 = now_s();
@@ -641,6 +708,29 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
     vl_error_set(err, "viscosity must be >= 0 (got %g Pa s)", cfg->eta_pa_s);
     return VL_EINPUT;
   }
+  if (cfg->flattening) {
+    /* epsilon_f modulates the roughness by the film's pressure: nothing to
+     * flatten on a smooth surface, no film in a dry contact */
+    if (!cfg->roughness || !(cfg->eta_pa_s > 0.0)) {
+      vl_error_set(err, "viscous flattening needs %s",
+                   !cfg->roughness ? "a rough surface (roughness = NULL: smooth contact)"
+                                   : "a fluid (eta > 0: the contact is dry)");
+      return VL_EINPUT;
+    }
+    vl_flattening_state fs;
+    vl_flattening_state_get(cfg->flattening, &fs);
+    double h_table = vl_persson_hrms(cfg->roughness);
+    if (!(fabs(fs.hrms_m - h_table) <= 1e-9 * h_table)) {
+      vl_error_set(err,
+                   "viscous flattening was built for a surface of h_rms %g m, the roughness "
+                   "table has %g m: both must come from the same PSD",
+                   fs.hrms_m, h_table);
+      return VL_EINPUT;
+    }
+    /* the contact's viscosity is the one that counts */
+    st = vl_flattening_set_viscosity(cfg->flattening, cfg->eta_pa_s, err);
+    if (st != VL_OK) return st;
+  }
   vl_contact *c = calloc(1, sizeof *c);
   if (!c) goto nomem;
   c->cfg = *cfg;
@@ -685,6 +775,12 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   if (!c->xi || !c->A || !c->beta || !c->M || !c->P || !c->U || !c->dPdU || !c->F || !c->D || !c->theta ||
       !c->g || !c->Jf || !c->rw)
     goto nomem;
+  if (cfg->flattening) {
+    c->sf = malloc(2 * n * sizeof *c->sf);
+    if (!c->sf) goto nomem;
+    c->dsf = c->sf + n;
+    for (size_t i = 0; i < n; i++) c->sf[i] = 1.0, c->dsf[i] = 0.0;
+  }
   c->dg = c->g + n;
   c->cf = c->g + 2 * n;
   c->dcf = c->g + 3 * n;
@@ -795,6 +891,7 @@ void vl_contact_free(vl_contact *c) {
   free(c->g);
   free(c->Jf);
   free(c->rw);
+  free(c->sf);
   free(c);
 }
 
@@ -837,6 +934,15 @@ static void film_fraction(const vl_contact *c, const double *y, double *theta) {
   }
 }
 
+/* Real contact area ratio of node i (needs eval_state). Rough: Persson's
+ * A/A0 at pc/|Er|; flattened (flat_scale) at pc/(|Er| s), the unflattened
+ * surface's area at separation u/s (0 where s = 0: no contact pressure). */
+static double area_at(const vl_contact *c, size_t i) {
+  if (!c->rough) return c->P[i] > 1e-9 ? 1.0 : 0.0;
+  double s = c->sf ? c->sf[i] : 1.0;
+  return s > 0.0 ? vl_persson_area_ratio(c->cfg.roughness, c->P[i] / (c->sfac * s), NULL) : 0.0;
+}
+
 /* Fills the derived quantities of pt from the current state. */
 static void contact_report(vl_contact *c, vl_point *pt) {
   size_t n = c->n;
@@ -849,13 +955,15 @@ static void contact_report(vl_contact *c, vl_point *pt) {
   size_t imax = 0, iumin = 0;
   double *theta = c->theta;
   if (c->wet) film_fraction(c, y, theta);
+  pt->eps_f_min = c->sf ? INFINITY : 1.0;
+  if (c->sf)
+    for (size_t i = 0; i < n; i++) pt->eps_f_min = fmin(pt->eps_f_min, c->sf[i] * c->sf[i]);
   for (size_t i = 0; i < n; i++) {
     double pc = c->P[i] * c->p0, pf = c->F[i] * c->p0, x = c->xi[i] * c->a0;
     sum_pcx += pc * x * dx;
     sum_pfx += pf * x * dx;
     sum_pf += pf * dx;
-    double area = c->rough ? vl_persson_area_ratio(cfg->roughness, c->P[i] / c->sfac, NULL)
-                           : (c->P[i] > 1e-9 ? 1.0 : 0.0);
+    double area = area_at(c, i);
     sum_area += area * dx;
     if (pc + pf > pmax) pmax = pc + pf, imax = i;
     pfmax = fmax(pfmax, pf);
@@ -863,7 +971,8 @@ static void contact_report(vl_contact *c, vl_point *pt) {
     if (c->wet) {
       double u = fmax(c->U[i], 0.0) * c->uscale;
       vl_flow_factor_values v;
-      vl_flow_factors_eval(cfg->flow_factors, u, c->hrms, &v, NULL);
+      /* flattened: the factors of h_rms s (as in eval_state) */
+      vl_flow_factors_eval(cfg->flow_factors, u, c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
       /* node gradient: mean of the two face gradients (pf = 0 beyond the ends) */
       double left = i > 0 ? (c->F[i] - c->F[i - 1]) / dx : c->F[i] / (0.5 * dx);
       double right = i + 1 < n ? (c->F[i + 1] - c->F[i]) / dx : -c->F[i] / (0.5 * dx);
@@ -1229,6 +1338,8 @@ vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err
   }
   if (c->q_rolling > 0.0) c->q_rolling *= eta_pa_s / c->cfg.eta_pa_s; /* Q ~ eta */
   c->cfg.eta_pa_s = eta_pa_s;
+  /* epsilon_f depends on eta v0: its table is rebuilt (eta validated above) */
+  if (c->cfg.flattening) vl_flattening_set_viscosity(c->cfg.flattening, eta_pa_s, NULL);
   if (c->coarse) vl_contact_set_viscosity(c->coarse, eta_pa_s, NULL);
   return VL_OK;
 }
@@ -1282,13 +1393,15 @@ void vl_contact_fields(const vl_contact *c, vl_fields *f) {
     f->p_c_pa[i] = c->P[i] * c->p0;
     f->p_f_pa[i] = c->F[i] * c->p0;
     f->u_m[i] = fmax(c->U[i], 0.0) * c->uscale;
-    f->area_ratio[i] = c->rough ? vl_persson_area_ratio(c->cfg.roughness, c->P[i] / c->sfac, NULL)
-                                : (c->P[i] > 1e-9 ? 1.0 : 0.0);
+    f->area_ratio[i] = area_at(c, i);
     if (f->film_fraction) f->film_fraction[i] = c->wet ? theta[i] : 1.0;
   }
 }
 
-double vl_contact_jacobian_check(vl_contact *c, double v0_m_s) {
+/* The finite-difference comparison of vl_contact_jacobian_check, per block
+ * of rows (contact, Reynolds, load): max |J_fd - J| in worst[b], max |J| in
+ * scale[b]. Returns false on allocation failure. */
+static bool jacobian_compare(vl_contact *c, double v0_m_s, double worst[3], double scale[3]) {
   contact_set_speed(c, v0_m_s);
   size_t m = c->nunk;
   SUNMatrix J = SUNDenseMatrix((sunindextype)m, (sunindextype)m, c->ctx);
@@ -1298,11 +1411,14 @@ double vl_contact_jacobian_check(vl_contact *c, double v0_m_s) {
     if (yp) N_VDestroy(yp);
     if (fp) N_VDestroy(fp);
     if (fm) N_VDestroy(fm);
-    return -1.0;
+    return false;
   }
   jacobian_fn(c->y, c->fwork, J, c, NULL, NULL);
-  double *Jd = SUNDenseMatrix_Data(J), jmax = 0.0, dmax = 0.0;
-  for (size_t k = 0; k < m * m; k++) jmax = fmax(jmax, fabs(Jd[k]));
+  double *Jd = SUNDenseMatrix_Data(J);
+  for (int b = 0; b < 3; b++) worst[b] = scale[b] = 0.0;
+#define BLOCK(i) ((i) < c->nc ? 0 : (i) < c->ih ? 1 : 2)
+  for (size_t j = 0; j < m; j++)
+    for (size_t i = 0; i < m; i++) scale[BLOCK(i)] = fmax(scale[BLOCK(i)], fabs(Jd[j * m + i]));
   double *y = N_VGetArrayPointer(yp);
   for (size_t j = 0; j < m; j++) {
     N_VScale(1.0, c->y, yp);
@@ -1313,13 +1429,31 @@ double vl_contact_jacobian_check(vl_contact *c, double v0_m_s) {
     residual_fn(yp, fm, c);
     const double *a = N_VGetArrayPointer(fp), *b = N_VGetArrayPointer(fm);
     for (size_t i = 0; i < m; i++)
-      dmax = fmax(dmax, fabs((a[i] - b[i]) / (2.0 * h) - Jd[j * m + i]));
+      worst[BLOCK(i)] = fmax(worst[BLOCK(i)], fabs((a[i] - b[i]) / (2.0 * h) - Jd[j * m + i]));
   }
+#undef BLOCK
   SUNMatDestroy(J);
   N_VDestroy(yp);
   N_VDestroy(fp);
   N_VDestroy(fm);
-  return dmax / jmax;
+  return true;
+}
+
+double vl_contact_jacobian_check(vl_contact *c, double v0_m_s) {
+  double worst[3], scale[3];
+  if (!jacobian_compare(c, v0_m_s, worst, scale)) return -1.0;
+  return fmax(worst[0], fmax(worst[1], worst[2])) / fmax(scale[0], fmax(scale[1], scale[2]));
+}
+
+double vl_contact_jacobian_check_blocks(vl_contact *c, double v0_m_s, double rel[3]) {
+  double worst[3], scale[3];
+  if (!jacobian_compare(c, v0_m_s, worst, scale)) return -1.0;
+  double r = 0.0;
+  for (int b = 0; b < 3; b++) {
+    rel[b] = scale[b] > 0.0 ? worst[b] / scale[b] : 0.0;
+    r = fmax(r, rel[b]);
+  }
+  return r;
 }
 
 size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap) {

@@ -9,7 +9,7 @@
 const char *const vl_curve_columns[] = {
     "v0_m_s", "v0_eta_pa_m", "deborah", "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf", "u_min_m",
     "u_central_m", "contact_width_m", "fluid_load_fraction", "regime", "E_wH_pa", "a_H_m", "Q",
-    "x_centroid_m", "load_error", "converged", "iterations", "residual", "warnings", NULL};
+    "x_centroid_m", "load_error", "converged", "iterations", "residual", "eps_f_min", "warnings", NULL};
 
 /* -0 (a sum of zeros with a minus sign, e.g. mu_Rf of a dry contact) is
  * written as 0: readers compare text, and "-0" looks like a sign. */
@@ -47,6 +47,7 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->load_error, ok);
     fprintf(out, ",%d,%ld", p->converged ? 1 : 0, p->iterations);
     cell(out, p->residual, 1);
+    cell(out, p->eps_f_min, ok); /* viscous flattening: 1 when off */
     /* warnings never contain commas or quotes (contact.c writes them) */
     fprintf(out, ",%s\n", p->warnings);
   }
@@ -123,6 +124,7 @@ void vl_print_point_json(FILE *out, const vl_point *p, const vl_curve_meta *meta
   jnum(out, "load_error", p->load_error, ok, 1);
   fprintf(out, "\"converged\": %s, \"iterations\": %ld, ", ok ? "true" : "false", p->iterations);
   jnum(out, "residual", p->residual, 1, 1);
+  jnum(out, "eps_f_min", p->eps_f_min, ok, 1);
   fprintf(out, "\"warnings\": \"%s\"}", p->warnings);
 }
 

@@ -485,9 +485,12 @@ static vl_status scene_check(parse_state *ps) {
       return check_fail(ps, K_FIELDS_AT, "%g lies outside [from, to] = [%g, %g]", sc->fields_at[i],
                         sc->from, sc->to);
   }
-  /* Effects of later issues: refuse rather than silently ignore them. */
-  if (sc->effects.viscous_flattening)
-    return check_fail(ps, K_VISCOUS_FLATTENING, "on is not available in this version");
+  /* viscous flattening reduces the roughness by the film's pressure
+   * (seed Appendix C): it needs both */
+  if (sc->effects.viscous_flattening && !sc->effects.roughness)
+    return check_fail(ps, K_VISCOUS_FLATTENING, "on needs [effects] roughness = on");
+  if (sc->effects.viscous_flattening && !sc->effects.fluid)
+    return check_fail(ps, K_VISCOUS_FLATTENING, "on needs [effects] fluid = on");
   /* the temperature effect shifts the compound (WLF) and the fluid (its
    * viscosity law) to one stated temperature: there is no default */
   if (sc->effects.temperature && !ps->key_line[K_TEMPERATURE_C])

@@ -1,6 +1,8 @@
 /* Scene -> solver (simulation.h). */
 #include "viscolube/simulation.h"
 
+#include "viscolube/flattening.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +13,7 @@ struct vl_simulation {
   bool have_psd;
   vl_psd psd;
   vl_persson *table;
+  vl_flattening *flattening; /* [effects] viscous_flattening = on, else NULL */
   double eta_pa_s;
   double temperature_c; /* [effects] temperature: the scene's; NAN when off */
   double a_T;           /* WLF shift applied to the compound's times (1 when off) */
@@ -214,6 +217,24 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.x_max_a0 = scene->domain_max_a0;
   cfg.tolerance = scene->tolerance;
   cfg.linear_solver = scene->linear_solver;
+  if (scene->effects.viscous_flattening) {
+    /* epsilon_f of the rubber the contact uses (elastic or at the scene's
+     * temperature), the surface, the contact's load and radius (aH, so wH)
+     * and the fluid at the scene's temperature; the scene parser has made
+     * sure roughness and fluid are on */
+    vl_flattening_config fc;
+    vl_flattening_config_defaults(&fc);
+    fc.rubber = cfg.rubber;
+    fc.load_n_per_m = cfg.load_n_per_m;
+    fc.radius_m = cfg.radius_m;
+    fc.eta_pa_s = cfg.eta_pa_s;
+    st = vl_flattening_create(&fc, &sim->psd, &sim->flattening, err);
+    if (st != VL_OK) {
+      vl_error_prefix(err, "%s: [effects] viscous_flattening", scene->path);
+      goto fail;
+    }
+    cfg.flattening = sim->flattening;
+  }
   st = vl_contact_create(&cfg, &sim->contact, err);
   if (st != VL_OK) {
     vl_error_prefix(err, "%s", scene->path);
@@ -231,6 +252,7 @@ fail:
 void vl_simulation_free(vl_simulation *sim) {
   if (!sim) return;
   vl_contact_free(sim->contact);
+  vl_flattening_free(sim->flattening); /* after the contact that uses it */
   vl_persson_free(sim->table);
   if (sim->have_psd) vl_psd_free(&sim->psd);
   free(sim->v0);

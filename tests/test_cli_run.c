@@ -47,7 +47,7 @@ static const char *const COLUMNS[] = {
     "mu_Rf",    "mu_Sc",         "mu_Sf",       "u_min_m",   "u_central_m",
     "contact_width_m", "fluid_load_fraction", "regime", "E_wH_pa", "a_H_m",
     "Q",        "x_centroid_m",  "load_error",  "converged", "iterations",
-    "residual", "warnings"};
+    "residual", "eps_f_min", "warnings"};
 #define NCOL (sizeof COLUMNS / sizeof COLUMNS[0])
 static const char *const FIELD_COLUMNS =
     "x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction";
@@ -238,6 +238,7 @@ static void check_curve(const csv_table *t, size_t rows) {
     /* dry: no fluid at all */
     assert_true(num(t, r, "mu_Rf") == 0.0 && num(t, r, "mu_Sf") == 0.0);
     assert_true(num(t, r, "fluid_load_fraction") == 0.0);
+    assert_true(num(t, r, "eps_f_min") == 1.0); /* no viscous flattening */
     assert_string_equal(t->cell[r][col_of("v0_eta_pa_m")], ""); /* no fluid named */
     if (r) assert_true(num(t, r, "v0_m_s") > num(t, r - 1, "v0_m_s"));
   }
@@ -418,7 +419,7 @@ static void test_json(void **state) {
   no_bad_numbers("JSON", out);
   for (size_t r = 0; r < t.rows; r++) {
     const char *keys[] = {"v0_m_s", "deborah", "mu", "mu_Rc", "mu_Rf", "x_centroid_m",
-                          "contact_width_m"};
+                          "contact_width_m", "eps_f_min"};
     for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
       if (json_get(out, keys[k], r) != num(&t, r, keys[k]))
         fail_msg("row %zu %s: JSON %.12g, CSV %.12g", r, keys[k], json_get(out, keys[k], r),

@@ -467,7 +467,7 @@ static void test_missing_required_keys(void **state) {
   parse_fails("; only a comment\n", 0, "missing required key", NULL);
 }
 
-/* Effects that need something else, and effects not available yet: the
+/* Effects that need something else: the
  * error names the line of the key that asks for too much. */
 static void test_inconsistent_effects(void **state) {
   (void)state;
@@ -489,8 +489,16 @@ static void test_inconsistent_effects(void **state) {
               17, "[effects] solid_shear", "sigma_s_pa > 0");
   parse_fails(edit(BASE, fx, "viscoelastic = on\nflow_factors = patir-cheng"), 16,
               "[effects] flow_factors", "roughness = on");
+  /* viscous flattening modulates the roughness by the film: needs both */
   parse_fails(edit(BASE, fx, "viscoelastic = on\nviscous_flattening = on"), 16,
-              "[effects] viscous_flattening", "not available");
+              "[effects] viscous_flattening", "roughness = on");
+  parse_fails(edit(edit(BASE, fx, "viscoelastic = on\nroughness = on\nviscous_flattening = on"),
+                   "compound = model-rubber", "compound = model-rubber\nsurface = s1"),
+              18, "[effects] viscous_flattening", "fluid = on");
+  parse_ok(edit(edit(BASE, fx, "viscoelastic = on\nroughness = on\nfluid = on\nviscous_flattening = on"),
+                "compound = model-rubber", "compound = model-rubber\nsurface = s1\nfluid = f1"));
+  assert_true(g_scene.effects.viscous_flattening && g_scene.effects.roughness &&
+              g_scene.effects.fluid);
   /* temperature = on needs the temperature; temperature_c alone is refused */
   parse_fails(edit(BASE, fx, "viscoelastic = on\ntemperature = on"), 16, "[effects] temperature",
               "needs [effects] temperature_c");

@@ -41,6 +41,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "viscolube/flattening.h"
 #include "viscolube/flow_factors.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
@@ -70,6 +71,19 @@ typedef struct {
   double tolerance;           /* scaled residual norm for convergence */
   int max_iterations;         /* Newton iterations per solve (0 = default 100) */
   vl_linear_solver linear_solver;
+  /* Viscous flattening of the asperities (seed Appendix C; NULL = off; not
+   * owned, must outlive the contact). The PSD both the contact and the
+   * flow factors see becomes epsilon_f(u, v0) C(q) at each node, u the local
+   * separation: pc(u) -> s pc(u/s), A/A0 at pc -> A/A0 at pc/s, h_rms ->
+   * s h_rms in the flow factors and the Couette film, s = sqrt(epsilon_f)
+   * (contact.c derives the scaling), with the chain rule through
+   * epsilon_f(u) in the Jacobian. Needs roughness and a fluid (eta > 0):
+   * vl_contact_create refuses it otherwise, and when its surface's h_rms
+   * differs from the roughness table's. Not const: the contact sets the
+   * evaluator's speed (vl_flattening_set_speed) at every new v0 and its
+   * viscosity at create and in vl_contact_set_viscosity, so one evaluator
+   * must not serve two contacts at once. */
+  vl_flattening *flattening;
 } vl_contact_config;
 
 /* Fills cfg with the defaults (grid 512, domain [-1.6, 1.4] a0, tolerance 1e-9,
@@ -98,6 +112,8 @@ typedef struct {
   double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
   double x_min_film_m;        /* where u is smallest (EHL constriction: outlet side, x > 0) */
   int regime;                 /* vl_regime */
+  double eps_f_min;           /* smallest epsilon_f(u) over the grid (viscous flattening);
+                               * 1 when the effect is off */
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
 } vl_point;
 
@@ -160,6 +176,14 @@ void vl_contact_fields(const vl_contact *c, vl_fields *f);
  * |J_fd - J| over all entries divided by the largest |J|, or a negative
  * value on allocation failure. Leaves the state unchanged. */
 double vl_contact_jacobian_check(vl_contact *c, double v0_m_s);
+
+/* Test aid: the same comparison per block of rows, each normalised by its
+ * own largest |J| (the global one is set by the Reynolds rows of a wet
+ * contact, which hides errors in the others): rel[0] the contact rows
+ * (elasticity or complementarity), rel[1] the Reynolds rows, rel[2] the
+ * load balance (0 for an empty block). Returns the largest, or a negative
+ * value on allocation failure. Leaves the state unchanged. */
+double vl_contact_jacobian_check_blocks(vl_contact *c, double v0_m_s, double rel[3]);
 
 /* Test aid: the fluid flux per unit length J (m^2/s) through the n + 1
  * cell faces of the current state, as discretised by the solver (face 0 is

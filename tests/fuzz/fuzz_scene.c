@@ -53,8 +53,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   FUZZ_CHECK(sc.quantity != VL_SWEEP_DEBORAH || sc.effects.viscoelastic,
              "deborah without viscoelasticity");
   FUZZ_CHECK(!sc.effects.solid_shear || sc.sigma_s_pa > 0.0, "solid shear without sigma_s");
-  FUZZ_CHECK(!sc.effects.viscous_flattening && !sc.effects.temperature,
-             "an unavailable effect was accepted");
+  FUZZ_CHECK(!sc.effects.viscous_flattening || (sc.effects.roughness && sc.effects.fluid),
+             "viscous flattening without roughness and fluid");
+  FUZZ_CHECK(!sc.effects.temperature || isfinite(sc.effects.temperature_c),
+             "temperature on without temperature_c");
   FUZZ_CHECK(sc.elastic != VL_ELASTIC_GIVEN ||
                  (isfinite(sc.elastic_modulus_pa) && sc.elastic_modulus_pa > 0.0),
              "elastic modulus %g", sc.elastic_modulus_pa);
