@@ -700,6 +700,35 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
                  cfg->x_max_a0);
     return VL_EINPUT;
   }
+  if (!(cfg->x_min_a0 < 0.0 && cfg->x_max_a0 > 0.0)) {
+    /* the contact forms around the cylinder's axis, x = 0 */
+    vl_error_set(err, "domain_a0 must contain the axis x = 0 (got %g, %g)", cfg->x_min_a0,
+                 cfg->x_max_a0);
+    return VL_EINPUT;
+  }
+  if ((unsigned)cfg->linear_solver > VL_LINSOL_SCHUR ||
+      (unsigned)cfg->flow_factors > VL_FLOW_FACTORS_PATIR_CHENG) {
+    vl_error_set(err, "unknown %s (%d)",
+                 (unsigned)cfg->linear_solver > VL_LINSOL_SCHUR ? "linear solver" : "flow factors",
+                 (unsigned)cfg->linear_solver > VL_LINSOL_SCHUR ? (int)cfg->linear_solver
+                                                                : (int)cfg->flow_factors);
+    return VL_EINPUT;
+  }
+  {
+    /* the scales of the dimensionless unknowns must exist in double precision
+     * (R = fN = 1e200 gave a0^2/R = inf and a NaN point reported converged) */
+    double er = vl_prony_e0(&cfg->rubber) * vl_prony_reduced_factor(&cfg->rubber);
+    double a0 = sqrt(4.0 * cfg->load_n_per_m * cfg->radius_m / (M_PI * er));
+    double p0 = 2.0 * cfg->load_n_per_m / (M_PI * a0), us = a0 * a0 / cfg->radius_m;
+    if (!(isfinite(a0) && a0 > 0.0 && isfinite(p0) && p0 > 0.0 && isfinite(us) && us > 0.0 &&
+          isfinite(a0 * cfg->x_min_a0) && isfinite(a0 * cfg->x_max_a0))) {
+      vl_error_set(err,
+                   "the contact's scales overflow: Hertz half-width %g m, peak pressure %g Pa, "
+                   "a0^2/R %g m (radius %g m, load %g N/m, reduced modulus %g Pa)",
+                   a0, p0, us, cfg->radius_m, cfg->load_n_per_m, er);
+      return VL_EINPUT;
+    }
+  }
   if (!(cfg->tolerance > 0.0 && cfg->tolerance < 1.0)) {
     vl_error_set(err, "tolerance must lie in (0, 1) (got %g)", cfg->tolerance);
     return VL_EINPUT;

@@ -1,6 +1,8 @@
 /* Scene -> solver (simulation.h). */
 #include "viscolube/simulation.h"
 
+#include "viscolube/assumptions.h"
+
 #include "viscolube/flattening.h"
 
 #include <math.h>
@@ -9,6 +11,7 @@
 
 struct vl_simulation {
   vl_scene scene;
+  vl_contact_config cfg; /* as given to the contact (the assumption checks read it) */
   vl_prony rubber;
   bool have_psd;
   vl_psd psd;
@@ -235,6 +238,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     }
     cfg.flattening = sim->flattening;
   }
+  sim->cfg = cfg;
   st = vl_contact_create(&cfg, &sim->contact, err);
   if (st != VL_OK) {
     vl_error_prefix(err, "%s", scene->path);
@@ -278,7 +282,27 @@ const vl_psd *vl_simulation_psd(const vl_simulation *sim) {
   return sim->have_psd ? &sim->psd : NULL;
 }
 
+typedef struct {
+  vl_simulation *sim;
+  vl_point *out;
+  vl_sweep_callback cb;
+  void *user;
+} run_ctx;
+
+/* Every point gets the model-assumption warnings (assumptions.h) in its
+ * warning column before the caller sees it. */
+static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
+                        const vl_contact *c) {
+  run_ctx *r = user;
+  vl_point *p = &r->out[i]; /* pt == &out[i]: the sweep fills the caller's array */
+  vl_assumptions_check(&r->sim->cfg, vl_simulation_psd(r->sim), p, p->warnings,
+                       sizeof p->warnings);
+  (void)pt;
+  if (r->cb) r->cb(r->user, i, total, p, c);
+}
+
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err) {
-  return vl_sweep_run(sim->contact, sim->n, sim->v0, NULL, out, cb, user, stats, err);
+  run_ctx r = {sim, out, cb, user};
+  return vl_sweep_run(sim->contact, sim->n, sim->v0, NULL, out, check_point, &r, stats, err);
 }

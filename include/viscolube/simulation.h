@@ -59,7 +59,8 @@ double vl_simulation_temperature_c(const vl_simulation *sim);
 double vl_simulation_shift_factor(const vl_simulation *sim);
 const vl_psd *vl_simulation_psd(const vl_simulation *sim); /* NULL when smooth */
 
-/* Runs the sweep (continuation in speed). */
+/* Runs the sweep (continuation in speed); every point's warnings gain the
+ * model-assumption checks of assumptions.h before cb sees it. */
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err);
 

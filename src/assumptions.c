@@ -1,0 +1,174 @@
+/* Checks of the model's assumptions for one operating point (assumptions.h). */
+#include "viscolube/assumptions.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <string.h>
+
+#ifndef M_PI /* strict C17 <math.h> does not define it */
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Thresholds (assumptions.h says why each). */
+#define SLOPE_MAX 1.0
+#define HOMOGENISATION_WAVELENGTHS 5.0 /* a_H >= 5 lambda0 */
+#define PERSSON_TABLE_MIN_HRMS 1e-3    /* roughness.h: the table's bottom */
+#define PRONY_MARGIN 10.0              /* one decade beyond the tau_i */
+#define GRID_MIN_CELLS 8.0
+#define HALF_SPACE_MAX 0.2 /* half-width / R */
+#define CONTINUUM_MIN_M 1e-9
+#define THIN_FILM_MAX 0.1       /* u / half-width */
+#define FLUID_DENSITY 1000.0    /* kg/m^3 */
+#define INERTIA_MAX 1.0         /* reduced Reynolds number */
+#define FLUID_MATTERS 0.05      /* fluid load fraction */
+#define SMOOTH_FACTORS_HRMS 3.0 /* u_min / h_rms */
+#define PATIR_CHENG_HRMS 0.7    /* u/sigma at h/sigma = 0.5 (0.698) */
+
+/* Appends w to warnings unless it is already there or does not fit whole. */
+static void append(char *warnings, size_t cap, const char *w) {
+  if (!warnings || cap == 0) return;
+  size_t len = strnlen(warnings, cap);
+  if (len == cap) return; /* not terminated: leave it alone */
+  /* already present as a whole item? */
+  size_t wl = strlen(w);
+  for (const char *s = warnings; (s = strstr(s, w)) != NULL; s += wl) {
+    bool starts = s == warnings || s[-1] == ';';
+    bool ends = s[wl] == '\0' || s[wl] == ';';
+    if (starts && ends) return;
+  }
+  size_t need = wl + (len ? 1 : 0);
+  if (len + need + 1 > cap) return;
+  if (len) warnings[len++] = ';';
+  memcpy(warnings + len, w, wl + 1);
+}
+
+/* The span of the relaxation times that carry strength (A_i > 0). */
+static int prony_span(const vl_prony *r, double *tau_min, double *tau_max) {
+  int k = 0;
+  *tau_min = INFINITY, *tau_max = 0.0;
+  for (size_t i = 0; i < r->n_terms; i++) {
+    if (!(r->A[i] > 0.0)) continue;
+    *tau_min = fmin(*tau_min, r->tau_s[i]);
+    *tau_max = fmax(*tau_max, r->tau_s[i]);
+    k++;
+  }
+  return k;
+}
+
+unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, const vl_point *pt,
+                              char *warnings, size_t cap) {
+  unsigned mask = 0;
+  char w[160];
+  double hrms = psd ? vl_psd_hrms(psd) : cfg->roughness ? vl_persson_hrms(cfg->roughness) : 0.0;
+  bool rough = cfg->roughness != NULL || psd != NULL;
+  bool wet = cfg->eta_pa_s > 0.0;
+  double v0 = pt->v0_m_s;
+
+  if (rough) {
+    double slope = psd ? vl_psd_rms_slope(psd) : sqrt(8.0 * vl_persson_g(cfg->roughness));
+    if (slope > SLOPE_MAX) {
+      mask |= VL_ASSUME_RMS_SLOPE;
+      snprintf(w, sizeof w, "rms slope %.2g > 1 (small-slope contact theory)", slope);
+      append(warnings, cap, w);
+    }
+  }
+  /* a_H from the configuration and speed, so that it is known also for a
+   * point that did not converge */
+  double e_h = 0.0, a_h = 0.0, omega_h = 0.0;
+  vl_asperity_state(&cfg->rubber, cfg->load_n_per_m, cfg->radius_m, v0 >= 0.0 ? v0 : 0.0, &e_h,
+                    &a_h, &omega_h);
+  if (psd && psd->q0 > 0.0) {
+    double lambda0 = 2.0 * M_PI / psd->q0;
+    if (a_h < HOMOGENISATION_WAVELENGTHS * lambda0) {
+      mask |= VL_ASSUME_HOMOGENISATION;
+      snprintf(w, sizeof w, "a_H = %.2g lambda0 < 5 (contact too small for mean-field roughness)",
+               a_h / lambda0);
+      append(warnings, cap, w);
+    }
+  }
+  double tau_min, tau_max;
+  if (v0 > 0.0 && prony_span(&cfg->rubber, &tau_min, &tau_max) >= 2 && omega_h > 0.0) {
+    if (omega_h * tau_max < 1.0 / PRONY_MARGIN || omega_h * tau_min > PRONY_MARGIN) {
+      mask |= VL_ASSUME_PRONY_WINDOW;
+      snprintf(w, sizeof w,
+               "wH = %.2g rad/s outside the Prony window %.2g..%.2g rad/s "
+               "(plateau extrapolated)",
+               omega_h, 1.0 / (PRONY_MARGIN * tau_max), PRONY_MARGIN / tau_min);
+      append(warnings, cap, w);
+    }
+  }
+  if (!pt->converged) return mask;
+
+  /* the grid: cell size from the relaxed Hertz half-width a0 */
+  double er0 = vl_prony_e0(&cfg->rubber) * vl_prony_reduced_factor(&cfg->rubber);
+  double a0 = sqrt(4.0 * cfg->load_n_per_m * cfg->radius_m / (M_PI * er0));
+  double dx = (cfg->x_max_a0 - cfg->x_min_a0) * a0 / (double)(cfg->grid ? cfg->grid : 1);
+  double width = pt->contact_width_m, half = 0.5 * width;
+  if (width < GRID_MIN_CELLS * dx) {
+    mask |= VL_ASSUME_GRID;
+    snprintf(w, sizeof w, "contact spans %.2g cells < 8 (refine the grid)", width / dx);
+    append(warnings, cap, w);
+  }
+  if (half > HALF_SPACE_MAX * cfg->radius_m) {
+    mask |= VL_ASSUME_HALF_SPACE;
+    snprintf(w, sizeof w, "contact half-width %.2g R > 0.2 R (parabolic gap and small strain)",
+             half / cfg->radius_m);
+    append(warnings, cap, w);
+  }
+  if (rough && hrms > 0.0 && pt->u_min_m < PERSSON_TABLE_MIN_HRMS * hrms) {
+    mask |= VL_ASSUME_PERSSON_TABLE;
+    snprintf(w, sizeof w, "u_min = %.2g h_rms below the Persson table (1e-3 h_rms)",
+             pt->u_min_m / hrms);
+    append(warnings, cap, w);
+  }
+  if (!wet) return mask;
+
+  if (pt->u_min_m < CONTINUUM_MIN_M) {
+    mask |= VL_ASSUME_CONTINUUM_FILM;
+    snprintf(w, sizeof w, "u_min = %.2g m < 1 nm (continuum Newtonian film)", pt->u_min_m);
+    append(warnings, cap, w);
+  }
+  double len = half > 0.0 ? half : a_h;
+  double u = pt->u_central_m;
+  if (len > 0.0 && u > THIN_FILM_MAX * len) {
+    mask |= VL_ASSUME_THIN_FILM;
+    snprintf(w, sizeof w, "film %.2g x the contact half-width (Reynolds thin-film equation)",
+             u / len);
+    append(warnings, cap, w);
+  }
+  double re = len > 0.0 ? FLUID_DENSITY * v0 * u * u / (cfg->eta_pa_s * len) : 0.0;
+  if (re > INERTIA_MAX) {
+    mask |= VL_ASSUME_INERTIA;
+    snprintf(w, sizeof w, "reduced Reynolds number %.2g > 1 at 1000 kg/m^3 (fluid inertia)", re);
+    append(warnings, cap, w);
+  }
+  if (rough && hrms > 0.0 && pt->fluid_load_fraction > FLUID_MATTERS) {
+    bool smooth = cfg->flow_factors == VL_FLOW_FACTORS_SMOOTH;
+    double lim = smooth ? SMOOTH_FACTORS_HRMS : PATIR_CHENG_HRMS;
+    if (pt->u_min_m < lim * hrms) {
+      mask |= VL_ASSUME_FLOW_FACTORS;
+      snprintf(w, sizeof w, "u_min = %.2g h_rms %s", pt->u_min_m / hrms,
+               smooth ? "with smooth flow factors (roughness changes the flow)"
+                      : "below the Patir-Cheng fits (h/sigma < 0.5)");
+      append(warnings, cap, w);
+    }
+  }
+  return mask;
+}
+
+const char *vl_assumption_name(unsigned bit) {
+  switch (bit) {
+  case VL_ASSUME_RMS_SLOPE: return "rms slope";
+  case VL_ASSUME_HOMOGENISATION: return "homogenisation";
+  case VL_ASSUME_PERSSON_TABLE: return "Persson table";
+  case VL_ASSUME_PRONY_WINDOW: return "Prony window";
+  case VL_ASSUME_GRID: return "grid";
+  case VL_ASSUME_HALF_SPACE: return "half-space";
+  case VL_ASSUME_CONTINUUM_FILM: return "continuum film";
+  case VL_ASSUME_THIN_FILM: return "thin film";
+  case VL_ASSUME_INERTIA: return "inertia";
+  case VL_ASSUME_FLOW_FACTORS: return "flow factors";
+  default: return "unknown";
+  }
+}
