@@ -104,7 +104,7 @@ double vl_flattening_angular(double t, double tan_delta, double *dA_dt) {
      * the right branch along the whole real t axis (no crossing). */
     double d = tan_delta, n = 1.0 + d * d;
     double zr = (d * d - 1.0) / (n * n), zi = -2.0 * d / (n * n); /* z^2 */
-    double complex m = csqrt(CMPLX(t * t - zr, -zi));
+    double complex m = csqrt((t * t - zr) - zi * I);
     double complex r = 1.0 / m;
     A = creal(r);
     dA = -t * creal(r * r * r);
