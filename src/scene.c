@@ -460,6 +460,8 @@ static vl_status scene_check(parse_state *ps) {
     sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
     sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
   }
+  if (sc->effects.fluid && !ps->key_line[K_GRID]) sc->grid = VL_WET_GRID;
+  if (sc->effects.fluid && !ps->key_line[K_TOLERANCE]) sc->tolerance = VL_WET_TOLERANCE;
   if (sc->effects.roughness && !sc->surface[0])
     return check_fail(ps, K_ROUGHNESS, "roughness = on needs [materials] surface");
   if (sc->effects.fluid && !sc->fluid[0])

@@ -104,6 +104,21 @@ static void test_defaults(void **state) {
   assert_true(g_scene.domain_min_a0 == -1.5 && g_scene.domain_max_a0 == 1.5);
   assert_true(g_scene.tolerance == 1e-9);
   assert_int_equal(g_scene.linear_solver, VL_LINSOL_SCHUR);
+  /* a wet scene gets the wet numerics of the accuracy study, unless it sets them */
+  parse_ok("[materials]\ncompound = model-rubber\nsurface = paper-3um\nfluid = water\n"
+           "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
+           "[sweep]\nquantity = v0\nfrom = 1e-3\nto = 1\npoints = 4\n"
+           "[effects]\nroughness = on\nfluid = on\n");
+  assert_int_equal(g_scene.grid, VL_WET_GRID);
+  assert_true(g_scene.domain_min_a0 == VL_WET_DOMAIN_MIN_A0 && g_scene.tolerance == VL_WET_TOLERANCE);
+  parse_ok("[materials]\ncompound = model-rubber\nsurface = paper-3um\nfluid = water\n"
+           "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
+           "[sweep]\nquantity = v0\nfrom = 1e-3\nto = 1\npoints = 4\n"
+           "[effects]\nroughness = on\nfluid = on\n[numerics]\ngrid = 128\ntolerance = 1e-8\n");
+  assert_true(g_scene.grid == 128 && g_scene.tolerance == 1e-8);
+  parse_ok("[materials]\ncompound = model-rubber\n"
+           "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
+           "[sweep]\nquantity = v0\nfrom = 1e-3\nto = 1\npoints = 4\n");
   /* only the viscoelastic effect is on by default */
   assert_true(g_scene.effects.viscoelastic);
   assert_false(g_scene.effects.roughness || g_scene.effects.fluid || g_scene.effects.solid_shear ||

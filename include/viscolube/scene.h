@@ -14,13 +14,19 @@
 #define VL_NAME_MAX 128
 #define VL_FIELDS_AT_MAX 32
 #define VL_FLUIDS_MAX 8
-/* default domain of wet scenes, in a0 (dry: -1.5, 1.5). The inlet must
- * hold the film's inlet zone at the top of a Stribeck curve: mu at
- * v0 eta = 1 Pa m (fig05, N 512-768) is 6.1 % / 3.2 % / 1.5 % below the
- * value with a 20 a0 inlet for inlets of 5 / 8 / 12 a0 (sbr-unfilled,
- * fig15: 4.3 / 2.2 / 0.9 %); lower speeds need far less. */
-#define VL_WET_DOMAIN_MIN_A0 -12.0
+/* Numerics of wet scenes when the scene does not set them (dry: grid 512,
+ * domain -1.5, 1.5, tolerance 1e-9), from the accuracy study (bench/,
+ * README "Accuracy and cost"): the cheapest setting with mu within 1 % of a
+ * reference at N 1536 / inlet 32 a0 over the fig05, fig10 and real-rubber
+ * sweeps. The inlet must hold the film's inlet zone at the top of the
+ * Stribeck curve (fig05 at v0 eta = 1 Pa m: 6.1 % / 1.5 % short with 5 /
+ * 12 a0 against 20 a0); the grid then resolves the contact (N 512: fig10
+ * 1.9 %); the tolerance does not move mu between 1e-3 and 1e-9, 1e-6 keeps a
+ * margin on the load balance. */
+#define VL_WET_DOMAIN_MIN_A0 -24.0
 #define VL_WET_DOMAIN_MAX_A0 1.6
+#define VL_WET_GRID 768
+#define VL_WET_TOLERANCE 1e-6
 
 typedef enum {
   VL_SWEEP_V0 = 0,     /* sliding speed, m/s */

@@ -152,6 +152,7 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
   sc->grid = c->grid;
   sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
   sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
+  sc->tolerance = VL_WET_TOLERANCE;
   sc->quantity = VL_SWEEP_V0_ETA;
   if (c->have_temperature) {
     sc->effects.temperature = true;
@@ -185,12 +186,13 @@ static void friction_usage(FILE *out) {
         "temperature) is refused. The output states the temperature, a_T and viscosity.\n"
         "Defaults (the seed's real-rubber scenes): --load 117, --radius 0.001,\n"
         "--sigma-s 1e6, --flow-factors smooth (Patir-Cheng fails below\n"
-        "u ~ 0.3 h_rms: README, Known limitations), --grid 256.\n",
+        "u ~ 0.3 h_rms: README, Known limitations), --grid 768,\n"
+        "domain [-24, 1.6] a0, tolerance 1e-6 (README: Accuracy and cost).\n",
         out);
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0, 0, 0, NAN};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, VL_WET_GRID, NULL, 0, 0, 0, NAN};
   const char *compound = NULL;
   double speed = 0.0;
   int have_speed = 0;
@@ -331,7 +333,7 @@ static void compare_usage(FILE *out) {
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 256, NULL, 0, 0, 0, NAN};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, VL_WET_GRID, NULL, 0, 0, 0, NAN};
   char list[MAX_COMPOUNDS * 128] = "";
   char *names[MAX_COMPOUNDS];
   size_t nc = 0;
