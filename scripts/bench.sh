@@ -3,10 +3,12 @@
 #   scripts/bench.sh [OUT_DIR [bench_accuracy options...]]
 # Builds bench/bench_accuracy in build-bench (Release flags of the project,
 # RelWithDebInfo) and runs it on one core (OPENBLAS_NUM_THREADS=1): prints
-# the tables and writes OUT_DIR/accuracy.csv, cost_vs_n.csv and
-# pareto-fig05.svg (default OUT_DIR: bench-out). About 10 minutes on a
-# 2-core Xeon; add "--quick" for a smaller run, "--only targets" for the
-# issue's speed targets (a 61-point fig05 curve at the defaults).
+# the tables (hunter, fig05, fig10, rubber, linsol, defaults, targets) and
+# writes OUT_DIR/accuracy.csv, cost_vs_n.csv, prony_fits.csv, defaults.csv,
+# reference-<scene>.csv and pareto-{fig05,fig10,rubber}.svg (default OUT_DIR:
+# bench-out). About 8 minutes on a quiet 2-core Xeon; "--quick" checks the
+# program in ~40 s, "--only targets" runs the issue's speed targets (61-point
+# fig05 curves at N 512 and at the recommended defaults). See bench/README.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-bench-out}
