@@ -531,6 +531,13 @@ static void test_cli_scene(void **state) {
   double mu_run = json_number(strstr(out, "\"v0_eta_pa_m\": 1e-09"), "mu");
   free(out);
   free(err);
+  /* the table form states the temperature, a_T and the viscosity used */
+  rc = vl_test_run(&out, &err, "run %s --out %s/t30t", ok, vl_test_dir);
+  if (rc != 0) fail_msg("exit %d: %s", rc, err);
+  assert_non_null(strstr(out, "at 30 C: compound times x a_T = "));
+  assert_non_null(strstr(out, "fluid viscosity 0.0007958 Pa s"));
+  free(out);
+  free(err);
   /* the same point from `friction`: v0 = 1e-9 Pa m / eta(30 C) */
   double eta30 = 1.0e-3 * pow(10.0, 247.8 / (303.15 - 140.0) - 247.8 / (293.15 - 140.0));
   rc = vl_test_run(&out, &err,

@@ -224,6 +224,10 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
            scene->effects.fluid ? ", fluid " : "", scene->effects.fluid ? scene->fluid : "", n,
            grid, scene->domain_min_a0, scene->domain_max_a0, vl_contact_a0(contact),
            vl_contact_p0(contact));
+  if (!json && scene->effects.temperature)
+    printf("at %g C: compound times x a_T = %.4g, fluid viscosity %.4g Pa s\n",
+           vl_simulation_temperature_c(sim), vl_simulation_shift_factor(sim),
+           vl_simulation_eta(sim));
   vl_sweep_stats stats;
   st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, err);
   if (st != VL_OK) goto done;
