@@ -83,6 +83,28 @@ static inline double hard_log_between(double lo, double hi, double u) {
   return lo * pow(hi / lo, u);
 }
 
+/* The solid and the geometry of a Latin-hypercube corner, decoded from its
+ * first 7 coordinates in [0, 1) (the same for every family): Einf/E0 in
+ * 1 ... 1e4 (below 1.05: elastic, no Prony terms), 1-60 terms over 0-20
+ * decades around tau_c in 1e-6 ... 1e2 s, the load 1e-3 ... 1e2 times the
+ * seed's, radius 0.1 mm ... 1 m, and one of five grids. */
+typedef struct {
+  double ratio, decades, tau_c, load, radius;
+  size_t terms, grid;
+} hard_solid;
+
+static inline hard_solid hard_decode_solid(const double *p, const size_t grids[5]) {
+  hard_solid s;
+  s.ratio = hard_log_between(1.0, 1e4, p[0]);
+  s.terms = s.ratio < 1.05 ? 0 : (size_t)lround(hard_log_between(1.0, 60.0, p[1]));
+  s.decades = 20.0 * p[2];
+  s.tau_c = hard_log_between(1e-6, 1e2, p[3]);
+  s.load = HARD_LOAD * hard_log_between(1e-3, 1e2, p[4]);
+  s.radius = hard_log_between(1e-4, 1.0, p[5]);
+  s.grid = grids[(size_t)(p[6] * 5.0)];
+  return s;
+}
+
 /* ------------------------------------------------------------ materials */
 
 /* A rubber with relaxed modulus HARD_E0 and Einf/E0 = ratio: n_terms = 0

@@ -51,13 +51,10 @@ static void test_smooth_lhs(void **state) {
   size_t nv = hard_speeds(1e-12, 100.0, 1.0, v, 32);
   for (size_t i = 0; i < N; i++) {
     const double *p = u + i * D;
-    double ratio = hard_log_between(1.0, 1e4, p[0]);
-    size_t nt = (size_t)lround(hard_log_between(1.0, 60.0, p[1]));
-    double dec = 20.0 * p[2], tau_c = hard_log_between(1e-6, 1e2, p[3]);
-    double load = HARD_LOAD * hard_log_between(1e-3, 1e2, p[4]);
-    double radius = hard_log_between(1e-4, 1.0, p[5]);
-    size_t grid = grids[(size_t)(p[6] * 5.0)];
-    if (ratio < 1.05) nt = 0; /* the elastic end: no Prony terms at all */
+    hard_solid so = hard_decode_solid(p, grids);
+    double ratio = so.ratio, dec = so.decades, tau_c = so.tau_c, load = so.load;
+    double radius = so.radius;
+    size_t nt = so.terms, grid = so.grid;
     vl_prony r = hard_rubber(ratio, nt, dec, tau_c, p[7] < 0.5, &rng);
     vl_contact_config cfg;
     base_config(&cfg, &r, load, radius, NULL, grid);
@@ -135,13 +132,10 @@ static void test_rough_lhs(void **state) {
   size_t nv = hard_speeds(1e-12, 100.0, 1.0, v, 32);
   for (size_t i = 0; i < N; i++) {
     const double *p = u + i * D;
-    double ratio = hard_log_between(1.0, 1e4, p[0]);
-    size_t nt = (size_t)lround(hard_log_between(1.0, 60.0, p[1]));
-    if (ratio < 1.05) nt = 0;
+    hard_solid so = hard_decode_solid(p, grids);
     double noise = p[10] < 0.5 ? -1.0 : 2.0 * (p[10] - 0.5);
-    rough_corner(&fam_rough_lhs, ratio, nt, 20.0 * p[2], hard_log_between(1e-6, 1e2, p[3]),
-                 HARD_LOAD * hard_log_between(1e-3, 1e2, p[4]), hard_log_between(1e-4, 1.0, p[5]),
-                 grids[(size_t)(p[6] * 5.0)], 0.3 + 0.7 * p[8], hard_log_between(10.0, 1e6, p[9]),
+    rough_corner(&fam_rough_lhs, so.ratio, so.terms, so.decades, so.tau_c, so.load, so.radius,
+                 so.grid, 0.3 + 0.7 * p[8], hard_log_between(10.0, 1e6, p[9]),
                  hard_log_between(1e-9, 5e-5, p[7]), noise, &rng, nv, v);
   }
   hard_assert_rate(&fam_rough_lhs);
