@@ -404,11 +404,15 @@ static void test_shipped_compounds(void **state) {
 
 /* ---- real data: pyvisco ----------------------------------------------- */
 
+/* The pyvisco fixture ships with the tests (tests/data/pyvisco, BSD-3, its
+ * licence and attribution beside it): a missing file is a failure. */
 static const char *pyvisco(const char *file) {
   static char path[4096];
-  const char *shared = getenv("VL_SHARED_DIR");
-  snprintf(path, sizeof path, "%s/data/pyvisco/%s", shared ? shared : "../shared", file);
-  return access(path, R_OK) == 0 ? path : NULL;
+  snprintf(path, sizeof path, "%s", vl_test_source_path("tests/data/pyvisco"));
+  size_t len = strlen(path);
+  snprintf(path + len, sizeof path - len, "/%s", file);
+  if (access(path, R_OK) != 0) fail_msg("pyvisco fixture missing: %s", path);
+  return path;
 }
 
 /* pyvisco's own superposition of these isotherms (answers/
@@ -425,10 +429,6 @@ static const char *pyvisco(const char *file) {
 static void test_pyvisco_raw(void **state) {
   (void)state;
   const char *raw = pyvisco("freq_user_raw.csv");
-  if (!raw) {
-    fprintf(stderr, "pyvisco data not found ($VL_SHARED_DIR/data/pyvisco): skipped\n");
-    skip();
-  }
   static const double ref_lat[21] = {
       12.341761942568635,  11.449235290344344,  10.043906332280969,  8.533060990477228,
       6.844422488367002,   4.537414236040767,   2.2070471777626692,  0.0,
@@ -477,14 +477,8 @@ static void test_pyvisco_raw(void **state) {
 static void test_pyvisco_master(void **state) {
   (void)state;
   char master[4096], mpl[4096];
-  const char *p1 = pyvisco("freq_user_master.csv");
-  snprintf(master, sizeof master, "%s", p1 ? p1 : "");
-  const char *p2 = pyvisco("answers/freq_master_prony_terms_ansys.MPL");
-  snprintf(mpl, sizeof mpl, "%s", p2 ? p2 : "");
-  if (!p1 || !p2) {
-    fprintf(stderr, "pyvisco data not found ($VL_SHARED_DIR/data/pyvisco): skipped\n");
-    skip();
-  }
+  snprintf(master, sizeof master, "%s", pyvisco("freq_user_master.csv"));
+  snprintf(mpl, sizeof mpl, "%s", pyvisco("answers/freq_master_prony_terms_ansys.MPL"));
   /* the ANSYS terms: TBDATA lines hold (a_i, t_i) pairs */
   double al[64], ta[64], v[128];
   size_t nv = 0;
