@@ -3,6 +3,8 @@
 
 #include "viscolube/csv.h"
 
+#include "edit_distance.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -91,24 +93,10 @@ static int span_eq_nocase(span s, const char *t) {
   return 1;
 }
 
-/* Edit distance between a span and a string, capped at 9 (enough to decide
- * whether a header cell is a misspelling worth suggesting a fix for). */
+/* Edit distance between a header cell and a column name (to decide whether
+ * the cell is a misspelling worth suggesting a fix for). */
 static size_t distance(span a, const char *b) {
-  size_t nb = strlen(b);
-  if (a.n > 32 || nb > 32) return 9;
-  size_t prev[33], cur[33];
-  for (size_t j = 0; j <= nb; j++)
-    prev[j] = j;
-  for (size_t i = 1; i <= a.n; i++) {
-    cur[0] = i;
-    for (size_t j = 1; j <= nb; j++) {
-      size_t sub = prev[j - 1] + (a.p[i - 1] != b[j - 1]);
-      size_t del = prev[j] + 1, ins = cur[j - 1] + 1;
-      cur[j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
-    }
-    memcpy(prev, cur, (nb + 1) * sizeof *prev);
-  }
-  return prev[nb] < 9 ? prev[nb] : 9;
+  return vl_edit_distance(a.p, a.n, b, strlen(b), false);
 }
 
 /* Strict decimal syntax: [+-]digits[.digits] or [+-].digits, optional

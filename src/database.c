@@ -3,6 +3,8 @@
 
 #include "viscolube/database.h"
 
+#include "edit_distance.h"
+
 #include <errno.h>
 #include <fcntl.h>
 #include <float.h>
@@ -210,25 +212,6 @@ static vl_status check_text(const char *what, const char *s, vl_error *err) {
   return VL_OK;
 }
 
-/* Levenshtein distance of two short strings (names are < VL_DB_NAME_MAX). */
-static size_t edit_distance(const char *a, const char *b) {
-  size_t na = strlen(a), nb = strlen(b);
-  if (na >= VL_DB_NAME_MAX || nb >= VL_DB_NAME_MAX) return (size_t)-1;
-  size_t prev[VL_DB_NAME_MAX + 1], cur[VL_DB_NAME_MAX + 1];
-  for (size_t j = 0; j <= nb; j++)
-    prev[j] = j;
-  for (size_t i = 1; i <= na; i++) {
-    cur[0] = i;
-    for (size_t j = 1; j <= nb; j++) {
-      size_t sub = prev[j - 1] + (a[i - 1] != b[j - 1]);
-      size_t del = prev[j] + 1, ins = cur[j - 1] + 1;
-      size_t m = sub < del ? sub : del;
-      cur[j] = m < ins ? m : ins;
-    }
-    memcpy(prev, cur, (nb + 1) * sizeof *prev);
-  }
-  return prev[nb];
-}
 
 /* VL_ENOTFOUND with a message naming `name` and the closest names of the
  * same kind (up to three ties): a small edit distance, or one name
@@ -244,7 +227,7 @@ static vl_status not_found(vl_db *db, const char *table, const char *name, vl_er
     while (sqlite3_step(st) == SQLITE_ROW) {
       const char *cand = (const char *)sqlite3_column_text(st, 0);
       if (!cand) continue;
-      size_t score = edit_distance(name, cand);
+      size_t score = vl_edit_distance(name, strlen(name), cand, strlen(cand), false);
       if (score > limit && strlen(name) >= 3 && (strstr(cand, name) || strstr(name, cand)))
         score = limit;
       if (score > limit || score > best_score) continue;

@@ -16,6 +16,8 @@
 #include "viscolube/csv.h"
 #include "viscolube/tts.h"
 
+#include "edit_distance.h"
+
 #define TWO_PI 6.283185307179586476925287
 #define MAX_FIELDS 16
 #define CELL_MAX 128
@@ -184,24 +186,6 @@ static int alias_match(const char *alias, const char *name) {
   return a[0] && !strcmp(a, b);
 }
 
-static size_t edit_distance(const char *a, const char *b) {
-  size_t na = strlen(a), nb = strlen(b);
-  if (na > 40 || nb > 40) return 99;
-  size_t prev[41], cur[41];
-  for (size_t j = 0; j <= nb; j++)
-    prev[j] = j;
-  for (size_t i = 1; i <= na; i++) {
-    cur[0] = i;
-    for (size_t j = 1; j <= nb; j++) {
-      size_t sub = prev[j - 1] + (a[i - 1] != b[j - 1]);
-      size_t del = prev[j] + 1, ins = cur[j - 1] + 1;
-      cur[j] = sub < del ? (sub < ins ? sub : ins) : (del < ins ? del : ins);
-    }
-    memcpy(prev, cur, (nb + 1) * sizeof *prev);
-  }
-  return prev[nb];
-}
-
 /* Role of a header name (R_COUNT if none). */
 static role name_role(const char *name) {
   for (int r = 0; r < R_COUNT; r++)
@@ -222,7 +206,7 @@ static const char *suggest(const char *name) {
       char a[CELL_MAX];
       normalise(roles[r].aliases[k], a, sizeof a);
       if (strlen(a) < 3) continue;
-      size_t d = edit_distance(a, b);
+      size_t d = vl_edit_distance(a, strlen(a), b, strlen(b), false);
       if (d < best_d) best_d = d, best = roles[r].aliases[k];
     }
   }

@@ -1,6 +1,8 @@
 /* Scene files: INI parsed by libinih, with line numbers for every error. */
 #include "viscolube/scene.h"
 
+#include "edit_distance.h"
+
 #include <ctype.h>
 #include <stdarg.h>
 #include <errno.h>
@@ -144,27 +146,10 @@ static int parse_list(const char *v, double *out, int max) {
   }
 }
 
-/* Edit distance with transpositions (optimal string alignment), capped:
- * for "did you mean" hints only. */
+/* Edit distance with transpositions (optimal string alignment): for "did
+ * you mean" hints only. */
 static size_t edit_distance(const char *a, const char *b) {
-  size_t la = strlen(a), lb = strlen(b);
-  if (la > 40 || lb > 40) return 99;
-  size_t d[41][41];
-  for (size_t i = 0; i <= la; i++) d[i][0] = i;
-  for (size_t j = 0; j <= lb; j++) d[0][j] = j;
-  for (size_t i = 1; i <= la; i++) {
-    for (size_t j = 1; j <= lb; j++) {
-      size_t cost = a[i - 1] != b[j - 1];
-      size_t best = d[i - 1][j] + 1;
-      if (d[i][j - 1] + 1 < best) best = d[i][j - 1] + 1;
-      if (d[i - 1][j - 1] + cost < best) best = d[i - 1][j - 1] + cost;
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
-          d[i - 2][j - 2] + 1 < best)
-        best = d[i - 2][j - 2] + 1;
-      d[i][j] = best;
-    }
-  }
-  return d[la][lb];
+  return vl_edit_distance(a, strlen(a), b, strlen(b), true);
 }
 
 /* The hint for an unknown key: the same key in another section, else the
