@@ -176,16 +176,23 @@ static vl_status shift_curves(const curve *ca, const curve *cb, size_t nw, const
   return VL_OK;
 }
 
+/* Both isotherms as curves (on failure nothing is left allocated). */
+static vl_status curve_pair(const vl_tts_isotherm *a, const vl_tts_isotherm *b, curve *ca,
+                            curve *cb, vl_error *err) {
+  memset(cb, 0, sizeof *cb);
+  vl_status st;
+  if ((st = curve_make(a, ca)) != VL_OK || (st = curve_make(b, cb)) != VL_OK) {
+    curve_free(ca);
+    vl_error_set(err, "out of memory shifting isotherms");
+  }
+  return st;
+}
+
 vl_status vl_tts_pair_shift(const vl_tts_isotherm *a, const vl_tts_isotherm *b, double loss_weight,
                             double *shift, double *rms, vl_error *err) {
   curve ca, cb;
-  memset(&cb, 0, sizeof cb);
-  vl_status st;
-  if ((st = curve_make(a, &ca)) != VL_OK || (st = curve_make(b, &cb)) != VL_OK) {
-    curve_free(&ca);
-    vl_error_set(err, "out of memory shifting isotherms");
-    return st;
-  }
+  vl_status st = curve_pair(a, b, &ca, &cb, err);
+  if (st != VL_OK) return st;
   double r;
   st = shift_curves(&ca, &cb, 1, &loss_weight, a->temperature_c, b->temperature_c, shift, &r, err);
   if (st == VL_OK && rms) *rms = r;
@@ -246,13 +253,8 @@ static double storage_scatter(const curve *c) {
 static vl_status pair_auto(const vl_tts_isotherm *a, const vl_tts_isotherm *b, double *d, double *r,
                            vl_error *err) {
   curve ca, cb;
-  memset(&cb, 0, sizeof cb);
-  vl_status st;
-  if ((st = curve_make(a, &ca)) != VL_OK || (st = curve_make(b, &cb)) != VL_OK) {
-    curve_free(&ca);
-    vl_error_set(err, "out of memory shifting isotherms");
-    return st;
-  }
+  vl_status st = curve_pair(a, b, &ca, &cb, err);
+  if (st != VL_OK) return st;
   const double wl[2] = {0.0, 1.0};
   double ds[2], rs[2];
   st = shift_curves(&ca, &cb, 2, wl, a->temperature_c, b->temperature_c, ds, rs, err);
