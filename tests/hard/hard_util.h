@@ -162,6 +162,22 @@ static inline vl_status hard_surface(vl_psd *psd, double hurst, double q0, doubl
   return st;
 }
 
+/* A corner's surface (q0 = HARD_Q0; tabulated with `noise` >= 0, on a table
+ * of *n_tab points growing with the bandwidth) and its Persson table; a
+ * failure fails the test. */
+static inline vl_persson *hard_rough_surface(vl_psd *psd, double hurst, double q1_over_q0,
+                                             double hrms, double noise, uint64_t *rng,
+                                             size_t *n_tab) {
+  vl_persson *tab = NULL;
+  vl_error err;
+  *n_tab = 8 + (size_t)(4.0 * log10(q1_over_q0)) * 4;
+  if (hard_surface(psd, hurst, HARD_Q0, HARD_Q0 * q1_over_q0, hrms, noise, *n_tab, rng, &err) !=
+      VL_OK)
+    fail_msg("surface: %s", err.msg);
+  if (vl_persson_build(psd, 0, &tab, &err) != VL_OK) fail_msg("Persson table: %s", err.msg);
+  return tab;
+}
+
 /* ------------------------------------------------------------ statistics */
 
 #define HARD_MAX_FAILS 64

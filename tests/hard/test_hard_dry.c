@@ -97,13 +97,8 @@ static void rough_corner(hard_family *fam, double ratio, size_t nt, double dec, 
                          double load, double radius, size_t grid, double hurst, double q1_over_q0,
                          double hrms, double noise, uint64_t *rng, size_t nv, const double *v) {
   vl_psd psd;
-  vl_persson *tab = NULL;
-  vl_error err;
-  size_t n_tab = 8 + (size_t)(4.0 * log10(q1_over_q0)) * 4;
-  if (hard_surface(&psd, hurst, HARD_Q0, HARD_Q0 * q1_over_q0, hrms, noise, n_tab, rng, &err) !=
-      VL_OK)
-    fail_msg("surface: %s", err.msg);
-  if (vl_persson_build(&psd, 0, &tab, &err) != VL_OK) fail_msg("Persson table: %s", err.msg);
+  size_t n_tab;
+  vl_persson *tab = hard_rough_surface(&psd, hurst, q1_over_q0, hrms, noise, rng, &n_tab);
   vl_prony r = hard_rubber(ratio, nt, dec, tau_c, 1, rng);
   vl_contact_config cfg;
   base_config(&cfg, &r, load, radius, tab, grid);
