@@ -125,6 +125,21 @@ static void machine(FILE *out) {
           model, sysconf(_SC_NPROCESSORS_ONLN), load[0], load[1], load[2], ob ? ob : "(unset)");
 }
 
+/* DIR/NAME opened for writing with the machine line and the CSV header
+ * (NULL, with a message, when it cannot be created). */
+static FILE *open_csv(const char *dir, const char *name, const char *header) {
+  char path[1200];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "w");
+  if (!f) {
+    fprintf(stderr, "cannot write %s\n", path);
+    return NULL;
+  }
+  machine(f);
+  fputs(header, f);
+  return f;
+}
+
 /* ---------------------------------------------------------------- results */
 
 typedef enum {
@@ -191,15 +206,12 @@ static const char *kind_name(row_kind k) {
 }
 
 static int write_rows_csv(const char *dir) {
-  char path[1024];
-  snprintf(path, sizeof path, "%s/accuracy.csv", dir);
-  FILE *f = fopen(path, "w");
+  FILE *f = open_csv(dir, "accuracy.csv",
+                     "scene,kind,setting,linear_solver,grid,unknowns,inlet_a0,tolerance,n_table,"
+                     "prony_per_decade,prony_terms,points,failed,newton_iterations,err_mu,"
+                     "worst_v0_eta_pa_m,err_mu_Rc,err_mu_Rf,err_mu_Sc,err_mu_Sf,err_u_min,"
+                     "ms_per_point,s_per_curve,repeats\n");
   if (!f) return -1;
-  machine(f);
-  fprintf(f, "scene,kind,setting,linear_solver,grid,unknowns,inlet_a0,tolerance,n_table,"
-             "prony_per_decade,prony_terms,points,failed,newton_iterations,err_mu,"
-             "worst_v0_eta_pa_m,err_mu_Rc,err_mu_Rf,err_mu_Sc,err_mu_Sf,err_u_min,ms_per_point,"
-             "s_per_curve,repeats\n");
   for (size_t i = 0; i < nrows; i++) {
     const row *r = &rows[i];
     fprintf(f,
@@ -860,14 +872,9 @@ static void cost_vs_n(const char *dir) {
   printf("%6s %8s %12s %12s %12s %12s %12s %14s %12s %8s\n", "N", "unknowns", "residual_ms",
          "jacobian_ms", "LU_setup_ms", "solve_ms", "kernel_ms", "newton_step_ms", "dgetrf_ms",
          "step/LU");
-  char path[1024];
-  snprintf(path, sizeof path, "%s/cost_vs_n.csv", dir);
-  FILE *f = fopen(path, "w");
-  if (f) {
-    machine(f);
-    fprintf(f, "grid,unknowns,residual_ms,jacobian_ms,lu_setup_ms,solve_ms,kernel_ms,"
-               "newton_step_ms,dgetrf_of_2n1_ms,step_over_dgetrf\n");
-  }
+  FILE *f = open_csv(dir, "cost_vs_n.csv",
+                     "grid,unknowns,residual_ms,jacobian_ms,lu_setup_ms,solve_ms,kernel_ms,"
+                     "newton_step_ms,dgetrf_of_2n1_ms,step_over_dgetrf\n");
   double xs[8], yr[8], yj[8], ys[8], yv[8], xlo = INFINITY, xhi = 0;
   size_t nx = 0;
   for (size_t i = 0; i < nrows; i++) {
@@ -1022,12 +1029,9 @@ static void rubber_fits(const scene_ctx *s, const char *dir) {
          vl_prony_weights_name(wt), info->prony.nu);
   printf("%10s %6s %6s %11s %11s %10s %10s %10s %10s\n", "per_decade", "grid", "terms", "Einf_Pa",
          "E0_Pa", "E'_rms_%", "E'_max_%", "E''_rms_%", "E''_max_%");
-  char path[1200];
-  snprintf(path, sizeof path, "%s/prony_fits.csv", dir);
-  FILE *f = fopen(path, "w");
-  if (f)
-    fprintf(f, "compound,per_decade,grid,terms,e_inf_pa,e0_pa,storage_rms_rel,storage_max_rel,"
-               "loss_rms_rel,loss_max_rel\n");
+  FILE *f = open_csv(dir, "prony_fits.csv",
+                     "compound,per_decade,grid,terms,e_inf_pa,e0_pa,storage_rms_rel,"
+                     "storage_max_rel,loss_rms_rel,loss_max_rel\n");
   for (int k = 0; k < NFITS; k++) {
     prony_refit *p = &g_fits[k];
     p->per_decade = PER_DECADE[k];
@@ -1277,14 +1281,9 @@ static void bench_defaults(const char *dir) {
          "of the sweep (no failed point);\n## settings within %.0f %% in time count as equally "
          "cheap: then the tighter tolerance, then the smaller error\n",
          100 * g_accuracy, 100 * TIME_NOISE);
-  char path[1200];
-  snprintf(path, sizeof path, "%s/defaults.csv", dir);
-  FILE *f = fopen(path, "w");
-  if (f) {
-    machine(f);
-    fprintf(f, "what,scene,setting,grid,inlet_a0,tolerance,prony_per_decade,err_mu,"
-               "worst_v0_eta,err_component_max,err_u_min,s_per_curve,ms_per_point\n");
-  }
+  FILE *f = open_csv(dir, "defaults.csv",
+                     "what,scene,setting,grid,inlet_a0,tolerance,prony_per_decade,err_mu,"
+                     "worst_v0_eta,err_component_max,err_u_min,s_per_curve,ms_per_point\n");
   printf("%-7s %-26s %-28s %9s %9s %9s %9s %9s %9s\n", "scene", "reference",
          "cheapest within bound", "err_mu", "at_v0eta", "err_comp", "err_umin", "s/curve",
          "ms/point");

@@ -154,7 +154,7 @@ static int schur_setup(SUNLinearSolver LS, SUNMatrix A) {
 /* One block solve of J x = b (no check). */
 static void schur_apply(schur_content *c, const double *J, const double *b, double *x) {
   int n = c->n, of = c->of, m = n + 1, one = 1, info = 0;
-  size_t ld = (size_t)c->N, mm = (size_t)m;
+  size_t ld = (size_t)c->N;
   double *z = c->w, *r = c->r;
   memcpy(z, b + of, (size_t)n * sizeof *z);
   block_solve(c, z); /* z = Bp^{-1} b_T */
@@ -178,7 +178,6 @@ static void schur_apply(schur_content *c, const double *J, const double *b, doub
     for (int k = c->c_lo[j]; k <= c->c_hi[j]; k++) t[k] -= ccol[k] * xj;
   }
   block_solve(c, t);
-  (void)mm;
 }
 
 /* res = b - J x; returns its max norm */
