@@ -42,9 +42,18 @@ struct vl_contact {
   size_t of, ih;   /* offsets of the fluid unknowns and of the rigid approach */
   double er_ref;   /* reduced modulus defining a0 (relaxed, or the elastic one) */
   double er_inf;   /* reduced glassy modulus (kernel prefactor) */
-  double a0, p0, uscale, dxi, kfac;
+  double a0, p0, uscale, dxi, kfac; /* dxi: width of the uniform cells */
   double hrms;     /* rms roughness (m), 0 when smooth */
-  double *xi;      /* node positions x/a0 */
+  double *xi;      /* node positions x/a0 (cell centres) */
+  double *wc;      /* cell widths /a0 */
+  double *hf;      /* n + 1 face distances /a0: node to node, half a cell at both ends */
+  /* graded grid (vl_contact_config.grid_growth): cell i is uniform cells
+   * first[i] .. first[i] + span[i] - 1 of an nv-cell uniform grid (span odd,
+   * so its node is uniform node first[i] + span[i]/2); psum: prefix sums of
+   * the uniform Toeplitz coefficients. NULL / false when uniform. */
+  bool graded;
+  size_t nv, *first, *span;
+  double *psum;
   double *A, *beta;/* Prony strengths and v0 tau_k / a0 */
   vl_toeplitz kern;
   double *M;       /* dense influence matrix, row-major: U_i += M[i n + j] P_j */
@@ -92,6 +101,7 @@ const char *vl_regime_name(int regime) {
 
 void vl_contact_config_defaults(vl_contact_config *cfg) {
   memset(cfg, 0, sizeof *cfg);
+  cfg->grid_growth = 1.0;
   cfg->grid = 512;
   cfg->x_min_a0 = -1.6;
   cfg->x_max_a0 = 1.4;
@@ -155,13 +165,17 @@ static double couette_face(const vl_contact *c, size_t f, size_t k[3], double w[
     k[0] = n - 1, w[0] = 1.0, *m = 1;
     return cf[n - 1];
   }
-  if (f <= 1) { /* inflow face extrapolated from cells 0, 1; face 1 centred */
-    k[0] = 0, k[1] = 1, w[0] = f ? 0.5 : 1.5, w[1] = f ? 0.5 : -0.5, *m = 2;
+  if (f <= 1) { /* inflow face extrapolated from cells 0, 1; face 1 interpolated */
+    double t = c->wc[0] / (c->wc[0] + c->wc[1]); /* 1/2 on a uniform grid */
+    k[0] = 0, k[1] = 1, w[0] = f ? 1.0 - t : 1.0 + t, w[1] = f ? t : -t, *m = 2;
     return w[0] * cf[0] + w[1] * cf[1];
   }
   if (c->rough) {
-    k[0] = f - 1, k[1] = f - 2, w[0] = 1.5, w[1] = -0.5, *m = 2;
-    return 1.5 * cf[f - 1] - 0.5 * cf[f - 2];
+    /* linear extrapolation from the nodes of cells f-2, f-1 to the face,
+     * half a cell beyond f-1 (1.5 cf[f-1] - 0.5 cf[f-2] when uniform) */
+    double t = c->wc[f - 1] / (c->wc[f - 1] + c->wc[f - 2]);
+    k[0] = f - 1, k[1] = f - 2, w[0] = 1.0 + t, w[1] = -t, *m = 2;
+    return w[0] * cf[f - 1] + w[1] * cf[f - 2];
   }
   /* cells U = f-2, C = f-1, D = f; face = cf[C] + b psi(a/b)/2 with
    * a = cf[D] - cf[C], b = cf[C] - cf[U], psi(r) = (r^2 + r)/(r^2 + 1) for
@@ -316,24 +330,24 @@ static void eval_state(vl_contact *c, const double *y) {
   /* face fluxes J/(v0 us/2): -lambda g dPf/dxi + Couette film at the face
    * (couette_face); pf = 0 beyond both ends of the domain (half-cell
    * distance) */
-  const double *pf = y + c->of;
-  double L = c->lambda, dx = c->dxi;
+  const double *pf = y + c->of, *hf = c->hf;
+  double L = c->lambda;
   for (size_t f = 0; f <= n; f++) {
     size_t k[3];
     double w[3];
     int m;
     double jc = couette_face(c, f, k, w, &m), dl, dr;
-    double jp = f == 0   ? -L * c->g[0] * pf[0] / (0.5 * dx)
-                : f == n ? L * c->g[n - 1] * pf[n - 1] / (0.5 * dx)
-                         : -L * face_g(c, f, &dl, &dr) * (pf[f] - pf[f - 1]) / dx;
+    double jp = f == 0   ? -L * c->g[0] * pf[0] / hf[0]
+                : f == n ? L * c->g[n - 1] * pf[n - 1] / hf[n]
+                         : -L * face_g(c, f, &dl, &dr) * (pf[f] - pf[f - 1]) / hf[f];
     c->Jf[f] = jp + jc;
   }
 }
 
 static double load_sum(const vl_contact *c) {
   double s = 0.0;
-  for (size_t i = 0; i < c->n; i++) s += c->P[i] + c->F[i];
-  return s * c->dxi / (0.5 * M_PI);
+  for (size_t i = 0; i < c->n; i++) s += (c->P[i] + c->F[i]) * c->wc[i];
+  return s / (0.5 * M_PI);
 }
 
 /* Reynolds row i before complementarity: rw_i (J_{i+1/2} - J_{i-1/2}), see
@@ -360,15 +374,15 @@ static void reynolds_weights(vl_contact *c) {
      * own: a thick inlet film (10^4 u_min five a0 upstream of a soft
      * contact) carries fluxes whose rounding alone left rows above the
      * tolerance, and Newton stalled there */
-    for (size_t i = 0; i < n; i++) c->rw[i] = 1.0 / (c->dxi * fmax(1.0 / c->rscale, fabs(c->cf[i])));
+    for (size_t i = 0; i < n; i++) c->rw[i] = 1.0 / (c->wc[i] * fmax(1.0 / c->rscale, fabs(c->cf[i])));
     return;
   }
-  double L = c->lambda, dx = c->dxi;
+  double L = c->lambda;
   for (size_t i = 0; i < n; i++) {
     double d1, d2;
-    double gl = i > 0 ? face_g(c, i, &d1, &d2) : 2.0 * c->g[0];
-    double gr = i + 1 < n ? face_g(c, i + 1, &d1, &d2) : 2.0 * c->g[n - 1];
-    double poiseuille = L * (gl + gr) / dx, elastic = 0.0;
+    double gl = i > 0 ? face_g(c, i, &d1, &d2) : c->g[0];
+    double gr = i + 1 < n ? face_g(c, i + 1, &d1, &d2) : c->g[n - 1];
+    double poiseuille = L * (gl / c->hf[i] + gr / c->hf[i + 1]), elastic = 0.0;
     for (int side = 0; side < 2; side++) {
       size_t k[3];
       double w[3];
@@ -534,7 +548,13 @@ static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c) {
     for (size_t j = 0; j < ld; j++) {
       double *col = Jd + j * ld;
       double w = j < n ? c->kfac * c->dPdU[j] : j < of + nf ? c->kfac * c->kappa : 0.0;
-      if (j < ih) {
+      if (j < ih && c->graded) {
+        /* -M_ij / kfac, read down a column of the row-major M (the graded
+         * grid has no Toeplitz structure; it is small) */
+        const double *mcol = c->M + (j < n ? j : j - of);
+        for (size_t i = 0; i < n; i++) col[i] = -w / c->kfac * mcol[i * n];
+        if (j < n) col[j] += 1.0;
+      } else if (j < ih) {
         const double *t = c->kern.coef + (n - 1 - (j < n ? j : j - of));
         for (size_t i = 0; i < n; i++) col[i] = w * t[i];
         if (j < n) col[j] += 1.0;
@@ -554,8 +574,8 @@ static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c) {
   }
   /* Reynolds rows: the fluxes of faces i (left) and i+1 (right) depend on
    * pf of cells i-1..i+1 and on u of cells i-2..i+1 */
-  const double *pf = y + of;
-  double L = c->lambda, dx = c->dxi;
+  const double *pf = y + of, *hf = c->hf;
+  double L = c->lambda;
   for (size_t i = 0; i < nf; i++) {
     size_t row = of + i;
     double da, db;
@@ -569,16 +589,16 @@ static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c) {
       size_t f = i + (size_t)side;
       double sg = side ? s : -s;
       if (f == 0) {
-        dpf[1] += sg * (-L * c->g[0] / (0.5 * dx));
-        du[2] += sg * (-L * c->dg[0] * pf[0] / (0.5 * dx));
+        dpf[1] += sg * (-L * c->g[0] / hf[0]);
+        du[2] += sg * (-L * c->dg[0] * pf[0] / hf[0]);
       } else if (f == n) {
-        dpf[1] += sg * (L * c->g[n - 1] / (0.5 * dx));
-        du[2] += sg * (L * c->dg[n - 1] * pf[n - 1] / (0.5 * dx));
+        dpf[1] += sg * (L * c->g[n - 1] / hf[n]);
+        du[2] += sg * (L * c->dg[n - 1] * pf[n - 1] / hf[n]);
       } else {
-        double dl, dr, gf = face_g(c, f, &dl, &dr), dp = (pf[f] - pf[f - 1]) / dx;
+        double dl, dr, gf = face_g(c, f, &dl, &dr), dp = (pf[f] - pf[f - 1]) / hf[f];
         /* cells f-1 and f are i-1, i (left face) or i, i+1 (right face) */
-        dpf[side] += sg * (L * gf / dx);
-        dpf[side + 1] += sg * (-L * gf / dx);
+        dpf[side] += sg * (L * gf / hf[f]);
+        dpf[side + 1] += sg * (-L * gf / hf[f]);
         du[side + 1] += sg * (-L * dl * c->dg[f - 1] * dp);
         du[side + 2] += sg * (-L * dr * c->dg[f] * dp);
       }
@@ -594,9 +614,77 @@ static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c) {
       if (du[q] != 0.0) add_dU(c, Jd, ld, row, i + (size_t)q - 2, du[q]);
   }
   /* load balance */
-  double lw = c->dxi / (0.5 * M_PI);
-  for (size_t j = 0; j < nc; j++) Jd[j * ld + ih] = lw * (c->rough ? c->dPdU[j] : 1.0);
-  for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + ih] = lw * c->kappa;
+  for (size_t j = 0; j < nc; j++)
+    Jd[j * ld + ih] = c->wc[j] / (0.5 * M_PI) * (c->rough ? c->dPdU[j] : 1.0);
+  for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + ih] = c->wc[j] / (0.5 * M_PI) * c->kappa;
+}
+
+/* The influence matrix M from the uniform grid's Toeplitz coefficients: on a
+ * uniform grid they are M itself; a graded grid's cell is a run of uniform
+ * cells whose node is a uniform node, so its coefficient is the sum of the
+ * run's, taken from prefix sums (O(n^2) whatever the cell sizes; a direct
+ * evaluation would cost n^2 exponential integrals per Prony term and speed).
+ * Single cells take the coefficient itself, so the uniform part of a graded
+ * grid has exactly the uniform grid's coefficients. */
+static void graded_influence(vl_contact *c) {
+  size_t n = c->n;
+  if (!c->graded) {
+    for (size_t i = 0; i < n; i++)
+      for (size_t j = 0; j < n; j++) c->M[i * n + j] = -c->kfac * vl_toeplitz_at(&c->kern, i, j);
+    return;
+  }
+  size_t nv = c->nv;
+  const double *coef = c->kern.coef;
+  double *S = c->psum;
+  S[0] = 0.0;
+  for (size_t k = 0; k + 1 < 2 * nv; k++) S[k + 1] = S[k] + coef[k];
+  for (size_t i = 0; i < n; i++) {
+    size_t ci = c->first[i] + c->span[i] / 2;
+    for (size_t j = 0; j < n; j++) {
+      /* offsets ci - l of the run l = a .. a + m - 1 are coefficients
+       * lo .. hi (offset d is coefficient d + nv - 1) */
+      size_t a = c->first[j], m = c->span[j];
+      size_t hi = ci + nv - 1 - a, lo = ci + nv - a - m;
+      c->M[i * n + j] = -c->kfac * (m == 1 ? coef[hi] : S[hi + 1] - S[lo]);
+    }
+  }
+}
+
+/* Cells of the grid (vl_contact_config.grid_growth): nv uniform cells on
+ * [x_min, x_max]; upstream of -VL_GRADE_START_A0 they are merged, from the
+ * contact outwards, into runs of odd length growing by `growth` (never
+ * shrinking), the last run taking the rest (one uniform cell more when the
+ * rest is even: the domain then starts one uniform cell earlier). Writes
+ * span[] left to right when span != NULL (room for nv + 1 cells), and the
+ * uniform cells covered in *nv_out. Returns the number of cells. */
+static size_t grid_layout(size_t nv, double x_min, double x_max, double growth, size_t *span,
+                          size_t *nv_out) {
+  double dx = (x_max - x_min) / (double)nv, start = -VL_GRADE_START_A0;
+  size_t ig = 0;
+  if (growth > 1.0 && x_min < start) ig = (size_t)fmin(floor((start - x_min) / dx), (double)nv);
+  size_t cells = 0, rem = ig, prev = 1, covered = 0;
+  double t = 1.0;
+  /* the merged runs, from the contact outwards (reversed below) */
+  while (rem > 0) {
+    t *= growth;
+    size_t m = 2 * (size_t)round((t - 1.0) / 2.0) + 1;
+    if (m < prev) m = prev;
+    if (rem <= m + m / 2) m = rem % 2 ? rem : rem + 1; /* the last run */
+    if (span) span[cells] = m;
+    cells++;
+    covered += m;
+    rem -= m < rem ? m : rem;
+    prev = m;
+  }
+  if (span) {
+    for (size_t i = 0; i < cells / 2; i++) {
+      size_t tmp = span[i];
+      span[i] = span[cells - 1 - i], span[cells - 1 - i] = tmp;
+    }
+    for (size_t i = cells; i < cells + nv - ig; i++) span[i] = 1;
+  }
+  *nv_out = covered + (nv - ig);
+  return cells + nv - ig;
 }
 
 /* Rebuilds the influence matrix for speed v0 (viscoelastic kernels only). */
@@ -614,9 +702,7 @@ static void contact_set_speed(vl_contact *c, double v0) {
   c->kernel_ready = true;
   for (size_t k = 0; k < nt; k++) c->beta[k] = v0 * c->cfg.rubber.tau_s[k] / c->a0;
   vl_toeplitz_refill(&c->kern, c->A, c->beta, nt);
-  size_t n = c->n;
-  for (size_t i = 0; i < n; i++)
-    for (size_t j = 0; j < n; j++) c->M[i * n + j] = -c->kfac * vl_toeplitz_at(&c->kern, i, j);
+  graded_influence(c);
   c->timing.t_kernel_s += now_s() - t0;
   c->timing.kernels++;
 }
@@ -695,6 +781,19 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
     vl_error_set(err, "grid must lie in [8, 16384] (got %zu)", cfg->grid);
     return VL_EINPUT;
   }
+  if (cfg->grid_growth != cfg->grid_growth || cfg->grid_growth > 2.0) {
+    vl_error_set(err, "grid_growth must be <= 2 (1 or less: uniform grid; got %g)",
+                 cfg->grid_growth);
+    return VL_EINPUT;
+  }
+  if (cfg->grid_growth > 1.0 && !cfg->roughness) {
+    /* the smooth film's limited upwinding and its coarse-grid starts are
+     * written for a uniform grid */
+    vl_error_set(err, "grid_growth %g: a graded grid needs a rough surface (smooth contacts use "
+                      "a uniform grid; set grid_growth = 1)",
+                 cfg->grid_growth);
+    return VL_EINPUT;
+  }
   if (!(cfg->x_max_a0 > cfg->x_min_a0)) {
     vl_error_set(err, "domain_a0: the end must exceed the start (got %g, %g)", cfg->x_min_a0,
                  cfg->x_max_a0);
@@ -769,7 +868,9 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   /* flow factors only make sense for a rough surface */
   if (!c->rough) c->cfg.flow_factors = VL_FLOW_FACTORS_SMOOTH;
   c->hrms = c->rough ? vl_persson_hrms(cfg->roughness) : 0.0;
-  c->n = cfg->grid;
+  size_t nv_cov;
+  c->n = grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, NULL, &nv_cov);
+  c->graded = c->n != cfg->grid || nv_cov != cfg->grid;
   c->nf = c->wet ? c->n : 0;
   /* A smooth wet contact keeps a positive film (Reynolds' equation carries
    * any load at any v0 > 0): no contact unknowns, pressure-only system. */
@@ -783,12 +884,23 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->a0 = sqrt(4.0 * cfg->load_n_per_m * cfg->radius_m / (M_PI * c->er_ref));
   c->p0 = 2.0 * cfg->load_n_per_m / (M_PI * c->a0);
   c->uscale = c->a0 * c->a0 / cfg->radius_m;
-  c->dxi = (cfg->x_max_a0 - cfg->x_min_a0) / (double)c->n;
+  c->dxi = (cfg->x_max_a0 - cfg->x_min_a0) / (double)cfg->grid;
   /* w/(a0^2/R) = -(Er_ref/(pi Er_inf)) sum_j P_j Khat_ij, Khat in units of a0. */
   c->kfac = c->er_ref / (M_PI * c->er_inf);
   c->v0 = NAN;
   size_t n = c->n, nt = cfg->rubber.n_terms;
   c->xi = malloc(n * sizeof *c->xi);
+  c->wc = malloc(n * sizeof *c->wc);
+  c->hf = malloc((n + 1) * sizeof *c->hf);
+  if (!c->xi || !c->wc || !c->hf) goto nomem;
+  if (c->graded) {
+    c->nv = nv_cov;
+    c->span = malloc(n * sizeof *c->span);
+    c->first = malloc(n * sizeof *c->first);
+    c->psum = malloc(2 * nv_cov * sizeof *c->psum);
+    if (!c->span || !c->first || !c->psum) goto nomem;
+    grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, c->span, &nv_cov);
+  }
   c->A = malloc((nt ? nt : 1) * sizeof *c->A);
   c->beta = calloc(nt ? nt : 1, sizeof *c->beta);
   c->M = calloc(n * n, sizeof *c->M);
@@ -824,9 +936,27 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
       c->q_rolling = wpk * 2.0 * c->a0 / v_ml;
     }
   }
-  for (size_t i = 0; i < n; i++) c->xi[i] = cfg->x_min_a0 + ((double)i + 0.5) * c->dxi;
+  if (c->graded) {
+    /* the uniform grid extends the covered cells to the left of the domain's
+     * end when the last run came out one cell longer (grid_layout) */
+    double x0 = cfg->x_max_a0 - (double)c->nv * c->dxi;
+    size_t pos = 0;
+    for (size_t i = 0; i < n; i++) {
+      c->first[i] = pos;
+      c->wc[i] = (double)c->span[i] * c->dxi;
+      c->xi[i] = x0 + ((double)(pos + c->span[i] / 2) + 0.5) * c->dxi;
+      pos += c->span[i];
+    }
+  } else {
+    for (size_t i = 0; i < n; i++) {
+      c->xi[i] = cfg->x_min_a0 + ((double)i + 0.5) * c->dxi;
+      c->wc[i] = c->dxi;
+    }
+  }
+  c->hf[0] = 0.5 * c->wc[0], c->hf[n] = 0.5 * c->wc[n - 1];
+  for (size_t f = 1; f < n; f++) c->hf[f] = c->xi[f] - c->xi[f - 1];
   for (size_t k = 0; k < nt; k++) c->A[k] = cfg->rubber.A[k];
-  st = vl_toeplitz_build(&c->kern, n, c->dxi, c->A, c->beta, nt, err);
+  st = vl_toeplitz_build(&c->kern, c->graded ? c->nv : n, c->dxi, c->A, c->beta, nt, err);
   if (st != VL_OK) goto fail;
 
   if (SUNContext_Create(NULL, &c->ctx) != 0) goto nomem;
@@ -908,6 +1038,11 @@ void vl_contact_free(vl_contact *c) {
   if (c->ctx) SUNContext_Free(&c->ctx);
   vl_toeplitz_free(&c->kern);
   free(c->xi);
+  free(c->wc);
+  free(c->hf);
+  free(c->first);
+  free(c->span);
+  free(c->psum);
   free(c->A);
   free(c->beta);
   free(c->M);
@@ -978,7 +1113,7 @@ static void contact_report(vl_contact *c, vl_point *pt) {
   const double *y = N_VGetArrayPointer(c->y);
   eval_state(c, y);
   const vl_contact_config *cfg = &c->cfg;
-  double fN = cfg->load_n_per_m, dx = c->dxi * c->a0, R = cfg->radius_m;
+  double fN = cfg->load_n_per_m, R = cfg->radius_m;
   double sum_pcx = 0.0, sum_pfx = 0.0, sum_pf = 0.0, sum_area = 0.0;
   double pmax = 0.0, pfmax = 0.0, umin = INFINITY, couette = 0.0, poiseuille = 0.0;
   size_t imax = 0, iumin = 0;
@@ -989,6 +1124,7 @@ static void contact_report(vl_contact *c, vl_point *pt) {
     for (size_t i = 0; i < n; i++) pt->eps_f_min = fmin(pt->eps_f_min, c->sf[i] * c->sf[i]);
   for (size_t i = 0; i < n; i++) {
     double pc = c->P[i] * c->p0, pf = c->F[i] * c->p0, x = c->xi[i] * c->a0;
+    double dx = c->wc[i] * c->a0;
     sum_pcx += pc * x * dx;
     sum_pfx += pf * x * dx;
     sum_pf += pf * dx;
@@ -1003,8 +1139,8 @@ static void contact_report(vl_contact *c, vl_point *pt) {
       /* flattened: the factors of h_rms s (as in eval_state) */
       vl_flow_factors_eval(cfg->flow_factors, u, c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
       /* node gradient: mean of the two face gradients (pf = 0 beyond the ends) */
-      double left = i > 0 ? (c->F[i] - c->F[i - 1]) / dx : c->F[i] / (0.5 * dx);
-      double right = i + 1 < n ? (c->F[i + 1] - c->F[i]) / dx : -c->F[i] / (0.5 * dx);
+      double left = (c->F[i] - (i > 0 ? c->F[i - 1] : 0.0)) / (c->hf[i] * c->a0);
+      double right = ((i + 1 < n ? c->F[i + 1] : 0.0) - c->F[i]) / (c->hf[i + 1] * c->a0);
       double dpdx = 0.5 * (left + right) * c->p0;
       /* a smooth hard contact (u = 0) carries no fluid shear: sigma_s acts there */
       if (!(!c->rough && area > 0.0) && u > 0.0)
@@ -1024,10 +1160,9 @@ static void contact_report(vl_contact *c, vl_point *pt) {
   pt->x_min_film_m = c->xi[iumin] * c->a0;
   /* separation at the pressure centroid (linear interpolation on nodes) */
   double xc = pt->x_centroid_m / c->a0;
-  double t = (xc - c->xi[0]) / c->dxi;
-  size_t k = t <= 0 ? 0 : (size_t)t;
-  if (k >= n - 1) k = n - 2;
-  double w = fmin(fmax(t - (double)k, 0.0), 1.0);
+  size_t k = 0;
+  while (k + 2 < n && c->xi[k + 1] <= xc) k++;
+  double w = fmin(fmax((xc - c->xi[k]) / c->hf[k + 1], 0.0), 1.0);
   pt->u_central_m = fmax((1 - w) * c->U[k] + w * c->U[k + 1], 0.0) * c->uscale;
   /* contact extent where the total pressure >= 1% of its peak, interpolated */
   double thr = 0.01 * pmax / c->p0;
@@ -1036,8 +1171,8 @@ static void contact_report(vl_contact *c, vl_point *pt) {
   while (lo > 0 && PTOT(lo - 1) >= thr) lo--;
   while (hi + 1 < n && PTOT(hi + 1) >= thr) hi++;
   double xl = c->xi[lo], xr = c->xi[hi];
-  if (lo > 0) xl -= c->dxi * (PTOT(lo) - thr) / (PTOT(lo) - PTOT(lo - 1));
-  if (hi + 1 < n) xr += c->dxi * (PTOT(hi) - thr) / (PTOT(hi) - PTOT(hi + 1));
+  if (lo > 0) xl -= c->hf[lo] * (PTOT(lo) - thr) / (PTOT(lo) - PTOT(lo - 1));
+  if (hi + 1 < n) xr += c->hf[hi + 1] * (PTOT(hi) - thr) / (PTOT(hi) - PTOT(hi + 1));
   pt->contact_width_m = pmax > 0 ? (xr - xl) * c->a0 : 0.0;
   pt->fluid_load_fraction = sum_pf / fN;
   pt->load_error = fabs(load_sum(c) - 1.0);
@@ -1058,7 +1193,7 @@ static void contact_report(vl_contact *c, vl_point *pt) {
    * or more (rigid cylinder, closed form: 2 %; soft EHL, measured: 0.1 to
    * 0.4 %, 1.2 % at 2.5 lengths) */
   if (c->wet && !c->rough && pmax > 0 &&
-      (xl - c->xi[0] + 0.5 * c->dxi) * c->a0 < 5.0 * sqrt(2.0 * cfg->radius_m * pt->u_min_m))
+      (xl - c->xi[0] + c->hf[0]) * c->a0 < 5.0 * sqrt(2.0 * cfg->radius_m * pt->u_min_m))
     add_warning(pt, "inlet shorter than 5 inlet lengths sqrt(2 R u_min) ahead of the pressure "
                     "(fully flooded film underestimated)");
 #undef PTOT

@@ -23,7 +23,7 @@ typedef enum {
   K_QUANTITY, K_FROM, K_TO, K_POINTS, K_FIELDS_AT,
   K_VISCOELASTIC, K_ROUGHNESS, K_FLUID, K_SOLID_SHEAR, K_VISCOUS_FLATTENING, K_TEMPERATURE,
   K_FLOW_FACTORS, K_TEMPERATURE_C,
-  K_GRID, K_DOMAIN, K_TOLERANCE, K_LINEAR_SOLVER, K_PERSSON_TABLE,
+  K_GRID, K_GRID_GROWTH, K_DOMAIN, K_TOLERANCE, K_LINEAR_SOLVER, K_PERSSON_TABLE,
   K_COUNT
 } key_id;
 
@@ -53,6 +53,7 @@ static const struct {
     [K_FLOW_FACTORS] = {"effects", "flow_factors", false},
     [K_TEMPERATURE_C] = {"effects", "temperature_c", false},
     [K_GRID] = {"numerics", "grid", false},
+    [K_GRID_GROWTH] = {"numerics", "grid_growth", false},
     [K_DOMAIN] = {"numerics", "domain_a0", false},
     [K_TOLERANCE] = {"numerics", "tolerance", false},
     [K_LINEAR_SOLVER] = {"numerics", "linear_solver", false},
@@ -320,6 +321,10 @@ static int handler(void *user, const char *section, const char *key, const char 
     if (!parse_size(value, &sc->grid) || sc->grid < 16 || sc->grid > 8192)
       return fail(ps, section, key, "expected a whole number in [16, 8192], got '%s'", value);
     return 1;
+  case K_GRID_GROWTH:
+    if (!parse_double(value, &sc->grid_growth) || !(sc->grid_growth >= 1.0 && sc->grid_growth <= 2.0))
+      return fail(ps, section, key, "expected a ratio in [1, 2] (1: uniform grid), got '%s'", value);
+    return 1;
   case K_DOMAIN: {
     double d[2];
     /* the cylinder axis x = 0 lies in every contact: a domain without it
@@ -402,6 +407,7 @@ void vl_scene_defaults(vl_scene *sc) {
   sc->elastic = VL_ELASTIC_RELAXED;
   sc->effects.temperature_c = NAN;
   sc->grid = 512;
+  sc->grid_growth = 1.0;
   /* symmetric about the axis: an elastic contact then has exactly zero
    * rolling friction on the grid, so small viscoelastic shifts are resolved */
   sc->domain_min_a0 = -1.5;
@@ -446,6 +452,11 @@ static vl_status scene_check(parse_state *ps) {
     sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
   }
   if (sc->effects.fluid && !ps->key_line[K_GRID]) sc->grid = VL_WET_GRID;
+  if (sc->effects.fluid && sc->effects.roughness && !ps->key_line[K_GRID_GROWTH])
+    sc->grid_growth = VL_WET_GRID_GROWTH;
+  if (sc->grid_growth > 1.0 && !sc->effects.roughness)
+    return check_fail(ps, K_GRID_GROWTH, "a graded grid needs [effects] roughness = on (smooth "
+                                         "contacts use a uniform grid: remove the key or set 1)");
   if (sc->effects.fluid && !ps->key_line[K_TOLERANCE]) sc->tolerance = VL_WET_TOLERANCE;
   if (sc->effects.roughness && !sc->surface[0])
     return check_fail(ps, K_ROUGHNESS, "roughness = on needs [materials] surface");

@@ -216,6 +216,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
   cfg.flow_factors = scene->effects.flow_factors;
   cfg.grid = scene->grid;
+  cfg.grid_growth = scene->grid_growth;
   cfg.x_min_a0 = scene->domain_min_a0;
   cfg.x_max_a0 = scene->domain_max_a0;
   cfg.tolerance = scene->tolerance;

@@ -56,6 +56,11 @@ typedef enum {
                          * fails, and for every other contact). The default. */
 } vl_linear_solver;
 
+/* Where a graded grid (vl_contact_config.grid_growth) starts to coarsen: the
+ * relaxed Hertz contact ends at x = -a0, and rough or viscoelastic pressure
+ * tails reach a little beyond. */
+#define VL_GRADE_START_A0 2.0
+
 typedef struct {
   vl_prony rubber;            /* n_terms = 0: elastic with E = e_inf_pa */
   double radius_m;
@@ -64,7 +69,16 @@ typedef struct {
   const vl_persson *roughness;/* NULL = smooth (hard contact); not owned */
   double eta_pa_s;            /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
   vl_flow_factor_kind flow_factors; /* with roughness; smooth surfaces use smooth */
-  size_t grid;                /* nodes (cells) on the domain */
+  size_t grid;                /* cells of the uniform grid on the domain (the resolution) */
+  /* Graded inlet (rough contacts only; <= 1: uniform grid): upstream of
+   * x = -VL_GRADE_START_A0 a0 the uniform cells are merged into cells that
+   * grow by this ratio towards the inlet end (an odd number of uniform cells
+   * each, so that every node sits on a node of the uniform grid and the
+   * influence coefficients stay exact sums of the uniform ones). The contact
+   * keeps the uniform resolution; the long inlet a lubricated contact needs
+   * costs tens of cells instead of hundreds. The last cell may end up to
+   * one uniform cell beyond x_min_a0. */
+  double grid_growth;
   double x_min_a0, x_max_a0;  /* domain in units of a0 (the relaxed Hertz half-width, however
                                * stiff the solid): smooth wet contacts need an inlet of tens
                                * of vl_contact_inlet_length_m beyond the contact */

@@ -27,6 +27,8 @@
 #define VL_WET_DOMAIN_MAX_A0 1.6
 #define VL_WET_GRID 768
 #define VL_WET_TOLERANCE 1e-6
+/* Graded inlet of rough wet scenes (vl_contact_config.grid_growth). */
+#define VL_WET_GRID_GROWTH 1.0
 
 typedef enum {
   VL_SWEEP_V0 = 0,     /* sliding speed, m/s */
@@ -67,6 +69,7 @@ typedef struct {
   } effects;
   /* [numerics] */
   size_t grid;
+  double grid_growth;  /* vl_contact_config.grid_growth; 1 = uniform */
   double domain_min_a0, domain_max_a0;
   double tolerance;
   vl_linear_solver linear_solver;

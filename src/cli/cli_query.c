@@ -150,6 +150,7 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
     }
   }
   sc->grid = c->grid;
+  sc->grid_growth = VL_WET_GRID_GROWTH;
   sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
   sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
   sc->tolerance = VL_WET_TOLERANCE;
