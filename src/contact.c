@@ -653,8 +653,9 @@ static void graded_influence(vl_contact *c) {
 /* Cells of the grid (vl_contact_config.grid_growth): nv uniform cells on
  * [x_min, x_max]; upstream of -VL_GRADE_START_A0 they are merged, from the
  * contact outwards, into runs of odd length growing by `growth` (never
- * shrinking), the last run taking the rest (one uniform cell more when the
- * rest is even: the domain then starts one uniform cell earlier). Writes
+ * shrinking), the last run taking the rest, between one and two of the
+ * previous runs (one uniform cell more when the rest is even: the domain
+ * then starts one uniform cell earlier). Writes
  * span[] left to right when span != NULL (room for nv + 1 cells), and the
  * uniform cells covered in *nv_out. Returns the number of cells. */
 static size_t grid_layout(size_t nv, double x_min, double x_max, double growth, size_t *span,
@@ -669,7 +670,7 @@ static size_t grid_layout(size_t nv, double x_min, double x_max, double growth, 
     t *= growth;
     size_t m = 2 * (size_t)round((t - 1.0) / 2.0) + 1;
     if (m < prev) m = prev;
-    if (rem <= m + m / 2) m = rem % 2 ? rem : rem + 1; /* the last run */
+    if (rem < 2 * m) m = rem % 2 ? rem : rem + 1; /* the last run: m .. 2m */
     if (span) span[cells] = m;
     cells++;
     covered += m;
@@ -777,13 +778,14 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
     vl_error_set(err, "sigma_s_pa must be >= 0 (got %g)", cfg->sigma_s_pa);
     return VL_EINPUT;
   }
-  if (cfg->grid < 8 || cfg->grid > 16384) {
-    vl_error_set(err, "grid must lie in [8, 16384] (got %zu)", cfg->grid);
-    return VL_EINPUT;
-  }
   if (cfg->grid_growth != cfg->grid_growth || cfg->grid_growth > 2.0) {
     vl_error_set(err, "grid_growth must be <= 2 (1 or less: uniform grid; got %g)",
                  cfg->grid_growth);
+    return VL_EINPUT;
+  }
+  if (cfg->grid < 8 || cfg->grid > (cfg->grid_growth > 1.0 ? 262144u : 16384u)) {
+    vl_error_set(err, "grid must lie in [8, %u] (got %zu)",
+                 cfg->grid_growth > 1.0 ? 262144u : 16384u, cfg->grid);
     return VL_EINPUT;
   }
   if (cfg->grid_growth > 1.0 && !cfg->roughness) {
@@ -871,6 +873,12 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   size_t nv_cov;
   c->n = grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, NULL, &nv_cov);
   c->graded = c->n != cfg->grid || nv_cov != cfg->grid;
+  if (c->n > 16384) {
+    vl_error_set(err, "grid %zu with growth %g gives %zu cells (at most 16384: the matrices are dense)",
+                 cfg->grid, cfg->grid_growth, c->n);
+    free(c);
+    return VL_EINPUT;
+  }
   c->nf = c->wet ? c->n : 0;
   /* A smooth wet contact keeps a positive film (Reynolds' equation carries
    * any load at any v0 > 0): no contact unknowns, pressure-only system. */
@@ -1653,5 +1661,12 @@ void vl_contact_timing_reset(vl_contact *c) {
 }
 
 size_t vl_contact_grid(const vl_contact *c) { return c->n; }
+void vl_contact_cell(const vl_contact *c, size_t i, double *x_a0, double *width_a0) {
+  *x_a0 = c->xi[i], *width_a0 = c->wc[i];
+}
+double vl_contact_influence(vl_contact *c, double v0_m_s, size_t i, size_t j) {
+  contact_set_speed(c, v0_m_s);
+  return c->M[i * c->n + j];
+}
 double vl_contact_a0(const vl_contact *c) { return c->a0; }
 double vl_contact_p0(const vl_contact *c) { return c->p0; }

@@ -318,8 +318,8 @@ static int handler(void *user, const char *section, const char *key, const char 
       return fail(ps, section, key, "expected a temperature in C, got '%s'", value);
     return 1;
   case K_GRID:
-    if (!parse_size(value, &sc->grid) || sc->grid < 16 || sc->grid > 8192)
-      return fail(ps, section, key, "expected a whole number in [16, 8192], got '%s'", value);
+    if (!parse_size(value, &sc->grid) || sc->grid < 16 || sc->grid > VL_GRID_GRADED_MAX)
+      return fail(ps, section, key, "expected a whole number in [16, 262144], got '%s'", value);
     return 1;
   case K_GRID_GROWTH:
     if (!parse_double(value, &sc->grid_growth) || !(sc->grid_growth >= 1.0 && sc->grid_growth <= 2.0))
@@ -447,13 +447,17 @@ static vl_status scene_check(parse_state *ps) {
   }
   /* a lubricated contact needs room for the inlet meniscus and the film
    * build-up upstream of the contact (MODEL.md section 5) */
+  bool rough_wet = sc->effects.fluid && sc->effects.roughness;
   if (sc->effects.fluid && !ps->key_line[K_DOMAIN]) {
-    sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
+    sc->domain_min_a0 = rough_wet ? VL_WET_ROUGH_DOMAIN_MIN_A0 : VL_WET_DOMAIN_MIN_A0;
     sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
   }
-  if (sc->effects.fluid && !ps->key_line[K_GRID]) sc->grid = VL_WET_GRID;
-  if (sc->effects.fluid && sc->effects.roughness && !ps->key_line[K_GRID_GROWTH])
-    sc->grid_growth = VL_WET_GRID_GROWTH;
+  if (sc->effects.fluid && !ps->key_line[K_GRID]) sc->grid = rough_wet ? VL_WET_ROUGH_GRID : VL_WET_GRID;
+  if (rough_wet && !ps->key_line[K_GRID_GROWTH]) sc->grid_growth = VL_WET_GRID_GROWTH;
+  if (!(sc->grid_growth > 1.0) && sc->grid > VL_GRID_UNIFORM_MAX)
+    return check_fail(ps, K_GRID, "a uniform grid takes at most %d cells (its dense matrices grow "
+                                  "as the square), got %zu; set grid_growth > 1 for a graded inlet",
+                      VL_GRID_UNIFORM_MAX, sc->grid);
   if (sc->grid_growth > 1.0 && !sc->effects.roughness)
     return check_fail(ps, K_GRID_GROWTH, "a graded grid needs [effects] roughness = on (smooth "
                                          "contacts use a uniform grid: remove the key or set 1)");

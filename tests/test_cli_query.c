@@ -124,7 +124,7 @@ static void test_compare_filled_unfilled(void **state) {
   snprintf(dir, sizeof dir, "%s/cmp", vl_test_tmpdir());
   snprintf(args, sizeof args,
            "--db %s compare --compounds sbr-unfilled,sbr-filled --surface paper-0.5um --fluid "
-           "water --from 1e-11 --to 1e-1 --points 6 --grid 96 --flow-factors smooth --plot "
+           "water --from 1e-11 --to 1e-1 --points 6 --grid 384 --flow-factors smooth --plot "
            "--out %s",
            g_db, dir);
   int rc = vl_test_cli(NULL, args, &out, &err);

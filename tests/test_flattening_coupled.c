@@ -454,7 +454,7 @@ static void test_cli_scene(void **state) {
   char *text = vl_test_read_file(vl_test_source_path("cases/fig05.ini"));
   assert_non_null(text);
   const char *edits[][2] = {{"viscous_flattening = off", "viscous_flattening = on"},
-                            {"grid = 768", "grid = 128"},
+                            {"grid = 2928", "grid = 488"},
                             {"points = 61", "points = 13"},
                             {"fields_at = 1e-7, 1e-6, 3e-6, 1e-5, 1e-3, 1e-1, 1", "fields_at = 3e-3"}};
   for (size_t k = 0; k < sizeof edits / sizeof *edits; k++) {

@@ -109,8 +109,22 @@ static void test_defaults(void **state) {
            "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
            "[sweep]\nquantity = v0\nfrom = 1e-3\nto = 1\npoints = 4\n"
            "[effects]\nroughness = on\nfluid = on\n");
+  /* rough and wet: the graded long inlet */
+  assert_int_equal(g_scene.grid, VL_WET_ROUGH_GRID);
+  assert_true(g_scene.grid_growth == VL_WET_GRID_GROWTH && g_scene.grid_growth > 1.0);
+  assert_true(g_scene.domain_min_a0 == VL_WET_ROUGH_DOMAIN_MIN_A0 &&
+              g_scene.domain_max_a0 == VL_WET_DOMAIN_MAX_A0 &&
+              g_scene.tolerance == VL_WET_TOLERANCE);
+  /* smooth and wet: the uniform grid (the graded one needs roughness) */
+  parse_ok("[materials]\ncompound = model-rubber\nfluid = water\n"
+           "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
+           "[sweep]\nquantity = v0\nfrom = 1e-3\nto = 1\npoints = 4\n"
+           "[effects]\nfluid = on\n");
   assert_int_equal(g_scene.grid, VL_WET_GRID);
-  assert_true(g_scene.domain_min_a0 == VL_WET_DOMAIN_MIN_A0 && g_scene.tolerance == VL_WET_TOLERANCE);
+  assert_true(g_scene.grid_growth == 1.0 && g_scene.domain_min_a0 == VL_WET_DOMAIN_MIN_A0);
+  /* the dry default grid is uniform */
+  parse_ok(BASE);
+  assert_true(g_scene.grid_growth == 1.0);
   parse_ok("[materials]\ncompound = model-rubber\nsurface = paper-3um\nfluid = water\n"
            "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
            "[sweep]\nquantity = v0\nfrom = 1e-3\nto = 1\npoints = 4\n"
@@ -148,7 +162,7 @@ static void test_every_key(void **state) {
            "fields_at = 1e-5, 3e-4,1e-2\n"
            "[effects]\nviscoelastic = on\nroughness = on\nfluid = on\nsolid_shear = on\n"
            "flow_factors = patir-cheng\nviscous_flattening = off\ntemperature = off\n"
-           "[numerics]\ngrid = 300\ndomain_a0 = -3, 1.25\ntolerance = 1e-7\n"
+           "[numerics]\ngrid = 300\ngrid_growth = 1.25\ndomain_a0 = -3, 1.25\ntolerance = 1e-7\n"
            "linear_solver = sundials\npersson_table = 256\n");
   assert_string_equal(g_scene.title, "wet, rough: the lot");
   assert_string_equal(g_scene.compound, "c1");
@@ -166,6 +180,7 @@ static void test_every_key(void **state) {
               g_scene.effects.solid_shear);
   assert_int_equal(g_scene.effects.flow_factors, VL_FLOW_FACTORS_PATIR_CHENG);
   assert_int_equal(g_scene.grid, 300);
+  assert_true(g_scene.grid_growth == 1.25);
   assert_true(g_scene.domain_min_a0 == -3.0 && g_scene.domain_max_a0 == 1.25);
   assert_true(g_scene.tolerance == 1e-7);
   assert_int_equal(g_scene.linear_solver, VL_LINSOL_SUNDIALS);
@@ -387,8 +402,17 @@ static void test_bad_numbers(void **state) {
     parse_fails(edit(BASE, "points = 7", line), 13, "[sweep] points", "whole number");
   }
   parse_fails(edit(BASE, "quantity = deborah", "quantity = speed"), 10, "[sweep] quantity", "'speed'");
-  parse_fails(edit(BASE, "grid = 128", "grid = 8"), 17, "[numerics] grid", "[16, 8192]");
-  parse_fails(edit(BASE, "grid = 128", "grid = 10000"), 17, "[numerics] grid", NULL);
+  parse_fails(edit(BASE, "grid = 128", "grid = 8"), 17, "[numerics] grid", "[16, 262144]");
+  parse_fails(edit(BASE, "grid = 128", "grid = 300000"), 17, "[numerics] grid", NULL);
+  /* a uniform grid above 8192 cells: refused at the grid's line, with the way out */
+  parse_fails(edit(BASE, "grid = 128", "grid = 10000"), 17, "[numerics] grid", "grid_growth");
+  /* grid_growth: a ratio in [1, 2], and only for rough contacts */
+  parse_fails(edit(BASE, "grid = 128", "grid = 128\ngrid_growth = 0.9"), 18,
+              "[numerics] grid_growth", "[1, 2]");
+  parse_fails(edit(BASE, "grid = 128", "grid = 128\ngrid_growth = 3"), 18,
+              "[numerics] grid_growth", "'3'");
+  parse_fails(edit(BASE, "grid = 128", "grid = 128\ngrid_growth = 1.05"), 18,
+              "[numerics] grid_growth", "roughness = on");
   parse_fails(edit(BASE, "grid = 128", "grid = 128.5"), 17, "[numerics] grid", NULL);
   parse_fails(edit(BASE, "grid = 128", "grid = 128\ntolerance = 0"), 18, "[numerics] tolerance", "(0, 1)");
   parse_fails(edit(BASE, "grid = 128", "grid = 128\ntolerance = 1"), 18, "[numerics] tolerance", NULL);

@@ -236,8 +236,14 @@ void vl_contact_timing_get(const vl_contact *c, vl_contact_timing *t);
 /* Zeroes the counters of c and its helper contacts. */
 void vl_contact_timing_reset(vl_contact *c);
 
-size_t vl_contact_grid(const vl_contact *c);
+size_t vl_contact_grid(const vl_contact *c); /* cells (fewer than cfg.grid when graded) */
 double vl_contact_a0(const vl_contact *c); /* m */
+/* Cell i < vl_contact_grid(c): its node (the cell centre) and width, in a0. */
+void vl_contact_cell(const vl_contact *c, size_t i, double *x_a0, double *width_a0);
+/* The influence coefficient the solver uses at speed v0 (builds the kernel
+ * for v0, as a solve would): d(gap at node i)/d(pressure on cell j), gap in
+ * a0^2/R, pressure in p0 (vl_contact_p0); for tests. */
+double vl_contact_influence(vl_contact *c, double v0_m_s, size_t i, size_t j);
 double vl_contact_p0(const vl_contact *c); /* Pa */
 
 /* |Er(wH)| and a_H at speed v0 from the fixed point wH = pi v0 / a_H,

@@ -75,8 +75,9 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
     else if (!strcmp(o, "--radius")) c->radius = d;
     else if (!strcmp(o, "--sigma-s")) c->sigma_s = d;
     else {
-      if (d < 16 || d > 8192 || d != floor(d)) {
-        fprintf(stderr, "viscolube %s: option --grid needs a whole number in [16, 8192]\n", cmd);
+      if (d < 16 || d > VL_GRID_GRADED_MAX || d != floor(d)) {
+        fprintf(stderr, "viscolube %s: option --grid needs a whole number in [16, %d]\n", cmd,
+                VL_GRID_GRADED_MAX);
         return -1;
       }
       c->grid = (size_t)d;
@@ -151,7 +152,7 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
   }
   sc->grid = c->grid;
   sc->grid_growth = VL_WET_GRID_GROWTH;
-  sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
+  sc->domain_min_a0 = VL_WET_ROUGH_DOMAIN_MIN_A0;
   sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
   sc->tolerance = VL_WET_TOLERANCE;
   sc->quantity = VL_SWEEP_V0_ETA;
@@ -187,13 +188,14 @@ static void friction_usage(FILE *out) {
         "temperature) is refused. The output states the temperature, a_T and viscosity.\n"
         "Defaults (the seed's real-rubber scenes): --load 117, --radius 0.001,\n"
         "--sigma-s 1e6, --flow-factors smooth (Patir-Cheng fails below\n"
-        "u ~ 0.3 h_rms: README, Known limitations), --grid 768,\n"
-        "domain [-24, 1.6] a0, tolerance 1e-6 (README: Accuracy and cost).\n",
+        "u ~ 0.3 h_rms: README, Known limitations), domain [-96, 1.6] a0 with\n"
+        "--grid 2928 (the uniform cells: a0/30) merged upstream of -2 a0 into cells\n"
+        "growing by 5 % (about 200 cells), tolerance 1e-6 (README: Accuracy and cost).\n",
         out);
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, VL_WET_GRID, NULL, 0, 0, 0, NAN};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, VL_WET_ROUGH_GRID, NULL, 0, 0, 0, NAN};
   const char *compound = NULL;
   double speed = 0.0;
   int have_speed = 0;
@@ -334,7 +336,7 @@ static void compare_usage(FILE *out) {
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, VL_WET_GRID, NULL, 0, 0, 0, NAN};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, VL_WET_ROUGH_GRID, NULL, 0, 0, 0, NAN};
   char list[MAX_COMPOUNDS * 128] = "";
   char *names[MAX_COMPOUNDS];
   size_t nc = 0;
