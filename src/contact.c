@@ -1567,6 +1567,7 @@ void vl_contact_fields(const vl_contact *c, vl_fields *f) {
     f->u_m[i] = fmax(c->U[i], 0.0) * c->uscale;
     f->area_ratio[i] = area_at(c, i);
     if (f->film_fraction) f->film_fraction[i] = c->wet ? theta[i] : 1.0;
+    if (f->width_m) f->width_m[i] = c->wc[i] * c->a0;
   }
 }
 

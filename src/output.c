@@ -84,12 +84,16 @@ vl_status vl_write_fields_csv(const char *path, const vl_fields *fl, double a0_m
   char tmp[4200];
   FILE *f = open_tmp(path, tmp, sizeof tmp, err);
   if (!f) return VL_EIO;
-  fputs("x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction\n", f);
-  for (size_t i = 0; i < fl->n; i++)
-    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", plain_zero(fl->x_m[i]),
+  fputs("x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction", f);
+  fputs(fl->width_m ? ",cell_width_m\n" : "\n", f);
+  for (size_t i = 0; i < fl->n; i++) {
+    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", plain_zero(fl->x_m[i]),
             plain_zero(fl->x_m[i] / a0_m), plain_zero(fl->p_f_pa[i]), plain_zero(fl->p_c_pa[i]),
             plain_zero(fl->u_m[i]), plain_zero(fl->area_ratio[i]),
             fl->film_fraction ? plain_zero(fl->film_fraction[i]) : 1.0);
+    if (fl->width_m) fprintf(f, ",%.10g", fl->width_m[i]);
+    fputc('\n', f);
+  }
   return close_rename(f, tmp, path, err);
 }
 

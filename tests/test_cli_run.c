@@ -50,7 +50,7 @@ static const char *const COLUMNS[] = {
     "residual", "eps_f_min", "warnings"};
 #define NCOL (sizeof COLUMNS / sizeof COLUMNS[0])
 static const char *const FIELD_COLUMNS =
-    "x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction";
+    "x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction,cell_width_m";
 
 /* The number after the n-th (0-based) occurrence of "key" (NAN for null). */
 static double json_get(const char *json, const char *key, size_t nth) {
@@ -279,7 +279,7 @@ static void check_fields(const char *out_dir, size_t row, size_t grid, double do
   snprintf(path, sizeof path, "%s/fields/%03zu.csv", out_dir, row);
   csv_table f = csv_read(path);
   assert_string_equal(f.header, FIELD_COLUMNS);
-  assert_int_equal(f.cols, 7);
+  assert_int_equal(f.cols, 8);
   assert_int_equal(f.rows, grid);
   double a0 = hertz_a(E0_PA), dx = 2.0 * dom_a0 * a0 / (double)grid, load = 0.0;
   double p0 = 2.0 * LOAD_N_PER_M / (PI * a0), u0 = a0 * a0 / RADIUS_M; /* Hertz scales */
@@ -298,7 +298,9 @@ static void check_fields(const char *out_dir, size_t row, size_t grid, double do
     assert_true(strtod(f.cell[i][2], NULL) == 0.0); /* dry: no fluid pressure */
     double ar = strtod(f.cell[i][5], NULL);
     assert_true(ar >= 0.0 && ar <= 1.0);
-    load += pc * dx;
+    double w = strtod(f.cell[i][7], NULL); /* a dry grid is uniform */
+    if (vl_test_rel(w, dx) > 1e-9) fail_msg("%s row %zu: cell width %g m, want %g", path, i, w, dx);
+    load += pc * w;
   }
   /* the load balance holds to the Newton tolerance, and the printed
    * pressures carry 10 digits: 1e-6 is loose (measured: 6e-9 smooth,

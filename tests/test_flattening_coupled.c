@@ -231,7 +231,7 @@ static void test_scaled_psd(void **state) {
   size_t n = vl_contact_grid(fx.c);
   double *b = calloc(6 * n, sizeof *b);
   assert_non_null(b);
-  vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n};
+  vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n, NULL};
   vl_contact_fields(fx.c, &f);
   double eps_umin = vl_flattening_eps(fx.flat, p->u_min_m, NULL);
   print_message("eps_f_min %.12f, epsilon_f(u_min) %.12f\n", p->eps_f_min, eps_umin);
@@ -319,7 +319,7 @@ static void test_thick_film_identical(void **state) {
     fld[on] = calloc(6 * n, sizeof *fld[on]);
     assert_non_null(fld[on]);
     double *b = fld[on];
-    vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n};
+    vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n, NULL};
     vl_contact_fields(c, &f);
     vl_contact_free(c);
   }

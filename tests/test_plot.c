@@ -349,7 +349,7 @@ static void test_fields(void **state) {
   vl_fields f[3];
   const double a0 = 1.6e-3, p0 = 4e5, hrms = 3e-6;
   for (int j = 0; j < 3; j++) {
-    f[j] = (vl_fields){N, buf[j][0], buf[j][1], buf[j][2], buf[j][3], buf[j][4], buf[j][5]};
+    f[j] = (vl_fields){N, buf[j][0], buf[j][1], buf[j][2], buf[j][3], buf[j][4], buf[j][5], NULL};
     for (int i = 0; i < N; i++) {
       double x = -3.0 + 4.6 * i / (N - 1);
       double hz = fabs(x) < 1 ? sqrt(1 - x * x) : 0;

@@ -60,7 +60,7 @@ static double deborah_of(const vl_contact *c, double v0) { return v0 * TAU / vl_
 static void pressure_moments(const vl_contact *c, double *half_width, double *pmax) {
   size_t n = vl_contact_grid(c);
   double *buf = calloc(5 * n, sizeof *buf);
-  vl_fields f = {n, buf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, NULL};
+  vl_fields f = {n, buf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, NULL, NULL};
   vl_contact_fields(c, &f);
   double s0 = 0, s1 = 0, s2 = 0, pm = 0, dx = f.x_m[1] - f.x_m[0];
   for (size_t i = 0; i < n; i++) {
@@ -210,7 +210,7 @@ static void test_invariants_and_sign(void **state) {
   sweep_deborah(c, 4, de, pts);
   size_t n = vl_contact_grid(c);
   double *buf = calloc(5 * n, sizeof *buf);
-  vl_fields f = {n, buf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, NULL};
+  vl_fields f = {n, buf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, NULL, NULL};
   vl_contact_fields(c, &f);
   for (int i = 0; i < 4; i++) {
     assert_true(pts[i].converged);

@@ -259,7 +259,7 @@ static void check_invariants(vl_contact *c, const vl_point *pt, double v0, bool 
   size_t n = vl_contact_grid(c);
   double *buf = calloc(7 * n + 1, sizeof *buf);
   assert_non_null(buf);
-  vl_fields f = {n, buf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, buf + 5 * n};
+  vl_fields f = {n, buf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, buf + 5 * n, NULL};
   double *J = buf + 6 * n;
   vl_contact_fields(c, &f);
   assert_int_equal(vl_contact_face_fluxes(c, J, n + 1), n + 1);
@@ -338,7 +338,7 @@ static double energy_mismatch(vl_contact *c, const vl_point *pt, double v0, doub
   size_t n = vl_contact_grid(c);
   double *buf = calloc(6 * n, sizeof *buf);
   assert_non_null(buf);
-  vl_fields f = {n, buf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, buf + 5 * n};
+  vl_fields f = {n, buf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, buf + 5 * n, NULL};
   vl_contact_fields(c, &f);
   double dx = f.x_m[1] - f.x_m[0], couette = 0.0, poiseuille = 0.0;
   for (size_t i = 0; i < n; i++) couette += f.film_fraction[i] * eta * v0 * v0 / f.u_m[i] * dx;

@@ -32,7 +32,7 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt, con
   curve *cv = user;
   size_t n = vl_contact_grid(c);
   double *b = calloc(7 * n, sizeof *b);
-  vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n};
+  vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n, NULL};
   vl_contact_fields(c, &f);
   size_t ic = 0, jf = 0;
   for (size_t k = 0; k < n; k++) {

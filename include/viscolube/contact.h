@@ -145,6 +145,7 @@ typedef struct {
   size_t n;
   double *x_m, *p_f_pa, *p_c_pa, *u_m, *area_ratio;
   double *film_fraction; /* theta: 1 in the full film, < 1 where cavitated; may be NULL */
+  double *width_m;       /* cell widths (graded grids are not uniform); may be NULL */
 } vl_fields;
 
 typedef struct vl_contact vl_contact;

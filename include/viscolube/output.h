@@ -26,7 +26,9 @@ vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
                              const vl_curve_meta *meta, vl_error *err);
 void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta);
 
-/* Fields: x_m, x_over_a0, p_f_pa, p_c_pa, u_m, area_ratio, film_fraction. */
+/* Fields: x_m, x_over_a0, p_f_pa, p_c_pa, u_m, area_ratio, film_fraction, and
+ * cell_width_m when fl->width_m is set (a graded grid's cells differ: the
+ * load is sum (p_f + p_c) cell_width). */
 vl_status vl_write_fields_csv(const char *path, const vl_fields *f, double a0_m, vl_error *err);
 
 /* One JSON object per point; an array for a curve. */

@@ -83,17 +83,17 @@ static vl_status keep_fields(run_ctx *ctx, size_t n, size_t grid, vl_error *err)
   if (!ctx->n_kept) return VL_OK;
   ctx->kept_index = calloc(ctx->n_kept, sizeof *ctx->kept_index);
   ctx->kept = calloc(ctx->n_kept, sizeof *ctx->kept);
-  ctx->kept_buf = calloc(6 * grid * ctx->n_kept, sizeof *ctx->kept_buf);
+  ctx->kept_buf = calloc(7 * grid * ctx->n_kept, sizeof *ctx->kept_buf);
   if (!ctx->kept_index || !ctx->kept || !ctx->kept_buf) {
     vl_error_set(err, "out of memory");
     return VL_ENOMEM;
   }
   for (size_t i = 0, k = 0; i < n; i++) {
     if (!vl_simulation_wants_fields(ctx->sim, i)) continue;
-    double *b = ctx->kept_buf + 6 * grid * k;
+    double *b = ctx->kept_buf + 7 * grid * k;
     ctx->kept_index[k] = i;
-    ctx->kept[k] =
-        (vl_fields){0, b, b + grid, b + 2 * grid, b + 3 * grid, b + 4 * grid, b + 5 * grid};
+    ctx->kept[k] = (vl_fields){0,           b,           b + grid,     b + 2 * grid,
+                               b + 3 * grid, b + 4 * grid, b + 5 * grid, b + 6 * grid};
     k++;
   }
   return VL_OK;
@@ -205,14 +205,14 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
     goto done;
   }
   pts = calloc(n, sizeof *pts);
-  buf = calloc(6 * grid, sizeof *buf);
+  buf = calloc(7 * grid, sizeof *buf);
   if (!pts || !buf) {
     vl_error_set(err, "out of memory");
     st = VL_ENOMEM;
     goto done;
   }
-  ctx.fields = (vl_fields){grid,           buf,           buf + grid, buf + 2 * grid,
-                           buf + 3 * grid, buf + 4 * grid, buf + 5 * grid};
+  ctx.fields = (vl_fields){grid,           buf,           buf + grid,     buf + 2 * grid,
+                           buf + 3 * grid, buf + 4 * grid, buf + 5 * grid, buf + 6 * grid};
   ctx.sim = sim;
   ctx.out_dir = out_dir;
   if (plot && (st = keep_fields(&ctx, n, grid, err)) != VL_OK) goto done;

@@ -258,7 +258,7 @@ static inline void hard_assert_finite(double v, const char *what, const hard_ctx
 static inline void hard_check_fields(hard_ctx *x, const vl_contact *c, const vl_point *pt) {
   size_t n = vl_contact_grid(c);
   double *b = malloc(6 * n * sizeof *b);
-  vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n};
+  vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n, NULL};
   vl_contact_fields(c, &f);
   double pref = fmax(x->p0, pt->peak_pressure_pa);
   double v0 = pt->v0_m_s;
