@@ -6,9 +6,10 @@
 # the tables (hunter, fig05, fig10, rubber, linsol, defaults, targets) and
 # writes OUT_DIR/accuracy.csv, cost_vs_n.csv, prony_fits.csv, defaults.csv,
 # reference-<scene>.csv and pareto-{fig05,fig10,rubber}.svg (default OUT_DIR:
-# bench-out). About 8 minutes on a quiet 2-core Xeon; "--quick" checks the
-# program in ~40 s, "--only targets" runs the issue's speed targets (61-point
-# fig05 curves at N 512 and at the recommended defaults). See bench/README.md.
+# bench-out). About 6 minutes on a 2-core Xeon; "--quick" checks the program
+# in ~40 s, "--only targets" runs the issue's speed targets (61-point fig05
+# curves at the shipped defaults, uniform N 512 and the old uniform N 768).
+# See bench/README.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-bench-out}
