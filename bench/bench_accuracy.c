@@ -1428,6 +1428,21 @@ static void knob_table(const scene_ctx *s, const row *base) {
 
 /* Sum of the scenes' times per curve at (r, X, g, tol), running what is
  * missing; NAN unless every scene meets the bound there. */
+/* The studied rows of r's setting in every scene with a reference: their
+ * summed curve time and worst err_mu. False when a scene lacks the row, a
+ * point failed or (within_bound) a row misses the bound. */
+static bool summed_over_scenes(const row *r, bool within_bound, double *cost, double *err) {
+  *cost = 0, *err = 0;
+  for (int k = 0; k < 3; k++) {
+    const scene_ctx *s = g_scenes[k];
+    if (!s->have_ref) continue;
+    const row *o = study_row(s, r->res, r->inlet_a0, r->growth, r->tolerance);
+    if (within_bound ? !meets(o) : !(o && o->failed == 0 && o->compared > 0)) return false;
+    *cost += o->t_curve_s, *err = fmax(*err, o->err_mu);
+  }
+  return true;
+}
+
 static double common_cost(double r, double X, double g, double tol, double *worst_err) {
   double cost = 0, err = 0;
   for (int k = 0; k < 3; k++) {
@@ -1526,15 +1541,8 @@ static void bench_defaults(const char *dir) {
     const row *r = &rows[i];
     if (strcmp(r->scene, first->name) != 0 || r->kind != KIND_STUDY || r->tolerance != 1e-9)
       continue;
-    double cost = 0, err = 0;
-    bool ok = true;
-    for (int k = 0; k < 3 && ok; k++) {
-      const scene_ctx *s = g_scenes[k];
-      if (!s->have_ref) continue;
-      const row *o = study_row(s, r->res, r->inlet_a0, r->growth, r->tolerance);
-      ok = meets(o);
-      if (ok) cost += o->t_curve_s, err = fmax(err, o->err_mu);
-    }
+    double cost, err;
+    bool ok = summed_over_scenes(r, true, &cost, &err);
     if (ok && (best == SIZE_MAX ||
                preferable(cost, r->tolerance, err, best_cost, rows[best].tolerance, best_err)))
       best = i, best_cost = cost, best_err = err;
@@ -1547,15 +1555,8 @@ static void bench_defaults(const char *dir) {
     if (strcmp(r->scene, first->name) != 0 || r->kind != KIND_STUDY || r->tolerance != 1e-9 ||
         r->growth != 1.0)
       continue;
-    double cost = 0, err = 0;
-    bool ok = true;
-    for (int k = 0; k < 3 && ok; k++) {
-      const scene_ctx *s = g_scenes[k];
-      if (!s->have_ref) continue;
-      const row *o = study_row(s, r->res, r->inlet_a0, r->growth, r->tolerance);
-      ok = o && o->failed == 0 && o->compared > 0;
-      if (ok) cost += o->t_curve_s, err = fmax(err, o->err_mu);
-    }
+    double cost, err;
+    bool ok = summed_over_scenes(r, false, &cost, &err);
     if (ok && (best_u == SIZE_MAX || err < best_u_err))
       best_u = i, best_u_cost = cost, best_u_err = err;
   }
