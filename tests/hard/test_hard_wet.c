@@ -119,6 +119,20 @@ static void smooth_corner(hard_family *fam, double ratio, size_t nt, double dec,
   hard_run_corner(fam, label, &cfg, NULL, nv, v, NULL);
 }
 
+/* The rough corner of Latin-hypercube point p: the solid from p[0..6],
+ * the surface from p[7..10], eta from p[11], the flow factors from p[12]
+ * (a quarter smooth); the grid, domain and growth as given. */
+static void lhs_rough_corner(hard_family *fam, const double *p, size_t grid, double x_min_a0,
+                             double growth, uint64_t *rng, size_t nv, const double *v) {
+  hard_solid so = hard_decode_solid(p, grids);
+  double noise = p[10] < 0.5 ? -1.0 : 2.0 * (p[10] - 0.5);
+  rough_corner(fam, so.ratio, so.terms, so.decades, so.tau_c, so.load, so.radius, grid,
+               0.3 + 0.7 * p[8], hard_log_between(10.0, 1e6, p[9]),
+               hard_log_between(1e-9, 5e-5, p[7]), noise, hard_log_between(1e-5, 100.0, p[11]),
+               p[12] < 0.25 ? VL_FLOW_FACTORS_SMOOTH : VL_FLOW_FACTORS_PATIR_CHENG, x_min_a0,
+               growth, rng, nv, v);
+}
+
 /* Latin hypercube over 14 parameters: 32 corners of 15 speeds (one a
  * decade); a quarter of them with smooth flow factors on a rough surface. */
 static void test_rough_lhs(void **state) {
@@ -130,13 +144,8 @@ static void test_rough_lhs(void **state) {
   size_t nv = hard_speeds(1e-12, 100.0, 1.0, v, 32);
   for (size_t i = 0; i < N; i++) {
     const double *p = u + i * D;
-    hard_solid so = hard_decode_solid(p, grids);
-    double noise = p[10] < 0.5 ? -1.0 : 2.0 * (p[10] - 0.5);
-    rough_corner(&fam_rough_lhs, so.ratio, so.terms, so.decades, so.tau_c, so.load, so.radius,
-                 so.grid, 0.3 + 0.7 * p[8], hard_log_between(10.0, 1e6, p[9]),
-                 hard_log_between(1e-9, 5e-5, p[7]), noise, hard_log_between(1e-5, 100.0, p[11]),
-                 p[12] < 0.25 ? VL_FLOW_FACTORS_SMOOTH : VL_FLOW_FACTORS_PATIR_CHENG,
-                 -hard_log_between(2.0, 30.0, p[13]), 1.0, &rng, nv, v);
+    lhs_rough_corner(&fam_rough_lhs, p, hard_decode_solid(p, grids).grid,
+                     -hard_log_between(2.0, 30.0, p[13]), 1.0, &rng, nv, v);
   }
   hard_assert_rate(&fam_rough_lhs);
 }
@@ -194,16 +203,10 @@ static void test_rough_graded(void **state) {
   size_t nv = hard_speeds(1e-12, 100.0, 1.0, v, 32);
   for (size_t i = 0; i < N; i++) {
     const double *p = u + i * D;
-    hard_solid so = hard_decode_solid(p, grids);
     double inlet = hard_log_between(16.0, 200.0, p[13]);
     double growth = 1.02 + 0.28 * p[14], per_a0 = 8.0 + 16.0 * p[15];
     size_t grid = (size_t)lround((inlet + 1.6) * per_a0);
-    double noise = p[10] < 0.5 ? -1.0 : 2.0 * (p[10] - 0.5);
-    rough_corner(&fam_rough_graded, so.ratio, so.terms, so.decades, so.tau_c, so.load, so.radius,
-                 grid, 0.3 + 0.7 * p[8], hard_log_between(10.0, 1e6, p[9]),
-                 hard_log_between(1e-9, 5e-5, p[7]), noise, hard_log_between(1e-5, 100.0, p[11]),
-                 p[12] < 0.25 ? VL_FLOW_FACTORS_SMOOTH : VL_FLOW_FACTORS_PATIR_CHENG, -inlet,
-                 growth, &rng, nv, v);
+    lhs_rough_corner(&fam_rough_graded, p, grid, -inlet, growth, &rng, nv, v);
   }
   hard_assert_rate(&fam_rough_graded);
 }
