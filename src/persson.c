@@ -35,6 +35,7 @@
  * linear wall for Newton iterates at u <= 0; linear in ln s would overflow
  * near u = -3 h_rms for the paper's surface). */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -45,9 +46,9 @@
 
 #include "viscolube/roughness.h"
 
-#define DEFAULT_N_TABLE 256
-#define MIN_N_TABLE 64
-#define MAX_N_TABLE 1000000
+#define DEFAULT_N_TABLE VL_PERSSON_DEFAULT_N_TABLE
+#define MIN_N_TABLE VL_PERSSON_MIN_N_TABLE
+#define MAX_N_TABLE VL_PERSSON_MAX_N_TABLE
 #define U_MAX_HRMS 50.0 /* table top, in h_rms */
 #define U_MIN_HRMS 1e-3 /* table bottom, in h_rms */
 #define GL_ORDER 8      /* Gauss-Legendre points per panel */
@@ -490,6 +491,48 @@ cleanup:
   return st;
 }
 
+/* g = (pi/4) \int q^3 C dq over the band (one expression for the build
+ * and for checking a stored table). */
+static double table_g(const vl_psd *psd) {
+  return 0.25 * M_PI * vl_psd_moment(psd, 3, psd->q0, psd->q1);
+}
+
+/* The continuations outside the table from its end nodes (C1 there). */
+static void set_ends(vl_persson *t) {
+  double dxdu_lo, dxdu_hi;
+  x_of_u(t, t->u[0], &dxdu_lo);
+  x_of_u(t, t->u[t->n - 1], &dxdu_hi);
+  t->dsdu_lo = exp(t->y[0]) * t->d[0] * dxdu_lo;
+  t->slope_hi = t->d[t->n - 1] * dxdu_hi;
+}
+
+/* A table with its PSD copy and n nodes allocated (values unset). */
+static vl_status table_alloc(const vl_psd *psd, size_t n, vl_persson **out, vl_error *err) {
+  vl_persson *t = calloc(1, sizeof *t);
+  *out = NULL;
+  if (!t) {
+    vl_error_set(err, "out of memory for a Persson table");
+    return VL_ENOMEM;
+  }
+  vl_status st = copy_psd(&t->psd, psd, err);
+  if (st != VL_OK) {
+    vl_persson_free(t);
+    return st;
+  }
+  t->n = n;
+  t->x = malloc(n * sizeof *t->x);
+  t->y = malloc(n * sizeof *t->y);
+  t->d = malloc(n * sizeof *t->d);
+  t->u = malloc(n * sizeof *t->u);
+  if (!t->x || !t->y || !t->d || !t->u) {
+    vl_error_set(err, "out of memory for a %zu-point Persson table", n);
+    vl_persson_free(t);
+    return VL_ENOMEM;
+  }
+  *out = t;
+  return VL_OK;
+}
+
 void vl_persson_free(vl_persson *table) {
   if (!table) return;
   vl_psd_free(&table->psd);
@@ -516,28 +559,13 @@ vl_status vl_persson_build(const vl_psd *psd, size_t n_table, vl_persson **out, 
                  MAX_N_TABLE, n_table);
     return VL_EINPUT;
   }
-  t = calloc(1, sizeof *t);
-  if (!t) {
-    vl_error_set(err, "out of memory for a Persson table");
-    return VL_ENOMEM;
-  }
-  st = copy_psd(&t->psd, psd, err);
-  if (st != VL_OK) goto cleanup;
-  t->n = n_table;
-  t->x = malloc(n_table * sizeof *t->x);
-  t->y = malloc(n_table * sizeof *t->y);
-  t->d = malloc(n_table * sizeof *t->d);
-  t->u = malloc(n_table * sizeof *t->u);
-  if (!t->x || !t->y || !t->d || !t->u) {
-    vl_error_set(err, "out of memory for a %zu-point Persson table", n_table);
-    st = VL_ENOMEM;
-    goto cleanup;
-  }
+  st = table_alloc(psd, n_table, &t, err);
+  if (st != VL_OK) return st;
   st = rule_build(&t->psd, &r, err);
   if (st != VL_OK) goto cleanup;
 
   t->hrms = vl_psd_hrms(&t->psd);
-  t->g = 0.25 * M_PI * vl_psd_moment(&t->psd, 3, t->psd.q0, t->psd.q1);
+  t->g = table_g(&t->psd);
   double wsum = r.c * r.sm;
   for (size_t k = 0; k < r.n; k++)
     wsum += r.wt[k];
@@ -562,11 +590,7 @@ vl_status vl_persson_build(const vl_psd *psd, size_t n_table, vl_persson **out, 
     }
   }
   limit_slopes(t);
-  double dxdu_lo, dxdu_hi;
-  x_of_u(t, t->u[0], &dxdu_lo);
-  x_of_u(t, t->u[n_table - 1], &dxdu_hi);
-  t->dsdu_lo = exp(t->y[0]) * t->d[0] * dxdu_lo;
-  t->slope_hi = t->d[n_table - 1] * dxdu_hi;
+  set_ends(t);
 
 cleanup:
   rule_free(&r);
@@ -710,3 +734,204 @@ double vl_persson_area_ratio(const vl_persson *t, double s, double *dads) {
 double vl_persson_g(const vl_persson *t) { return t->g; }
 double vl_persson_ustar(const vl_persson *t) { return t->ustar; }
 double vl_persson_hrms(const vl_persson *t) { return t->hrms; }
+
+size_t vl_persson_size(const vl_persson *t) { return t->n; }
+
+/* ------------------------------------------------------ serialised form */
+
+/* The blob (VL_PERSSON_FORMAT 1), every field little-endian, doubles as
+ * their IEEE-754 bits:
+ *   "VLPT", u32 format, u64 n                           (16 bytes)
+ *   PSD fingerprint: u64 kind, f64 hurst, q0, q1, c0, hrms_m, u64 points,
+ *     u64 FNV-1a hash of the points (q_k, C_k bits)     (64 bytes)
+ *   f64 hrms, g, ustar                                  (24 bytes)
+ *   f64 x[n], y[n], d[n], u[n]                          (32 n bytes)
+ *   u64 FNV-1a hash of all the bytes before it          (8 bytes)
+ * Written byte by byte so the file reads the same on any machine. What
+ * follows from these (uc = u*, the end continuations) is recomputed, so a
+ * stored table cannot contradict itself. */
+#define BLOB_MAGIC "VLPT"
+#define BLOB_HEAD 104 /* bytes before the nodes */
+#define FNV_OFFSET 0xcbf29ce484222325ULL
+#define FNV_PRIME 0x100000001b3ULL
+
+static void put_u64(unsigned char *p, uint64_t v) {
+  for (int i = 0; i < 8; i++)
+    p[i] = (unsigned char)(v >> (8 * i));
+}
+
+static uint64_t get_u64(const unsigned char *p) {
+  uint64_t v = 0;
+  for (int i = 0; i < 8; i++)
+    v |= (uint64_t)p[i] << (8 * i);
+  return v;
+}
+
+static uint64_t bits_of(double v) {
+  uint64_t b;
+  memcpy(&b, &v, sizeof b);
+  return b;
+}
+
+static double double_of(uint64_t b) {
+  double v;
+  memcpy(&v, &b, sizeof v);
+  return v;
+}
+
+static uint64_t fnv1a(uint64_t h, const unsigned char *p, size_t n) {
+  for (size_t i = 0; i < n; i++) {
+    h ^= p[i];
+    h *= FNV_PRIME;
+  }
+  return h;
+}
+
+/* The 8 fingerprint words of a PSD (as vl_psd_init_* left it). */
+static void psd_fingerprint(const vl_psd *psd, uint64_t fp[8]) {
+  uint64_t h = FNV_OFFSET;
+  for (size_t k = 0; k < psd->n; k++) {
+    unsigned char b[16];
+    put_u64(b, bits_of(psd->q[k]));
+    put_u64(b + 8, bits_of(psd->C[k]));
+    h = fnv1a(h, b, sizeof b);
+  }
+  fp[0] = (uint64_t)psd->kind;
+  fp[1] = bits_of(psd->hurst);
+  fp[2] = bits_of(psd->q0);
+  fp[3] = bits_of(psd->q1);
+  fp[4] = bits_of(psd->c0);
+  fp[5] = bits_of(psd->hrms_m);
+  fp[6] = (uint64_t)psd->n;
+  fp[7] = h;
+}
+
+vl_status vl_persson_serialize(const vl_persson *t, void **blob, size_t *len, vl_error *err) {
+  *blob = NULL;
+  *len = 0;
+  size_t size = BLOB_HEAD + 32 * t->n + 8;
+  unsigned char *b = malloc(size), *p = b;
+  if (!b) {
+    vl_error_set(err, "out of memory serialising a %zu-point Persson table", t->n);
+    return VL_ENOMEM;
+  }
+  memcpy(p, BLOB_MAGIC, 4);
+  for (int i = 0; i < 4; i++)
+    p[4 + i] = (unsigned char)((uint32_t)VL_PERSSON_FORMAT >> (8 * i));
+  put_u64(p + 8, (uint64_t)t->n);
+  p += 16;
+  uint64_t fp[8];
+  psd_fingerprint(&t->psd, fp);
+  for (int i = 0; i < 8; i++, p += 8)
+    put_u64(p, fp[i]);
+  const double scalars[3] = {t->hrms, t->g, t->ustar};
+  for (int i = 0; i < 3; i++, p += 8)
+    put_u64(p, bits_of(scalars[i]));
+  const double *arrays[4] = {t->x, t->y, t->d, t->u};
+  for (int a = 0; a < 4; a++)
+    for (size_t k = 0; k < t->n; k++, p += 8)
+      put_u64(p, bits_of(arrays[a][k]));
+  put_u64(p, fnv1a(FNV_OFFSET, b, size - 8));
+  *blob = b;
+  *len = size;
+  return VL_OK;
+}
+
+/* Checks the values of a table read from a blob (everything the queries
+ * rely on), and sets what follows from them. 0 with err set if any fails. */
+static int table_check(vl_persson *t, vl_error *err) {
+  if (bits_of(t->hrms) != bits_of(vl_psd_hrms(&t->psd)) ||
+      bits_of(t->g) != bits_of(table_g(&t->psd))) {
+    vl_error_set(err, "its h_rms or g is not the surface's: it belongs to another PSD");
+    return 0;
+  }
+  if (!(isfinite(t->ustar) && t->ustar > 0.0)) {
+    vl_error_set(err, "u* = %g m is not positive and finite", t->ustar);
+    return 0;
+  }
+  t->uc = t->ustar;
+  for (size_t k = 0; k < t->n; k++) {
+    double x = t->x[k], y = t->y[k], d = t->d[k], u = t->u[k];
+    if (!(isfinite(x) && isfinite(y) && isfinite(d) && isfinite(u) && u > 0.0 && d <= 0.0)) {
+      vl_error_set(err, "node %zu is not finite, or has u <= 0 or a rising ln s", k);
+      return 0;
+    }
+    if (k > 0 && !(x > t->x[k - 1] && u > t->u[k - 1] && y < t->y[k - 1])) {
+      vl_error_set(err, "node %zu breaks the monotone order of the nodes", k);
+      return 0;
+    }
+    /* the abscissa is a function of u: a stored pair that disagrees was
+     * edited (or written by another u* or another libm: rebuilt, no harm) */
+    if (bits_of(x) != bits_of(x_of_u(t, u, NULL))) {
+      vl_error_set(err, "node %zu: its x does not match its u", k);
+      return 0;
+    }
+  }
+  set_ends(t);
+  if (!(isfinite(t->dsdu_lo) && isfinite(t->slope_hi))) {
+    vl_error_set(err, "the continuations beyond its ends are not finite");
+    return 0;
+  }
+  return 1;
+}
+
+vl_status vl_persson_deserialize(const vl_psd *psd, const void *blob, size_t len, vl_persson **out,
+                                 vl_error *err) {
+  const unsigned char *b = blob;
+  vl_persson *t = NULL;
+  *out = NULL;
+  gsl_set_error_handler_off();
+  if (!psd_usable(psd)) {
+    vl_error_set(err, "Persson table: the PSD is not initialised or invalid");
+    return VL_EINPUT;
+  }
+  if (!b || len < BLOB_HEAD + 8 || memcmp(b, BLOB_MAGIC, 4) != 0) {
+    vl_error_set(err, "stored Persson table: not a table (%zu bytes, no 'VLPT' header)", len);
+    return VL_EINPUT;
+  }
+  uint32_t format = 0;
+  for (int i = 0; i < 4; i++)
+    format |= (uint32_t)b[4 + i] << (8 * i);
+  if (format != VL_PERSSON_FORMAT) {
+    vl_error_set(err, "stored Persson table: format %lu, this program's is %d",
+                 (unsigned long)format, VL_PERSSON_FORMAT);
+    return VL_EINPUT;
+  }
+  uint64_t n64 = get_u64(b + 8);
+  if (n64 < MIN_N_TABLE || n64 > MAX_N_TABLE || len != BLOB_HEAD + 32 * (size_t)n64 + 8) {
+    vl_error_set(err, "stored Persson table: %zu bytes do not hold the %llu nodes it announces",
+                 len, (unsigned long long)n64);
+    return VL_EINPUT;
+  }
+  if (fnv1a(FNV_OFFSET, b, len - 8) != get_u64(b + len - 8)) {
+    vl_error_set(err, "stored Persson table: checksum mismatch (damaged or edited)");
+    return VL_EINPUT;
+  }
+  size_t n = (size_t)n64;
+  vl_status st = table_alloc(psd, n, &t, err);
+  if (st != VL_OK) return st;
+  const unsigned char *p = b + 16;
+  uint64_t fp[8];
+  psd_fingerprint(&t->psd, fp);
+  for (int i = 0; i < 8; i++, p += 8) {
+    if (get_u64(p) != fp[i]) {
+      vl_error_set(err, "stored Persson table: built for another PSD");
+      vl_persson_free(t);
+      return VL_EINPUT;
+    }
+  }
+  double *scalars[3] = {&t->hrms, &t->g, &t->ustar};
+  for (int i = 0; i < 3; i++, p += 8)
+    *scalars[i] = double_of(get_u64(p));
+  double *arrays[4] = {t->x, t->y, t->d, t->u};
+  for (int a = 0; a < 4; a++)
+    for (size_t k = 0; k < n; k++, p += 8)
+      arrays[a][k] = double_of(get_u64(p));
+  if (!table_check(t, err)) {
+    vl_error_prefix(err, "stored Persson table");
+    vl_persson_free(t);
+    return VL_EINPUT;
+  }
+  *out = t;
+  return VL_OK;
+}

@@ -194,7 +194,9 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
       goto fail;
     }
     sim->have_psd = true;
-    st = vl_persson_build(&sim->psd, scene->persson_table, &sim->table, err);
+    /* built once per (surface, size), then read from the database */
+    st = vl_db_persson_table(db, scene->surface, &sim->psd, scene->persson_table, &sim->table, NULL,
+                             err);
     if (st != VL_OK) goto fail;
   }
   vl_contact_config cfg;

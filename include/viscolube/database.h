@@ -19,6 +19,9 @@
  *     for root) is opened read-only: reads work, writes fail with VL_EDB.
  *   - Derived columns (surface C0, h_rms, rms slope) are computed by the
  *     vl_psd_* functions, for shipped and user-added surfaces alike.
+ *   - The one write a reading call may make is vl_db_persson_table storing
+ *     a surface's Persson table, a cache: its failure (read-only file,
+ *     lock) is not an error, and removing a surface removes its tables.
  *
  * Names are 1..VL_DB_NAME_MAX-1 characters of [A-Za-z0-9._+-], not starting
  * with '-'. All quantities are SI; temperatures in degrees Celsius. The
@@ -27,6 +30,7 @@
 #ifndef VISCOLUBE_DATABASE_H
 #define VISCOLUBE_DATABASE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "viscolube/dma.h"
@@ -210,6 +214,25 @@ vl_status vl_db_surface_remove(vl_db *db, const char *name, vl_error *err);
 
 /* All surfaces sorted by name (caller free()s *items). */
 vl_status vl_db_surface_list(vl_db *db, vl_db_surface **items, size_t *n, vl_error *err);
+
+/* The Persson table (roughness.h) of surface `name` with n_table nodes (0:
+ * VL_PERSSON_DEFAULT_N_TABLE), computed once per (surface, size) and kept
+ * in the database (table surface_persson, 0004_persson_cache.sql). psd must
+ * be the surface's spectrum as vl_db_surface_get returned it.
+ *
+ * A stored table is used only if it passes vl_persson_deserialize's checks
+ * (format, checksum, PSD fingerprint, values): it then answers every query
+ * bit for bit like a fresh vl_persson_build. Otherwise (absent, another
+ * format, corrupt, another PSD) the table is built and stored with INSERT
+ * OR REPLACE in its own transaction. Storing is an optimisation: when it
+ * fails (read-only file, locked by another program for more than a short
+ * wait, disk full) the built table is returned all the same and the file is
+ * left as it was. *from_cache (may be NULL) tells whether the table was
+ * read. On success the caller owns *out (vl_persson_free); on failure *out
+ * is NULL. Errors: VL_ENOTFOUND (no such surface), VL_EINPUT (n_table out
+ * of range, or the PSD), VL_ENOMEM, VL_EDB (the surface lookup failed). */
+vl_status vl_db_persson_table(vl_db *db, const char *name, const vl_psd *psd, size_t n_table,
+                              vl_persson **out, bool *from_cache, vl_error *err);
 
 /* ---- fluids ----------------------------------------------------------- */
 
