@@ -733,6 +733,8 @@ static vl_status render(const char *stem, const vl_plot_options *opt_in, draw_fn
     }
     r.series = f.series;
     r.failed_markers = f.failed;
+    r.x_lo = f.x.log ? pow(10.0, f.x.lo) : f.x.lo;
+    r.x_hi = f.x.log ? pow(10.0, f.x.hi) : f.x.hi;
     r.files++;
   }
   if (rep) *rep = r;
@@ -1121,15 +1123,44 @@ static double field_value(const fields_ctx *c, const vl_fields *fl, size_t i) {
   }
 }
 
+/* The x window of the fields plots, in a0: where the total pressure is at
+ * least 1e-3 of its peak in any of the fields, widened by half its width on
+ * each side and to the Hertz contact [-1, 1], within the data. A lubricated
+ * contact's domain reaches tens of a0 upstream (the inlet film), where
+ * nothing but the separation's x^2 growth happens; plotted whole, the
+ * contact was a sliver at the right edge. Without any pressure: all data. */
+static void fields_window(const fields_ctx *c, double *xlo, double *xhi) {
+  double dlo = INFINITY, dhi = -INFINITY, plo = INFINITY, phi = -INFINITY;
+  for (size_t j = 0; j < c->k; j++) {
+    const vl_fields *fl = &c->fields[j];
+    double pmax = 0.0;
+    for (size_t i = 0; i < fl->n; i++) {
+      double x = fl->x_m[i] / c->sc.a0_m, p = fl->p_c_pa[i] + fl->p_f_pa[i];
+      if (isfinite(x)) dlo = fmin(dlo, x), dhi = fmax(dhi, x);
+      if (isfinite(p)) pmax = fmax(pmax, p);
+    }
+    for (size_t i = 0; i < fl->n && pmax > 0.0; i++) {
+      double x = fl->x_m[i] / c->sc.a0_m, p = fl->p_c_pa[i] + fl->p_f_pa[i];
+      if (isfinite(x) && p >= 1e-3 * pmax) plo = fmin(plo, x), phi = fmax(phi, x);
+    }
+  }
+  *xlo = dlo, *xhi = dhi;
+  if (!(phi >= plo)) return;
+  double half = 0.5 * (phi - plo);
+  *xlo = fmax(dlo, fmin(plo - half, -1.0));
+  *xhi = fmin(dhi, fmax(phi + half, 1.0));
+}
+
 static void draw_fields(fig *f, const void *vctx) {
   const fields_ctx *c = vctx;
   layout_single(f);
-  double xlo = INFINITY, xhi = -INFINITY, lo = INFINITY, hi = -INFINITY;
+  double xlo, xhi, lo = INFINITY, hi = -INFINITY;
+  fields_window(c, &xlo, &xhi);
   for (size_t j = 0; j < c->k; j++) {
     const vl_fields *fl = &c->fields[j];
     for (size_t i = 0; i < fl->n; i++) {
       double x = fl->x_m[i] / c->sc.a0_m, v = field_value(c, fl, i);
-      if (isfinite(x)) xlo = fmin(xlo, x), xhi = fmax(xhi, x);
+      if (!(x >= xlo && x <= xhi)) continue; /* the values shown set the y axis */
       if (isfinite(v) && (c->field != VL_PLOT_FIELD_U || !(c->sc.h_rms_m > 0) || v > 0))
         lo = fmin(lo, v), hi = fmax(hi, v);
     }
@@ -1178,11 +1209,14 @@ static void draw_fields(fig *f, const void *vctx) {
       free(wx), free(wy);
       return;
     }
+    size_t m = 0; /* the nodes inside the window */
     for (size_t i = 0; i < fl->n; i++) {
-      wx[i] = fl->x_m[i] / c->sc.a0_m;
-      wy[i] = to_wy(f, field_value(c, fl, i));
+      double x = fl->x_m[i] / c->sc.a0_m;
+      if (!(x >= f->x.lo && x <= f->x.hi)) continue;
+      wx[m] = x;
+      wy[m++] = to_wy(f, field_value(c, fl, i));
     }
-    draw_runs(f, fl->n, wx, wy, st);
+    draw_runs(f, m, wx, wy, st);
     free(wx);
     free(wy);
     add_legend(f, label, true, st, M_NONE, false, col);

@@ -385,6 +385,50 @@ static void test_fields(void **state) {
   }
 }
 
+/* Fields of a lubricated contact on a long inlet (-96 ... 1.6 a0) with the
+ * pressure on [-1, 1] a0 (and a fluid tail to -3 a0 in one of them): the
+ * x axis shows where the pressure is (>= 1e-3 of its peak), widened by
+ * half its width, not the whole inlet; without any pressure, all of it. */
+static void test_fields_window(void **state) {
+  (void)state;
+  const char *dir = vl_test_tmpdir();
+  enum { N = 2001 };
+  static double buf[2][6][N];
+  vl_fields f[2];
+  const double a0 = 1e-3, p0 = 1e6, hrms = 1e-6;
+  for (int j = 0; j < 2; j++) {
+    f[j] = (vl_fields){N, buf[j][0], buf[j][1], buf[j][2], buf[j][3], buf[j][4], buf[j][5], NULL};
+    for (int i = 0; i < N; i++) {
+      double x = -96.0 + 97.6 * i / (N - 1), hz = fabs(x) < 1 ? sqrt(1 - x * x) : 0;
+      f[j].x_m[i] = x * a0;
+      f[j].p_c_pa[i] = p0 * hz;
+      f[j].p_f_pa[i] = j && x < -1 && x > -3 ? 0.01 * p0 : 0.0;
+      f[j].u_m[i] = hrms * (2 + x * x);
+      f[j].area_ratio[i] = 0.2 * hz;
+      f[j].film_fraction[i] = 1;
+    }
+  }
+  vl_plot_scales sc = {a0, p0, hrms};
+  vl_plot_report r;
+  vl_error err = {{0}};
+  assert_int_equal(vl_plot_fields(path_in(dir, "w1"), VL_PLOT_FIELD_U, 1, f, NULL, &sc, NULL, &r,
+                                  &err),
+                   VL_OK);
+  /* pressure on [-1, 1] (nodes to +-0.99...): window about [-2, 2], cut at 1.6 */
+  assert_true(r.x_lo <= -1.9 && r.x_lo >= -2.6);
+  assert_true(r.x_hi >= 1.55 && r.x_hi <= 1.7);
+  assert_int_equal(vl_plot_fields(path_in(dir, "w2"), VL_PLOT_FIELD_PF, 2, f, NULL, &sc, NULL, &r,
+                                  &err),
+                   VL_OK);
+  /* with the tail of set 2, pressure on [-3, 1]: window about [-5, 1.6] */
+  assert_true(r.x_lo <= -4.9 && r.x_lo >= -5.6);
+  for (int i = 0; i < N; i++) f[0].p_c_pa[i] = 0.0;
+  assert_int_equal(vl_plot_fields(path_in(dir, "w3"), VL_PLOT_FIELD_U, 1, f, NULL, &sc, NULL, &r,
+                                  &err),
+                   VL_OK);
+  assert_true(r.x_lo <= -95.9 && r.x_hi >= 1.55); /* no pressure: all the data */
+}
+
 /* K curves on one axis, one with two failed points. */
 static void test_compare(void **state) {
   (void)state;
@@ -600,6 +644,7 @@ int main(void) {
       cmocka_unit_test(test_failed_points_break_lines),
       cmocka_unit_test(test_separation),
       cmocka_unit_test(test_fields),
+      cmocka_unit_test(test_fields_window),
       cmocka_unit_test(test_compare),
       cmocka_unit_test(test_modulus_and_shifts),
       cmocka_unit_test(test_bad_input),

@@ -50,6 +50,7 @@ typedef struct {
   size_t series;         /* data series drawn, one legend entry each */
   size_t failed_markers; /* hollow markers for points that did not converge */
   size_t files;          /* files written */
+  double x_lo, x_hi;     /* the x axis drawn, in data units (fields: x/a0) */
 } vl_plot_report;
 
 /* Both formats, 1000 x 750, no title, no half-load marks. */
