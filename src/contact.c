@@ -106,7 +106,7 @@ void vl_contact_config_defaults(vl_contact_config *cfg) {
   cfg->x_min_a0 = -1.6;
   cfg->x_max_a0 = 1.4;
   cfg->tolerance = 1e-9;
-  cfg->max_iterations = 100;
+  cfg->max_iterations = VL_NEWTON_MAX_ITERATIONS;
   cfg->linear_solver = VL_LINSOL_SCHUR;
 }
 
@@ -864,7 +864,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   vl_contact *c = calloc(1, sizeof *c);
   if (!c) goto nomem;
   c->cfg = *cfg;
-  if (c->cfg.max_iterations <= 0) c->cfg.max_iterations = 100;
+  if (c->cfg.max_iterations <= 0) c->cfg.max_iterations = VL_NEWTON_MAX_ITERATIONS;
   c->rough = cfg->roughness != NULL;
   c->wet = cfg->eta_pa_s > 0.0;
   /* flow factors only make sense for a rough surface */
