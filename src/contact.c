@@ -50,8 +50,7 @@ struct vl_contact {
   /* graded grid (vl_contact_config.grid_growth): cell i is uniform cells
    * first[i] .. first[i] + span[i] - 1 of an nv-cell uniform grid (span odd,
    * so its node is uniform node first[i] + span[i]/2); psum: prefix sums of
-   * the uniform Toeplitz coefficients. NULL / false when uniform. */
-  bool graded;
+   * the uniform Toeplitz coefficients. All NULL on a uniform grid (nv = n). */
   size_t nv, *first, *span;
   double *psum;
   double *A, *beta;/* Prony strengths and v0 tau_k / a0 */
@@ -543,20 +542,22 @@ static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c) {
   eval_state(c, y);
   if (c->rough) {
     /* elasticity rows U_i - G_i, written column by column (the matrix is
-     * column-major) and every entry once, so no zeroing pass: column j of
-     * the influence matrix is the Toeplitz coefficients from n-1-j on */
+     * column-major) and every entry once, so no zeroing pass:
+     * d/dy_j = delta_ij - M_ij dP_j/dy_j. On a uniform grid column j of M
+     * is -kfac times the Toeplitz coefficients from n-1-j on; a graded
+     * grid has no such structure (and is small): read down the row-major M */
     for (size_t j = 0; j < ld; j++) {
       double *col = Jd + j * ld;
-      double w = j < n ? c->kfac * c->dPdU[j] : j < of + nf ? c->kfac * c->kappa : 0.0;
-      if (j < ih && c->graded) {
-        /* -M_ij / kfac, read down a column of the row-major M (the graded
-         * grid has no Toeplitz structure; it is small) */
-        const double *mcol = c->M + (j < n ? j : j - of);
-        for (size_t i = 0; i < n; i++) col[i] = -w / c->kfac * mcol[i * n];
-        if (j < n) col[j] += 1.0;
-      } else if (j < ih) {
-        const double *t = c->kern.coef + (n - 1 - (j < n ? j : j - of));
-        for (size_t i = 0; i < n; i++) col[i] = w * t[i];
+      if (j < ih) {
+        size_t cell = j < n ? j : j - of;
+        double dp = j < n ? c->dPdU[j] : c->kappa;
+        if (c->span) {
+          for (size_t i = 0; i < n; i++) col[i] = -dp * c->M[i * n + cell];
+        } else {
+          const double *t = c->kern.coef + (n - 1 - cell);
+          double w = c->kfac * dp;
+          for (size_t i = 0; i < n; i++) col[i] = w * t[i];
+        }
         if (j < n) col[j] += 1.0;
       } else {
         for (size_t i = 0; i < n; i++) col[i] = -1.0;
@@ -628,7 +629,7 @@ static void jacobian_impl(N_Vector yv, SUNMatrix J, vl_contact *c) {
  * grid has exactly the uniform grid's coefficients. */
 static void graded_influence(vl_contact *c) {
   size_t n = c->n;
-  if (!c->graded) {
+  if (!c->span) {
     for (size_t i = 0; i < n; i++)
       for (size_t j = 0; j < n; j++) c->M[i * n + j] = -c->kfac * vl_toeplitz_at(&c->kern, i, j);
     return;
@@ -655,9 +656,9 @@ static void graded_influence(vl_contact *c) {
  * contact outwards, into runs of odd length growing by `growth` (never
  * shrinking), the last run taking the rest, between one and two of the
  * previous runs (one uniform cell more when the rest is even: the domain
- * then starts one uniform cell earlier). Writes
- * span[] left to right when span != NULL (room for nv + 1 cells), and the
- * uniform cells covered in *nv_out. Returns the number of cells. */
+ * then starts one uniform cell earlier). Writes span[] left to right (room
+ * for nv + 1 cells) and the uniform cells covered in *nv_out. Returns the
+ * number of cells. */
 static size_t grid_layout(size_t nv, double x_min, double x_max, double growth, size_t *span,
                           size_t *nv_out) {
   double dx = (x_max - x_min) / (double)nv, start = -VL_GRADE_START_A0;
@@ -671,19 +672,16 @@ static size_t grid_layout(size_t nv, double x_min, double x_max, double growth, 
     size_t m = 2 * (size_t)round((t - 1.0) / 2.0) + 1;
     if (m < prev) m = prev;
     if (rem < 2 * m) m = rem % 2 ? rem : rem + 1; /* the last run: m .. 2m */
-    if (span) span[cells] = m;
-    cells++;
+    span[cells++] = m;
     covered += m;
     rem -= m < rem ? m : rem;
     prev = m;
   }
-  if (span) {
-    for (size_t i = 0; i < cells / 2; i++) {
-      size_t tmp = span[i];
-      span[i] = span[cells - 1 - i], span[cells - 1 - i] = tmp;
-    }
-    for (size_t i = cells; i < cells + nv - ig; i++) span[i] = 1;
+  for (size_t i = 0; i < cells / 2; i++) {
+    size_t tmp = span[i];
+    span[i] = span[cells - 1 - i], span[cells - 1 - i] = tmp;
   }
+  for (size_t i = cells; i < cells + nv - ig; i++) span[i] = 1;
   *nv_out = covered + (nv - ig);
   return cells + nv - ig;
 }
@@ -870,14 +868,18 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   /* flow factors only make sense for a rough surface */
   if (!c->rough) c->cfg.flow_factors = VL_FLOW_FACTORS_SMOOTH;
   c->hrms = c->rough ? vl_persson_hrms(cfg->roughness) : 0.0;
-  size_t nv_cov;
-  c->n = grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, NULL, &nv_cov);
-  c->graded = c->n != cfg->grid || nv_cov != cfg->grid;
+  c->span = malloc((cfg->grid + 1) * sizeof *c->span);
+  if (!c->span) goto nomem;
+  c->n = grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, c->span, &c->nv);
+  if (c->n == cfg->grid && c->nv == cfg->grid) { /* nothing merged: the uniform grid */
+    free(c->span);
+    c->span = NULL;
+  }
   if (c->n > 16384) {
     vl_error_set(err, "grid %zu with growth %g gives %zu cells (at most 16384: the matrices are dense)",
                  cfg->grid, cfg->grid_growth, c->n);
-    free(c);
-    return VL_EINPUT;
+    st = VL_EINPUT;
+    goto fail;
   }
   c->nf = c->wet ? c->n : 0;
   /* A smooth wet contact keeps a positive film (Reynolds' equation carries
@@ -901,13 +903,10 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->wc = malloc(n * sizeof *c->wc);
   c->hf = malloc((n + 1) * sizeof *c->hf);
   if (!c->xi || !c->wc || !c->hf) goto nomem;
-  if (c->graded) {
-    c->nv = nv_cov;
-    c->span = malloc(n * sizeof *c->span);
+  if (c->span) {
     c->first = malloc(n * sizeof *c->first);
-    c->psum = malloc(2 * nv_cov * sizeof *c->psum);
-    if (!c->span || !c->first || !c->psum) goto nomem;
-    grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, c->span, &nv_cov);
+    c->psum = malloc(2 * c->nv * sizeof *c->psum);
+    if (!c->first || !c->psum) goto nomem;
   }
   c->A = malloc((nt ? nt : 1) * sizeof *c->A);
   c->beta = calloc(nt ? nt : 1, sizeof *c->beta);
@@ -944,7 +943,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
       c->q_rolling = wpk * 2.0 * c->a0 / v_ml;
     }
   }
-  if (c->graded) {
+  if (c->span) {
     /* the uniform grid extends the covered cells to the left of the domain's
      * end when the last run came out one cell longer (grid_layout) */
     double x0 = cfg->x_max_a0 - (double)c->nv * c->dxi;
@@ -964,7 +963,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   c->hf[0] = 0.5 * c->wc[0], c->hf[n] = 0.5 * c->wc[n - 1];
   for (size_t f = 1; f < n; f++) c->hf[f] = c->xi[f] - c->xi[f - 1];
   for (size_t k = 0; k < nt; k++) c->A[k] = cfg->rubber.A[k];
-  st = vl_toeplitz_build(&c->kern, c->graded ? c->nv : n, c->dxi, c->A, c->beta, nt, err);
+  st = vl_toeplitz_build(&c->kern, c->nv, c->dxi, c->A, c->beta, nt, err);
   if (st != VL_OK) goto fail;
 
   if (SUNContext_Create(NULL, &c->ctx) != 0) goto nomem;
