@@ -20,6 +20,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
 #include <math.h>
@@ -126,17 +127,9 @@ typedef struct {
 
 static void fixture_config(vl_contact_config *cfg, const vl_persson *table, double eta,
                            double radius_m, double load_n_per_m, size_t grid) {
-  vl_contact_config_defaults(cfg);
-  cfg->rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
+  vl_test_fig05_config(cfg, table, eta, grid, -3.0);
   cfg->radius_m = radius_m;
   cfg->load_n_per_m = load_n_per_m;
-  cfg->sigma_s_pa = 1e6;
-  cfg->roughness = table;
-  cfg->eta_pa_s = eta;
-  cfg->flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
-  cfg->grid = grid;
-  cfg->x_min_a0 = -3.0;
-  cfg->x_max_a0 = 1.6;
 }
 
 static vl_flattening *flattening_for(const vl_contact_config *cfg, const vl_psd *psd) {

@@ -17,6 +17,7 @@
 #include "viscolube/contact.h"
 #include "viscolube/kernel.h"
 #include "viscolube/sweep.h"
+#include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
 static vl_psd g_psd;
@@ -24,9 +25,8 @@ static vl_persson *g_tab;
 
 static int setup(void **state) {
   (void)state;
-  vl_error err;
-  if (vl_psd_init_self_affine(&g_psd, 0.8, 2e5, 7.8e9, 3e-6, &err) != VL_OK) return -1;
-  return vl_persson_build(&g_psd, 0, &g_tab, &err) == VL_OK ? 0 : -1;
+  g_tab = vl_test_paper_surface(3e-6, &g_psd);
+  return 0;
 }
 
 static int teardown(void **state) {
@@ -39,12 +39,8 @@ static int teardown(void **state) {
 /* fig05's contact on [x_min, 1.6] a0 with `grid` uniform cells. */
 static vl_contact_config fig05(size_t grid, double x_min, double growth) {
   vl_contact_config cfg;
-  vl_contact_config_defaults(&cfg);
-  cfg.rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
-  cfg.radius_m = 0.01, cfg.load_n_per_m = 1000.0, cfg.sigma_s_pa = 1e6;
-  cfg.roughness = g_tab, cfg.eta_pa_s = 1e-4, cfg.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
-  cfg.grid = grid, cfg.x_min_a0 = x_min, cfg.x_max_a0 = 1.6, cfg.grid_growth = growth;
-  cfg.tolerance = 1e-9;
+  vl_test_fig05_config(&cfg, g_tab, 1e-4, grid, x_min);
+  cfg.grid_growth = growth;
   return cfg;
 }
 

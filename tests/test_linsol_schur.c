@@ -18,6 +18,7 @@
 #include "../src/linsol_schur.h"
 #include "viscolube/contact.h"
 #include "viscolube/sweep.h"
+#include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
 extern void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b,
@@ -155,8 +156,7 @@ static void test_fig05_same_as_lapack(void **state) {
   vl_psd psd;
   vl_persson *tab;
   vl_error err;
-  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, 3e-6, &err), VL_OK);
-  assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
+  tab = vl_test_paper_surface(3e-6, &psd);
   enum { NP = 13 };
   double v0[NP];
   for (int i = 0; i < NP; i++) v0[i] = 1e-8 * pow(10.0, (double)i); /* v0 eta 1e-12 ... 1 Pa m */
@@ -164,11 +164,7 @@ static void test_fig05_same_as_lapack(void **state) {
   long fallbacks = -1;
   for (int k = 0; k < 2; k++) {
     vl_contact_config cfg;
-    vl_contact_config_defaults(&cfg);
-    cfg.rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
-    cfg.radius_m = 0.01, cfg.load_n_per_m = 1000.0, cfg.sigma_s_pa = 1e6;
-    cfg.roughness = tab, cfg.eta_pa_s = 1e-4, cfg.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
-    cfg.grid = 128, cfg.x_min_a0 = -3.0, cfg.x_max_a0 = 1.6;
+    vl_test_fig05_config(&cfg, tab, 1e-4, 128, -3.0);
     cfg.linear_solver = k ? VL_LINSOL_LAPACK : VL_LINSOL_SCHUR;
     vl_contact *c;
     assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);

@@ -16,6 +16,7 @@
 #include "viscolube/contact.h"
 #include "viscolube/scene.h"
 #include "viscolube/sweep.h"
+#include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
 #define HRMS 3e-6
@@ -49,36 +50,23 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt, con
   free(b);
 }
 
-/* The contact of the fig05/fig10/fig12 scenes: model rubber, paper surface
- * (tab), sigma_s 1 MPa, Patir-Cheng factors, domain [x_min, 1.6] a0. */
-static void scene_config(vl_contact_config *cfg, const vl_persson *tab, double eta, size_t grid,
-                         double x_min_a0) {
-  vl_contact_config_defaults(cfg);
-  cfg->rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
-  cfg->radius_m = 0.01;
-  cfg->load_n_per_m = 1000.0;
-  cfg->sigma_s_pa = 1e6;
-  cfg->roughness = tab;
-  cfg->eta_pa_s = eta;
-  cfg->flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
-  cfg->grid = grid;
-  cfg->x_min_a0 = x_min_a0;
-  cfg->x_max_a0 = 1.6;
+/* The contact of the fig05/fig10/fig12 scenes (vl_test_fig05_config) at
+ * the shipped numerics of rough wet scenes (include/viscolube/scene.h: a0/30
+ * cells near the contact, a 96 a0 inlet graded by 1.05): the statements are
+ * checked on the curves users get. */
+static void shipped_config(vl_contact_config *cfg, const vl_persson *tab, double eta) {
+  vl_test_fig05_config(cfg, tab, eta, VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0);
+  cfg->grid_growth = VL_WET_GRID_GROWTH;
 }
 
-/* The fig05/fig10 scene (model rubber, paper surface 3 um, sigma_s 1 MPa)
- * at the shipped numerics of rough wet scenes (include/viscolube/scene.h:
- * a0/30 cells near the contact, a 96 a0 inlet graded by 1.05): the
- * statements are checked on the curves users get. */
+/* The fig05/fig10 scene (model rubber, paper surface 3 um, sigma_s 1 MPa). */
 static void stribeck(double eta, curve *cv) {
   vl_psd psd;
   vl_persson *tab;
   vl_error err;
-  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, HRMS, &err), VL_OK);
-  assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
+  tab = vl_test_paper_surface(HRMS, &psd);
   vl_contact_config cfg;
-  scene_config(&cfg, tab, eta, VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0);
-  cfg.grid_growth = VL_WET_GRID_GROWTH;
+  shipped_config(&cfg, tab, eta);
   vl_contact *c;
   assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
   cv->eta = eta;
@@ -249,13 +237,11 @@ static void test_fig12(void **state) {
   vl_psd psd;
   vl_persson *tab;
   vl_error err;
-  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, HRMS, &err), VL_OK);
-  assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
+  tab = vl_test_paper_surface(HRMS, &psd);
   for (int k = 0; k < K; k++) {
     double eta = pow(10.0, -4.0 + k);
     vl_contact_config cfg;
-    scene_config(&cfg, tab, eta, VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0);
-    cfg.grid_growth = VL_WET_GRID_GROWTH;
+    shipped_config(&cfg, tab, eta);
     vl_contact *c;
     assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
     double v[M];
@@ -331,12 +317,12 @@ static void test_domain_length(void **state) {
   vl_psd psd;
   vl_persson *tab;
   vl_error err;
-  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, HRMS, &err), VL_OK);
-  assert_int_equal(vl_persson_build(&psd, 0, &tab, &err), VL_OK);
+  tab = vl_test_paper_surface(HRMS, &psd);
   for (int k = 0; k < 3; k++) {
     vl_contact_config cfg;
     /* the same cell size for every domain, so only the inlet changes */
-    scene_config(&cfg, tab, 1e-4, (size_t)lround((1.6 - inlets[k]) / (4.6 / 256.0)), inlets[k]);
+    vl_test_fig05_config(&cfg, tab, 1e-4, (size_t)lround((1.6 - inlets[k]) / (4.6 / 256.0)),
+                         inlets[k]);
     vl_contact *c;
     assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
     double v[] = {1e-4 / 1e-4, 1e-3 / 1e-4, 1e-2 / 1e-4, 0.1 / 1e-4, 0.3 / 1e-4, 1.0 / 1e-4};

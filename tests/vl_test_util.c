@@ -5,6 +5,7 @@
 #include <cmocka.h>
 
 #include "vl_test_util.h"
+#include "vl_test_scenes.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -284,4 +285,30 @@ void vl_test_expect_fail(int code, const char *needle1, const char *needle2, con
   free(before.bytes);
   free(out);
   free(err);
+}
+
+/* ---- the seed's fig05 contact ------------------------------------------- */
+
+vl_persson *vl_test_paper_surface(double hrms_m, vl_psd *psd) {
+  vl_error err;
+  vl_persson *tab = NULL;
+  if (vl_psd_init_self_affine(psd, 0.8, 2e5, 7.8e9, hrms_m, &err) != VL_OK ||
+      vl_persson_build(psd, 0, &tab, &err) != VL_OK)
+    fail_msg("paper surface, h_rms %g m: %s", hrms_m, err.msg);
+  return tab;
+}
+
+void vl_test_fig05_config(vl_contact_config *cfg, const vl_persson *tab, double eta_pa_s,
+                          size_t grid, double x_min_a0) {
+  vl_contact_config_defaults(cfg);
+  cfg->rubber = vl_prony_single(3.6e6, 10.0, 0.1, 0.5);
+  cfg->radius_m = 0.01;
+  cfg->load_n_per_m = 1000.0;
+  cfg->sigma_s_pa = 1e6;
+  cfg->roughness = tab;
+  cfg->eta_pa_s = eta_pa_s;
+  cfg->flow_factors = VL_FLOW_FACTORS_PATIR_CHENG;
+  cfg->grid = grid;
+  cfg->x_min_a0 = x_min_a0;
+  cfg->x_max_a0 = 1.6;
 }

@@ -105,6 +105,23 @@ static inline hard_solid hard_decode_solid(const double *p, const size_t grids[5
   return s;
 }
 
+/* The rough surface of a Latin-hypercube corner, decoded from coordinates
+ * 7-10 (the same for dry and wet families): h_rms 1 nm ... 50 um, H 0.3 ...
+ * 1, q1/q0 10 ... 1e6, and half the surfaces tabulated with a log-normal
+ * scatter 0 ... 1 (noise < 0: self-affine). */
+typedef struct {
+  double hrms, hurst, q1_over_q0, noise;
+} hard_rough;
+
+static inline hard_rough hard_decode_rough(const double *p) {
+  hard_rough r;
+  r.hrms = hard_log_between(1e-9, 5e-5, p[7]);
+  r.hurst = 0.3 + 0.7 * p[8];
+  r.q1_over_q0 = hard_log_between(10.0, 1e6, p[9]);
+  r.noise = p[10] < 0.5 ? -1.0 : 2.0 * (p[10] - 0.5);
+  return r;
+}
+
 /* ------------------------------------------------------------ materials */
 
 /* A rubber with relaxed modulus HARD_E0 and Einf/E0 = ratio: n_terms = 0

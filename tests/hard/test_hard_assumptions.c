@@ -11,6 +11,7 @@
 #include <cmocka.h> /* after the four headers it needs */
 
 #include "hard_util.h"
+#include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
 static void seed_config(vl_contact_config *cfg, const vl_persson *tab, double eta) {
@@ -53,8 +54,7 @@ static void test_rms_slope(void **state) {
   for (int k = 0; k < 2; k++) {
     vl_psd psd;
     vl_persson *tab;
-    assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, HARD_Q0, 7.8e9, hs[k], NULL), VL_OK);
-    assert_int_equal(vl_persson_build(&psd, 0, &tab, NULL), VL_OK);
+    tab = vl_test_paper_surface(hs[k], &psd);
     double exact = slope_closed_form(0.8, HARD_Q0, 7.8e9, hs[k]);
     /* the table route (8 g) and the PSD route agree with the closed form
      * to rounding (both are exact integrals of a power law) */
@@ -90,8 +90,7 @@ static void test_homogenisation(void **state) {
   (void)state;
   vl_psd psd;
   vl_persson *tab;
-  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, HARD_Q0, 7.8e9, 1e-7, NULL), VL_OK);
-  assert_int_equal(vl_persson_build(&psd, 0, &tab, NULL), VL_OK);
+  tab = vl_test_paper_surface(1e-7, &psd);
   vl_contact_config cfg;
   seed_config(&cfg, tab, 0.0);
   vl_point pt = benign_point(1e-7);
@@ -117,8 +116,7 @@ static void test_each_check(void **state) {
   vl_psd psd;
   vl_persson *tab;
   const double h = 1e-7;
-  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, HARD_Q0, 7.8e9, h, NULL), VL_OK);
-  assert_int_equal(vl_persson_build(&psd, 0, &tab, NULL), VL_OK);
+  tab = vl_test_paper_surface(h, &psd);
   vl_contact_config dry, wet;
   seed_config(&dry, tab, 0.0);
   seed_config(&wet, tab, 1e-3);
@@ -213,8 +211,7 @@ static void test_column(void **state) {
   (void)state;
   vl_psd psd;
   vl_persson *tab;
-  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, HARD_Q0, 7.8e9, 3e-6, NULL), VL_OK);
-  assert_int_equal(vl_persson_build(&psd, 0, &tab, NULL), VL_OK);
+  tab = vl_test_paper_surface(3e-6, &psd);
   vl_contact_config cfg;
   seed_config(&cfg, tab, 1e-3);
   vl_point pt = benign_point(3e-6);
@@ -260,8 +257,7 @@ static void test_solved_point(void **state) {
   (void)state;
   vl_psd psd;
   vl_persson *tab;
-  assert_int_equal(vl_psd_init_self_affine(&psd, 0.8, HARD_Q0, 7.8e9, 3e-6, NULL), VL_OK);
-  assert_int_equal(vl_persson_build(&psd, 0, &tab, NULL), VL_OK);
+  tab = vl_test_paper_surface(3e-6, &psd);
   vl_contact_config cfg;
   seed_config(&cfg, tab, 0.0);
   cfg.grid = 64;

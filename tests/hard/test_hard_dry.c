@@ -128,10 +128,9 @@ static void test_rough_lhs(void **state) {
   for (size_t i = 0; i < N; i++) {
     const double *p = u + i * D;
     hard_solid so = hard_decode_solid(p, grids);
-    double noise = p[10] < 0.5 ? -1.0 : 2.0 * (p[10] - 0.5);
+    hard_rough su = hard_decode_rough(p);
     rough_corner(&fam_rough_lhs, so.ratio, so.terms, so.decades, so.tau_c, so.load, so.radius,
-                 so.grid, 0.3 + 0.7 * p[8], hard_log_between(10.0, 1e6, p[9]),
-                 hard_log_between(1e-9, 5e-5, p[7]), noise, &rng, nv, v);
+                 so.grid, su.hurst, su.q1_over_q0, su.hrms, su.noise, &rng, nv, v);
   }
   hard_assert_rate(&fam_rough_lhs);
 }

@@ -130,10 +130,9 @@ static void smooth_corner(hard_family *fam, double ratio, size_t nt, double dec,
 static void lhs_rough_corner(hard_family *fam, const double *p, size_t grid, double x_min_a0,
                              double growth, uint64_t *rng, size_t nv, const double *v) {
   hard_solid so = hard_decode_solid(p, grids);
-  double noise = p[10] < 0.5 ? -1.0 : 2.0 * (p[10] - 0.5);
-  rough_corner(fam, so.ratio, so.terms, so.decades, so.tau_c, so.load, so.radius, grid,
-               0.3 + 0.7 * p[8], hard_log_between(10.0, 1e6, p[9]),
-               hard_log_between(1e-9, 5e-5, p[7]), noise, hard_log_between(1e-5, 100.0, p[11]),
+  hard_rough su = hard_decode_rough(p);
+  rough_corner(fam, so.ratio, so.terms, so.decades, so.tau_c, so.load, so.radius, grid, su.hurst,
+               su.q1_over_q0, su.hrms, su.noise, hard_log_between(1e-5, 100.0, p[11]),
                p[12] < 0.25 ? VL_FLOW_FACTORS_SMOOTH : VL_FLOW_FACTORS_PATIR_CHENG, x_min_a0,
                growth, rng, nv, v);
 }
