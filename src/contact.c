@@ -781,9 +781,9 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
                  cfg->grid_growth);
     return VL_EINPUT;
   }
-  if (cfg->grid < 8 || cfg->grid > (cfg->grid_growth > 1.0 ? 262144u : 16384u)) {
-    vl_error_set(err, "grid must lie in [8, %u] (got %zu)",
-                 cfg->grid_growth > 1.0 ? 262144u : 16384u, cfg->grid);
+  size_t max_grid = cfg->grid_growth > 1.0 ? VL_CONTACT_MAX_GRID_GRADED : VL_CONTACT_MAX_CELLS;
+  if (cfg->grid < 8 || cfg->grid > max_grid) {
+    vl_error_set(err, "grid must lie in [8, %zu] (got %zu)", max_grid, cfg->grid);
     return VL_EINPUT;
   }
   if (cfg->grid_growth > 1.0 && !cfg->roughness) {
@@ -875,9 +875,9 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
     free(c->span);
     c->span = NULL;
   }
-  if (c->n > 16384) {
-    vl_error_set(err, "grid %zu with growth %g gives %zu cells (at most 16384: the matrices are dense)",
-                 cfg->grid, cfg->grid_growth, c->n);
+  if (c->n > VL_CONTACT_MAX_CELLS) {
+    vl_error_set(err, "grid %zu with growth %g gives %zu cells (at most %d: the matrices are dense)",
+                 cfg->grid, cfg->grid_growth, c->n, VL_CONTACT_MAX_CELLS);
     st = VL_EINPUT;
     goto fail;
   }

@@ -12,6 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A macro's value as a string literal (the limits in messages). */
+#define VL_STR_(x) #x
+#define VL_STR(x) VL_STR_(x)
+
 /* Every key a scene may hold. The parser records the line of each, so that
  * errors found after the whole file is read (inconsistent effects) still
  * name the line, and a key given twice is refused instead of silently
@@ -319,7 +323,8 @@ static int handler(void *user, const char *section, const char *key, const char 
     return 1;
   case K_GRID:
     if (!parse_size(value, &sc->grid) || sc->grid < 16 || sc->grid > VL_GRID_GRADED_MAX)
-      return fail(ps, section, key, "expected a whole number in [16, 262144], got '%s'", value);
+      return fail(ps, section, key,
+                  "expected a whole number in [16, " VL_STR(VL_GRID_GRADED_MAX) "], got '%s'", value);
     return 1;
   case K_GRID_GROWTH:
     if (!parse_double(value, &sc->grid_growth) || !(sc->grid_growth >= 1.0 && sc->grid_growth <= 2.0))

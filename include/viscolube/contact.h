@@ -65,6 +65,12 @@ typedef enum {
  * within 100 iterations are unchanged. */
 #define VL_NEWTON_MAX_ITERATIONS 200
 
+/* Largest solver grid: the dense matrices grow as the square of the cells
+ * (56 bytes per cell squared: 15 GB at the limit). A graded grid may start
+ * from far more uniform cells, since they are merged. */
+#define VL_CONTACT_MAX_CELLS 16384
+#define VL_CONTACT_MAX_GRID_GRADED 262144
+
 /* Where a graded grid (vl_contact_config.grid_growth) starts to coarsen: the
  * relaxed Hertz contact ends at x = -a0, and rough or viscoelastic pressure
  * tails reach a little beyond. */

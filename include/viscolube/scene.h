@@ -28,9 +28,9 @@
 #define VL_WET_GRID 768
 #define VL_WET_TOLERANCE 1e-6
 /* Largest [numerics] grid: uniform, and with a graded inlet (whose cells
- * are far fewer; the contact refuses more than 16384 of them). */
+ * are far fewer; the contact refuses more than VL_CONTACT_MAX_CELLS of them). */
 #define VL_GRID_UNIFORM_MAX 8192
-#define VL_GRID_GRADED_MAX 262144
+#define VL_GRID_GRADED_MAX VL_CONTACT_MAX_GRID_GRADED
 /* Rough wet scenes take a graded inlet (vl_contact_config.grid_growth):
  * uniform cells of a0/30 near the contact (as grid 768 on [-24, 1.6] a0
  * gives), merged into cells growing by 5 % upstream of -2 a0, on an inlet of
