@@ -422,6 +422,24 @@ void vl_scene_defaults(vl_scene *sc) {
   sc->persson_table = 0;
 }
 
+void vl_scene_default_numerics(vl_scene *sc) {
+  vl_scene dry;
+  vl_scene_defaults(&dry);
+  sc->grid = dry.grid, sc->grid_growth = dry.grid_growth, sc->tolerance = dry.tolerance;
+  sc->domain_min_a0 = dry.domain_min_a0, sc->domain_max_a0 = dry.domain_max_a0;
+  if (!sc->effects.fluid) return;
+  /* a lubricated contact needs room for the inlet meniscus and the film
+   * build-up upstream of the contact (MODEL.md section 5) */
+  sc->tolerance = VL_WET_TOLERANCE;
+  sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
+  if (sc->effects.roughness) {
+    sc->grid = VL_WET_ROUGH_GRID, sc->grid_growth = VL_WET_GRID_GROWTH;
+    sc->domain_min_a0 = VL_WET_ROUGH_DOMAIN_MIN_A0;
+  } else {
+    sc->grid = VL_WET_GRID, sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
+  }
+}
+
 /* An error about key id found after the whole file is read: it names the
  * line where the key was set. */
 static vl_status check_fail(parse_state *ps, key_id id, const char *fmt, ...)
@@ -450,15 +468,13 @@ static vl_status scene_check(parse_state *ps) {
       return VL_EINPUT;
     }
   }
-  /* a lubricated contact needs room for the inlet meniscus and the film
-   * build-up upstream of the contact (MODEL.md section 5) */
-  bool rough_wet = sc->effects.fluid && sc->effects.roughness;
-  if (sc->effects.fluid && !ps->key_line[K_DOMAIN]) {
-    sc->domain_min_a0 = rough_wet ? VL_WET_ROUGH_DOMAIN_MIN_A0 : VL_WET_DOMAIN_MIN_A0;
-    sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
-  }
-  if (sc->effects.fluid && !ps->key_line[K_GRID]) sc->grid = rough_wet ? VL_WET_ROUGH_GRID : VL_WET_GRID;
-  if (rough_wet && !ps->key_line[K_GRID_GROWTH]) sc->grid_growth = VL_WET_GRID_GROWTH;
+  /* the numerics the file does not set follow from its effects */
+  vl_scene d = *sc;
+  vl_scene_default_numerics(&d);
+  if (!ps->key_line[K_DOMAIN]) sc->domain_min_a0 = d.domain_min_a0, sc->domain_max_a0 = d.domain_max_a0;
+  if (!ps->key_line[K_GRID]) sc->grid = d.grid;
+  if (!ps->key_line[K_GRID_GROWTH]) sc->grid_growth = d.grid_growth;
+  if (!ps->key_line[K_TOLERANCE]) sc->tolerance = d.tolerance;
   if (!(sc->grid_growth > 1.0) && sc->grid > VL_GRID_UNIFORM_MAX)
     return check_fail(ps, K_GRID, "a uniform grid takes at most %d cells (its dense matrices grow "
                                   "as the square), got %zu; set grid_growth > 1 for a graded inlet",
@@ -466,7 +482,6 @@ static vl_status scene_check(parse_state *ps) {
   if (sc->grid_growth > 1.0 && !sc->effects.roughness)
     return check_fail(ps, K_GRID_GROWTH, "a graded grid needs [effects] roughness = on (smooth "
                                          "contacts use a uniform grid: remove the key or set 1)");
-  if (sc->effects.fluid && !ps->key_line[K_TOLERANCE]) sc->tolerance = VL_WET_TOLERANCE;
   if (sc->effects.roughness && !sc->surface[0])
     return check_fail(ps, K_ROUGHNESS, "roughness = on needs [materials] surface");
   if (sc->effects.fluid && !sc->fluid[0])

@@ -93,6 +93,14 @@ typedef struct {
  * for scenes built in code (the `friction` and `compare` commands). */
 void vl_scene_defaults(vl_scene *scene);
 
+/* The numerics a scene gets from its effects when it does not set them
+ * (grid, grid_growth, domain, tolerance): dry as vl_scene_defaults; wet
+ * with VL_WET_TOLERANCE and a long inlet, graded on a rough surface
+ * (VL_WET_ROUGH_GRID on [VL_WET_ROUGH_DOMAIN_MIN_A0, VL_WET_DOMAIN_MAX_A0],
+ * growth VL_WET_GRID_GROWTH) and uniform on a smooth one (VL_WET_GRID on
+ * [VL_WET_DOMAIN_MIN_A0, VL_WET_DOMAIN_MAX_A0]). */
+void vl_scene_default_numerics(vl_scene *scene);
+
 /* Parses a scene file. Errors (unknown section or key, missing required key,
  * bad value, inconsistent effects) name "file:line: [section] key: why". */
 vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err);

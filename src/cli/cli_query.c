@@ -150,11 +150,8 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
       return 0;
     }
   }
-  sc->grid = c->grid;
-  sc->grid_growth = VL_WET_GRID_GROWTH;
-  sc->domain_min_a0 = VL_WET_ROUGH_DOMAIN_MIN_A0;
-  sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
-  sc->tolerance = VL_WET_TOLERANCE;
+  vl_scene_default_numerics(sc);
+  if (c->grid) sc->grid = c->grid; /* 0: the default */
   sc->quantity = VL_SWEEP_V0_ETA;
   if (c->have_temperature) {
     sc->effects.temperature = true;
@@ -195,7 +192,7 @@ static void friction_usage(FILE *out) {
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, VL_WET_ROUGH_GRID, NULL, 0, 0, 0, NAN};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 0, NULL, 0, 0, 0, NAN};
   const char *compound = NULL;
   double speed = 0.0;
   int have_speed = 0;
@@ -336,7 +333,7 @@ static void compare_usage(FILE *out) {
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, VL_WET_ROUGH_GRID, NULL, 0, 0, 0, NAN};
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 0, NULL, 0, 0, 0, NAN};
   char list[MAX_COMPOUNDS * 128] = "";
   char *names[MAX_COMPOUNDS];
   size_t nc = 0;
