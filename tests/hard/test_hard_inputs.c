@@ -12,6 +12,7 @@
 #include <cmocka.h> /* after the four headers it needs */
 
 #include "hard_util.h"
+#include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
 static hard_family fam_domain = {.name = "short domains", .min_rate = 0.0, .min_rate_subnm = 0.0};
@@ -25,9 +26,7 @@ static vl_persson *g_tab;
 
 static int setup(void **state) {
   (void)state;
-  vl_error err;
-  if (vl_psd_init_self_affine(&g_psd, 0.8, HARD_Q0, 7.8e9, 3e-6, &err) != VL_OK) return -1;
-  if (vl_persson_build(&g_psd, 0, &g_tab, &err) != VL_OK) return -1;
+  g_tab = vl_test_paper_surface(3e-6, &g_psd);
   return 0;
 }
 static int teardown(void **state) {
