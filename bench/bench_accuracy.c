@@ -1428,30 +1428,32 @@ static void knob_table(const scene_ctx *s, const row *base) {
 
 /* Sum of the scenes' times per curve at (r, X, g, tol), running what is
  * missing; NAN unless every scene meets the bound there. */
-/* The studied rows of r's setting in every scene with a reference: their
- * summed curve time and worst err_mu. False when a scene lacks the row, a
- * point failed or (within_bound) a row misses the bound. */
-static bool summed_over_scenes(const row *r, bool within_bound, double *cost, double *err) {
+/* The studied rows of setting (r, X, g, tol) in every scene with a
+ * reference: their summed curve time and worst err_mu. False when a scene
+ * lacks the row, a point failed or (within_bound) a row misses the bound. */
+static bool summed_over_scenes(double r, double X, double g, double tol, bool within_bound,
+                               double *cost, double *err) {
   *cost = 0, *err = 0;
   for (int k = 0; k < 3; k++) {
     const scene_ctx *s = g_scenes[k];
     if (!s->have_ref) continue;
-    const row *o = study_row(s, r->res, r->inlet_a0, r->growth, r->tolerance);
+    const row *o = study_row(s, r, X, g, tol);
     if (within_bound ? !meets(o) : !(o && o->failed == 0 && o->compared > 0)) return false;
     *cost += o->t_curve_s, *err = fmax(*err, o->err_mu);
   }
   return true;
 }
 
+/* As summed_over_scenes within the bound, running the rows that are
+ * missing (up to the first scene that misses the bound): the summed time,
+ * NAN when a scene misses. */
 static double common_cost(double r, double X, double g, double tol, double *worst_err) {
-  double cost = 0, err = 0;
   for (int k = 0; k < 3; k++) {
     scene_ctx *s = (scene_ctx *)g_scenes[k];
-    if (!s->have_ref) continue;
-    const row *o = ensure_row(s, r, X, g, tol, scene_per_decade(s));
-    if (!meets(o)) return NAN;
-    cost += o->t_curve_s, err = fmax(err, o->err_mu);
+    if (s->have_ref && !meets(ensure_row(s, r, X, g, tol, scene_per_decade(s)))) return NAN;
   }
+  double cost, err;
+  summed_over_scenes(r, X, g, tol, true, &cost, &err);
   if (worst_err) *worst_err = err;
   return cost;
 }
@@ -1542,7 +1544,7 @@ static void bench_defaults(const char *dir) {
     if (strcmp(r->scene, first->name) != 0 || r->kind != KIND_STUDY || r->tolerance != 1e-9)
       continue;
     double cost, err;
-    bool ok = summed_over_scenes(r, true, &cost, &err);
+    bool ok = summed_over_scenes(r->res, r->inlet_a0, r->growth, r->tolerance, true, &cost, &err);
     if (ok && (best == SIZE_MAX ||
                preferable(cost, r->tolerance, err, best_cost, rows[best].tolerance, best_err)))
       best = i, best_cost = cost, best_err = err;
@@ -1556,7 +1558,7 @@ static void bench_defaults(const char *dir) {
         r->growth != 1.0)
       continue;
     double cost, err;
-    bool ok = summed_over_scenes(r, false, &cost, &err);
+    bool ok = summed_over_scenes(r->res, r->inlet_a0, r->growth, r->tolerance, false, &cost, &err);
     if (ok && (best_u == SIZE_MAX || err < best_u_err))
       best_u = i, best_u_cost = cost, best_u_err = err;
   }
