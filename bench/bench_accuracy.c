@@ -76,7 +76,7 @@
 #include "viscolube/contact.h"
 #include "viscolube/database.h"
 #include "viscolube/prony_fit.h"
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 #include "viscolube/scene.h"
 #include "viscolube/sweep.h"
 

@@ -8,7 +8,7 @@
 
 #include <string.h>
 
-#include "../src/edit_distance.h"
+#include "edit_distance.h"
 
 static size_t d(const char *a, const char *b, bool t) {
   return vl_edit_distance(a, strlen(a), b, strlen(b), t);

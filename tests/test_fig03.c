@@ -13,6 +13,7 @@
 
 #include "hunter.h"
 #include "viscolube/contact.h"
+#include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 #include "vl_test_util.h"
 

@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "viscolube/contact.h"
+#include "viscolube/persson.h"
 #include "viscolube/flattening.h"
 #include "viscolube/sweep.h"
 

@@ -15,7 +15,8 @@
 #include <string.h>
 
 #include "viscolube/contact.h"
-#include "viscolube/kernel.h"
+#include "viscolube/persson.h"
+#include "kernel.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"

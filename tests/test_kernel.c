@@ -30,7 +30,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
-#include "viscolube/kernel.h"
+#include "kernel.h"
 
 #define EULER_GAMMA 0.57721566490153286060651209008240243
 #define WS_SIZE 2000

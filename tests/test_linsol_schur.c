@@ -1,5 +1,5 @@
 /* The Schur-complement linear solver of the rough wet Jacobian
- * (src/linsol_schur.h, private: included by path) against LAPACK's full
+ * (src/solver/linsol_schur.h, private) against LAPACK's full
  * LU, on synthetic systems with the contact's block structure and on the
  * real fig05 contact. */
 #include <setjmp.h>
@@ -15,8 +15,9 @@
 #include <sundials/sundials_context.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "../src/linsol_schur.h"
+#include "linsol_schur.h"
 #include "viscolube/contact.h"
+#include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "viscolube/nnls.h"
+#include "nnls.h"
 
 /* ---- an independent reference: least squares on a column subset by the
  * normal equations and Gauss-Jordan elimination (no GSL, no QR) --------- */

@@ -23,7 +23,7 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_math.h>
 
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 
 #define HRMS 3e-6 /* the paper's surface */
 #define Q0 2e5

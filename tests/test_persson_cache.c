@@ -32,7 +32,7 @@
 #include <unistd.h>
 
 #include "viscolube/database.h"
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 
 /* ---- helpers ---------------------------------------------------------- */
 

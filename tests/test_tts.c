@@ -16,7 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "viscolube/tts.h"
+#include "tts.h"
 
 /* A Havriliak-Negami master curve (independent of any viscolube code):
  * E = Einf + (E0 - Einf)/(1 + (i w tau)^a)^b, DMA convention E'' > 0. */

@@ -16,6 +16,7 @@
 #include "hunter.h"
 #include "persson_linear.h"
 #include "viscolube/contact.h"
+#include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 #include "vl_test_util.h"
 

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 
 #include "viscolube/contact.h"
+#include "viscolube/persson.h"
 #include "viscolube/scene.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"

@@ -7,7 +7,7 @@
 #include <stddef.h>
 
 #include "viscolube/contact.h"
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 
 /* ---- the seed's fig05 contact (CASES.md) -------------------------------- */
 

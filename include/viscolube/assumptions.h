@@ -60,7 +60,7 @@
 #include <stddef.h>
 
 #include "viscolube/contact.h"
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 
 typedef enum {
   VL_ASSUME_RMS_SLOPE = 1u << 0,

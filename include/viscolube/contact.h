@@ -44,7 +44,7 @@
 #include "viscolube/flattening.h"
 #include "viscolube/flow_factors.h"
 #include "viscolube/rheology.h"
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 #include "viscolube/status.h"
 
 typedef enum {
@@ -261,10 +261,5 @@ void vl_contact_cell(const vl_contact *c, size_t i, double *x_a0, double *width_
  * a0^2/R, pressure in p0 (vl_contact_p0); for tests. */
 double vl_contact_influence(vl_contact *c, double v0_m_s, size_t i, size_t j);
 double vl_contact_p0(const vl_contact *c); /* Pa */
-
-/* |Er(wH)| and a_H at speed v0 from the fixed point wH = pi v0 / a_H,
- * a_H^2 = 4 fN R/(pi |Er(wH)|) (MODEL.md section 4). Reduced moduli. */
-void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
-                       double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H);
 
 #endif

@@ -36,7 +36,7 @@
 #include "viscolube/dma.h"
 #include "viscolube/fluid.h"
 #include "viscolube/rheology.h"
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 #include "viscolube/status.h"
 
 #define VL_DB_NAME_MAX 64

@@ -58,4 +58,9 @@ void vl_prony_shift(vl_prony *prony, double a_T);
  * denominator is not positive (outside the WLF domain). */
 double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c);
 
+/* |Er(wH)| and a_H at speed v0 from the fixed point wH = pi v0 / a_H,
+ * a_H^2 = 4 fN R/(pi |Er(wH)|) (MODEL.md section 4). Reduced moduli. */
+void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
+                       double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H);
+
 #endif

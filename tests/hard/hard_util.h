@@ -26,7 +26,7 @@
 #include "viscolube/assumptions.h"
 #include "viscolube/contact.h"
 #include "viscolube/rheology.h"
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 
 /* The seed's model rubber and cylinder (CASES.md fig05: E0 = 3.6 MPa,

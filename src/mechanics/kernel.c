@@ -42,7 +42,7 @@
  *    L^(n)(x) = beta^{-n} (-1)^n [ g(z) + sum_{j=1}^{n-1} (j-1)!/z^j ], z = x/beta,
  *    computed by T_1 = g(z)/beta, T_{n+1} = (T_n + (n-1)!/x^n)/beta. The series
  *    converges like (2|x|)^{-2k} (the only singularity of L is at a = 0). */
-#include "viscolube/kernel.h"
+#include "kernel.h"
 
 #include <math.h>
 #include <stdlib.h>

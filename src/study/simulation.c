@@ -1,5 +1,6 @@
 /* Scene -> solver (simulation.h). */
 #include "viscolube/simulation.h"
+#include "viscolube/persson.h"
 
 #include "viscolube/assumptions.h"
 

@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "viscolube/csv.h"
-#include "viscolube/tts.h"
+#include "tts.h"
 
 #include "edit_distance.h"
 

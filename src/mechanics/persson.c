@@ -44,7 +44,7 @@
 #include <gsl/gsl_math.h> /* M_PI, which strict C17 <math.h> lacks */
 #include <gsl/gsl_sf_expint.h>
 
-#include "viscolube/roughness.h"
+#include "viscolube/persson.h"
 
 #define DEFAULT_N_TABLE VL_PERSSON_DEFAULT_N_TABLE
 #define MIN_N_TABLE VL_PERSSON_MIN_N_TABLE

@@ -6,7 +6,7 @@
  * the unconstrained problem on P and, while that solution z has a
  * non-positive entry, moves x towards z as far as feasibility allows and
  * returns the variables that hit zero to Z. */
-#include "viscolube/nnls.h"
+#include "nnls.h"
 
 #include <float.h>
 #include <math.h>

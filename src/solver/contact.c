@@ -1,6 +1,7 @@
 /* One operating point of the contact (dry or wet): KINSOL Newton on dimensionless
  * unknowns (contact.h). */
 #include "viscolube/contact.h"
+#include "viscolube/persson.h"
 
 #include <float.h>
 #include <kinsol/kinsol.h>
@@ -16,7 +17,7 @@
 
 #include "linsol_lapack.h"
 #include "linsol_schur.h"
-#include "viscolube/kernel.h"
+#include "kernel.h"
 
 /* Smoothing of the Fischer-Burmeister function: p u = FB_EPS at the contact
  * edge instead of 0, far below the tolerance, but the function stays
@@ -107,29 +108,6 @@ void vl_contact_config_defaults(vl_contact_config *cfg) {
   cfg->tolerance = 1e-9;
   cfg->max_iterations = VL_NEWTON_MAX_ITERATIONS;
   cfg->linear_solver = VL_LINSOL_SCHUR;
-}
-
-void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
-                       double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H) {
-  double red = vl_prony_reduced_factor(rubber);
-  double lo = log(vl_prony_e0(rubber) * red), hi = log(rubber->e_inf_pa * red);
-  double x = lo;
-  if (rubber->n_terms > 0 && v0_m_s > 0.0 && hi > lo) {
-    /* f(x) = ln|Er(w(e^x))| - x is decreasing: |Er| grows slower than w, and
-     * w ~ sqrt(|Er|); bisection in ln|Er| is robust over all speeds. */
-    for (int it = 0; it < 200 && hi - lo > 1e-15 * fabs(hi); it++) {
-      double mid = 0.5 * (lo + hi);
-      double w = M_PI * v0_m_s / sqrt(4.0 * load_n_per_m * radius_m / (M_PI * exp(mid)));
-      double f = log(cabs(vl_prony_modulus(rubber, w)) * red) - mid;
-      if (f > 0.0) lo = mid; else hi = mid;
-    }
-    x = 0.5 * (lo + hi);
-  }
-  double e = exp(x);
-  double a = sqrt(4.0 * load_n_per_m * radius_m / (M_PI * e));
-  if (E_abs_pa) *E_abs_pa = e;
-  if (a_H_m) *a_H_m = a;
-  if (omega_H) *omega_H = M_PI * v0_m_s / a;
 }
 
 /* Fischer-Burmeister complementarity a >= 0, b >= 0, a b = eps/2 (smoothed),

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "viscolube/nnls.h"
+#include "nnls.h"
 
 /* Below this fraction of the largest c_i a term changes no fitted value by
  * more than rounding: it is dropped rather than stored as noise. */

@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "viscolube/database.h"
+#include "viscolube/persson.h"
 
 #include "edit_distance.h"
 

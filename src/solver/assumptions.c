@@ -1,5 +1,6 @@
 /* Checks of the model's assumptions for one operating point (assumptions.h). */
 #include "viscolube/assumptions.h"
+#include "viscolube/persson.h"
 
 #include <math.h>
 #include <stdbool.h>

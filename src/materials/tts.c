@@ -1,5 +1,5 @@
 /* Time-temperature superposition: pairwise shifts and the WLF fit (tts.h). */
-#include "viscolube/tts.h"
+#include "tts.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,5 +1,6 @@
 #include "viscolube/rheology.h"
 
+#include <complex.h>
 #include <math.h>
 
 vl_status vl_prony_validate(const vl_prony *prony, vl_error *err) {
@@ -117,4 +118,27 @@ double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c) {
   double den = c2_k + t_c - tref_c;
   if (!(den > 0.0)) return NAN;
   return -c1 * (t_c - tref_c) / den;
+}
+
+void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
+                       double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H) {
+  double red = vl_prony_reduced_factor(rubber);
+  double lo = log(vl_prony_e0(rubber) * red), hi = log(rubber->e_inf_pa * red);
+  double x = lo;
+  if (rubber->n_terms > 0 && v0_m_s > 0.0 && hi > lo) {
+    /* f(x) = ln|Er(w(e^x))| - x is decreasing: |Er| grows slower than w, and
+     * w ~ sqrt(|Er|); bisection in ln|Er| is robust over all speeds. */
+    for (int it = 0; it < 200 && hi - lo > 1e-15 * fabs(hi); it++) {
+      double mid = 0.5 * (lo + hi);
+      double w = M_PI * v0_m_s / sqrt(4.0 * load_n_per_m * radius_m / (M_PI * exp(mid)));
+      double f = log(cabs(vl_prony_modulus(rubber, w)) * red) - mid;
+      if (f > 0.0) lo = mid; else hi = mid;
+    }
+    x = 0.5 * (lo + hi);
+  }
+  double e = exp(x);
+  double a = sqrt(4.0 * load_n_per_m * radius_m / (M_PI * e));
+  if (E_abs_pa) *E_abs_pa = e;
+  if (a_H_m) *a_H_m = a;
+  if (omega_H) *omega_H = M_PI * v0_m_s / a;
 }

@@ -32,7 +32,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
-#include "viscolube/contact.h"
+#include "viscolube/flattening.h"
+#include "viscolube/rheology.h"
 
 /* Gauss-Legendre in ln q: 8 nodes on panels of at most a quarter decade.
  * The integrand q^2 C(q) A(T/q^2) turns over within about a decade of q
