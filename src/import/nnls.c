@@ -19,6 +19,8 @@
 #include <gsl/gsl_matrix.h>
 #include <gsl/gsl_vector.h>
 
+#include "gsl_errors.h"
+
 /* A newly added column whose component orthogonal to the columns already in
  * P is below this (columns have unit norm) is numerically dependent on them:
  * adding it would only add rounding noise, so it is rejected for this step. */
@@ -84,7 +86,7 @@ vl_status vl_nnls_solve(size_t m, size_t n, const double *a, const double *b, do
       }
     }
   }
-  gsl_error_handler_t *old_handler = gsl_set_error_handler_off();
+  vl_gsl_errors_off();
   as = gsl_matrix_alloc(m, n);
   qr = gsl_matrix_alloc(m, n);
   bv = gsl_vector_alloc(m);
@@ -286,6 +288,5 @@ cleanup:
   free(p);
   free(in_p);
   free(rejected);
-  gsl_set_error_handler(old_handler);
   return st;
 }
