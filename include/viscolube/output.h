@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "viscolube/contact.h"
+#include "viscolube/results.h"
 #include "viscolube/status.h"
 
 /* What turns a speed into the other sweep coordinates (0 = not defined). */
