@@ -15,6 +15,7 @@
 
 #include "hunter.h"
 #include "persson_linear.h"
+#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"

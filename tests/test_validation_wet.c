@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/sweep.h"
 #include "vl_test_util.h"

@@ -8,7 +8,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "viscolube/contact.h"
+#include "viscolube/results.h"
 #include "viscolube/status.h"
 #include "viscolube/json.h"
 

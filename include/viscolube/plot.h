@@ -30,7 +30,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "viscolube/contact.h"
+#include "viscolube/results.h"
 #include "viscolube/output.h"
 #include "viscolube/scene.h"
 #include "viscolube/status.h"
