@@ -155,19 +155,19 @@ typedef struct {
   double tolerance;           /* scaled residual norm for convergence */
   int max_iterations;         /* Newton iterations per solve (0 = VL_NEWTON_MAX_ITERATIONS) */
   vl_linear_solver linear_solver;
-  /* Viscous flattening of the asperities (seed Appendix C; NULL = off; not
-   * owned, must outlive the contact). The PSD both the contact and the
-   * flow factors see becomes epsilon_f(u, v0) C(q) at each node, u the local
-   * separation: pc(u) -> s pc(u/s), A/A0 at pc -> A/A0 at pc/s, h_rms ->
-   * s h_rms in the flow factors and the Couette film, s = sqrt(epsilon_f)
-   * (the solver derives the scaling), with the chain rule through
-   * epsilon_f(u) in the Jacobian. Needs roughness and a fluid (eta > 0):
-   * vl_contact_create refuses it otherwise, and when its surface's h_rms
-   * differs from the roughness table's. Not const: the contact sets the
-   * evaluator's speed (vl_flattening_set_speed) at every new v0 and its
-   * viscosity at create and in vl_contact_set_viscosity, so one evaluator
-   * must not serve two contacts at once. */
-  vl_flattening *flattening;
+  /* Viscous flattening of the asperities (seed Appendix C; NULL = off).
+   * The PSD both the contact and the flow factors see becomes
+   * epsilon_f(u, v0) C(q) at each node, u the local separation:
+   * pc(u) -> s pc(u/s), A/A0 at pc -> A/A0 at pc/s, h_rms -> s h_rms in the
+   * flow factors and the Couette film, s = sqrt(epsilon_f) (the solver
+   * derives the scaling), with the chain rule through epsilon_f(u) in the
+   * Jacobian. Needs roughness and a fluid (eta > 0), and flattening_psd, the
+   * PSD the roughness table was built from (same h_rms): vl_contact_create
+   * refuses it otherwise. Both are read only during vl_contact_create: the
+   * contact builds and owns its own evaluator (whose speed and viscosity it
+   * sets as it solves), so nothing outside it changes under it. */
+  const vl_flattening_config *flattening;
+  const vl_psd *flattening_psd;
 } vl_contact_config;
 
 /* Sets the numerics of cfg (grid, grid_growth, domain, tolerance,

@@ -66,7 +66,7 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
   if (!c->A || !c->beta || !c->M || !c->P || !c->U || !c->dPdU || !c->F || !c->D || !c->theta ||
       !c->g || !c->Jf || !c->rw)
     return vl_contact_nomem(c, err);
-  if (c->cfg.flattening) {
+  if (c->flattening) {
     c->sf = malloc(2 * n * sizeof *c->sf);
     if (!c->sf) return vl_contact_nomem(c, err);
     c->dsf = c->sf + n;
@@ -97,15 +97,20 @@ static vl_status create_helpers(vl_contact *c, vl_error *err) {
   return VL_OK;
 }
 
+/* The contact's own viscous-flattening evaluator, at the contact's viscosity
+ * (the coarse-grid helper builds its own: no evaluator is shared). */
+static vl_status create_flattening(vl_contact *c, vl_error *err) {
+  if (!c->cfg.flattening) return VL_OK;
+  vl_status st =
+      vl_flattening_create(c->cfg.flattening, c->cfg.flattening_psd, &c->flattening, err);
+  if (st != VL_OK) return st;
+  return vl_flattening_set_viscosity(c->flattening, c->cfg.eta_pa_s, err);
+}
+
 vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_error *err) {
   *out = NULL;
   vl_status st = vl_contact_config_check(cfg, err);
   if (st != VL_OK) return st;
-  /* the contact's viscosity is the one that counts */
-  if (cfg->flattening) {
-    st = vl_flattening_set_viscosity(cfg->flattening, cfg->eta_pa_s, err);
-    if (st != VL_OK) return st;
-  }
   vl_contact *c = calloc(1, sizeof *c);
   if (!c) {
     vl_error_set(err, "out of memory for a %zu-node contact solver", cfg->grid);
@@ -118,6 +123,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   /* flow factors only make sense for a rough surface */
   if (!c->rough) c->cfg.flow_factors = VL_FLOW_FACTORS_SMOOTH;
   c->hrms = c->rough ? vl_persson_hrms(cfg->roughness) : 0.0;
+  if ((st = create_flattening(c, err)) != VL_OK) goto fail;
   if ((st = vl_contact_grid_init(c, err)) != VL_OK) goto fail;
   set_unknowns(c);
   set_scales(c);
@@ -138,6 +144,7 @@ void vl_contact_free(vl_contact *c) {
   if (!c) return;
   vl_contact_free(c->coarse);
   vl_contact_free(c->dry);
+  vl_flattening_free(c->flattening);
   if (c->kmem) KINFree(&c->kmem);
   if (c->LS) SUNLinSolFree(c->LS);
   if (c->J) SUNMatDestroy(c->J);

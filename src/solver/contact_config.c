@@ -112,14 +112,17 @@ static vl_status check_flattening(const vl_contact_config *cfg, vl_error *err) {
                                  : "a fluid (eta > 0: the contact is dry)");
     return VL_EINPUT;
   }
-  vl_flattening_state fs;
-  vl_flattening_state_get(cfg->flattening, &fs);
+  if (!cfg->flattening_psd) {
+    vl_error_set(err, "viscous flattening needs the surface's PSD (flattening_psd = NULL)");
+    return VL_EINPUT;
+  }
+  double h_psd = vl_psd_hrms(cfg->flattening_psd);
   double h_table = vl_persson_hrms(cfg->roughness);
-  if (!(fabs(fs.hrms_m - h_table) <= 1e-9 * h_table)) {
+  if (!(fabs(h_psd - h_table) <= 1e-9 * h_table)) {
     vl_error_set(err,
-                 "viscous flattening was built for a surface of h_rms %g m, the roughness "
+                 "viscous flattening was given a surface of h_rms %g m, the roughness "
                  "table has %g m: both must come from the same PSD",
-                 fs.hrms_m, h_table);
+                 h_psd, h_table);
     return VL_EINPUT;
   }
   return VL_OK;

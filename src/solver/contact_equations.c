@@ -112,8 +112,8 @@ static double face_g(const vl_contact *c, size_t f, double *dl, double *dr) {
  * Reynolds rows' pf block stays tridiagonal). Off: s = 1, ds/du = 0. */
 static double flat_scale(const vl_contact *c, double u_m, double *ds_du) {
   *ds_du = 0.0;
-  if (!c->cfg.flattening) return 1.0;
-  double de, e = vl_flattening_eps(c->cfg.flattening, u_m, &de);
+  if (!c->flattening) return 1.0;
+  double de, e = vl_flattening_eps(c->flattening, u_m, &de);
   if (!(e > 0.0)) return 0.0; /* u <= 0: every wavelength flattened */
   double s = sqrt(e);
   *ds_du = 0.5 * de / s;

@@ -141,7 +141,7 @@ void vl_contact_set_speed(vl_contact *c, double v0) {
                     &c->omega_h);
   c->sfac = c->e_abs / c->p0;
   /* v0 was validated (finite): set_speed cannot fail */
-  if (c->cfg.flattening) vl_flattening_set_speed(c->cfg.flattening, v0, NULL);
+  if (c->flattening) vl_flattening_set_speed(c->flattening, v0, NULL);
   size_t nt = c->cfg.rubber.n_terms;
   if (nt == 0 && c->kernel_ready) return; /* elastic: one kernel for all speeds */
   double t0 = vl_contact_now_s();

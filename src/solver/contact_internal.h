@@ -89,6 +89,7 @@ struct vl_contact {
   double *g, *dg, *cf, *dcf; /* conductance u^3 phi_p and Couette film u + h phi_s, /us^3, /us */
   double *Jf;         /* face fluxes, n + 1 */
   double *D;          /* rough: elasticity residual U - G */
+  vl_flattening *flattening; /* owned; NULL when cfg.flattening is NULL */
   double *sf, *dsf;   /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
                        * NULL when off */
   double *theta;      /* film fraction (report only) */

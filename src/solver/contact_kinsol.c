@@ -301,7 +301,7 @@ vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err
   if (c->q_rolling > 0.0) c->q_rolling *= eta_pa_s / c->cfg.eta_pa_s; /* Q ~ eta */
   c->cfg.eta_pa_s = eta_pa_s;
   /* epsilon_f depends on eta v0: its table is rebuilt (eta validated above) */
-  if (c->cfg.flattening) vl_flattening_set_viscosity(c->cfg.flattening, eta_pa_s, NULL);
+  if (c->flattening) vl_flattening_set_viscosity(c->flattening, eta_pa_s, NULL);
   if (c->coarse) vl_contact_set_viscosity(c->coarse, eta_pa_s, NULL);
   return VL_OK;
 }

@@ -107,3 +107,5 @@ double vl_contact_influence(vl_contact *c, double v0_m_s, size_t i, size_t j) {
   vl_contact_set_speed(c, v0_m_s);
   return c->M[i * c->n + j];
 }
+
+const vl_flattening *vl_contact_flattening(const vl_contact *c) { return c->flattening; }

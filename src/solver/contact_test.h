@@ -31,6 +31,10 @@ double vl_contact_jacobian_check_blocks(vl_contact *c, double v0_m_s, double rel
  * min(cap, n + 1) values; returns n + 1, or 0 for a dry contact. */
 size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap);
 
+/* The contact's own viscous-flattening evaluator (NULL when the effect is
+ * off), at the speed of its last solve and its current viscosity. */
+const vl_flattening *vl_contact_flattening(const vl_contact *c);
+
 /* Cell i < vl_contact_grid(c): its node (the cell centre) and width, in a0. */
 void vl_contact_cell(const vl_contact *c, size_t i, double *x_a0, double *width_a0);
 

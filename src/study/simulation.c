@@ -17,7 +17,7 @@ struct vl_simulation {
   bool have_psd;
   vl_psd psd;
   vl_persson *table;
-  vl_flattening *flattening; /* [effects] viscous_flattening = on, else NULL */
+  vl_flattening_config flattening; /* [effects] viscous_flattening = on: its settings */
   double eta_pa_s;
   double temperature_c; /* [effects] temperature: the scene's; NAN when off */
   double a_T;           /* WLF shift applied to the compound's times (1 when off) */
@@ -229,18 +229,14 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
      * temperature), the surface, the contact's load and radius (aH, so wH)
      * and the fluid at the scene's temperature; the scene parser has made
      * sure roughness and fluid are on */
-    vl_flattening_config fc;
-    vl_flattening_config_defaults(&fc);
-    fc.rubber = cfg.rubber;
-    fc.load_n_per_m = cfg.load_n_per_m;
-    fc.radius_m = cfg.radius_m;
-    fc.eta_pa_s = cfg.eta_pa_s;
-    st = vl_flattening_create(&fc, &sim->psd, &sim->flattening, err);
-    if (st != VL_OK) {
-      vl_error_prefix(err, "%s: [effects] viscous_flattening", scene->path);
-      goto fail;
-    }
-    cfg.flattening = sim->flattening;
+    vl_flattening_config *fc = &sim->flattening;
+    vl_flattening_config_defaults(fc);
+    fc->rubber = cfg.rubber;
+    fc->load_n_per_m = cfg.load_n_per_m;
+    fc->radius_m = cfg.radius_m;
+    fc->eta_pa_s = cfg.eta_pa_s;
+    cfg.flattening = fc; /* the contact builds its own evaluator from it */
+    cfg.flattening_psd = &sim->psd;
   }
   sim->cfg = cfg;
   st = vl_contact_create(&cfg, &sim->contact, err);
@@ -260,7 +256,6 @@ fail:
 void vl_simulation_free(vl_simulation *sim) {
   if (!sim) return;
   vl_contact_free(sim->contact);
-  vl_flattening_free(sim->flattening); /* after the contact that uses it */
   vl_persson_free(sim->table);
   if (sim->have_psd) vl_psd_free(&sim->psd);
   free(sim->v0);
