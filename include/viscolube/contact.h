@@ -1,7 +1,7 @@
 /* viscolube: one operating point of a rigid smooth cylinder on a (rough)
  * viscoelastic half-space, solved by KINSOL (Newton, dense Jacobian).
  *
- * Frame and signs (MODEL.md section 1): cylinder frame, rubber moving at +v0
+ * Frame and signs (docs/MODEL.md section 1): cylinder frame, rubber moving at +v0
  * along x, inlet at x < 0. Friction components are positive when they resist
  * the motion.
  *
@@ -33,7 +33,7 @@
  *                for soft EHL, from Hertz.
  * The rigid approach h0 (the displacement kernel's free constant) is the
  * load-balance unknown; the separation at the pressure centroid u0 is
- * reported afterwards (MODEL.md section 3: measured to converge better than
+ * reported afterwards (docs/MODEL.md section 3: measured to converge better than
  * u0 as the unknown). */
 #ifndef VISCOLUBE_CONTACT_H
 #define VISCOLUBE_CONTACT_H
@@ -109,7 +109,7 @@ typedef enum {
  * "Accuracy and cost"): the cheapest setting with mu within 1 % of a
  * reference at N 1536 / inlet 32 a0 over the fig05, fig10 and real-rubber
  * sweeps. A lubricated contact needs room for the inlet meniscus and the
- * film build-up upstream of the contact (MODEL.md section 5). The inlet must
+ * film build-up upstream of the contact (docs/MODEL.md section 5). The inlet must
  * hold the film's inlet zone at the top of the Stribeck curve (fig05 at
  * v0 eta = 1 Pa m: 6.1 % / 1.5 % short with 5 / 12 a0 against 20 a0); the
  * grid then resolves the contact (N 512: fig10 1.9 %); the tolerance does
@@ -123,7 +123,7 @@ typedef enum {
  * uniform cells of a0/30 near the contact (as grid 768 on [-24, 1.6] a0
  * gives), merged into cells growing by 5 % upstream of -2 a0, on an inlet of
  * 96 a0; about 200 cells in all. From the study with graded grids (bench/,
- * README "Accuracy and cost"): against a reference with a0/60 cells, a
+ * docs/NUMERICS.md, the accuracy study): against a reference with a0/60 cells, a
  * 192 a0 inlet and growth 1.02, mu is within 0.75 % on fig05, fig10 and the
  * real rubber, where the uniform 768 / 24 a0 grid was 1.2-1.6 % off (its
  * inlet too short: mu converges like 1/X in the inlet length). */
@@ -230,7 +230,7 @@ void vl_contact_fields(const vl_contact *c, vl_fields *f);
  * at speed v0 > 0, with h the larger of Martin's rigid film
  * 4.894 eta (v0/2) R/fN and the isoviscous-elastic estimate
  * 2.32 (eta (v0/2) R/fN) g^0.8, g = fN/sqrt(eta (v0/2) E' R), E' = 2 Er
- * (relaxed). For sizing the domain (MODEL.md section 9): the pressure of a
+ * (relaxed). For sizing the domain (docs/MODEL.md section 9): the pressure of a
  * rigid cylinder spreads over several such lengths, and with the inlet end
  * X lengths upstream its film is short by about 1/(2 X^2) / (1/(4 Hc)),
  * Hc = 1.226 (0.6 % at X = 20). Reads rubber, radius, load, viscosity. */

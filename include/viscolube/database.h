@@ -1,6 +1,6 @@
 /* viscolube: the material database (SQLite).
  *
- * One file holds rubber compounds (Prony series, MODEL.md section 2),
+ * One file holds rubber compounds (Prony series, docs/MODEL.md section 2),
  * roughness power spectra and lubricants. The schema lives in the .sql
  * files of materials/ (embedded in the program): NNNN_*.sql are forward
  * migrations, applied in order, each in its own transaction that also sets

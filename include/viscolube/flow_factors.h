@@ -1,6 +1,6 @@
 /* viscolube: flow and shear-stress factors of the averaged Reynolds equation.
  *
- * MODEL.md sections 5 and 7 and FLOW_FACTORS.md. With u the average
+ * docs/MODEL.md sections 5 and 7 and docs/FLOW_FACTORS.md. With u the average
  * separation (the seed's u, the mean of the local film thickness), rubber and
  * fluid moving at +v0, only the rubber rough:
  *

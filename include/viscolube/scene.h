@@ -1,6 +1,6 @@
 /* viscolube: a scene file (INI) names the materials, the operating
  * conditions, the effects to simulate and the numerics. Only the effects
- * switched on are built and solved. See README.md for every key. */
+ * switched on are built and solved. See docs/FORMATS.md for every key. */
 #ifndef VISCOLUBE_SCENE_H
 #define VISCOLUBE_SCENE_H
 

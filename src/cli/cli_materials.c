@@ -61,7 +61,7 @@ static const char *const noun_help[] = {
     [NOUN_COMPOUND] =
         "usage: viscolube [--db PATH] compound VERB ...\n"
         "\n"
-        "Rubber compounds: a creep-form Prony series (MODEL.md section 2)\n"
+        "Rubber compounds: a creep-form Prony series (docs/MODEL.md section 2)\n"
         "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]\n"
         "\n"
         "verbs:\n"
@@ -135,7 +135,7 @@ static const char compound_add_help[] =
     "                 [--fit-weights relative|modulus]\n"
     "\n"
     "Registers a rubber compound by its creep-form Prony series\n"
-    "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]  (MODEL.md section 2)\n"
+    "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]  (docs/MODEL.md section 2)\n"
     "given directly (--prony) or fitted to measured DMA data (--measured).\n"
     "\n"
     "  NAME            1-63 characters of A-Z a-z 0-9 . _ + -\n"

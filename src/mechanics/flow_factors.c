@@ -1,4 +1,4 @@
-/* Flow and shear-stress factors (FLOW_FACTORS.md, MODEL.md sections 5 and 7).
+/* Flow and shear-stress factors (docs/FLOW_FACTORS.md, docs/MODEL.md sections 5 and 7).
  *
  * patir-cheng works in the nominal separation H = h/sigma. The hot path
  * (called for every grid node in every residual and Jacobian) is:

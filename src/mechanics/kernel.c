@@ -1,6 +1,6 @@
 /* viscolube: surface-displacement influence coefficients (kernel.h).
  *
- * Closed form (derived for the convention of MODEL.md section 1; the paper's
+ * Closed form (derived for the convention of docs/MODEL.md section 1; the paper's
  * Appendix A uses x + v0 t, i.e. the mirror image, and has typos).
  *
  * Everything is written in units of the cell width delta: x = d/delta,

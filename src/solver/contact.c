@@ -1,5 +1,5 @@
 /* One operating point of the contact (dry or wet): creation and release of
- * the solver (contact.h). Sets the scales of MODEL.md section 9 (the relaxed
+ * the solver (contact.h). Sets the scales of docs/MODEL.md section 9 (the relaxed
  * Hertz half-width a0 and peak pressure p0, a0^2/R for the separation), the
  * unknowns (contact, fluid, rigid approach), the rolling number of section
  * 8, and builds the parts the other contact_*.c files work on
@@ -38,7 +38,7 @@ static void set_scales(vl_contact *c) {
   c->kappa = 1.0;
   if (c->wet && c->rough && cfg->rubber.n_terms > 0) {
     /* Q = v_GT / v_ML: v_GT = (loss-peak frequency) x (relaxed Hertz width
-     * 2 a0), v_ML = 10 h_rms^2 Er0 / (R eta) (MODEL.md section 8) */
+     * 2 a0), v_ML = 10 h_rms^2 Er0 / (R eta) (docs/MODEL.md section 8) */
     double wpk = 0.0;
     if (vl_prony_loss_peak(&cfg->rubber, &wpk, NULL, NULL) == VL_OK) {
       double v_ml = 10.0 * c->hrms * c->hrms * c->er_ref / (cfg->radius_m * cfg->eta_pa_s);

@@ -2,7 +2,7 @@
  * (contact.h: grid, domain, growth, tolerance, Newton iterations), the
  * validation of a configuration before anything is allocated, and the film
  * and inlet-length estimates that size a smooth wet contact's domain
- * (MODEL.md section 9: the domain must follow the inlet length sqrt(2 R h)
+ * (docs/MODEL.md section 9: the domain must follow the inlet length sqrt(2 R h)
  * when it exceeds a0). */
 #include "contact_internal.h"
 

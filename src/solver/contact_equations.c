@@ -1,4 +1,4 @@
-/* The discretised equations (MODEL.md sections 3-6 and 9) on the cells of
+/* The discretised equations (docs/MODEL.md sections 3-6 and 9) on the cells of
  * contact_grid.c, in the dimensionless unknowns of contact.h:
  *   the gap u = h0 + x^2/(2R) + w(x), w from the influence matrix (section 3);
  *   the contact pressure pc(u) of Persson's theory, or the hard-contact
@@ -7,7 +7,7 @@
  *   Appendix C);
  *   the averaged Reynolds equation in conservative finite-volume form with
  *   its flow factors and the cavitation condition by Fischer-Burmeister
- *   (section 5; FLOW_FACTORS.md);
+ *   (section 5; docs/FLOW_FACTORS.md);
  *   the load balance (section 6);
  * their residual and analytic Jacobian, and the scales of the fluid
  * unknowns and the Reynolds rows (section 9). */
@@ -97,7 +97,7 @@ static double face_g(const vl_contact *c, size_t f, double *dl, double *dr) {
 
 /* Viscous flattening (seed Appendix C) replaces the surface's PSD C(q) by
  * eps C(q), eps = epsilon_f(u, v0) at the node's separation u. In Persson's
- * theory (MODEL.md section 4, seed Eq. 8) that is an exact rescaling:
+ * theory (docs/MODEL.md section 4, seed Eq. 8) that is an exact rescaling:
  *   w(q) = (pi \int^q q'^3 eps C dq')^(-1/2) = eps^(-1/2) w(q), so
  *   u_eps(p) = (sqrt(pi)/2) \int dq q^2 (eps C)(eps^(-1/2) w) E1((eps^(-1/2) w p/|Er|)^2)
  *            = sqrt(eps) u(p/sqrt(eps)),

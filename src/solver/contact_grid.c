@@ -1,8 +1,8 @@
-/* The grid and the influence coefficients (MODEL.md section 3): the cells
+/* The grid and the influence coefficients (docs/MODEL.md section 3): the cells
  * (uniform, or merged into a graded inlet), and at each speed the dense
  * influence matrix of the surface displacement w(x) from the Toeplitz
  * coefficients of the uniform grid (kernel.h, Appendix A), with the
- * asperity state |Er(wH)|, aH of that speed (MODEL.md section 4). */
+ * asperity state |Er(wH)|, aH of that speed (docs/MODEL.md section 4). */
 #include "contact_internal.h"
 
 #include <math.h>

@@ -2,7 +2,7 @@
  * Private to src/solver; the public API is viscolube/contact.h.
  *
  * The solver is split by responsibility (each file says which equations of
- * MODEL.md it implements):
+ * docs/MODEL.md it implements):
  *   contact.c           creation (scales, unknowns, allocation) and release;
  *   contact_config.c    numerics defaults and limits, validation of a
  *                       configuration, the film and inlet-length estimates;

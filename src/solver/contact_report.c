@@ -1,4 +1,4 @@
-/* Results of a converged state (MODEL.md sections 7 and 8): the friction
+/* Results of a converged state (docs/MODEL.md sections 7 and 8): the friction
  * integrals mu_Rc, mu_Rf (the pressures against the slope of the gap),
  * mu_Sc (sigma_s over the real contact area) and mu_Sf (the film's shear,
  * Couette weighted by the film fraction theta in the cavitated zone, and

@@ -1,5 +1,5 @@
 /* Initial guesses of the Newton solve: the relaxed Hertz contact
- * (MODEL.md section 9: the scales a0, p0), with Persson's separation under
+ * (docs/MODEL.md section 9: the scales a0, p0), with Persson's separation under
  * it on a rough surface (section 4); for a smooth film the rigid cylinder's
  * Reynolds pressure (Martin, section 5), the dry contact of a viscoelastic
  * solid, or the converged solution of a half-size grid; and the predictor of

@@ -1,6 +1,6 @@
 /* The test aids of contact_test.h: the Jacobian checked against finite
  * differences of the residual, the face fluxes of the Reynolds equation
- * (MODEL.md section 5) as discretised, the cells and influence coefficients
+ * (docs/MODEL.md section 5) as discretised, the cells and influence coefficients
  * (section 3), and the cost counters. */
 #include "contact_internal.h"
 
