@@ -8,12 +8,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "viscolube/atomic_file.h"
-#include "viscolube/csv.h"
-#include "viscolube/database.h"
-#include "viscolube/flattening.h"
-#include "viscolube/json.h"
-#include "viscolube/scene.h"
 
 #define MAX_SPEEDS 32
 #define MAX_HURST 16

@@ -16,14 +16,6 @@
 #include <sys/stat.h>
 
 #include "cli.h"
-#include "viscolube/atomic_file.h"
-#include "viscolube/csv.h"
-#include "viscolube/database.h"
-#include "viscolube/dma.h"
-#include "viscolube/json.h"
-#include "viscolube/plot.h"
-#include "viscolube/rheology.h"
-#include "viscolube/roughness.h"
 
 #define TWO_PI 6.283185307179586476925287
 

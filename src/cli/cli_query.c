@@ -7,13 +7,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "viscolube/atomic_file.h"
-#include "viscolube/csv.h"
-#include "viscolube/database.h"
-#include "viscolube/output.h"
-#include "viscolube/plot.h"
-#include "viscolube/scene.h"
-#include "viscolube/simulation.h"
 
 #define MAX_COMPOUNDS 8
 
@@ -75,9 +68,9 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
     else if (!strcmp(o, "--radius")) c->radius = d;
     else if (!strcmp(o, "--sigma-s")) c->sigma_s = d;
     else {
-      if (d < 16 || d > VL_GRID_GRADED_MAX || d != floor(d)) {
-        fprintf(stderr, "viscolube %s: option --grid needs a whole number in [16, %d]\n", cmd,
-                VL_GRID_GRADED_MAX);
+      if (d < VL_GRID_MIN || d > VL_GRID_GRADED_MAX || d != floor(d)) {
+        fprintf(stderr, "viscolube %s: option --grid needs a whole number in [%d, %d]\n", cmd,
+                VL_GRID_MIN, VL_GRID_GRADED_MAX);
         return -1;
       }
       c->grid = (size_t)d;

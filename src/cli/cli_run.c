@@ -8,12 +8,6 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "viscolube/database.h"
-#include "viscolube/json.h"
-#include "viscolube/output.h"
-#include "viscolube/plot.h"
-#include "viscolube/scene.h"
-#include "viscolube/simulation.h"
 
 static void run_usage(FILE *out) {
   fputs("usage: viscolube run SCENE [--out DIR] [--json] [--plot]\n"
