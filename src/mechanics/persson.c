@@ -47,6 +47,8 @@
 #include "viscolube/persson.h"
 #include "gsl_errors.h"
 
+#include "blob.h"
+
 #define DEFAULT_N_TABLE VL_PERSSON_DEFAULT_N_TABLE
 #define MIN_N_TABLE VL_PERSSON_MIN_N_TABLE
 #define MAX_N_TABLE VL_PERSSON_MAX_N_TABLE
@@ -752,34 +754,35 @@ size_t vl_persson_size(const vl_persson *t) { return t->n; }
  * stored table cannot contradict itself. */
 #define BLOB_MAGIC "VLPT"
 #define BLOB_HEAD 104 /* bytes before the nodes */
-#define FNV_OFFSET 0xcbf29ce484222325ULL
 #define FNV_PRIME 0x100000001b3ULL
 
-static void put_u64(unsigned char *p, uint64_t v) {
+/* The byte helpers and the PSD fingerprint below are shared with the other
+ * cached table, flow_factors_emt.c, through blob.h. */
+void vl_blob_put_u64(unsigned char *p, uint64_t v) {
   for (int i = 0; i < 8; i++)
     p[i] = (unsigned char)(v >> (8 * i));
 }
 
-static uint64_t get_u64(const unsigned char *p) {
+uint64_t vl_blob_get_u64(const unsigned char *p) {
   uint64_t v = 0;
   for (int i = 0; i < 8; i++)
     v |= (uint64_t)p[i] << (8 * i);
   return v;
 }
 
-static uint64_t bits_of(double v) {
+uint64_t vl_blob_bits(double v) {
   uint64_t b;
   memcpy(&b, &v, sizeof b);
   return b;
 }
 
-static double double_of(uint64_t b) {
+double vl_blob_double(uint64_t b) {
   double v;
   memcpy(&v, &b, sizeof v);
   return v;
 }
 
-static uint64_t fnv1a(uint64_t h, const unsigned char *p, size_t n) {
+uint64_t vl_blob_fnv1a(uint64_t h, const unsigned char *p, size_t n) {
   for (size_t i = 0; i < n; i++) {
     h ^= p[i];
     h *= FNV_PRIME;
@@ -788,20 +791,20 @@ static uint64_t fnv1a(uint64_t h, const unsigned char *p, size_t n) {
 }
 
 /* The 8 fingerprint words of a PSD (as vl_psd_init_* left it). */
-static void psd_fingerprint(const vl_psd *psd, uint64_t fp[8]) {
-  uint64_t h = FNV_OFFSET;
+void vl_blob_psd_fingerprint(const vl_psd *psd, uint64_t fp[VL_BLOB_PSD_WORDS]) {
+  uint64_t h = VL_BLOB_FNV_OFFSET;
   for (size_t k = 0; k < psd->n; k++) {
     unsigned char b[16];
-    put_u64(b, bits_of(psd->q[k]));
-    put_u64(b + 8, bits_of(psd->C[k]));
-    h = fnv1a(h, b, sizeof b);
+    vl_blob_put_u64(b, vl_blob_bits(psd->q[k]));
+    vl_blob_put_u64(b + 8, vl_blob_bits(psd->C[k]));
+    h = vl_blob_fnv1a(h, b, sizeof b);
   }
   fp[0] = (uint64_t)psd->kind;
-  fp[1] = bits_of(psd->hurst);
-  fp[2] = bits_of(psd->q0);
-  fp[3] = bits_of(psd->q1);
-  fp[4] = bits_of(psd->c0);
-  fp[5] = bits_of(psd->hrms_m);
+  fp[1] = vl_blob_bits(psd->hurst);
+  fp[2] = vl_blob_bits(psd->q0);
+  fp[3] = vl_blob_bits(psd->q1);
+  fp[4] = vl_blob_bits(psd->c0);
+  fp[5] = vl_blob_bits(psd->hrms_m);
   fp[6] = (uint64_t)psd->n;
   fp[7] = h;
 }
@@ -818,20 +821,20 @@ vl_status vl_persson_serialize(const vl_persson *t, void **blob, size_t *len, vl
   memcpy(p, BLOB_MAGIC, 4);
   for (int i = 0; i < 4; i++)
     p[4 + i] = (unsigned char)((uint32_t)VL_PERSSON_FORMAT >> (8 * i));
-  put_u64(p + 8, (uint64_t)t->n);
+  vl_blob_put_u64(p + 8, (uint64_t)t->n);
   p += 16;
   uint64_t fp[8];
-  psd_fingerprint(&t->psd, fp);
+  vl_blob_psd_fingerprint(&t->psd, fp);
   for (int i = 0; i < 8; i++, p += 8)
-    put_u64(p, fp[i]);
+    vl_blob_put_u64(p, fp[i]);
   const double scalars[3] = {t->hrms, t->g, t->ustar};
   for (int i = 0; i < 3; i++, p += 8)
-    put_u64(p, bits_of(scalars[i]));
+    vl_blob_put_u64(p, vl_blob_bits(scalars[i]));
   const double *arrays[4] = {t->x, t->y, t->d, t->u};
   for (int a = 0; a < 4; a++)
     for (size_t k = 0; k < t->n; k++, p += 8)
-      put_u64(p, bits_of(arrays[a][k]));
-  put_u64(p, fnv1a(FNV_OFFSET, b, size - 8));
+      vl_blob_put_u64(p, vl_blob_bits(arrays[a][k]));
+  vl_blob_put_u64(p, vl_blob_fnv1a(VL_BLOB_FNV_OFFSET, b, size - 8));
   *blob = b;
   *len = size;
   return VL_OK;
@@ -840,8 +843,8 @@ vl_status vl_persson_serialize(const vl_persson *t, void **blob, size_t *len, vl
 /* Checks the values of a table read from a blob (everything the queries
  * rely on), and sets what follows from them. 0 with err set if any fails. */
 static int table_check(vl_persson *t, vl_error *err) {
-  if (bits_of(t->hrms) != bits_of(vl_psd_hrms(&t->psd)) ||
-      bits_of(t->g) != bits_of(table_g(&t->psd))) {
+  if (vl_blob_bits(t->hrms) != vl_blob_bits(vl_psd_hrms(&t->psd)) ||
+      vl_blob_bits(t->g) != vl_blob_bits(table_g(&t->psd))) {
     vl_error_set(err, "its h_rms or g is not the surface's: it belongs to another PSD");
     return 0;
   }
@@ -862,7 +865,7 @@ static int table_check(vl_persson *t, vl_error *err) {
     }
     /* the abscissa is a function of u: a stored pair that disagrees was
      * edited (or written by another u* or another libm: rebuilt, no harm) */
-    if (bits_of(x) != bits_of(x_of_u(t, u, NULL))) {
+    if (vl_blob_bits(x) != vl_blob_bits(x_of_u(t, u, NULL))) {
       vl_error_set(err, "node %zu: its x does not match its u", k);
       return 0;
     }
@@ -897,13 +900,13 @@ vl_status vl_persson_deserialize(const vl_psd *psd, const void *blob, size_t len
                  (unsigned long)format, VL_PERSSON_FORMAT);
     return VL_EINPUT;
   }
-  uint64_t n64 = get_u64(b + 8);
+  uint64_t n64 = vl_blob_get_u64(b + 8);
   if (n64 < MIN_N_TABLE || n64 > MAX_N_TABLE || len != BLOB_HEAD + 32 * (size_t)n64 + 8) {
     vl_error_set(err, "stored Persson table: %zu bytes do not hold the %llu nodes it announces",
                  len, (unsigned long long)n64);
     return VL_EINPUT;
   }
-  if (fnv1a(FNV_OFFSET, b, len - 8) != get_u64(b + len - 8)) {
+  if (vl_blob_fnv1a(VL_BLOB_FNV_OFFSET, b, len - 8) != vl_blob_get_u64(b + len - 8)) {
     vl_error_set(err, "stored Persson table: checksum mismatch (damaged or edited)");
     return VL_EINPUT;
   }
@@ -912,9 +915,9 @@ vl_status vl_persson_deserialize(const vl_psd *psd, const void *blob, size_t len
   if (st != VL_OK) return st;
   const unsigned char *p = b + 16;
   uint64_t fp[8];
-  psd_fingerprint(&t->psd, fp);
+  vl_blob_psd_fingerprint(&t->psd, fp);
   for (int i = 0; i < 8; i++, p += 8) {
-    if (get_u64(p) != fp[i]) {
+    if (vl_blob_get_u64(p) != fp[i]) {
       vl_error_set(err, "stored Persson table: built for another PSD");
       vl_persson_free(t);
       return VL_EINPUT;
@@ -922,11 +925,11 @@ vl_status vl_persson_deserialize(const vl_psd *psd, const void *blob, size_t len
   }
   double *scalars[3] = {&t->hrms, &t->g, &t->ustar};
   for (int i = 0; i < 3; i++, p += 8)
-    *scalars[i] = double_of(get_u64(p));
+    *scalars[i] = vl_blob_double(vl_blob_get_u64(p));
   double *arrays[4] = {t->x, t->y, t->d, t->u};
   for (int a = 0; a < 4; a++)
     for (size_t k = 0; k < n; k++, p += 8)
-      arrays[a][k] = double_of(get_u64(p));
+      arrays[a][k] = vl_blob_double(vl_blob_get_u64(p));
   if (!table_check(t, err)) {
     vl_error_prefix(err, "stored Persson table");
     vl_persson_free(t);
