@@ -139,6 +139,9 @@ typedef struct {
   const vl_persson *roughness;/* NULL = smooth (hard contact); not owned */
   double eta_pa_s;            /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
   vl_flow_factor_kind flow_factors; /* with roughness; smooth surfaces use smooth */
+  /* persson-emt: the factor table of the surface of roughness (same h_rms;
+   * not owned, must outlive the contact); NULL for the other models */
+  const vl_emt_table *flow_table;
   size_t grid;                /* cells of the uniform grid on the domain (the resolution) */
   /* Graded inlet (rough contacts only; <= 1: uniform grid): upstream of
    * x = -VL_GRADE_START_A0 a0 the uniform cells are merged into cells that

@@ -122,4 +122,26 @@ vl_status vl_dbi_surface_fill_derived(vl_db *db, vl_error *err);
 vl_status vl_dbi_measured_insert(vl_db *db, const vl_db_compound *meta, const vl_measured *m,
                                  const char *doing, vl_error *err);
 
+/* A cache of a table derived from a surface's spectrum (db_cache.c). The
+ * SQL binds ?1 the surface id, ?2 the size n, and the optional real key
+ * (?3 in select_sql, ?5 in insert_sql; insert binds ?3 format, ?4 data).
+ * select_sql returns (format, data). decode returns the table or NULL when
+ * the blob fails any check; encode serialises a table. */
+typedef struct vl_dbi_cache vl_dbi_cache;
+struct vl_dbi_cache {
+  const char *what; /* "store a Persson table": for transaction messages */
+  const char *select_sql, *insert_sql;
+  int format;
+  sqlite3_int64 n;
+  double key;
+  const vl_psd *psd; /* the spectrum the table must have been built from */
+  void *(*decode)(const vl_dbi_cache *c, const void *blob, size_t len);
+  vl_status (*encode)(const void *table, void **blob, size_t *len, vl_error *err);
+};
+/* The stored table of surface row id, or NULL (any failure is a miss). */
+void *vl_dbi_cache_load(vl_db *db, const vl_dbi_cache *c, sqlite3_int64 id);
+/* Stores table under surface row id in its own transaction, replacing any
+ * row there; best effort (nothing changes on failure). */
+void vl_dbi_cache_store(vl_db *db, const vl_dbi_cache *c, sqlite3_int64 id, const void *table);
+
 #endif

@@ -5,6 +5,7 @@
  * (docs/MODEL.md section 9: the domain must follow the inlet length sqrt(2 R h)
  * when it exceeds a0). */
 #include "contact_internal.h"
+#include "flow_factors_emt.h"
 
 #include <math.h>
 #include <string.h>
@@ -128,13 +129,31 @@ static vl_status check_flattening(const vl_contact_config *cfg, vl_error *err) {
   return VL_OK;
 }
 
+/* persson-emt reads its factors from a table of the same surface. */
+static vl_status check_flow_table(const vl_contact_config *cfg, vl_error *err) {
+  if (cfg->flow_factors != VL_FLOW_FACTORS_PERSSON_EMT || !cfg->roughness) return VL_OK;
+  if (!cfg->flow_table) {
+    vl_error_set(err, "persson-emt flow factors need the surface's factor table (flow_table)");
+    return VL_EINPUT;
+  }
+  double h_tab = vl_emt_table_hrms(cfg->flow_table), h = vl_persson_hrms(cfg->roughness);
+  if (!(fabs(h_tab - h) <= 1e-9 * h)) {
+    vl_error_set(err,
+                 "the persson-emt table was built for a surface of h_rms %g m, the roughness "
+                 "table has %g m: both must come from the same PSD",
+                 h_tab, h);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
 vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
   vl_status st = vl_prony_validate(&cfg->rubber, err);
   if (st == VL_OK) st = check_geometry(cfg, err);
   if (st == VL_OK) st = check_grid(cfg, err);
   if (st != VL_OK) return st;
   if ((unsigned)cfg->linear_solver > VL_LINSOL_SCHUR ||
-      (unsigned)cfg->flow_factors > VL_FLOW_FACTORS_PATIR_CHENG) {
+      (unsigned)cfg->flow_factors > VL_FLOW_FACTORS_PERSSON_EMT) {
     vl_error_set(err, "unknown %s (%d)",
                  (unsigned)cfg->linear_solver > VL_LINSOL_SCHUR ? "linear solver" : "flow factors",
                  (unsigned)cfg->linear_solver > VL_LINSOL_SCHUR ? (int)cfg->linear_solver
@@ -151,6 +170,8 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
     vl_error_set(err, "viscosity must be >= 0 (got %g Pa s)", cfg->eta_pa_s);
     return VL_EINPUT;
   }
+  st = check_flow_table(cfg, err);
+  if (st != VL_OK) return st;
   return check_flattening(cfg, err);
 }
 

@@ -196,7 +196,7 @@ static void eval_flow(vl_contact *c) {
        * clamped at 0 as vl_flow_factors_eval does), so d/dh = -(u/h) d/du and
        * the total d/du is the partial one times k = 1 - u s'/s */
       double h = c->hrms * c->sf[i], dh = c->hrms * c->dsf[i];
-      vl_flow_factors_eval(c->cfg.flow_factors, u, h, &v, &d);
+      vl_flow_factors_eval_table(c->cfg.flow_factors, c->cfg.flow_table, u, h, &v, &d);
       if (!(h > 0.0)) {
         /* u <= 0: fully flattened, a closed smooth film (the limit u -> 0+,
          * where u/h -> inf); no negative conductance */
@@ -214,7 +214,7 @@ static void eval_flow(vl_contact *c) {
       c->dcf[i] = 1.0 + dh * v.phi_s + h * k * d.phi_s;
       continue;
     }
-    vl_flow_factors_eval(c->cfg.flow_factors, u, c->hrms, &v, &d);
+    vl_flow_factors_eval_table(c->cfg.flow_factors, c->cfg.flow_table, u, c->hrms, &v, &d);
     double u3 = u * u * u;
     c->g[i] = u3 * v.phi_p / (us * us * us) + floor_g;
     c->dg[i] = on * (3.0 * u * u * v.phi_p + u3 * d.phi_p) / (us * us);

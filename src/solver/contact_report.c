@@ -83,7 +83,7 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
       double u = fmax(c->U[i], 0.0) * c->uscale;
       vl_flow_factor_values v;
       /* flattened: the factors of h_rms s (as in vl_contact_eval_state) */
-      vl_flow_factors_eval(cfg->flow_factors, u, c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
+      vl_flow_factors_eval_table(cfg->flow_factors, cfg->flow_table, u, c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
       /* node gradient: mean of the two face gradients (pf = 0 beyond the ends) */
       double left = (c->F[i] - (i > 0 ? c->F[i - 1] : 0.0)) / (c->hf[i] * c->a0);
       double right = ((i + 1 < n ? c->F[i + 1] : 0.0) - c->F[i]) / (c->hf[i + 1] * c->a0);
