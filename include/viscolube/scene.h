@@ -12,6 +12,12 @@
 #include "viscolube/status.h"
 
 #define VL_NAME_MAX 128
+/* The flow factors of a rough wet scene that does not name them, and of
+ * `friction` and `compare` (docs/FLOW_FACTORS.md). */
+#define VL_SCENE_ROUGH_FLOW_FACTORS VL_FLOW_FACTORS_PERSSON_EMT
+/* Largest film cut-off a scene takes (m): beyond a micrometre it is no
+ * longer a boundary layer. */
+#define VL_FILM_CUTOFF_MAX_M 1e-6
 #define VL_FIELDS_AT_MAX 32
 #define VL_FLUIDS_MAX 8
 
@@ -53,7 +59,9 @@ typedef struct {
   /* [effects]: only those on are built and solved */
   struct {
     bool viscoelastic, roughness, fluid, solid_shear, viscous_flattening, temperature;
-    vl_flow_factor_kind flow_factors;
+    vl_flow_factor_kind flow_factors; /* rough wet scenes without the key:
+                                       * VL_SCENE_ROUGH_FLOW_FACTORS */
+    double film_cutoff_m;             /* persson-emt's g_cut (m) */
     double temperature_c;
   } effects;
   /* [numerics] */

@@ -26,7 +26,7 @@ typedef enum {
   K_RADIUS, K_LOAD, K_SIGMA_S,
   K_QUANTITY, K_FROM, K_TO, K_POINTS, K_FIELDS_AT,
   K_VISCOELASTIC, K_ROUGHNESS, K_FLUID, K_SOLID_SHEAR, K_VISCOUS_FLATTENING, K_TEMPERATURE,
-  K_FLOW_FACTORS, K_TEMPERATURE_C,
+  K_FLOW_FACTORS, K_FILM_CUTOFF, K_TEMPERATURE_C,
   K_GRID, K_GRID_GROWTH, K_DOMAIN, K_TOLERANCE, K_LINEAR_SOLVER, K_PERSSON_TABLE,
   K_COUNT
 } key_id;
@@ -55,6 +55,7 @@ static const struct {
     [K_VISCOUS_FLATTENING] = {"effects", "viscous_flattening", false},
     [K_TEMPERATURE] = {"effects", "temperature", false},
     [K_FLOW_FACTORS] = {"effects", "flow_factors", false},
+    [K_FILM_CUTOFF] = {"effects", "film_cutoff_m", false},
     [K_TEMPERATURE_C] = {"effects", "temperature_c", false},
     [K_GRID] = {"numerics", "grid", false},
     [K_GRID_GROWTH] = {"numerics", "grid_growth", false},
@@ -338,7 +339,13 @@ static int effects_key(parse_state *ps, key_id id, const char *section, const ch
   }
   case K_FLOW_FACTORS:
     if (vl_flow_factors_parse(value, &sc->effects.flow_factors, NULL) != VL_OK)
-      return fail(ps, section, key, "expected smooth or patir-cheng, got '%s'", value);
+      return fail(ps, section, key, "expected smooth, patir-cheng or persson-emt, got '%s'",
+                  value);
+    return 1;
+  case K_FILM_CUTOFF:
+    if (!parse_double(value, &sc->effects.film_cutoff_m) ||
+        !(sc->effects.film_cutoff_m > 0.0 && sc->effects.film_cutoff_m <= VL_FILM_CUTOFF_MAX_M))
+      return fail(ps, section, key, "expected a film cut-off in (0, 1e-6] m, got '%s'", value);
     return 1;
   case K_TEMPERATURE_C:
     if (!parse_double(value, &sc->effects.temperature_c) || sc->effects.temperature_c < -273.15)
@@ -492,6 +499,7 @@ void vl_scene_defaults(vl_scene *sc) {
   sc->effects.viscoelastic = true;
   sc->elastic = VL_ELASTIC_RELAXED;
   sc->effects.temperature_c = NAN;
+  sc->effects.film_cutoff_m = VL_FILM_CUTOFF_DEFAULT_M;
   vl_contact_config cfg; /* the solver's numerics of a dry contact */
   vl_contact_config_defaults(&cfg);
   numerics_from(sc, &cfg);
@@ -581,6 +589,10 @@ static vl_status scene_check(parse_state *ps) {
     return check_fail(ps, K_VISCOUS_FLATTENING, "on needs [effects] fluid = on");
   /* the temperature effect shifts the compound (WLF) and the fluid (its
    * viscosity law) to one stated temperature: there is no default */
+  if (!ps->key_line[K_FLOW_FACTORS] && sc->effects.roughness && sc->effects.fluid)
+    sc->effects.flow_factors = VL_SCENE_ROUGH_FLOW_FACTORS;
+  if (ps->key_line[K_FILM_CUTOFF] && sc->effects.flow_factors != VL_FLOW_FACTORS_PERSSON_EMT)
+    return check_fail(ps, K_FILM_CUTOFF, "applies to [effects] flow_factors = persson-emt only");
   if (sc->effects.temperature && !ps->key_line[K_TEMPERATURE_C])
     return check_fail(ps, K_TEMPERATURE, "on needs [effects] temperature_c (Celsius)");
   if (!sc->effects.temperature && ps->key_line[K_TEMPERATURE_C])

@@ -2,6 +2,8 @@
 #include "viscolube/simulation.h"
 #include "viscolube/persson.h"
 
+#include "flow_factors_emt.h"
+
 #include "viscolube/assumptions.h"
 
 #include "viscolube/flattening.h"
@@ -17,6 +19,7 @@ struct vl_simulation {
   bool have_psd;
   vl_psd psd;
   vl_persson *table;
+  vl_emt_table *flow_table; /* persson-emt only */
   vl_flattening_config flattening; /* [effects] viscous_flattening = on: its settings */
   double eta_pa_s;
   double temperature_c; /* [effects] temperature: the scene's; NAN when off */
@@ -199,6 +202,14 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     st = vl_db_persson_table(db, scene->surface, &sim->psd, scene->persson_table, &sim->table, NULL,
                              err);
     if (st != VL_OK) goto fail;
+    if (scene->effects.fluid && scene->effects.flow_factors == VL_FLOW_FACTORS_PERSSON_EMT) {
+      st = vl_db_flow_table(db, scene->surface, &sim->psd, scene->effects.film_cutoff_m, 0,
+                            &sim->flow_table, NULL, err);
+      if (st != VL_OK) {
+        vl_error_prefix(err, "%s: [effects] flow_factors = persson-emt", scene->path);
+        goto fail;
+      }
+    }
   }
   vl_contact_config cfg;
   vl_contact_config_defaults(&cfg);
@@ -218,6 +229,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   /* only a scene with the fluid effect gets fluid unknowns */
   cfg.eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
   cfg.flow_factors = scene->effects.flow_factors;
+  cfg.flow_table = sim->flow_table;
   cfg.grid = scene->grid;
   cfg.grid_growth = scene->grid_growth;
   cfg.x_min_a0 = scene->domain_min_a0;
@@ -257,6 +269,7 @@ void vl_simulation_free(vl_simulation *sim) {
   if (!sim) return;
   vl_contact_free(sim->contact);
   vl_persson_free(sim->table);
+  vl_emt_table_free(sim->flow_table);
   if (sim->have_psd) vl_psd_free(&sim->psd);
   free(sim->v0);
   free(sim->fields);
