@@ -40,12 +40,23 @@
  * ---- The spectrum (vl_topography_psd) -------------------------------------
  *
  * 1. Detrend: the least-squares plane (map) or line (line scan) is removed;
- *    hrms_topography_m is the rms of what remains.
- * 2. Window: periodic Hann, w_n = (1 - cos(2 pi n / N)) / 2 (separable
- *    w_x w_y on maps), so that the jump between the two ends of a
- *    non-periodic measurement does not leak power ~ q^-2 over the whole
- *    spectrum. The power is divided by mean(w^2) (3/8 in 1-D, 9/64 on a
- *    map), which restores the mean square of a stationary signal.
+ *    hrms_topography_m is the rms of what remains (vl_topography_hrms).
+ * 2. Window: a periodic Tukey (cosine-tapered) window, separable w_x w_y on
+ *    maps: w = (1 - cos(2 pi e / taper)) / 2 within a fraction taper/2 of
+ *    either end (e = distance to the end / length), 1 between; taper 1 is
+ *    the periodic Hann window. It removes the jump between the two ends of
+ *    a non-periodic measurement, which would leak power ~ q^-2 over the
+ *    whole spectrum. The power is divided by mean(w^2) (0.766 for the
+ *    default taper 0.2 on a map, 9/64 for Hann), which restores the mean
+ *    square of a stationary signal. Why not Hann: on a map it weighs the
+ *    centre, an effective 26 % of the area (Tukey 0.2: 80 %), and a real
+ *    map is not stationary at its own scale. The AFM map of the tests
+ *    (SurfaceTopography's matrix-3, 10 um, rms 35.2 nm) is rougher near its
+ *    edges: Hann keeps 27.3 nm of its rms, Tukey 0.2 33.9 nm. On synthetic
+ *    surfaces both recover C(q) (tests/test_topography.c); Hann leaks less
+ *    from wavelengths longer than the map when nothing rolls off within it.
+ *    taper 0 (no window) is for periodic data; only the mean is then
+ *    removed in step 1's place (a plane would make a sawtooth of them).
  * 3. FFT (FFTW, real to complex). With H_k = \sum_n w_n h_n e^{-2 pi i k n/N}
  *    and Parseval, <h^2> = \sum_k |H_k|^2 / N^2 over all N frequencies. A
  *    density C sampled on the lattice q = 2 pi k / L must satisfy
@@ -62,29 +73,43 @@
  * 5. Log bins: bins_per_decade per decade, centred on q_min 10^(j/b); each
  *    non-empty bin gives one point: the mean C of its wavevectors (the
  *    radial average over an annulus on maps) at the geometric mean of their
- *    |q|. Empty bins (the sparse lattice at the lowest q) are skipped.
+ *    |q|. Empty bins (the sparse lattice at the lowest q) are skipped. On a
+ *    power law the mean over a bin sits ~2 % above the value at the
+ *    geometric mean (10 bins per decade).
  * 6. Line scans only, 1-D -> 2-D. For isotropic roughness the profile's
  *    spectrum is the projection of the surface's,
  *      C1(q) = \int dq_y C(sqrt(q^2 + q_y^2)) = 2 \int_q^inf C(Q) Q dQ / sqrt(Q^2 - q^2),
  *    an Abel transform, whose inverse is
  *      C(Q) = -(1/pi) \int_Q^inf C1'(q) dq / sqrt(q^2 - Q^2).
- *    It is evaluated on the binned C1, interpolated as a power law between
- *    points and continued beyond the last one with the slope of a log-log
- *    fit to the last half decade, substituting q = Q cosh t (dq/sqrt(q^2 -
- *    Q^2) = dt removes the singularity) and integrating in t by Gauss-
- *    Legendre panels. For a power law C1 = A q^-(1+2H) this gives
- *    C = C1 / q * Gamma(H+1) / (sqrt(pi) Gamma(H+1/2)), i.e. between
+ *    It is evaluated on the binned C1 made non-increasing (the least-squares
+ *    non-increasing fit, by pooling adjacent bins where one profile's noise
+ *    makes C1 rise: C1 of an isotropic surface whose C does not increase
+ *    cannot, and then C >= 0 everywhere), interpolated as a power law
+ *    between points and continued beyond the last one with the slope of a
+ *    log-log fit to the last half decade, substituting q = Q cosh t
+ *    (dq / sqrt(q^2 - Q^2) = dt removes the singularity) and integrating in
+ *    t by Gauss-Legendre panels. For a power law C1 = A q^-(1+2H) this
+ *    gives C = C1 / q * Gamma(H+1) / (sqrt(pi) Gamma(H+1/2)), between
  *    C1/(pi q) (H = 0) and 2 C1/(pi q) (H = 1): the common shortcut
- *    C1/(pi q) is right only for H = 0, and a local-slope version of this
+ *    C1/(pi q) is right only for H = 0, and a local-slope version of the
  *    formula fails where C1 flattens (the roll-off), hence the integral.
- *    Points where the noise of a single profile makes C <= 0 are dropped
- *    (counted in n_dropped). One profile is one sample of the surface: its
- *    lowest bins are noisy (each holds one or two frequencies).
+ *    Points with C <= 0 (none after the pooling, in practice) are dropped
+ *    and counted in n_dropped. One profile is one sample of the surface:
+ *    its lowest points (one frequency each) scatter by tens of percent.
+ * 7. (extend_low, with long_cut 1) The first point's C is continued, flat,
+ *    down to q_e = sqrt(dq_x dq_y / pi), the radius of a disc of one lattice
+ *    cell (a line scan counts as an L x L square). The cells of the
+ *    wavevectors with |q| >= 2 pi/L tile the plane outside the cell of
+ *    q = 0; a tabulated spectrum that starts at 2 pi/L would lose about
+ *    half the power of the lowest ring, much of h_rms^2 when nothing rolls
+ *    off within the measurement. The point has count 0 and q < q_min.
  *
  * hrms_band_m is the rms of the kept wavevectors' power (before binning);
  * hrms_psd_m is vl_psd_hrms of the tabulated points (power law between
  * points, zero outside [q_1, q_n]); hrms_psd_m / hrms_topography_m says how
- * much of the measured roughness the tabulated spectrum keeps.
+ * much of the measured roughness the tabulated spectrum keeps (a caller
+ * should report it: below 1 when power lies beyond the band, or the
+ * window weighs smoother parts of the measurement).
  *
  * Not thread-safe: FFTW's planner is not. */
 #ifndef VISCOLUBE_TOPOGRAPHY_H
@@ -147,11 +172,13 @@ typedef struct {
   size_t n;        /* tabulated points (>= 2) */
   double *q_per_m; /* strictly increasing, > 0 (owned) */
   double *c_m4;    /* isotropic 2-D C(q) > 0 (owned) */
-  size_t *count;   /* wavevectors averaged into each point (owned) */
+  size_t *count;   /* wavevectors (line: frequencies) averaged into each point; 0 for
+                      step 7's point (owned) */
   size_t n1;         /* line scans: binned 1-D points, else 0 */
   double *q1_per_m;  /* line scans: bin wavevectors (owned), else NULL */
-  double *c1_m3;     /* line scans: 1-D C1(q), two-sided density (owned), else NULL */
-  size_t n_dropped;  /* line scans: points with C <= 0 after the 1-D -> 2-D step */
+  double *c1_m3;     /* line scans: binned 1-D C1(q) as measured (before step 6's pooling),
+                        two-sided density (owned), else NULL */
+  size_t n_dropped;  /* line scans: points with C <= 0 after step 6 */
   double q_min_per_m, q_max_per_m; /* the band kept (step 4) */
   double tail_slope;               /* line scans: -dlnC1/dlnq beyond the last bin */
   double window_power;             /* mean(w^2) of the window (step 2) */

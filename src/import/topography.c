@@ -275,6 +275,8 @@ static vl_status no_memory(const reader *r) {
 typedef struct {
   double width_m, height_m, value_factor; /* 0: not given */
   size_t width_line, height_line, units_line;
+  vl_status bad; /* the first bad header line, reported only if the file is a map */
+  vl_error bad_msg;
 } map_header;
 
 /* "<number> <unit>" (blanks optional between them), e.g. "10.00 µm". */
@@ -358,6 +360,10 @@ static vl_status read_map(const reader *r, const char *text, size_t len, size_t 
   int comma = -1;
   char shown[64];
 
+  if (h->bad != VL_OK) {
+    vl_error_set(r->err, "%s", h->bad_msg.msg);
+    return h->bad;
+  }
   if (!h->width_line || !h->units_line) {
     vl_error_set(r->err,
                  "%s:%zu: a height map needs the header lines '# Width: <length> <unit>' and "
@@ -605,19 +611,22 @@ vl_status vl_topography_read_text(const char *text, size_t len, const char *sour
   if (!out->source) return no_memory(&r);
   for (;;) {
     size_t start = pos;
-    if (!next_line(text, len, &pos, &line)) {
-      vl_error_set(err, "%s: empty: no heights (a line scan needs a header row naming its units, "
-                   "a height map '# Width:' and '# Value units:' header lines, then numbers)",
-                   r.src);
-      st = VL_EINPUT;
+    if (!next_line(text, len, &pos, &line)) { /* no data: a bad map header says more */
+      st = h.bad != VL_OK ? h.bad : VL_EINPUT;
+      if (h.bad != VL_OK)
+        vl_error_set(err, "%s", h.bad_msg.msg);
+      else
+        vl_error_set(err, "%s: empty: no heights (a line scan needs a header row naming its "
+                     "units, a height map '# Width:' and '# Value units:' header lines, then "
+                     "numbers)", r.src);
       break;
     }
     line_no++;
     span t = trim(line);
     if (t.n == 0) continue;
-    if (t.p[0] == '#') {
-      st = map_header_line(&r, line_no, line, &h);
-      if (st != VL_OK) break;
+    if (t.p[0] == '#') { /* a line scan's comments need not parse as a map's header */
+      reader quiet = {r.src, &h.bad_msg};
+      if (h.bad == VL_OK) h.bad = map_header_line(&quiet, line_no, line, &h);
       continue;
     }
     size_t p = 0;
