@@ -16,8 +16,8 @@
  * '#' and blank lines are ignored. The delimiter is taken from the first
  * data row: tab if it has one, else ';', else blanks if they separate two
  * fields, else ','; with a delimiter other than ',' a ',' inside numbers is
- * a decimal comma ("0,25;1,5"), and then '.' is refused (it would be a
- * thousands separator). Positions must increase on a uniform grid (every
+ * a decimal comma ("0,25;1,5"; the first row that shows a separator
+ * decides), and then '.' is refused (it would be a thousands separator). Positions must increase on a uniform grid (every
  * position within VL_TOPOGRAPHY_GRID_TOL spacings of x_0 + i dx); at least
  * VL_TOPOGRAPHY_MIN_POINTS points.
  *
@@ -25,7 +25,8 @@
  * '#' header lines "# Width: 10.00 µm", "# Height: 10.00 µm" (the physical
  * size along the rows and down the columns) and "# Value units: m" (the
  * heights' unit); keys in any case, ':' or '=' after them, other '#' lines
- * ignored. Width and value units are required; without Height the pixels
+ * ignored (and in a line scan '#' lines are only comments). Width and
+ * value units are required; without Height the pixels
  * are taken square (said in the provenance). Then a matrix of heights, one
  * row per line, separated by tabs, blanks, ';' or ',' (detected as for line
  * scans, decimal comma likewise), every row of the same length, at least
@@ -189,10 +190,11 @@ typedef struct {
   char provenance[640];            /* one paragraph: kind, size, pixel, steps, band, rms */
 } vl_topography_spectrum;
 
-/* Estimates the isotropic 2-D PSD of t (steps 1-6 above); opt may be NULL
+/* Estimates the isotropic 2-D PSD of t (steps 1-7 above); opt may be NULL
  * (defaults). On VL_OK *out owns its arrays (vl_topography_spectrum_free) and
  * (n, q_per_m, c_m4) pass vl_psd_init_tabulated; on failure *out is empty.
- * VL_EINPUT (bad options, or fewer than 2 points in the band), VL_ENOMEM. */
+ * VL_EINPUT (bad options, heights that are a plane, fewer than 2 points in
+ * the band), VL_ENOMEM. */
 vl_status vl_topography_psd(const vl_topography *t, const vl_topography_psd_options *opt,
                             vl_topography_spectrum *out, vl_error *err);
 
