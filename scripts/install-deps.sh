@@ -3,7 +3,7 @@
 # Non-interactive and idempotent: silent and fast when everything is present.
 set -euo pipefail
 packages=(build-essential cmake pkg-config libsundials-dev libgsl-dev libsqlite3-dev
-          libcmocka-dev libinih-dev liblapack-dev libopenblas-dev
+          libcmocka-dev libinih-dev liblapack-dev libopenblas-dev libfftw3-dev
           libplplot-dev plplot-driver-cairo fonts-dejavu-core
           clang libclang-rt-14-dev # scripts/fuzz.sh: clang 14 and its libFuzzer runtime
           clang-format)            # scripts/format.sh
