@@ -42,6 +42,9 @@
 #ifndef VISCOLUBE_FLOW_FACTORS_H
 #define VISCOLUBE_FLOW_FACTORS_H
 
+#include <stddef.h>
+
+#include "viscolube/roughness.h"
 #include "viscolube/status.h"
 
 typedef enum {
@@ -116,5 +119,55 @@ const char *vl_flow_factors_name(vl_flow_factor_kind kind);
 /* Parses a scene's model name (exact, as above). VL_EINPUT with the valid
  * names in err for anything else (or NULL). */
 vl_status vl_flow_factors_parse(const char *name, vl_flow_factor_kind *kind, vl_error *err);
+
+/* ---- persson-emt: the table of one surface ------------------------------
+ * The factors depend on the PSD only (and, phi_f only, on the film
+ * cut-off), never on modulus, speed or load: they are tabulated once per
+ * surface in x = u/h_rms (src/mechanics/flow_factors_emt.c gives the model
+ * step by step). A built table is immutable; evaluation is allocation free
+ * and thread safe. */
+
+/* Table sizes vl_emt_table_build accepts (0 asks for the default). */
+#define VL_EMT_DEFAULT_N_POINTS 100
+#define VL_EMT_MIN_N_POINTS 80
+#define VL_EMT_MAX_N_POINTS 120
+
+/* The table's top, x = u/h_rms; above it the Tripp forms take over. */
+#define VL_EMT_X_MAX 30.0
+
+/* x = u/h_rms at the percolation of the contact (A/A0 = 1/2), where the
+ * pressure flow stops. NaN on an invalid PSD. */
+double vl_emt_percolation(const vl_psd *psd);
+
+/* Builds the table for psd and film cut-off film_cutoff_m > 0 (m) at
+ * n_points nodes (0: the default; else within [VL_EMT_MIN_N_POINTS,
+ * VL_EMT_MAX_N_POINTS]), geometric in x from two decades below the
+ * percolation point up to VL_EMT_X_MAX, the node nearest the percolation
+ * point moved onto it. On success *out is owned by the caller
+ * (vl_emt_table_free); on failure it is NULL and the status is VL_EINPUT or
+ * VL_ENOMEM. */
+vl_status vl_emt_table_build(const vl_psd *psd, double film_cutoff_m, size_t n_points,
+                             vl_emt_table **out, vl_error *err);
+void vl_emt_table_free(vl_emt_table *table);
+
+/* The five factors at average separation u_m (m) and, when d != NULL,
+ * their derivatives d/du (1/m), from one C1 interpolant (v must not be
+ * NULL). Inside the table: monotone cubic Hermite in ln x; above it the
+ * Tripp forms; below it the continuations of flow_factors_emt.c. u_m <= 0
+ * gives the limit u -> 0+ (and its right derivative); NaN gives NaN. Every
+ * output is finite for finite u_m. */
+void vl_emt_table_eval(const vl_emt_table *table, double u_m, vl_flow_factor_values *v,
+                       vl_flow_factor_values *d);
+
+/* Number of nodes; node k < size: its x, its factors (v, may be NULL) and
+ * its A/A0 (area, may be NULL). Returns x. */
+size_t vl_emt_table_size(const vl_emt_table *table);
+double vl_emt_table_node(const vl_emt_table *table, size_t k, vl_flow_factor_values *v,
+                         double *area);
+
+/* h_rms (m), the film cut-off (m) and the percolation point x of the table. */
+double vl_emt_table_hrms(const vl_emt_table *table);
+double vl_emt_table_film_cutoff(const vl_emt_table *table);
+double vl_emt_table_percolation(const vl_emt_table *table);
 
 #endif

@@ -17,6 +17,7 @@ typedef struct {
   double load, radius, sigma_s;
   size_t grid;
   const char *flow_factors;
+  double film_cutoff_m; /* --film-cutoff; 0: the default */
   int json;
   int plot;
   int have_temperature; /* --temperature: compound (WLF) and fluid (its law) at temperature_c */
@@ -78,6 +79,17 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
     (*i)++;
     return 1;
   }
+  if (!strcmp(o, "--film-cutoff")) {
+    if (!parse_number(cmd, o, v, &d, 1)) return -1;
+    if (d > VL_FILM_CUTOFF_MAX_M) {
+      fprintf(stderr, "viscolube %s: option --film-cutoff needs a length in (0, %g] m (got '%s')\n",
+              cmd, VL_FILM_CUTOFF_MAX_M, v);
+      return -1;
+    }
+    c->film_cutoff_m = d;
+    (*i)++;
+    return 1;
+  }
   if (!strcmp(o, "--temperature")) {
     if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || d < -273.15) {
       fprintf(stderr, "viscolube %s: option --temperature needs a temperature in C (got '%s')\n",
@@ -135,13 +147,21 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
   sc->effects.roughness = true;
   sc->effects.fluid = true;
   sc->effects.solid_shear = c->sigma_s > 0.0;
-  sc->effects.flow_factors = VL_FLOW_FACTORS_SMOOTH;
+  sc->effects.flow_factors = VL_SCENE_ROUGH_FLOW_FACTORS;
   if (c->flow_factors) {
     vl_error err;
     if (vl_flow_factors_parse(c->flow_factors, &sc->effects.flow_factors, &err) != VL_OK) {
       fprintf(stderr, "viscolube %s: --flow-factors: %s\n", cmd, err.msg);
       return 0;
     }
+  }
+  if (c->film_cutoff_m > 0.0) {
+    if (sc->effects.flow_factors != VL_FLOW_FACTORS_PERSSON_EMT) {
+      fprintf(stderr, "viscolube %s: --film-cutoff applies to --flow-factors persson-emt only\n",
+              cmd);
+      return 0;
+    }
+    sc->effects.film_cutoff_m = c->film_cutoff_m;
   }
   vl_scene_default_numerics(sc);
   if (c->grid) sc->grid = c->grid; /* 0: the default */
@@ -162,8 +182,8 @@ static int need(const char *cmd, const char *what, const void *value) {
 static void friction_usage(FILE *out) {
   fputs("usage: viscolube friction --compound C --surface S --fluid F --speed V_M_S\n"
         "                          [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
-        "                          [--flow-factors smooth|patir-cheng] [--grid N]\n"
-        "                          [--temperature C] [--json]\n"
+        "                          [--flow-factors persson-emt|patir-cheng|smooth]\n"
+        "                          [--film-cutoff M] [--grid N] [--temperature C] [--json]\n"
         "\n"
         "Friction of one operating point: a smooth rigid cylinder (radius, load per unit\n"
         "length) sliding at V on the stored compound with the stored rough surface in the\n"
@@ -177,10 +197,11 @@ static void friction_usage(FILE *out) {
         "WLF constants or a fluid without a law (other than at its reference\n"
         "temperature) is refused. The output states the temperature, a_T and viscosity.\n"
         "Defaults (the seed's real-rubber scenes): --load 117, --radius 0.001,\n"
-        "--sigma-s 1e6, --flow-factors smooth (Patir-Cheng fails below\n"
-        "u ~ 0.3 h_rms: README, Known limitations), domain [-96, 1.6] a0 with\n"
+        "--sigma-s 1e6, --flow-factors persson-emt (Persson's gap distribution and an\n"
+        "effective medium, consistent with the contact law: docs/FLOW_FACTORS.md) with\n"
+        "--film-cutoff 1e-9 (gaps below it carry no Couette shear), domain [-96, 1.6] a0 with\n"
         "--grid 2928 (the uniform cells: a0/30) merged upstream of -2 a0 into cells\n"
-        "growing by 5 % (about 200 cells), tolerance 1e-6 (README: Accuracy and cost).\n",
+        "growing by 5 % (about 200 cells), tolerance 1e-6 (docs/NUMERICS.md).\n",
         out);
 }
 
@@ -292,7 +313,7 @@ static void friction_text(const conditions *c, const char *compound, double spee
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 0, NULL, 0, 0, 0, NAN};
+  conditions c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN};
   const char *compound = NULL;
   double speed = 0.0;
   int rc = friction_args(argc, argv, &c, &compound, &speed);
@@ -333,8 +354,9 @@ static void compare_usage(FILE *out) {
   fputs("usage: viscolube compare --compounds A,B[,...] --surface S --fluid F\n"
         "                         [--from V0ETA] [--to V0ETA] [--points N] [--out DIR]\n"
         "                         [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
-        "                         [--flow-factors smooth|patir-cheng] [--grid N] [--json]\n"
-        "                         [--plot] [--temperature C]\n"
+        "                         [--flow-factors persson-emt|patir-cheng|smooth]\n"
+        "                         [--film-cutoff M] [--grid N] [--json] [--plot]\n"
+        "                         [--temperature C]\n"
         "\n"
         "Stribeck curves (mu vs v0*eta, Pa m) of several compounds on one surface in one\n"
         "fluid, side by side: mu and u_min/h_rms per compound. Writes DIR/compare.csv\n"
@@ -572,7 +594,7 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  compare_args a = {.c = {NULL, NULL, 117.0, 1e-3, 1e6, 0, NULL, 0, 0, 0, NAN},
+  compare_args a = {.c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN},
                     .from = 1e-12, .to = 0.1, .points = 45, .out_dir = "out/compare"};
   int rc = compare_parse(argc, argv, &a);
   if (rc < 0) rc = compare_check(&a);

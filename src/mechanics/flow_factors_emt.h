@@ -11,7 +11,9 @@
  * Inside, lengths are in units of h_rms. The table, its interpolant and its
  * continuations beyond x_min and X_MAX are described in flow_factors_emt.c.
  * A built table is immutable: evaluation is allocation free and thread
- * safe. */
+ * safe. The table's public functions are in viscolube/flow_factors.h; this
+ * header holds the model's steps (for tests) and the serialisation (for
+ * the database cache). */
 #ifndef VISCOLUBE_FLOW_FACTORS_EMT_H
 #define VISCOLUBE_FLOW_FACTORS_EMT_H
 
@@ -21,17 +23,10 @@
 #include "viscolube/roughness.h"
 #include "viscolube/status.h"
 
-/* Table sizes vl_emt_table_build accepts (0 asks for the default). */
-#define VL_EMT_DEFAULT_N_POINTS 100
-#define VL_EMT_MIN_N_POINTS 80
-#define VL_EMT_MAX_N_POINTS 120
-
-/* The table's top, x = u/h_rms; above it the Tripp forms take over. */
-#define VL_EMT_X_MAX 30.0
 
 /* The scene's default film cut-off (m): gaps below it are boundary contact
  * and carry no Couette shear (phi_f). */
-#define VL_EMT_DEFAULT_FILM_CUTOFF_M 1e-9
+#define VL_EMT_DEFAULT_FILM_CUTOFF_M VL_FILM_CUTOFF_DEFAULT_M
 
 /* Version of the serialised table: like VL_PERSSON_FORMAT it names the byte
  * layout AND the build algorithm, so it MUST be bumped whenever
@@ -48,7 +43,6 @@ typedef struct {
   double reflect; /* mean of the binned gaps before the rescale over u (1 for vl_emt_medium) */
 } vl_emt_point;
 
-typedef struct vl_emt_table vl_emt_table;
 
 /* The effective medium on a discrete gap distribution: open gaps g[j] > 0
  * with masses m[j] >= 0 (j < n), plus the contact fraction `contact` at
@@ -71,40 +65,7 @@ vl_status vl_emt_medium(size_t n, const double *g, const double *m, double conta
 vl_status vl_emt_point_eval(const vl_psd *psd, double film_cutoff_m, double x, vl_emt_point *out,
                             vl_error *err);
 
-/* x = u/h_rms at the percolation of the contact (A/A0 = 1/2), where the
- * pressure flow stops. NaN on an invalid PSD. */
-double vl_emt_percolation(const vl_psd *psd);
 
-/* Builds the table for psd and film cut-off film_cutoff_m > 0 (m) at
- * n_points nodes (0: the default; else within [VL_EMT_MIN_N_POINTS,
- * VL_EMT_MAX_N_POINTS]), geometric in x from two decades below the
- * percolation point up to VL_EMT_X_MAX, the node nearest the percolation
- * point moved onto it. On success *out is owned by the caller
- * (vl_emt_table_free); on failure it is NULL and the status is VL_EINPUT or
- * VL_ENOMEM. */
-vl_status vl_emt_table_build(const vl_psd *psd, double film_cutoff_m, size_t n_points,
-                             vl_emt_table **out, vl_error *err);
-void vl_emt_table_free(vl_emt_table *table);
-
-/* The five factors at average separation u_m (m) and, when d != NULL,
- * their derivatives d/du (1/m), from one C1 interpolant (v must not be
- * NULL). Inside the table: monotone cubic Hermite in ln x; above it the
- * Tripp forms; below it the continuations of flow_factors_emt.c. u_m <= 0
- * gives the limit u -> 0+ (and its right derivative); NaN gives NaN. Every
- * output is finite for finite u_m. */
-void vl_emt_table_eval(const vl_emt_table *table, double u_m, vl_flow_factor_values *v,
-                       vl_flow_factor_values *d);
-
-/* Number of nodes; node k < size: its x, its factors (v, may be NULL) and
- * its A/A0 (area, may be NULL). Returns x. */
-size_t vl_emt_table_size(const vl_emt_table *table);
-double vl_emt_table_node(const vl_emt_table *table, size_t k, vl_flow_factor_values *v,
-                         double *area);
-
-/* h_rms (m), the film cut-off (m) and the percolation point x of the table. */
-double vl_emt_table_hrms(const vl_emt_table *table);
-double vl_emt_table_film_cutoff(const vl_emt_table *table);
-double vl_emt_table_percolation(const vl_emt_table *table);
 
 /* Serialises a table into a malloc'd blob (*blob, *len; the caller free()s
  * it): portable little-endian, format VL_EMT_FORMAT, the fingerprint of the
