@@ -117,14 +117,15 @@ static void test_friction_bad_input(void **state) {
 /* Seed Figs. 15-17: the unfilled rubber has larger friction than the filled
  * one over (almost) all speeds, and the filled one's u_min/h_rms grows
  * monotonically with speed. Coarse (grid 96, 7 points over 10 decades)
- * but every point must converge; smooth flow factors (see the cases). */
+ * but every point must converge; the default flow factors (persson-emt),
+ * which the file says in its first line. */
 static void test_compare_filled_unfilled(void **state) {
   (void)state;
   char dir[2048], args[8192], path[4400], *out = NULL, *err = NULL;
   snprintf(dir, sizeof dir, "%s/cmp", vl_test_tmpdir());
   snprintf(args, sizeof args,
            "--db %s compare --compounds sbr-unfilled,sbr-filled --surface paper-0.5um --fluid "
-           "water --from 1e-11 --to 1e-1 --points 6 --grid 384 --flow-factors smooth --plot "
+           "water --from 1e-11 --to 1e-1 --points 6 --grid 384 --plot "
            "--out %s",
            g_db, dir);
   int rc = vl_test_cli(NULL, args, &out, &err);
@@ -132,11 +133,13 @@ static void test_compare_filled_unfilled(void **state) {
   snprintf(path, sizeof path, "%s/compare.csv", dir);
   char *csv = vl_test_read_file(path);
   assert_non_null(csv);
-  assert_non_null(strstr(csv, "v0_eta_pa_m,mu_sbr-unfilled,"));
+  const char *model = "# flow_factors = persson-emt, film_cutoff_m = 1e-09\n";
+  assert_memory_equal(csv, model, strlen(model));
+  assert_non_null(strstr(csv, "\nv0_eta_pa_m,mu_sbr-unfilled,"));
   /* rows: v0eta, then 7 columns per compound */
   int rows = 0, above = 0;
   double filled_umin_before = 0.0;
-  char *line = strchr(csv, '\n');
+  char *line = strchr(csv + strlen(model), '\n');
   while (line && line[1]) {
     double v[15];
     char *p = line + 1;

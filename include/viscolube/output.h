@@ -17,6 +17,12 @@ typedef struct {
   double eta_pa_s; /* for v0_eta_pa_m */
   double tau_s;    /* for deborah = v0 tau / a0 (one-term compounds) */
   double a0_m;
+  /* The flow-factor model that produced the curve (vl_flow_factors_name), or
+   * NULL where the contact has no rough film (dry or smooth): CSV files then
+   * begin with a comment line "# flow_factors = MODEL[, film_cutoff_m = C]"
+   * and JSON points carry the key flow_factors. */
+  const char *flow_factors;
+  double film_cutoff_m; /* persson-emt's g_cut (m); 0 for the other models */
 } vl_curve_meta;
 
 /* CSV columns of the curve, in order (a NULL-terminated list). */

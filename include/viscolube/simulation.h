@@ -59,6 +59,12 @@ double vl_simulation_temperature_c(const vl_simulation *sim);
 double vl_simulation_shift_factor(const vl_simulation *sim);
 const vl_psd *vl_simulation_psd(const vl_simulation *sim); /* NULL when smooth */
 
+/* The flow-factor model of the scene's rough film (vl_flow_factors_name)
+ * and, for persson-emt, its film cut-off in *film_cutoff_m (else 0); NULL
+ * (and 0) when the scene has no rough wet contact. film_cutoff_m may be
+ * NULL. */
+const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cutoff_m);
+
 /* Runs the sweep (continuation in speed); every point's warnings gain the
  * model-assumption checks of assumptions.h before cb sees it. */
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,

@@ -132,6 +132,17 @@ static vl_status compound_at(vl_db *db, const conditions *c, const char *compoun
   return st;
 }
 
+/* The flow-factor model of these conditions (the user's, else the default)
+ * and its film cut-off (persson-emt; else 0), as the scenes get them. */
+static const char *model_of(const conditions *c, double *film_cutoff_m) {
+  vl_flow_factor_kind k = VL_SCENE_ROUGH_FLOW_FACTORS;
+  if (c->flow_factors) vl_flow_factors_parse(c->flow_factors, &k, NULL);
+  *film_cutoff_m = k != VL_FLOW_FACTORS_PERSSON_EMT ? 0.0
+                   : c->film_cutoff_m > 0.0        ? c->film_cutoff_m
+                                                   : VL_FILM_CUTOFF_DEFAULT_M;
+  return vl_flow_factors_name(k);
+}
+
 /* A wet rough scene for compound at the given conditions. */
 static int make_scene(const char *cmd, const conditions *c, const char *compound, vl_scene *sc) {
   vl_scene_defaults(sc);
@@ -296,6 +307,13 @@ static void friction_text(const conditions *c, const char *compound, double spee
   double hrms = psd ? psd->hrms_m : 0.0;
   printf("%s on %s in %s at v0 = %g m/s (v0 eta = %g Pa m), R = %g m, fN = %g N/m\n", compound,
          c->surface, c->fluid, speed, speed * eta, c->radius, c->load);
+  double cut;
+  const char *model = vl_simulation_flow_factors(sim, &cut);
+  if (model) {
+    printf("  flow factors: %s", model);
+    if (cut > 0.0) printf(" (film cut-off %g m)", cut);
+    putchar('\n');
+  }
   if (c->have_temperature)
     printf("  at %g C: compound times x a_T = %.4g (WLF), fluid viscosity %.4g Pa s\n",
            c->temperature_c, vl_simulation_shift_factor(sim), eta);
@@ -336,7 +354,8 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
     rc = vl_status_exit_code(st);
     goto done;
   }
-  vl_curve_meta meta = {eta, 0.0, vl_contact_a0(vl_simulation_contact(sim))};
+  vl_curve_meta meta = {eta, 0.0, vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
+  meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
   if (c.json) friction_json(&c, sim, eta, &pt, &meta);
   else if (pt.converged) friction_text(&c, compound, speed, sim, eta, &pt, &stats);
   if (!pt.converged) {
@@ -491,7 +510,8 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   }
   if (*st == VL_OK) {
     vl_curve_meta meta = {cv->eta, vl_simulation_tau(sim),
-                          vl_contact_a0(vl_simulation_contact(sim))};
+                          vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
+    meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
     snprintf(path, sizeof path, "%s/curve.csv", dir);
     *st = vl_write_curve_csv(path, cv->n, pts, &meta, err);
   }
@@ -505,6 +525,11 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
   vl_atomic_file af;
   if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
   FILE *f = af.f;
+  double cut;
+  const char *model = model_of(&a->c, &cut);
+  fprintf(f, "# flow_factors = %s", model);
+  if (cut > 0.0) fprintf(f, ", film_cutoff_m = %.6g", cut);
+  fputc('\n', f);
   fputs("v0_eta_pa_m", f);
   for (size_t k = 0; k < a->nc; k++) {
     const char *m = a->names[k];
@@ -533,6 +558,10 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
 
 /* The table: mu and u_min/h_rms of each compound at every v0*eta. */
 static void compare_table(const compare_args *a, const compare_curves *cv) {
+  double cut;
+  printf("flow factors: %s", model_of(&a->c, &cut));
+  if (cut > 0.0) printf(" (film cut-off %g m)", cut);
+  putchar('\n');
   if (a->c.have_temperature)
     printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.temperature_c,
            cv->eta);
@@ -565,7 +594,8 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
   for (size_t i = 0; i < cv->n; i++) vl_json_number_digits(&w, cv->pts[i].v0_m_s * cv->eta, 6);
   vl_json_end(&w);
   for (size_t k = 0; k < a->nc; k++) {
-    vl_curve_meta meta = {cv->eta, 0.0, 0.0};
+    vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0};
+    meta.flow_factors = model_of(&a->c, &meta.film_cutoff_m);
     vl_json_key(&w, a->names[k]);
     vl_curve_json(&w, cv->n, cv->pts + k * cv->n, &meta);
   }
@@ -577,8 +607,8 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
 static vl_status compare_plots(const compare_args *a, const compare_curves *cv, vl_error *err) {
   vl_plot_curve curves[MAX_COMPOUNDS];
   for (size_t k = 0; k < a->nc; k++)
-    curves[k] = (vl_plot_curve){a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0},
-                                cv->hrms[k]};
+    curves[k] = (vl_plot_curve){a->names[k], cv->n, cv->pts + k * cv->n,
+                                {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.mark_half_load = true;

@@ -171,6 +171,13 @@ done:
   return st;
 }
 
+/* The console line that states the flow-factor model of a rough film. */
+static void print_flow_model(const vl_curve_meta *m) {
+  printf("flow factors: %s", m->flow_factors);
+  if (m->film_cutoff_m > 0.0) printf(" (film cut-off %g m)", m->film_cutoff_m);
+  putchar('\n');
+}
+
 /* One curve of a multi-fluid scene, kept for the figures with all fluids. */
 typedef struct {
   vl_point *pts;
@@ -242,6 +249,10 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
            scene->effects.fluid ? ", fluid " : "", scene->effects.fluid ? scene->fluid : "", n,
            grid, scene->domain_min_a0, scene->domain_max_a0, vl_contact_a0(contact),
            vl_contact_p0(contact));
+  vl_curve_meta meta = {vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(contact),
+                        NULL, 0.0};
+  meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
+  if (!json && meta.flow_factors) print_flow_model(&meta);
   if (!json && scene->effects.temperature)
     printf("at %g C: compound times x a_T = %.4g, fluid viscosity %.4g Pa s\n",
            vl_simulation_temperature_c(sim), vl_simulation_shift_factor(sim),
@@ -254,7 +265,6 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
     st = VL_EIO;
     goto done;
   }
-  vl_curve_meta meta = {vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(contact)};
   char curve_path[4200];
   snprintf(curve_path, sizeof curve_path, "%s/curve.csv", out_dir);
   st = vl_write_curve_csv(curve_path, n, pts, &meta, err);

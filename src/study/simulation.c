@@ -318,3 +318,11 @@ vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback
   run_ctx r = {sim, out, cb, user};
   return vl_sweep_run(sim->contact, sim->n, sim->v0, NULL, out, check_point, &r, stats, err);
 }
+
+const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cutoff_m) {
+  const vl_scene *sc = &sim->scene;
+  bool rough_film = sc->effects.roughness && sc->effects.fluid;
+  bool emt = rough_film && sc->effects.flow_factors == VL_FLOW_FACTORS_PERSSON_EMT;
+  if (film_cutoff_m) *film_cutoff_m = emt ? sc->effects.film_cutoff_m : 0.0;
+  return rough_film ? vl_flow_factors_name(sc->effects.flow_factors) : NULL;
+}

@@ -20,7 +20,16 @@ static void cell(FILE *f, double v, int ok) {
   else fputc(',', f);
 }
 
+/* The comment line that says which flow-factor model made the curve. */
+static void print_model_comment(FILE *out, const vl_curve_meta *meta) {
+  if (!meta->flow_factors) return;
+  fprintf(out, "# flow_factors = %s", meta->flow_factors);
+  if (meta->film_cutoff_m > 0.0) fprintf(out, ", film_cutoff_m = %.6g", meta->film_cutoff_m);
+  fputc('\n', out);
+}
+
 void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta) {
+  print_model_comment(out, meta);
   for (size_t c = 0; vl_curve_columns[c]; c++)
     fprintf(out, "%s%s", c ? "," : "", vl_curve_columns[c]);
   fputc('\n', out);
@@ -113,6 +122,10 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "residual", p->residual, 1);
   member(w, "eps_f_min", p->eps_f_min, ok);
   vl_json_key_string(w, "warnings", p->warnings);
+  if (meta->flow_factors) {
+    vl_json_key_string(w, "flow_factors", meta->flow_factors);
+    if (meta->film_cutoff_m > 0.0) member(w, "film_cutoff_m", meta->film_cutoff_m, 1);
+  }
 }
 
 void vl_point_json(vl_json *w, const vl_point *p, const vl_curve_meta *meta) {
