@@ -1079,8 +1079,9 @@ double vl_emt_table_percolation(const vl_emt_table *t) { return t->x_perc; }
 
 /* ------------------------------------------------------ serialised form */
 
-/* The blob (VL_EMT_FORMAT 1), every field little-endian, doubles as their
- * IEEE-754 bits (blob.h):
+/* The blob, every field little-endian, doubles as their IEEE-754 bits
+ * (blob.h). Formats 1 and 2 share the layout; 2 is the build with
+ * FLOW_FACTORS.md's sub-surface Eq. 8 and the bins ending at G_BODY:
  *   "VLEF", u32 format, u64 n                               (16 bytes)
  *   PSD fingerprint (VL_BLOB_PSD_WORDS u64)                 (64 bytes)
  *   f64 h_rms, film cut-off (m), x_perc                     (24 bytes)

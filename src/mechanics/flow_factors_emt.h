@@ -37,7 +37,7 @@
  * layout AND the build algorithm, so it MUST be bumped whenever
  * vl_emt_table_build's result can change (grids, repairs, bins, the medium,
  * node placement, psd.c's moments) as well as when the layout changes. */
-#define VL_EMT_FORMAT 1
+#define VL_EMT_FORMAT 2
 
 /* The factors at one separation, with what the model knows on the way. */
 typedef struct {
