@@ -73,6 +73,7 @@
 #include <unistd.h>
 
 #include "hunter.h"
+#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/database.h"
 #include "viscolube/prony_fit.h"

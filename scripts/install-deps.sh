@@ -5,7 +5,8 @@ set -euo pipefail
 packages=(build-essential cmake pkg-config libsundials-dev libgsl-dev libsqlite3-dev
           libcmocka-dev libinih-dev liblapack-dev libopenblas-dev
           libplplot-dev plplot-driver-cairo fonts-dejavu-core
-          clang libclang-rt-14-dev) # scripts/fuzz.sh: clang 14 and its libFuzzer runtime
+          clang libclang-rt-14-dev # scripts/fuzz.sh: clang 14 and its libFuzzer runtime
+          clang-format)            # scripts/format.sh
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -7,7 +7,7 @@
  *   - the shipped synthetic compounds: rolling numbers near the seed
  *     paper's, filled stiffer with the lower loss peak, their generating
  *     WLF recovered;
- *   - real data (pyvisco, BSD-3, ../shared/data/pyvisco): the raw isotherms
+ *   - real data (pyvisco, BSD-3, tests/data/pyvisco): the raw isotherms
  *     shift like pyvisco's own superposition and the master curve fits no
  *     worse than ANSYS's Prony terms for it;
  *   - storage in one transaction, and every class of bad input refused with

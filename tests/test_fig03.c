@@ -1,4 +1,4 @@
-/* The seed's Figs. 3-4 (CASES.md fig03): dry rolling of the model rubber on
+/* The seed's Figs. 3-4 (docs/CASES.md fig03): dry rolling of the model rubber on
  * the paper surface. Roughness widens the nominal contact and lowers the
  * peak of mu_Rc; as h_rms -> 0 the curve approaches the smooth (Hunter)
  * solution. */
@@ -83,7 +83,7 @@ static void test_fig03_peak_decreases_with_roughness(void **state) {
    * through points 0.083 decades apart is good to ~0.1 % */
   printf("  Hunter's exact peak %.5f at %.3f\n", h.mu_R_over_a0, 1.349658);
   assert_true(vl_test_rel(peak[0], h.mu_R_over_a0) < 2e-3);
-  /* CASES.md fig03: monotone decrease with h_rms ... */
+  /* docs/CASES.md fig03: monotone decrease with h_rms ... */
   for (int k = 1; k < 6; k++) assert_true(peak[k] < peak[k - 1]);
   /* ... and 0.1 um within 3 % of the smooth peak (the bound) */
   assert_true(peak[1] / peak[0] > 0.97);

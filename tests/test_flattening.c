@@ -4,7 +4,7 @@
  * seed's Eq. 31 coded independently, the analytic derivative against
  * finite differences, the per-speed table against the exact quadrature,
  * the limits u -> inf and v0 -> 0 with their rates, the seed's statements
- * on Figs. 19-20 (CASES.md), and `viscolube flattening` end to end. */
+ * on Figs. 19-20 (docs/CASES.md), and `viscolube flattening` end to end. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -458,7 +458,7 @@ static void test_limit_small_speed(void **state) {
   vl_psd_free(&psd);
 }
 
-/* ---- the seed's statements on Figs. 19-20 (CASES.md) ---------------------
+/* ---- the seed's statements on Figs. 19-20 (docs/CASES.md) ---------------------
  * Both shipped real rubbers, the paper surface with H = 1, 0.8, 0.6, 0.4,
  * eta = 0.01 Pa s, v0 = 1e-3, 1e-2, 1e-1 m/s, the default (modulus)
  * response. u90 is the separation where epsilon_f = 0.9 (10 % less mean

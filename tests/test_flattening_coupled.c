@@ -28,6 +28,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/flattening.h"
@@ -121,7 +122,7 @@ static const double A_SPEEDS[] = {1e-6, 1e-5, 1e-4, 3e-4, 5.6e-4};
 typedef struct {
   vl_psd psd;
   vl_persson *table;
-  vl_flattening *flat;
+  vl_flattening_config flat; /* the settings the contact builds its evaluator from */
   vl_contact *c;
   vl_point pt[8];
 } fixture;
@@ -133,13 +134,20 @@ static void fixture_config(vl_contact_config *cfg, const vl_persson *table, doub
   cfg->load_n_per_m = load_n_per_m;
 }
 
-static vl_flattening *flattening_for(const vl_contact_config *cfg, const vl_psd *psd) {
+/* The flattening settings of a contact (its rubber, load, radius and fluid). */
+static vl_flattening_config flattening_for(const vl_contact_config *cfg) {
   vl_flattening_config fc;
   vl_flattening_config_defaults(&fc);
   fc.rubber = cfg->rubber;
   fc.load_n_per_m = cfg->load_n_per_m;
   fc.radius_m = cfg->radius_m;
   fc.eta_pa_s = cfg->eta_pa_s;
+  return fc;
+}
+
+/* An evaluator of those settings, built apart from any contact. */
+static vl_flattening *evaluator_for(const vl_contact_config *cfg, const vl_psd *psd) {
+  vl_flattening_config fc = flattening_for(cfg);
   vl_flattening *f = NULL;
   vl_error err;
   if (vl_flattening_create(&fc, psd, &f, &err) != VL_OK) fail_msg("%s", err.msg);
@@ -151,8 +159,8 @@ static void fixture_solve(fixture *fx, bool flattening) {
   fx->table = table_of(&fx->psd);
   vl_contact_config cfg;
   fixture_config(&cfg, fx->table, A_ETA, 1e-3, 117.0, A_GRID);
-  fx->flat = flattening ? flattening_for(&cfg, &fx->psd) : NULL;
-  cfg.flattening = fx->flat;
+  fx->flat = flattening_for(&cfg);
+  if (flattening) cfg.flattening = &fx->flat, cfg.flattening_psd = &fx->psd;
   vl_error err;
   if (vl_contact_create(&cfg, &fx->c, &err) != VL_OK) fail_msg("%s", err.msg);
   vl_sweep_stats st;
@@ -165,7 +173,6 @@ static void fixture_solve(fixture *fx, bool flattening) {
 
 static void fixture_free(fixture *fx) {
   vl_contact_free(fx->c);
-  vl_flattening_free(fx->flat);
   vl_persson_free(fx->table);
   vl_psd_free(&fx->psd);
 }
@@ -227,7 +234,7 @@ static void test_scaled_psd(void **state) {
   assert_non_null(b);
   vl_fields f = {n, b, b + n, b + 2 * n, b + 3 * n, b + 4 * n, b + 5 * n, NULL};
   vl_contact_fields(fx.c, &f);
-  double eps_umin = vl_flattening_eps(fx.flat, p->u_min_m, NULL);
+  double eps_umin = vl_flattening_eps(vl_contact_flattening(fx.c), p->u_min_m, NULL);
   print_message("eps_f_min %.12f, epsilon_f(u_min) %.12f\n", p->eps_f_min, eps_umin);
   assert_true(fabs(p->eps_f_min - eps_umin) < 1e-12);
   const double targets[] = {0.0, 0.7, 0.8, 0.9, 0.99};
@@ -240,11 +247,11 @@ static void test_scaled_psd(void **state) {
     double best_d = INFINITY;
     for (size_t i = 0; i < n; i++) {
       if (f.p_c_pa[i] < 0.01 * pmax) continue;
-      double d = fabs(vl_flattening_eps(fx.flat, f.u_m[i], NULL) - targets[k]);
+      double d = fabs(vl_flattening_eps(vl_contact_flattening(fx.c), f.u_m[i], NULL) - targets[k]);
       if (d < best_d) best_d = d, best = i;
     }
     assert_true(best != SIZE_MAX);
-    double u = f.u_m[best], eps = vl_flattening_eps(fx.flat, u, NULL);
+    double u = f.u_m[best], eps = vl_flattening_eps(vl_contact_flattening(fx.c), u, NULL);
     vl_psd ps = paper(A_HRMS * sqrt(eps));
     vl_persson *ts = table_of(&ps);
     double pc = p->E_wH_pa * vl_persson_pressure(ts, u, NULL);
@@ -300,12 +307,13 @@ static void test_thick_film_identical(void **state) {
   vl_point pt[2][3];
   double *fld[2];
   size_t n = 128;
-  vl_flattening *flat = NULL;
+  vl_flattening_config flat;
   for (int on = 0; on < 2; on++) {
     vl_contact_config cfg;
     fixture_config(&cfg, tab, 1e-4, 0.01, 1000.0, n);
     cfg.x_min_a0 = -5.0;
-    if (on) flat = cfg.flattening = flattening_for(&cfg, &psd);
+    flat = flattening_for(&cfg);
+    if (on) cfg.flattening = &flat, cfg.flattening_psd = &psd;
     vl_contact *c;
     vl_error err;
     assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
@@ -346,7 +354,6 @@ static void test_thick_film_identical(void **state) {
   assert_true(worst < 1e-12 && worst_f < 1e-12);
   free(fld[0]);
   free(fld[1]);
-  vl_flattening_free(flat);
   vl_persson_free(tab);
   vl_psd_free(&psd);
 }
@@ -360,27 +367,28 @@ static void test_follows_speed_and_viscosity(void **state) {
   vl_persson *tab = table_of(&psd);
   vl_contact_config cfg;
   fixture_config(&cfg, tab, A_ETA, 1e-3, 117.0, A_GRID);
-  /* flat and the reference ref are built for A_ETA; the contact's 2 A_ETA
+  /* the settings and the reference ref are for A_ETA; the contact's 2 A_ETA
    * replaces it at create */
-  vl_flattening *flat = flattening_for(&cfg, &psd), *ref = flattening_for(&cfg, &psd);
+  vl_flattening_config fc = flattening_for(&cfg);
+  vl_flattening *ref = evaluator_for(&cfg, &psd);
   cfg.eta_pa_s = 2.0 * A_ETA;
-  cfg.flattening = flat;
+  cfg.flattening = &fc;
+  cfg.flattening_psd = &psd;
   vl_contact *c;
   vl_error err;
   assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_OK);
   vl_point pt;
   assert_int_equal(vl_contact_solve(c, 1e-6, &pt, &err), VL_OK);
   vl_flattening_state s1, s0;
-  vl_flattening_state_get(flat, &s1);
+  vl_flattening_state_get(vl_contact_flattening(c), &s1);
   vl_flattening_set_speed(ref, 1e-6, NULL);
   vl_flattening_state_get(ref, &s0);
   assert_true(s1.v0_m_s == 1e-6);
   assert_true(vl_test_rel(s1.u_onset_m, cbrt(2.0) * s0.u_onset_m) < 1e-12);
   assert_int_equal(vl_contact_set_viscosity(c, 16.0 * A_ETA, &err), VL_OK);
-  vl_flattening_state_get(flat, &s1);
+  vl_flattening_state_get(vl_contact_flattening(c), &s1);
   assert_true(vl_test_rel(s1.u_onset_m, 2.0 * cbrt(2.0) * s0.u_onset_m) < 1e-12);
   vl_contact_free(c);
-  vl_flattening_free(flat);
   vl_flattening_free(ref);
   vl_persson_free(tab);
   vl_psd_free(&psd);
@@ -394,7 +402,7 @@ static void test_refusals(void **state) {
   vl_persson *tab = table_of(&psd), *tab2 = table_of(&other);
   vl_contact_config cfg;
   fixture_config(&cfg, tab, A_ETA, 1e-3, 117.0, 64);
-  vl_flattening *flat = flattening_for(&cfg, &psd);
+  vl_flattening_config flat = flattening_for(&cfg);
   vl_contact *c = NULL;
   vl_error err;
   struct {
@@ -405,14 +413,14 @@ static void test_refusals(void **state) {
   for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
     cfg.roughness = bad[k].table;
     cfg.eta_pa_s = bad[k].eta;
-    cfg.flattening = flat;
+    cfg.flattening = &flat;
+    cfg.flattening_psd = &psd;
     err.msg[0] = '\0';
     assert_int_equal(vl_contact_create(&cfg, &c, &err), VL_EINPUT);
     assert_null(c);
     if (!strstr(err.msg, bad[k].needle) || !strstr(err.msg, "flattening"))
       fail_msg("case %zu: '%s' lacks '%s'", k, err.msg, bad[k].needle);
   }
-  vl_flattening_free(flat);
   vl_persson_free(tab);
   vl_persson_free(tab2);
   vl_psd_free(&psd);

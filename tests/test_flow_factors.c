@@ -1,11 +1,11 @@
-/* Flow and shear-stress factors (FLOW_FACTORS.md): the smooth model, the
+/* Flow and shear-stress factors (docs/FLOW_FACTORS.md): the smooth model, the
  * Patir-Cheng factors at known points against the published formulas and
  * against quadrature of Patir-Cheng's defining integral for Phi_f, the
  * Gaussian-gap mapping u(H) round trip against an independent evaluation,
  * continuity and C1 (analytic derivatives vs central differences) on a dense
  * log grid and at every join, the limits u -> 0 and u -> inf, and the solver
  * combinations. The oracles below are written from the formulas in
- * FLOW_FACTORS.md, not from the library. */
+ * docs/FLOW_FACTORS.md, not from the library. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -77,7 +77,7 @@ static double phi_f_oracle(double H) {
          (w * w * w * log(300.0 * (1.0 + z)) + gauss(pc_quotient, z, -z, 1.0, 4));
 }
 
-/* The published fits (FLOW_FACTORS.md table). */
+/* The published fits (docs/FLOW_FACTORS.md table). */
 static double phi_x_fit(double H) { return 1.0 - 0.90 * exp(-0.56 * H); }
 static double phi_s_low(double H) { return 1.899 * pow(H, 0.98) * exp(-0.92 * H + 0.05 * H * H); }
 static double phi_s_high(double H) { return 1.126 * exp(-0.25 * H); }
@@ -209,7 +209,7 @@ static void test_mapping_round_trip(void **state) {
 }
 
 /* The factors inside the published fit ranges equal the formulas of
- * FLOW_FACTORS.md (and Phi_f its defining integral), mapped with h/u = H/g
+ * docs/FLOW_FACTORS.md (and Phi_f its defining integral), mapped with h/u = H/g
  * where g = u/sigma comes from the oracle. The only error sources are the
  * mapping (~1e-14 in H, times d ln Phi/d ln H <= ~10) and quadrature
  * (< 1e-14): tolerance 1e-12 relative. */

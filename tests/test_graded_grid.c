@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "kernel.h"
@@ -131,7 +132,7 @@ static void test_influence_matches_closed_form(void **state) {
  * the contact, same inlet end): the graded curves converge to the uniform
  * one as the growth goes to 1, and at the shipped growth (1.05) mu is
  * within 0.25 % at every point (a quarter of the 1 % accuracy budget of
- * the defaults, README "Accuracy and cost"; measured 0.10 %). Every point
+ * the defaults, docs/NUMERICS.md, the accuracy study; measured 0.10 %). Every point
  * converges on every grid. */
 static void test_graded_converges_to_uniform(void **state) {
   (void)state;

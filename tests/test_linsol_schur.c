@@ -16,6 +16,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "linsol_schur.h"
+#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"

@@ -2,7 +2,7 @@
  * viscoelastic rolling solution and Persson's linear-order formula.
  *
  * The decisive check is test_hunter_gap_consistency: the oracle's pressure is
- * put back into the displacement integral of MODEL.md §3 (memory term
+ * put back into the displacement integral of docs/MODEL.md §3 (memory term
  * included) by direct adaptive quadrature, and the gap must be flat inside
  * the contact and open outside. Nothing here calls the vl_ library.
  *
@@ -117,7 +117,7 @@ static double contact_integral(disp_params *dp, gsl_integration_workspace *ws) {
   return total;
 }
 
-/* Gap minus h0, v(x) = x^2/2 + w(x), with (MODEL.md §3 in a0, p0, a0^2/R;
+/* Gap minus h0, v(x) = x^2/2 + w(x), with (docs/MODEL.md §3 in a0, p0, a0^2/R;
  * 2 p0 R/(pi Er_inf a0) = 1/(pi (1+A)))
  * w(x) = -(1/(pi (1+A))) \int p(x') [log|x-x'| + A k(x-x')] dx'. */
 static double gap_v(disp_params *dp, gsl_integration_workspace *ws, double x) {
@@ -200,7 +200,7 @@ static void test_hunter_low_speed_slope(void **state) {
   }
 }
 
-/* Elastic limits (VALIDATION.md §1): De -> 0 gives Hertz with E0 (half width
+/* Elastic limits (docs/VALIDATION.md §1): De -> 0 gives Hertz with E0 (half width
  * 1, centred, p_max = 1); De -> inf gives Hertz with Einf (half width
  * sqrt(E0/Einf), p_max sqrt(Einf/E0)), mu -> 0. Tolerances: O(De) at low
  * speed (centre shift and width change are first order in De); at high speed
@@ -267,7 +267,7 @@ static double find_peak(double (*f)(double, void *), double ratio, double guess,
   return x;
 }
 
-/* VALIDATION.md §2-3: for Einf/E0 = 10 the maximum of mu R/a0 lies near
+/* docs/VALIDATION.md §2-3: for Einf/E0 = 10 the maximum of mu R/a0 lies near
  * De ~ 1.3 (tau the retardation time; 0.13 would mean the relaxation time
  * was used), with the contact strongly shifted toward the inlet, and
  * Persson's linear form (a = a0) underestimates the peak. */
@@ -380,7 +380,7 @@ static void check_consistency(double de, double ratio) {
   assert_true(e_mu < 1e-11);
   assert_true(vmax - vmin < 1e-10);
   assert_true(pmin > -1e-12);
-  /* Sign convention (MODEL.md §1): contact on the inlet side, mu > 0. */
+  /* Sign convention (docs/MODEL.md §1): contact on the inlet side, mu > 0. */
   assert_true(s.centre_over_a0 < 0.0 && s.mu_R_over_a0 > 0.0 && s.x_pmax_over_a0 < 0.0);
   gsl_integration_workspace_free(ws);
   vl_oracle_hunter_profile_free(pr);

@@ -1,8 +1,8 @@
 /* Persson contact mechanics (roughness.h, src/persson.c) against
- * independent quadrature of the paper's Eq. (7)-(8) (VALIDATION.md §4).
+ * independent quadrature of the paper's Eq. (7)-(8) (docs/VALIDATION.md §4).
  *
  * The oracles here never call the library's u(s): the PSD, the moment
- * M(q) = \int_{q0}^{q} q'^3 C dq' (closed form of VALIDATION §4 for a
+ * M(q) = \int_{q0}^{q} q'^3 C dq' (closed form of docs/VALIDATION.md §4 for a
  * self-affine PSD; GSL quadrature of our own power-law interpolation for a
  * tabulated one), w(q) and Eq. (8)'s inner integral over p' are all computed
  * in this file with GSL adaptive quadrature, with no exponential integral. */
@@ -65,7 +65,7 @@ static double quad(gsl_function *fn, double a, double b, gsl_integration_workspa
 
 /* M(q0 e^dt), parametrised by dt so that small dt keeps its precision. */
 static double surf_M(const surf *f, double dt) {
-  if (!f->tab) { /* VALIDATION §4: C0 q0^4 [(q/q0)^(2(1-H)) - 1] / (2(1-H)) */
+  if (!f->tab) { /* docs/VALIDATION.md §4: C0 q0^4 [(q/q0)^(2(1-H)) - 1] / (2(1-H)) */
     double p = 2.0 * (1.0 - f->H), q04 = pow(f->q0, 4.0);
     return p == 0.0 ? f->c0 * q04 * dt : f->c0 * q04 * expm1(p * dt) / p;
   }
@@ -81,7 +81,7 @@ static void surf_self_affine(surf *f, double H, double q0, double q1, double hrm
   f->H = H;
   f->q0 = q0;
   f->q1 = q1;
-  /* VALIDATION §4 */
+  /* docs/VALIDATION.md §4 */
   f->c0 = H * hrms * hrms / (M_PI * q0 * q0 * (1.0 - pow(q0 / q1, 2.0 * H)));
 }
 

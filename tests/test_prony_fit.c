@@ -1,5 +1,5 @@
 /* The creep-form Prony fit (prony_fit.h): data made from known Prony series
- * (evaluated here by the closed form of MODEL.md section 2, not by
+ * (evaluated here by the closed form of docs/MODEL.md section 2, not by
  * rheology.c), refitted; grid construction; refusals. */
 #include <setjmp.h>
 #include <stdarg.h>

@@ -1,5 +1,5 @@
 /* Roughness power spectra (roughness.h, src/psd.c) against closed forms
- * (VALIDATION.md §4) and GSL quadrature of independently coded PSDs. */
+ * (docs/VALIDATION.md §4) and GSL quadrature of independently coded PSDs. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -20,7 +20,7 @@
 
 static gsl_integration_workspace *g_ws;
 
-/* Our own PSD: self-affine closed form with C0 of VALIDATION §4, or a
+/* Our own PSD: self-affine closed form with C0 of docs/VALIDATION.md §4, or a
  * power law between tabulated points (linear search, log-log). */
 typedef struct {
   int tab;
@@ -90,7 +90,7 @@ static int teardown(void **state) {
   return 0;
 }
 
-/* C0 = H h^2 / (pi q0^2 [1 - (q0/q1)^(2H)]) (VALIDATION §4); the library
+/* C0 = H h^2 / (pi q0^2 [1 - (q0/q1)^(2H)]) (docs/VALIDATION.md §4); the library
  * uses an expm1 form, so agreement is to rounding (1e-12 allows the pow
  * form's cancellation when q0/q1 -> 1). */
 static void test_c0_formula(void **state) {
@@ -215,7 +215,7 @@ static void test_sampled_self_affine(void **state) {
 }
 
 /* rms slope: <|grad h|^2> = \int d^2q q^2 C = 2 pi \int q^3 C dq; closed
- * form for self-affine with VALIDATION §4's \int q^3 C =
+ * form for self-affine with docs/VALIDATION.md §4's \int q^3 C =
  * C0 q0^4 [(q1/q0)^(2(1-H)) - 1] / (2(1-H)) (log for H = 1); 1e-12. */
 static void test_rms_slope(void **state) {
   (void)state;

@@ -1,4 +1,4 @@
-/* The temperature effect (issue 9, MODEL.md sections 2 and 10): the
+/* The temperature effect (issue 9, docs/MODEL.md sections 2 and 10): the
  * compound's Prony times shifted by its WLF a_T, the fluid's viscosity by
  * its stored Vogel law.
  *
@@ -6,7 +6,7 @@
  * model's exact identity "compound shifted by a_T at speed v = compound at
  * Tref at speed a_T v"; the shipped laws against independent published
  * viscosities (IAPWS 2008 for water, Segur & Oberstar 1951 for glycerol);
- * the seed's remark on the rolling number (CASES.md fig15) measured on the
+ * the seed's remark on the rolling number (docs/CASES.md fig15) measured on the
  * shipped sbr-unfilled; the stored law (migration from schema 2, adding,
  * refusing bad laws). Command line: scenes with temperature = on and their
  * errors, `friction` and `compare` with --temperature. */
@@ -349,9 +349,9 @@ static void test_migrate_from_schema_2(void **state) {
   vl_db_close(fresh);
 }
 
-/* ---- (d) the seed's remark on the rolling number (CASES.md fig15) ------- */
+/* ---- (d) the seed's remark on the rolling number (docs/CASES.md fig15) ------- */
 
-/* Q = v_GT / v_ML (MODEL.md section 8) with v_GT = w~ 2 a0 and
+/* Q = v_GT / v_ML (docs/MODEL.md section 8) with v_GT = w~ 2 a0 and
  * v_ML = 10 h_rms^2 Er0 / (R eta). Warming shortens every time by a_T, so
  * the loss peak w~ moves up by 1/a_T; a0 and Er0 (relaxed modulus) do not
  * move; the water thins, raising v_ML by eta_ref / eta(T). Hence

@@ -1,6 +1,6 @@
 /* Validation of the dry contact solver against exact solutions:
  * Hertz (elastic limits), Hunter's viscoelastic rolling solution and
- * Persson's linear-order formula (VALIDATION.md sections 1-3), plus the
+ * Persson's linear-order formula (docs/VALIDATION.md sections 1-3), plus the
  * seed's fig03 statements for rough surfaces. Oracles live in tests/oracles
  * and share no code with the solver. */
 #include <setjmp.h>
@@ -15,12 +15,13 @@
 
 #include "hunter.h"
 #include "persson_linear.h"
+#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 #include "vl_test_util.h"
 
-/* The seed's model rubber and cylinder (CASES.md fig03). */
+/* The seed's model rubber and cylinder (docs/CASES.md fig03). */
 #define E0 3.6e6
 #define TAU 0.1
 #define NU 0.5
@@ -75,7 +76,7 @@ static void pressure_moments(const vl_contact *c, double *half_width, double *pm
   free(buf);
 }
 
-/* VALIDATION.md 1: Hertz with E0 at v0 tau/a0 = 1e-4, with Einf at 1e4.
+/* docs/VALIDATION.md 1: Hertz with E0 at v0 tau/a0 = 1e-4, with Einf at 1e4.
  * Tolerance 0.5 % (the issue's) at the default grid. */
 static void test_elastic_limits(void **state) {
   (void)state;
@@ -89,7 +90,7 @@ static void test_elastic_limits(void **state) {
   printf("  De = 1e-4: half-width %.6f a0 (Hertz E0: 1), p_max %.6f p0 (1)\n", a, pm);
   assert_true(fabs(a - 1.0) < 5e-3);
   assert_true(fabs(pm - 1.0) < 5e-3);
-  /* low-speed slope mu R/a0 -> (A/(1+A)) De (VALIDATION.md 2); the next
+  /* low-speed slope mu R/a0 -> (A/(1+A)) De (docs/VALIDATION.md 2); the next
    * order is ~0.55 De relative, far below the 1 % allowed here */
   assert_true(vl_test_rel(pt.mu_Rc * RADIUS / vl_contact_a0(c), 0.9 * 1e-4) < 1e-2);
 
@@ -105,7 +106,7 @@ static void test_elastic_limits(void **state) {
   vl_contact_free(c);
 }
 
-/* VALIDATION.md 2: mu_Rc against Hunter's exact solution, within 1 % over
+/* docs/VALIDATION.md 2: mu_Rc against Hunter's exact solution, within 1 % over
  * v0 tau/a0 in [1e-2, 1e2] at the default grid (512). */
 static void test_hunter_default_grid(void **state) {
   (void)state;
@@ -163,7 +164,7 @@ static void test_hunter_grid_convergence(void **state) {
   for (int k = 0; k < 3; k++) assert_true(finest[k] < 1e-3);
 }
 
-/* VALIDATION.md 3: Persson's linear-order formula is exact to first order
+/* docs/VALIDATION.md 3: Persson's linear-order formula is exact to first order
  * in A = Einf/E0 - 1. Its departure from the exact (Hunter) answer is itself
  * first order in A, about A/3 at the peak (the oracle's self-test measures
  * 1.63 % for Einf/E0 = 1.05 and 0.33 % for 1.01): the issue's "within 1 % at
@@ -202,7 +203,7 @@ static void test_persson_linear_small_loss(void **state) {
 
 /* Invariants of every solution: load balance to the solver tolerance,
  * p >= 0, u >= 0 and u > 0 where p = 0, pressure peak on the inlet side at
- * intermediate speed (MODEL.md section 1). */
+ * intermediate speed (docs/MODEL.md section 1). */
 static void test_invariants_and_sign(void **state) {
   (void)state;
   vl_contact *c = make_contact(10.0, 256, NULL);

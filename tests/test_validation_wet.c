@@ -1,5 +1,5 @@
-/* Validation of the smooth wet (hydrodynamic / EHL) solver, VALIDATION.md
- * section 5 and MODEL.md sections 1 and 7:
+/* Validation of the smooth wet (hydrodynamic / EHL) solver, docs/VALIDATION.md
+ * section 5 and docs/MODEL.md sections 1 and 7:
  *   - a rigid cylinder against Martin's film (published constant) and
  *     against the closed form of the same problem with the finite inlet of
  *     the computational domain (derived here, independently of the solver);
@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/sweep.h"
 #include "vl_test_util.h"
@@ -43,7 +44,7 @@ static vl_contact *make_wet(double e0, double load, double eta, size_t grid, dou
   return c;
 }
 
-/* Relaxed Hertz half-width, the unit of the domain (MODEL.md section 9). */
+/* Relaxed Hertz half-width, the unit of the domain (docs/MODEL.md section 9). */
 static double hertz_a0(double e0, double load) {
   return sqrt(4.0 * load * RADIUS * (1.0 - NU * NU) / (M_PI * e0));
 }
@@ -108,7 +109,7 @@ static double martin_finite_inlet(double eta, double v0, double load, double x_i
   return h0;
 }
 
-/* VALIDATION.md 5: a nearly rigid cylinder (E0 = 1e13 Pa: the elastic
+/* docs/VALIDATION.md 5: a nearly rigid cylinder (E0 = 1e13 Pa: the elastic
  * deformation is ~1e-4 of the film) against Martin's h_min = 4.894 eta
  * (v0/2) R/fN, within 1 % at 512 cells (measured -0.54 %). The domain
  * follows the hydrodynamic length, not a0 (here a0 = 1 um, the inlet length
@@ -254,7 +255,7 @@ static void test_soft_ehl_exponents(void **state) {
  * cavitated zone the film fraction carries the same flux; the load balance
  * holds to the solver tolerance; pf >= 0 (up to the tolerance), u > 0
  * everywhere. Soft case: the constriction (minimum film) sits on the outlet
- * side, x > 0, downstream of the pressure peak (MODEL.md section 1). */
+ * side, x > 0, downstream of the pressure peak (docs/MODEL.md section 1). */
 static void check_invariants(vl_contact *c, const vl_point *pt, double v0, bool soft) {
   size_t n = vl_contact_grid(c);
   double *buf = calloc(7 * n + 1, sizeof *buf);
@@ -320,7 +321,7 @@ static void test_invariants(void **state) {
   vl_contact_free(c);
 }
 
-/* ---- Energy balance (MODEL.md section 7) ---------------------------------
+/* ---- Energy balance (docs/MODEL.md section 7) ---------------------------------
  * Smooth surfaces, elastic solid (no hysteresis): the power of the friction
  * force equals the viscous dissipation of the film,
  *   (mu_Rf + mu_Sf) fN v0 = \int [ theta eta v0^2/u + u^3/(12 eta) (dpf/dx)^2 ] dx,
@@ -397,7 +398,7 @@ static void test_energy_balance(void **state) {
  * viscosity to 1e-3, 1e-4, 1e-5. Asserted: |mu_R/mu_dry - 1| falls with
  * eta at every step and is below 1e-3 (the issue's 0.1 %) at 1e-5 Pa s
  * (measured 2.0e-5, 1.8e-5, 4.9e-4 at v0 tau/a0 = 0.1, 1, 10; the error
- * falls as about eta^0.35-0.6 between 1e-3 and 1e-5). Sign convention (MODEL.md section 1)
+ * falls as about eta^0.35-0.6 between 1e-3 and 1e-5). Sign convention (docs/MODEL.md section 1)
  * at eta = 1e-2: the constriction (minimum film) on the outlet side and
  * mu_Rf > 0. */
 static void test_viscoelastic_dry_limit(void **state) {

@@ -1,4 +1,4 @@
-/* The seed's statements for its wet scenes (CASES.md fig05, fig10) as
+/* The seed's statements for its wet scenes (docs/CASES.md fig05, fig10) as
  * automated checks on computed Stribeck curves and fields. The seed's flow
  * factors are not published; these curves use Patir-Cheng, so we check
  * shapes and orders of magnitude, not the paper's exact numbers. Where the
@@ -141,7 +141,7 @@ static void test_fig05(void **state) {
   assert_true(cv->pt[i5].mu_Rc + cv->pt[i5].mu_Sc > 0.95 * cv->pt[i5].mu);
   /* the mu_Rf maximum lies at least two decades above the mu_Rc maximum, at
    * the same order of magnitude (with Patir-Cheng factors mu_Rf keeps rising:
-   * its maximum is the end of the sweep, as CASES.md anticipates) */
+   * its maximum is the end of the sweep, as docs/CASES.md anticipates) */
   assert_true(cv->v0eta[irf] >= 100.0 * cv->v0eta[irc]);
   double r = cv->pt[irf].mu_Rf / cv->pt[irc].mu_Rc;
   printf("  max mu_Rf / max mu_Rc = %.2f\n", r);
@@ -149,7 +149,7 @@ static void test_fig05(void **state) {
   /* mu_Rf comparable to mu_Sf where the fluid takes over: within 3x at the
    * mixed-lubrication transition (half the load on the fluid), and of the
    * same order (within 10x) along the whole fluid-carried branch above it.
-   * With Patir-Cheng factors mu_Rf keeps rising with speed (CASES.md), so
+   * With Patir-Cheng factors mu_Rf keeps rising with speed (docs/CASES.md), so
    * the ratio grows along that branch: at the shipped numerics (96 a0
    * inlet) it is 3.4 at the end of the sweep, 1 Pa m. Session 1 checked
    * the end of the sweep within 3x, on a 3 a0 inlet where it was 1.9: the
@@ -224,7 +224,7 @@ static void test_fig10(void **state) {
   free(cv);
 }
 
-/* CASES.md fig12/13: five viscosities 1e-4 ... 1 Pa s. The Stribeck curves
+/* docs/CASES.md fig12/13: five viscosities 1e-4 ... 1 Pa s. The Stribeck curves
  * do not collapse on a master curve in v0 eta; the mixed-lubrication
  * transition sits near the same v0 eta for all; the rolling friction
  * mu_Rc + mu_Rf vs v0 tau/a0 overlaps at low speed and grows without bound
@@ -305,7 +305,7 @@ static void test_fig12(void **state) {
   printf("\n");
 }
 
-/* MODEL.md section 5: the inlet must reach well beyond the contact; friction
+/* docs/MODEL.md section 5: the inlet must reach well beyond the contact; friction
  * at high v0 eta depends on it. Measured on the fig05 contact at v0 eta = 0.3
  * and 1 Pa m (mixed and hydrodynamic) for inlets of 2, 3 and 5 a0 at equal
  * cell size: more inlet entrains more fluid (mu grows), with a shrinking

@@ -1,4 +1,4 @@
-/* The seed's fig05 contact for the tests (CASES.md), implemented in
+/* The seed's fig05 contact for the tests (docs/CASES.md), implemented in
  * vl_test_util.c; a header of its own so that tests which do not need the
  * library's contact headers (and their <complex.h>) do not get them. */
 #ifndef VL_TEST_SCENES_H
@@ -9,7 +9,7 @@
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 
-/* ---- the seed's fig05 contact (CASES.md) -------------------------------- */
+/* ---- the seed's fig05 contact (docs/CASES.md) -------------------------------- */
 
 /* The seed's paper surface: self-affine, H 0.8, q0 2e5 1/m, q1 7.8e9 1/m,
  * of rms roughness hrms_m. Fills *psd and returns its Persson table of the

@@ -1,6 +1,6 @@
 /* viscolube: does an operating point lie inside the model's assumptions?
  *
- * The model (MODEL.md; the seed paper, Scaraggi & Persson) rests on
+ * The model (docs/MODEL.md; the seed paper, Scaraggi & Persson) rests on
  * assumptions the solver does not enforce: it converges just as well
  * outside them, and its numbers are then only as good as the assumption.
  * vl_assumptions_check tests one operating point against each assumption

@@ -1,7 +1,7 @@
 /* viscolube: one operating point of a rigid smooth cylinder on a (rough)
  * viscoelastic half-space, solved by KINSOL (Newton, dense Jacobian).
  *
- * Frame and signs (MODEL.md section 1): cylinder frame, rubber moving at +v0
+ * Frame and signs (docs/MODEL.md section 1): cylinder frame, rubber moving at +v0
  * along x, inlet at x < 0. Friction components are positive when they resist
  * the motion.
  *
@@ -33,7 +33,7 @@
  *                for soft EHL, from Hertz.
  * The rigid approach h0 (the displacement kernel's free constant) is the
  * load-balance unknown; the separation at the pressure centroid u0 is
- * reported afterwards (MODEL.md section 3: measured to converge better than
+ * reported afterwards (docs/MODEL.md section 3: measured to converge better than
  * u0 as the unknown). */
 #ifndef VISCOLUBE_CONTACT_H
 #define VISCOLUBE_CONTACT_H
@@ -45,6 +45,7 @@
 #include "viscolube/flow_factors.h"
 #include "viscolube/rheology.h"
 #include "viscolube/persson.h"
+#include "viscolube/results.h"
 #include "viscolube/status.h"
 
 typedef enum {
@@ -56,6 +57,11 @@ typedef enum {
                          * fails, and for every other contact). The default. */
 } vl_linear_solver;
 
+/* Numerics: every default and limit of the grid, the domain and the
+ * Newton solve is defined here, in the solver layer that owns them; the
+ * scene parser (scene.h), the friction and compare commands and the tests
+ * take theirs from these (vl_contact_numerics_defaults). */
+
 /* Newton iterations a solve may take. A film lifting off from mixed to full
  * lubrication within one step of a sweep (u_min x35 on a 5 nm surface) took
  * 92 iterations on a uniform grid and 110-128 on graded ones; at 100 such a
@@ -65,16 +71,65 @@ typedef enum {
  * within 100 iterations are unchanged. */
 #define VL_NEWTON_MAX_ITERATIONS 200
 
+/* Smallest grid: vl_contact_create takes 8 cells (the least its stencils
+ * are tested at: tests/hard probes that edge); a scene and the command line
+ * ask for at least 16, so that the dry domain's contact (2 a0 of 3) spans
+ * the 8 cells VL_ASSUME_GRID wants in the pressure zone. */
+#define VL_CONTACT_MIN_GRID 8
+#define VL_GRID_MIN 16
+
 /* Largest solver grid: the dense matrices grow as the square of the cells
  * (56 bytes per cell squared: 15 GB at the limit). A graded grid may start
- * from far more uniform cells, since they are merged. */
+ * from far more uniform cells, since they are merged. A scene's uniform
+ * grid stops at VL_GRID_UNIFORM_MAX (3.7 GB of matrices); larger ones take
+ * a graded inlet (grid_growth > 1). */
 #define VL_CONTACT_MAX_CELLS 16384
 #define VL_CONTACT_MAX_GRID_GRADED 262144
+#define VL_GRID_UNIFORM_MAX 8192
+#define VL_GRID_GRADED_MAX VL_CONTACT_MAX_GRID_GRADED
+
+/* Largest growth ratio of a graded grid (vl_contact_config.grid_growth; 1 or
+ * less: uniform). */
+#define VL_GRID_GROWTH_MAX 2.0
 
 /* Where a graded grid (vl_contact_config.grid_growth) starts to coarsen: the
  * relaxed Hertz contact ends at x = -a0, and rough or viscoelastic pressure
  * tails reach a little beyond. */
 #define VL_GRADE_START_A0 2.0
+
+/* Numerics of a dry contact: symmetric about the axis, so that an elastic
+ * contact has exactly zero rolling friction on the grid and small
+ * viscoelastic shifts are resolved. */
+#define VL_DRY_GRID 512
+#define VL_DRY_DOMAIN_MIN_A0 -1.5
+#define VL_DRY_DOMAIN_MAX_A0 1.5
+#define VL_DRY_TOLERANCE 1e-9
+
+/* Numerics of wet contacts, from the accuracy study (bench/, README
+ * "Accuracy and cost"): the cheapest setting with mu within 1 % of a
+ * reference at N 1536 / inlet 32 a0 over the fig05, fig10 and real-rubber
+ * sweeps. A lubricated contact needs room for the inlet meniscus and the
+ * film build-up upstream of the contact (docs/MODEL.md section 5). The inlet must
+ * hold the film's inlet zone at the top of the Stribeck curve (fig05 at
+ * v0 eta = 1 Pa m: 6.1 % / 1.5 % short with 5 / 12 a0 against 20 a0); the
+ * grid then resolves the contact (N 512: fig10 1.9 %); the tolerance does
+ * not move mu between 1e-3 and 1e-9, 1e-6 keeps a margin on the load
+ * balance. */
+#define VL_WET_DOMAIN_MIN_A0 -24.0
+#define VL_WET_DOMAIN_MAX_A0 1.6
+#define VL_WET_GRID 768
+#define VL_WET_TOLERANCE 1e-6
+/* Rough wet contacts take a graded inlet (vl_contact_config.grid_growth):
+ * uniform cells of a0/30 near the contact (as grid 768 on [-24, 1.6] a0
+ * gives), merged into cells growing by 5 % upstream of -2 a0, on an inlet of
+ * 96 a0; about 200 cells in all. From the study with graded grids (bench/,
+ * docs/NUMERICS.md, the accuracy study): against a reference with a0/60 cells, a
+ * 192 a0 inlet and growth 1.02, mu is within 0.75 % on fig05, fig10 and the
+ * real rubber, where the uniform 768 / 24 a0 grid was 1.2-1.6 % off (its
+ * inlet too short: mu converges like 1/X in the inlet length). */
+#define VL_WET_ROUGH_DOMAIN_MIN_A0 -96.0
+#define VL_WET_ROUGH_GRID 2928 /* 97.6 a0 / (a0/30) */
+#define VL_WET_GRID_GROWTH 1.05
 
 typedef struct {
   vl_prony rubber;            /* n_terms = 0: elastic with E = e_inf_pa */
@@ -84,6 +139,9 @@ typedef struct {
   const vl_persson *roughness;/* NULL = smooth (hard contact); not owned */
   double eta_pa_s;            /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
   vl_flow_factor_kind flow_factors; /* with roughness; smooth surfaces use smooth */
+  /* persson-emt: the factor table of the surface of roughness (same h_rms;
+   * not owned, must outlive the contact); NULL for the other models */
+  const vl_emt_table *flow_table;
   size_t grid;                /* cells of the uniform grid on the domain (the resolution) */
   /* Graded inlet (rough contacts only; <= 1: uniform grid): upstream of
    * x = -VL_GRADE_START_A0 a0 the uniform cells are merged into cells that
@@ -100,68 +158,38 @@ typedef struct {
   double tolerance;           /* scaled residual norm for convergence */
   int max_iterations;         /* Newton iterations per solve (0 = VL_NEWTON_MAX_ITERATIONS) */
   vl_linear_solver linear_solver;
-  /* Viscous flattening of the asperities (seed Appendix C; NULL = off; not
-   * owned, must outlive the contact). The PSD both the contact and the
-   * flow factors see becomes epsilon_f(u, v0) C(q) at each node, u the local
-   * separation: pc(u) -> s pc(u/s), A/A0 at pc -> A/A0 at pc/s, h_rms ->
-   * s h_rms in the flow factors and the Couette film, s = sqrt(epsilon_f)
-   * (contact.c derives the scaling), with the chain rule through
-   * epsilon_f(u) in the Jacobian. Needs roughness and a fluid (eta > 0):
-   * vl_contact_create refuses it otherwise, and when its surface's h_rms
-   * differs from the roughness table's. Not const: the contact sets the
-   * evaluator's speed (vl_flattening_set_speed) at every new v0 and its
-   * viscosity at create and in vl_contact_set_viscosity, so one evaluator
-   * must not serve two contacts at once. */
-  vl_flattening *flattening;
+  /* Viscous flattening of the asperities (seed Appendix C; NULL = off).
+   * The PSD both the contact and the flow factors see becomes
+   * epsilon_f(u, v0) C(q) at each node, u the local separation:
+   * pc(u) -> s pc(u/s), A/A0 at pc -> A/A0 at pc/s, h_rms -> s h_rms in the
+   * flow factors and the Couette film, s = sqrt(epsilon_f) (the solver
+   * derives the scaling), with the chain rule through epsilon_f(u) in the
+   * Jacobian. Needs roughness and a fluid (eta > 0), and flattening_psd, the
+   * PSD the roughness table was built from (same h_rms): vl_contact_create
+   * refuses it otherwise. Both are read only during vl_contact_create: the
+   * contact builds and owns its own evaluator (whose speed and viscosity it
+   * sets as it solves), so nothing outside it changes under it. */
+  const vl_flattening_config *flattening;
+  const vl_psd *flattening_psd;
 } vl_contact_config;
 
-/* Fills cfg with the defaults (grid 512, domain [-1.6, 1.4] a0, tolerance 1e-9,
- * VL_LINSOL_SCHUR) for the given rubber and geometry; the caller sets the rest. */
+/* Sets the numerics of cfg (grid, grid_growth, domain, tolerance,
+ * max_iterations, linear_solver) to the defaults of a contact with or
+ * without roughness and fluid: dry VL_DRY_GRID on [VL_DRY_DOMAIN_MIN_A0,
+ * VL_DRY_DOMAIN_MAX_A0], tolerance VL_DRY_TOLERANCE; wet VL_WET_TOLERANCE and
+ * a long inlet, graded on a rough surface (VL_WET_ROUGH_GRID on
+ * [VL_WET_ROUGH_DOMAIN_MIN_A0, VL_WET_DOMAIN_MAX_A0], growth
+ * VL_WET_GRID_GROWTH) and uniform on a smooth one (VL_WET_GRID on
+ * [VL_WET_DOMAIN_MIN_A0, VL_WET_DOMAIN_MAX_A0]); VL_NEWTON_MAX_ITERATIONS,
+ * VL_LINSOL_SCHUR. The other fields are left alone. */
+void vl_contact_numerics_defaults(bool rough, bool wet, vl_contact_config *cfg);
+
+/* Zeroes cfg and sets the numerics of a dry contact
+ * (vl_contact_numerics_defaults); the caller sets the rubber, the geometry
+ * and the rest. */
 void vl_contact_config_defaults(vl_contact_config *cfg);
 
-#define VL_WARN_MAX 256
-
-/* Result of one operating point, SI units. */
-typedef struct {
-  double v0_m_s;
-  bool converged;
-  long iterations;            /* Newton iterations of this call (smooth wet: including a
-                               * failed continuation attempt and coarse-grid starts) */
-  double residual;            /* final scaled residual norm (max norm) */
-  double mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf;
-  double u_min_m, u_central_m;/* min separation; separation at the pressure centroid */
-  double x_centroid_m;        /* pressure centroid (negative: inlet side) */
-  double contact_width_m;     /* extent where pc >= 1% of its maximum */
-  double fluid_load_fraction; /* \int pf / fN */
-  double load_error;          /* |\int p - fN| / fN */
-  double E_wH_pa;             /* |Er(wH)| (rough) or Er of the relaxed state */
-  double a_H_m;               /* Hertz half-width with |Er(wH)| */
-  double Q;                   /* rolling number (wet rough only; else 0) */
-  double peak_pressure_pa, x_peak_m;
-  double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
-  double x_min_film_m;        /* where u is smallest (EHL constriction: outlet side, x > 0) */
-  int regime;                 /* vl_regime */
-  double eps_f_min;           /* smallest epsilon_f(u) over the grid (viscous flattening);
-                               * 1 when the effect is off */
-  char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
-} vl_point;
-
-/* Lubrication regime by the share of the load carried by the fluid. */
-typedef enum {
-  VL_REGIME_DRY = 0,     /* no fluid */
-  VL_REGIME_BOUNDARY,    /* fluid carries < 5 % of the load */
-  VL_REGIME_MIXED,       /* 5 % ... 95 % */
-  VL_REGIME_HYDRODYNAMIC /* > 95 % */
-} vl_regime;
-const char *vl_regime_name(int regime);
-
-/* Fields on the grid, SI; arrays of length n owned by the caller. */
-typedef struct {
-  size_t n;
-  double *x_m, *p_f_pa, *p_c_pa, *u_m, *area_ratio;
-  double *film_fraction; /* theta: 1 in the full film, < 1 where cavitated; may be NULL */
-  double *width_m;       /* cell widths (graded grids are not uniform); may be NULL */
-} vl_fields;
+/* The result types (vl_point, vl_fields, vl_regime) are in results.h. */
 
 typedef struct vl_contact vl_contact;
 
@@ -201,65 +229,21 @@ void vl_contact_reset(vl_contact *c);
 /* Copies the current fields (n = grid) into f (arrays allocated by caller). */
 void vl_contact_fields(const vl_contact *c, vl_fields *f);
 
-/* Test aid: compares the analytic Jacobian at the current state (speed v0)
- * with central finite differences of the residual; returns the largest
- * |J_fd - J| over all entries divided by the largest |J|, or a negative
- * value on allocation failure. Leaves the state unchanged. */
-double vl_contact_jacobian_check(vl_contact *c, double v0_m_s);
-
-/* Test aid: the same comparison per block of rows, each normalised by its
- * own largest |J| (the global one is set by the Reynolds rows of a wet
- * contact, which hides errors in the others): rel[0] the contact rows
- * (elasticity or complementarity), rel[1] the Reynolds rows, rel[2] the
- * load balance (0 for an empty block). Returns the largest, or a negative
- * value on allocation failure. Leaves the state unchanged. */
-double vl_contact_jacobian_check_blocks(vl_contact *c, double v0_m_s, double rel[3]);
-
-/* Test aid: the fluid flux per unit length J (m^2/s) through the n + 1
- * cell faces of the current state, as discretised by the solver (face 0 is
- * the inlet end of the domain, face n the outlet end;
- * J = -(u^3 phi_p/(12 eta)) dpf/dx + v0 (u + h_rms phi_s)/2). Writes
- * min(cap, n + 1) values; returns n + 1, or 0 for a dry contact. */
-size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap);
-
 /* Hydrodynamic inlet length sqrt(2 R h) (m) of a smooth wet contact of cfg
  * at speed v0 > 0, with h the larger of Martin's rigid film
  * 4.894 eta (v0/2) R/fN and the isoviscous-elastic estimate
  * 2.32 (eta (v0/2) R/fN) g^0.8, g = fN/sqrt(eta (v0/2) E' R), E' = 2 Er
- * (relaxed). For sizing the domain (MODEL.md section 9): the pressure of a
+ * (relaxed). For sizing the domain (docs/MODEL.md section 9): the pressure of a
  * rigid cylinder spreads over several such lengths, and with the inlet end
  * X lengths upstream its film is short by about 1/(2 X^2) / (1/(4 Hc)),
  * Hc = 1.226 (0.6 % at X = 20). Reads rubber, radius, load, viscosity. */
 double vl_contact_inlet_length_m(const vl_contact_config *cfg, double v0_m_s);
 
-/* Cost instrumentation (benchmarks): wall-clock seconds (CLOCK_MONOTONIC)
- * and call counts of the solver's parts since creation or the last reset,
- * summed over the coarse-grid and dry helper contacts a smooth wet contact
- * owns. Reading the clock costs ~50 ns per call and allocates nothing. */
-typedef struct {
-  long residuals, jacobians, setups, solves, kernels, newtons;
-  double t_residual_s;  /* residual evaluations (including KINSOL's line search) */
-  double t_jacobian_s;  /* analytic Jacobian assembly */
-  double t_setup_s;     /* linear solver set-up: the LU factorisation */
-  double t_solve_s;     /* linear solver solves: the triangular solves */
-  double t_kernel_s;    /* influence-matrix builds at a new speed */
-  double t_newton_s;    /* KINSol calls in total (includes the four above) */
-  long linsol_fallbacks;/* VL_LINSOL_SCHUR: set-ups or solves that fell back to the full LU */
-} vl_contact_timing;
-
-/* Sums the counters of c (and its helper contacts) into *t (overwritten). */
-void vl_contact_timing_get(const vl_contact *c, vl_contact_timing *t);
-/* Zeroes the counters of c and its helper contacts. */
-void vl_contact_timing_reset(vl_contact *c);
+/* The test aids (Jacobian checks, face fluxes, influence coefficients,
+ * cells, cost counters) are private: src/solver/contact_test.h. */
 
 size_t vl_contact_grid(const vl_contact *c); /* cells (fewer than cfg.grid when graded) */
 double vl_contact_a0(const vl_contact *c); /* m */
-/* Cell i < vl_contact_grid(c): its node (the cell centre) and width, in a0. */
-void vl_contact_cell(const vl_contact *c, size_t i, double *x_a0, double *width_a0);
-/* The influence coefficient the solver uses at speed v0 (builds the kernel
- * for v0, as a solve would): d(gap at node i)/d(pressure on cell j), gap in
- * a0^2/R, pressure in p0 (vl_contact_p0); for tests. */
-double vl_contact_influence(vl_contact *c, double v0_m_s, size_t i, size_t j);
 double vl_contact_p0(const vl_contact *c); /* Pa */
 
 #endif

@@ -89,7 +89,7 @@ double vl_csv_value(const vl_csv *csv, size_t row, size_t col);
 vl_status vl_csv_parse_double(const char *text, double *out, const char **why);
 
 /* Prony file: header "A,tau_s" (optional units row "1,s"), one creep term
- * per row (MODEL.md section 2), A >= 0, tau_s > 0, at most
+ * per row (docs/MODEL.md section 2), A >= 0, tau_s > 0, at most
  * VL_PRONY_MAX_TERMS rows. Fills prony->n_terms, A and tau_s only (Einf
  * and nu are left as they were). */
 vl_status vl_csv_read_prony(const char *path, vl_prony *prony, vl_error *err);

@@ -1,6 +1,6 @@
 /* viscolube: the material database (SQLite).
  *
- * One file holds rubber compounds (Prony series, MODEL.md section 2),
+ * One file holds rubber compounds (Prony series, docs/MODEL.md section 2),
  * roughness power spectra and lubricants. The schema lives in the .sql
  * files of materials/ (embedded in the program): NNNN_*.sql are forward
  * migrations, applied in order, each in its own transaction that also sets
@@ -19,7 +19,8 @@
  *     for root) is opened read-only: reads work, writes fail with VL_EDB.
  *   - Derived columns (surface C0, h_rms, rms slope) are computed by the
  *     vl_psd_* functions, for shipped and user-added surfaces alike.
- *   - The one write a reading call may make is vl_db_persson_table storing
+ *   - The one write a reading call may make is vl_db_persson_table (or
+ *     vl_db_flow_table) storing
  *     a surface's Persson table, a cache: its failure (read-only file,
  *     lock) is not an error, and removing a surface removes its tables.
  *
@@ -34,6 +35,7 @@
 #include <stddef.h>
 
 #include "viscolube/dma.h"
+#include "viscolube/flow_factors.h"
 #include "viscolube/fluid.h"
 #include "viscolube/rheology.h"
 #include "viscolube/persson.h"
@@ -233,6 +235,17 @@ vl_status vl_db_surface_list(vl_db *db, vl_db_surface **items, size_t *n, vl_err
  * of range, or the PSD), VL_ENOMEM, VL_EDB (the surface lookup failed). */
 vl_status vl_db_persson_table(vl_db *db, const char *name, const vl_psd *psd, size_t n_table,
                               vl_persson **out, bool *from_cache, vl_error *err);
+
+/* The persson-emt flow-factor table of surface name (whose PSD is psd) for
+ * film cut-off film_cutoff_m (m) and n_points nodes (0: the default),
+ * cached exactly like vl_db_persson_table (table surface_flow_factors):
+ * used only when it passes every check of the stored blob (format, PSD
+ * fingerprint, cut-off, checksum, values), else built (about a second) and
+ * stored best effort. On success the caller owns *out
+ * (vl_emt_table_free). Errors: VL_ENOTFOUND, VL_EINPUT (size or cut-off
+ * out of range, the PSD), VL_ENOMEM, VL_EDB. */
+vl_status vl_db_flow_table(vl_db *db, const char *name, const vl_psd *psd, double film_cutoff_m,
+                           size_t n_points, vl_emt_table **out, bool *from_cache, vl_error *err);
 
 /* ---- fluids ----------------------------------------------------------- */
 

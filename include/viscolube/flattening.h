@@ -1,5 +1,5 @@
 /* viscolube: viscous flattening of the asperities (seed Appendix C,
- * Eqs. 23-31, Figs. 19-20; MODEL.md section 10).
+ * Eqs. 23-31, Figs. 19-20; docs/MODEL.md section 10).
  *
  * The thin film's first-order pressure p1 = K^f h (Eq. 25) deforms the rough
  * rubber by u_z = K^c p1 (Eq. 23), so each Fourier component of the

@@ -1,6 +1,6 @@
 /* viscolube: flow and shear-stress factors of the averaged Reynolds equation.
  *
- * MODEL.md sections 5 and 7 and FLOW_FACTORS.md. With u the average
+ * docs/MODEL.md sections 5 and 7 and docs/FLOW_FACTORS.md. With u the average
  * separation (the seed's u, the mean of the local film thickness), rubber and
  * fluid moving at +v0, only the rubber rough:
  *
@@ -44,7 +44,21 @@
 
 #include "viscolube/status.h"
 
-typedef enum { VL_FLOW_FACTORS_SMOOTH = 0, VL_FLOW_FACTORS_PATIR_CHENG } vl_flow_factor_kind;
+typedef enum {
+  VL_FLOW_FACTORS_SMOOTH = 0,
+  VL_FLOW_FACTORS_PATIR_CHENG,
+  VL_FLOW_FACTORS_PERSSON_EMT /* Persson's gap distribution + 2-D Bruggeman medium, from a
+                               * table built once per surface (docs/FLOW_FACTORS.md) */
+} vl_flow_factor_kind;
+
+/* The persson-emt table of one surface and film cut-off (opaque; built and
+ * cached by the database, vl_db_flow_table). */
+typedef struct vl_emt_table vl_emt_table;
+
+/* The default film cut-off of persson-emt (m): gaps narrower than a few
+ * molecular layers are boundary contact, whose shear is sigma_s, and carry
+ * no Couette shear (phi_f). */
+#define VL_FILM_CUTOFF_DEFAULT_M 1e-9
 
 /* The five factors (dimensionless), or their derivatives d/du (1/m). */
 typedef struct {
@@ -66,9 +80,19 @@ typedef struct {
  * their derivatives d/du in *d when d != NULL (v must not be NULL).
  * patir-cheng: u_m <= 0 gives the limit u -> 0+ (and its right derivative);
  * hrms_m <= 0 gives the smooth factors (the limit sigma -> 0); a NaN input
- * gives NaN outputs. Every output is finite for finite inputs. */
+ * gives NaN outputs. Every output is finite for finite inputs. persson-emt
+ * needs its table (vl_flow_factors_eval_table): here it gives NaN. */
 void vl_flow_factors_eval(vl_flow_factor_kind kind, double u_m, double hrms_m,
                           vl_flow_factor_values *v, vl_flow_factor_values *d);
+
+/* The factors of any model: smooth and patir-cheng as vl_flow_factors_eval
+ * (table unused); persson-emt from table (built for the surface's h_rms
+ * h0) at x = u/hrms_m, so that a locally rescaled roughness (viscous
+ * flattening: hrms_m = s h0) keeps the model's scale invariance. persson-emt
+ * without a table, or hrms_m <= 0, gives NaN. */
+void vl_flow_factors_eval_table(vl_flow_factor_kind kind, const vl_emt_table *table, double u_m,
+                                double hrms_m, vl_flow_factor_values *v,
+                                vl_flow_factor_values *d);
 
 /* The solver's combinations (vl_flow_terms) and, when d != NULL, their
  * derivatives d/du. Same conventions as vl_flow_factors_eval; for the smooth
@@ -85,7 +109,8 @@ void vl_flow_factors_terms(vl_flow_factor_kind kind, double u_m, double hrms_m, 
  * +INFINITY); NaN or hrms_m <= 0 returns NaN. */
 double vl_flow_factors_nominal_gap(double u_m, double hrms_m, double *dh_du);
 
-/* "smooth" or "patir-cheng" (the scene's spelling); "unknown" otherwise. */
+/* "smooth", "patir-cheng" or "persson-emt" (the scene's spelling);
+ * "unknown" otherwise. */
 const char *vl_flow_factors_name(vl_flow_factor_kind kind);
 
 /* Parses a scene's model name (exact, as above). VL_EINPUT with the valid

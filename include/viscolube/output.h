@@ -1,14 +1,16 @@
 /* viscolube: writers for curves and fields (CSV, JSON). They know nothing of
  * the solver: they format vl_point and vl_fields. A failed point is written
- * with converged = 0 and empty physics cells, never NaN. */
+ * with converged = 0 and empty physics cells (null in JSON), never NaN.
+ * Files are written whole or not at all (atomic_file.h). */
 #ifndef VISCOLUBE_OUTPUT_H
 #define VISCOLUBE_OUTPUT_H
 
 #include <stddef.h>
 #include <stdio.h>
 
-#include "viscolube/contact.h"
+#include "viscolube/results.h"
 #include "viscolube/status.h"
+#include "viscolube/json.h"
 
 /* What turns a speed into the other sweep coordinates (0 = not defined). */
 typedef struct {
@@ -20,8 +22,9 @@ typedef struct {
 /* CSV columns of the curve, in order (a NULL-terminated list). */
 extern const char *const vl_curve_columns[];
 
-/* Writes the curve to path through a temporary file renamed at the end, so a
- * crash leaves no half-written file. */
+/* Writes the curve to path through a temporary renamed into place
+ * (atomic_file.h), so a crash leaves no half-written file. VL_EIO with a
+ * message naming path when it cannot be written. */
 vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
                              const vl_curve_meta *meta, vl_error *err);
 void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta);
@@ -31,8 +34,13 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
  * load is sum (p_f + p_c) cell_width). */
 vl_status vl_write_fields_csv(const char *path, const vl_fields *f, double a0_m, vl_error *err);
 
-/* One JSON object per point; an array for a curve. */
-void vl_print_point_json(FILE *out, const vl_point *pt, const vl_curve_meta *meta);
-void vl_print_curve_json(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta);
+/* JSON (json.h), numbers with 10 significant digits as in the CSV: a
+ * point is one object with the keys of the CSV columns (on one line); a
+ * curve an array of them, a point a line (VL_JSON_ROWS). */
+void vl_point_json(vl_json *w, const vl_point *pt, const vl_curve_meta *meta);
+void vl_curve_json(vl_json *w, size_t n, const vl_point *pts, const vl_curve_meta *meta);
+/* The members of vl_point_json, into an object the caller has begun (and
+ * ends), for a point written with more keys of its own. */
+void vl_point_json_members(vl_json *w, const vl_point *pt, const vl_curve_meta *meta);
 
 #endif

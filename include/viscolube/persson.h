@@ -2,7 +2,7 @@
  * (docs/MODEL.md section 4): the average separation u(s) and the real contact
  * area A/A0 as functions of s = pc/|Er|, tabulated once per surface.
  *
- * Persson (MODEL.md section 4): with s = pc/|Er| (dimensionless),
+ * Persson (docs/MODEL.md section 4): with s = pc/|Er| (dimensionless),
  *   A/A0 = erf( s / (2 sqrt(g)) ),   g = (pi/4) \int q^3 C dq,
  *   u(s) = (sqrt(pi)/2) \int dq q^2 C(q) w(q) E1( (w(q) s)^2 ),
  *   w(q) = ( pi \int_{q0}^{q} q'^3 C dq' )^(-1/2).

@@ -4,9 +4,9 @@
  * The module knows nothing of the solver: its inputs are arrays (the
  * vl_point of a curve, the vl_fields of marked speeds, measured and fitted
  * moduli) and labels. Every function writes STEM.png and STEM.svg (or the
- * formats the options select), each through STEM.EXT.tmp renamed into place
- * once PLplot has closed it and the file is checked complete, so a failure
- * leaves no half-written figure.
+ * formats the options select), each through a temporary renamed into place
+ * (atomic_file.h) once PLplot has closed it and the file is checked
+ * complete, so a failure leaves no half-written figure.
  *
  * Conventions in every figure: axis titles carry units; a legend right of
  * the plot area (never over the data) names each series; logarithmic axes
@@ -30,7 +30,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "viscolube/contact.h"
+#include "viscolube/results.h"
 #include "viscolube/output.h"
 #include "viscolube/scene.h"
 #include "viscolube/status.h"

@@ -1,6 +1,6 @@
 /* viscolube: fitting the creep-form Prony series to a master curve.
  *
- * Model (MODEL.md section 2, DMA sign convention of rheology.h):
+ * Model (docs/MODEL.md section 2, DMA sign convention of rheology.h):
  *   J(w) = 1/E(w) = J' - i J'',
  *   J'(w)  = c0 + sum_i c_i / (1 + w^2 tau_i^2),
  *   J''(w) =      sum_i c_i w tau_i / (1 + w^2 tau_i^2),

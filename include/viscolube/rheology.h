@@ -1,14 +1,14 @@
 /* viscolube: linear viscoelasticity of a rubber from a Prony series.
  *
- * Creep form (MODEL.md section 2):
+ * Creep form (docs/MODEL.md section 2):
  *   1/E(w) = (1/Einf) [ 1 + sum_i A_i / (1 - i w tau_i) ],  A_i >= 0, tau_i > 0,
  * E(0) = E0 = Einf/(1 + sum A_i), E(inf) = Einf; tau_i are retardation
  * (creep) times. All quantities SI.
  *
- * Sign of the imaginary part: with MODEL.md's e^{-i w t} convention this form
- * gives Im E < 0 (MODEL.md's "tan delta = Im E / Re E" would then be
- * negative: the doc is wrong there). The functions below return the DMA
- * convention instead, E = E' + i E'' and 1/E = J' - i J'' with the loss
+ * Sign of the imaginary part: with the e^{-i w t} convention of docs/MODEL.md
+ * section 2 this form gives Im E < 0; like docs/MODEL.md, the functions below
+ * return the DMA convention instead, E = E' + i E'' and 1/E = J' - i J''
+ * with the loss
  * moduli E'', J'' >= 0, i.e. the complex conjugate of the creep form above;
  * |E| and tan delta = E''/E' are the same in both conventions. */
 #ifndef VISCOLUBE_RHEOLOGY_H
@@ -59,7 +59,7 @@ void vl_prony_shift(vl_prony *prony, double a_T);
 double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c);
 
 /* |Er(wH)| and a_H at speed v0 from the fixed point wH = pi v0 / a_H,
- * a_H^2 = 4 fN R/(pi |Er(wH)|) (MODEL.md section 4). Reduced moduli. */
+ * a_H^2 = 4 fN R/(pi |Er(wH)|) (docs/MODEL.md section 4). Reduced moduli. */
 void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
                        double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H);
 

@@ -1,6 +1,6 @@
 /* viscolube: a scene file (INI) names the materials, the operating
  * conditions, the effects to simulate and the numerics. Only the effects
- * switched on are built and solved. See README.md for every key. */
+ * switched on are built and solved. See docs/FORMATS.md for every key. */
 #ifndef VISCOLUBE_SCENE_H
 #define VISCOLUBE_SCENE_H
 
@@ -12,36 +12,18 @@
 #include "viscolube/status.h"
 
 #define VL_NAME_MAX 128
+/* The flow factors of a rough wet scene that does not name them, and of
+ * `friction` and `compare` (docs/FLOW_FACTORS.md). */
+#define VL_SCENE_ROUGH_FLOW_FACTORS VL_FLOW_FACTORS_PERSSON_EMT
+/* Largest film cut-off a scene takes (m): beyond a micrometre it is no
+ * longer a boundary layer. */
+#define VL_FILM_CUTOFF_MAX_M 1e-6
 #define VL_FIELDS_AT_MAX 32
 #define VL_FLUIDS_MAX 8
-/* Numerics of wet scenes when the scene does not set them (dry: grid 512,
- * domain -1.5, 1.5, tolerance 1e-9), from the accuracy study (bench/,
- * README "Accuracy and cost"): the cheapest setting with mu within 1 % of a
- * reference at N 1536 / inlet 32 a0 over the fig05, fig10 and real-rubber
- * sweeps. The inlet must hold the film's inlet zone at the top of the
- * Stribeck curve (fig05 at v0 eta = 1 Pa m: 6.1 % / 1.5 % short with 5 /
- * 12 a0 against 20 a0); the grid then resolves the contact (N 512: fig10
- * 1.9 %); the tolerance does not move mu between 1e-3 and 1e-9, 1e-6 keeps a
- * margin on the load balance. */
-#define VL_WET_DOMAIN_MIN_A0 -24.0
-#define VL_WET_DOMAIN_MAX_A0 1.6
-#define VL_WET_GRID 768
-#define VL_WET_TOLERANCE 1e-6
-/* Largest [numerics] grid: uniform, and with a graded inlet (whose cells
- * are far fewer; the contact refuses more than VL_CONTACT_MAX_CELLS of them). */
-#define VL_GRID_UNIFORM_MAX 8192
-#define VL_GRID_GRADED_MAX VL_CONTACT_MAX_GRID_GRADED
-/* Rough wet scenes take a graded inlet (vl_contact_config.grid_growth):
- * uniform cells of a0/30 near the contact (as grid 768 on [-24, 1.6] a0
- * gives), merged into cells growing by 5 % upstream of -2 a0, on an inlet of
- * 96 a0; about 200 cells in all. From the study with graded grids (bench/,
- * README "Accuracy and cost"): against a reference with a0/60 cells, a
- * 192 a0 inlet and growth 1.02, mu is within 0.75 % on fig05, fig10 and the
- * real rubber, where the uniform 768 / 24 a0 grid was 1.2-1.6 % off (its
- * inlet too short: mu converges like 1/X in the inlet length). */
-#define VL_WET_ROUGH_DOMAIN_MIN_A0 -96.0
-#define VL_WET_ROUGH_GRID 2928 /* 97.6 a0 / (a0/30) */
-#define VL_WET_GRID_GROWTH 1.05
+
+/* The defaults and limits of the [numerics] keys (VL_DRY_*, VL_WET_*,
+ * VL_GRID_MIN, VL_GRID_UNIFORM_MAX, VL_GRID_GRADED_MAX, VL_GRID_GROWTH_MAX)
+ * are the solver's: contact.h. */
 
 typedef enum {
   VL_SWEEP_V0 = 0,     /* sliding speed, m/s */
@@ -77,7 +59,9 @@ typedef struct {
   /* [effects]: only those on are built and solved */
   struct {
     bool viscoelastic, roughness, fluid, solid_shear, viscous_flattening, temperature;
-    vl_flow_factor_kind flow_factors;
+    vl_flow_factor_kind flow_factors; /* rough wet scenes without the key:
+                                       * VL_SCENE_ROUGH_FLOW_FACTORS */
+    double film_cutoff_m;             /* persson-emt's g_cut (m) */
     double temperature_c;
   } effects;
   /* [numerics] */
@@ -94,11 +78,9 @@ typedef struct {
 void vl_scene_defaults(vl_scene *scene);
 
 /* The numerics a scene gets from its effects when it does not set them
- * (grid, grid_growth, domain, tolerance): dry as vl_scene_defaults; wet
- * with VL_WET_TOLERANCE and a long inlet, graded on a rough surface
- * (VL_WET_ROUGH_GRID on [VL_WET_ROUGH_DOMAIN_MIN_A0, VL_WET_DOMAIN_MAX_A0],
- * growth VL_WET_GRID_GROWTH) and uniform on a smooth one (VL_WET_GRID on
- * [VL_WET_DOMAIN_MIN_A0, VL_WET_DOMAIN_MAX_A0]). */
+ * (grid, grid_growth, domain, tolerance): the solver's defaults for its
+ * roughness and fluid effects, vl_contact_numerics_defaults (dry as
+ * vl_scene_defaults; wet with a long inlet, graded on a rough surface). */
 void vl_scene_default_numerics(vl_scene *scene);
 
 /* Parses a scene file. Errors (unknown section or key, missing required key,

@@ -25,7 +25,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
                                vl_error *err);
 void vl_simulation_free(vl_simulation *sim);
 
-/* Compound c at temperature t_c (MODEL.md section 2, time-temperature
+/* Compound c at temperature t_c (docs/MODEL.md section 2, time-temperature
  * superposition): every retardation time tau_i -> a_T tau_i with
  *   log10 a_T = -C1 (T - Tref) / (C2 + T - Tref),
  * so a_T < 1 above Tref (warmer: faster, the loss peak at higher

@@ -2,6 +2,9 @@
 #ifndef VL_CLI_H
 #define VL_CLI_H
 
+/* The program uses the library through its public header only. */
+#include "viscolube.h"
+
 typedef struct {
   const char *db_path; /* --db PATH, else $VISCOLUBE_DB, else NULL = default */
 } vl_cli_globals;

@@ -8,10 +8,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "viscolube/csv.h"
-#include "viscolube/database.h"
-#include "viscolube/flattening.h"
-#include "viscolube/scene.h"
 
 #define MAX_SPEEDS 32
 #define MAX_HURST 16
@@ -108,38 +104,74 @@ static void print_opt(FILE *f, double v) {
   if (isfinite(v)) fprintf(f, "%.6g", v);
 }
 
-static void json_num(double v) {
-  if (isfinite(v)) printf("%.10g", v);
-  else printf("null");
-}
+/* What the command was asked for: options first, then a case file's values
+ * for those not given. */
+typedef struct {
+  const char *compound, *surface, *fluid, *case_path, *out_dir;
+  double speeds[MAX_SPEEDS], hursts[MAX_HURST], load, radius;
+  double u_lo, u_hi, per_decade;
+  size_t n_speeds, n_hurst;
+  int json, have_load, have_radius;
+  int case_needs_eta; /* the case's speeds are v0 eta: divide by the fluid's eta */
+  vl_flattening_response response;
+  vl_scene scene; /* --case: the names above may point into it */
+} flat_args;
 
-/* Writes text produced by the caller into path through path.tmp. */
-static FILE *open_tmp(const char *path, char *tmp, size_t size, vl_error *err) {
-  snprintf(tmp, size, "%s.tmp", path);
-  FILE *f = fopen(tmp, "w");
-  if (!f) vl_error_set(err, "%s: cannot write: %s", path, strerror(errno));
-  return f;
-}
+/* The computed curves: n_hurst * n_speeds of them (Hurst exponent major),
+ * curve c's epsilon_f at u[i] is eps[c * n_u + i]. */
+typedef struct {
+  vl_psd psd0; /* the stored surface */
+  int have_psd;
+  double eta; /* Pa s */
+  size_t n_u, n_curves;
+  double *u, *eps;
+  curve_info *info;
+} flat_curves;
 
-static vl_status close_tmp(FILE *f, const char *tmp, const char *path, vl_error *err) {
-  int bad = ferror(f);
-  if (fclose(f) != 0) bad = 1;
-  if (bad || rename(tmp, path) != 0) {
-    vl_error_set(err, "%s: cannot write: %s", path, strerror(errno ? errno : EIO));
-    remove(tmp);
-    return VL_EIO;
+/* A numeric option (--load, --radius, --per-decade): 1, else 0 after the
+ * message. */
+static int number_option(flat_args *a, const char *o, const char *v) {
+  double d = 0.0;
+  if (vl_csv_parse_double(v, &d, NULL) != VL_OK || !(d > 0.0)) {
+    fprintf(stderr, "viscolube flattening: option %s needs a positive number (got '%s')\n", o, v);
+    return 0;
   }
-  return VL_OK;
+  if (!strcmp(o, "--load")) a->load = d, a->have_load = 1;
+  else if (!strcmp(o, "--radius")) a->radius = d, a->have_radius = 1;
+  else if (d != floor(d) || d > 1000) {
+    fprintf(stderr, "viscolube flattening: --per-decade needs a whole number in [1, 1000]\n");
+    return 0;
+  } else a->per_decade = d;
+  return 1;
 }
 
-int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
-  const char *compound = NULL, *surface = NULL, *fluid = NULL, *case_path = NULL;
-  const char *out_dir = "out/flattening";
-  double speeds[MAX_SPEEDS], hursts[MAX_HURST], load = 117.0, radius = 1e-3;
-  double u_lo = 1e-3, u_hi = 10.0, per_decade = 20.0;
-  size_t n_speeds = 0, n_hurst = 0;
-  int json = 0, have_load = 0, have_radius = 0;
-  vl_flattening_response response = VL_FLATTENING_MODULUS;
+/* A list option (--speeds, --hurst, --u-range): 1, else 0 after the
+ * message. */
+static int list_option(flat_args *a, const char *o, const char *v) {
+  if (!strcmp(o, "--speeds")) return parse_list(o, v, a->speeds, MAX_SPEEDS, &a->n_speeds);
+  if (!strcmp(o, "--hurst")) {
+    if (!parse_list(o, v, a->hursts, MAX_HURST, &a->n_hurst)) return 0;
+    for (size_t k = 0; k < a->n_hurst; k++)
+      if (a->hursts[k] > 1.0) {
+        fprintf(stderr, "viscolube flattening: --hurst values must lie in (0, 1] (got %g)\n",
+                a->hursts[k]);
+        return 0;
+      }
+    return 1;
+  }
+  double r[2];
+  size_t n = 0;
+  if (!parse_list(o, v, r, 2, &n)) return 0;
+  if (n != 2 || !(r[1] > r[0])) {
+    fprintf(stderr, "viscolube flattening: --u-range needs MIN,MAX with 0 < MIN < MAX\n");
+    return 0;
+  }
+  a->u_lo = r[0], a->u_hi = r[1];
+  return 1;
+}
+
+/* The options: -1 to go on, else the exit code (0 after --help). */
+static int flat_parse(int argc, char **argv, flat_args *a) {
   for (int i = 1; i < argc; i++) {
     const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
@@ -147,7 +179,7 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
       return 0;
     }
     if (!strcmp(o, "--json")) {
-      json = 1;
+      a->json = 1;
       continue;
     }
     if (!v) {
@@ -155,46 +187,18 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
       return 2;
     }
     i++;
-    if (!strcmp(o, "--compound")) compound = v;
-    else if (!strcmp(o, "--surface")) surface = v;
-    else if (!strcmp(o, "--fluid")) fluid = v;
-    else if (!strcmp(o, "--case")) case_path = v;
-    else if (!strcmp(o, "--out")) out_dir = v;
-    else if (!strcmp(o, "--speeds")) {
-      if (!parse_list(o, v, speeds, MAX_SPEEDS, &n_speeds)) return 2;
-    } else if (!strcmp(o, "--hurst")) {
-      if (!parse_list(o, v, hursts, MAX_HURST, &n_hurst)) return 2;
-      for (size_t k = 0; k < n_hurst; k++)
-        if (hursts[k] > 1.0) {
-          fprintf(stderr, "viscolube flattening: --hurst values must lie in (0, 1] (got %g)\n",
-                  hursts[k]);
-          return 2;
-        }
-    } else if (!strcmp(o, "--u-range")) {
-      double r[2];
-      size_t n = 0;
-      if (!parse_list(o, v, r, 2, &n)) return 2;
-      if (n != 2 || !(r[1] > r[0])) {
-        fprintf(stderr, "viscolube flattening: --u-range needs MIN,MAX with 0 < MIN < MAX\n");
-        return 2;
-      }
-      u_lo = r[0], u_hi = r[1];
+    if (!strcmp(o, "--compound")) a->compound = v;
+    else if (!strcmp(o, "--surface")) a->surface = v;
+    else if (!strcmp(o, "--fluid")) a->fluid = v;
+    else if (!strcmp(o, "--case")) a->case_path = v;
+    else if (!strcmp(o, "--out")) a->out_dir = v;
+    else if (!strcmp(o, "--speeds") || !strcmp(o, "--hurst") || !strcmp(o, "--u-range")) {
+      if (!list_option(a, o, v)) return 2;
     } else if (!strcmp(o, "--load") || !strcmp(o, "--radius") || !strcmp(o, "--per-decade")) {
-      double d = 0.0;
-      if (vl_csv_parse_double(v, &d, NULL) != VL_OK || !(d > 0.0)) {
-        fprintf(stderr, "viscolube flattening: option %s needs a positive number (got '%s')\n", o,
-                v);
-        return 2;
-      }
-      if (!strcmp(o, "--load")) load = d, have_load = 1;
-      else if (!strcmp(o, "--radius")) radius = d, have_radius = 1;
-      else if (d != floor(d) || d > 1000) {
-        fprintf(stderr, "viscolube flattening: --per-decade needs a whole number in [1, 1000]\n");
-        return 2;
-      } else per_decade = d;
+      if (!number_option(a, o, v)) return 2;
     } else if (!strcmp(o, "--response")) {
       vl_error e;
-      if (vl_flattening_response_parse(v, &response, &e) != VL_OK) {
+      if (vl_flattening_response_parse(v, &a->response, &e) != VL_OK) {
         fprintf(stderr, "viscolube flattening: --response: %s\n", e.msg);
         return 2;
       }
@@ -203,168 +207,174 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
       return 2;
     }
   }
+  return -1;
+}
 
+/* --case: the scene supplies what the options did not. -1 to go on, else
+ * the exit code after the message. */
+static int flat_from_case(flat_args *a) {
   vl_error err = {{0}};
-  vl_status st = VL_OK;
-  /* a case file supplies what the options did not */
-  vl_scene sc;
-  int case_needs_eta = 0;
-  if (case_path) {
-    st = vl_scene_load(case_path, &sc, &err);
-    if (st != VL_OK) {
-      fprintf(stderr, "viscolube flattening: %s\n", err.msg);
-      return vl_status_exit_code(st);
-    }
-    if (!compound) compound = sc.compound;
-    if (!surface && sc.surface[0]) surface = sc.surface;
-    if (!fluid && sc.fluid[0]) fluid = sc.fluid;
-    if (!have_load) load = sc.load_n_per_m;
-    if (!have_radius) radius = sc.radius_m;
-    if (n_speeds == 0) {
-      if (sc.quantity == VL_SWEEP_DEBORAH) {
-        fprintf(stderr, "viscolube flattening: %s: the sweep is in v0 tau/a0; give --speeds\n",
-                case_path);
-        return 2;
-      }
-      if (sc.points > MAX_SPEEDS) {
-        fprintf(stderr, "viscolube flattening: %s: at most %d speeds (the sweep has %zu points); "
-                        "give --speeds\n", case_path, MAX_SPEEDS, sc.points);
-        return 2;
-      }
-      n_speeds = sc.points;
-      for (size_t k = 0; k < n_speeds; k++) {
-        double t = n_speeds > 1 ? (double)k / (double)(n_speeds - 1) : 0.0;
-        speeds[k] = sc.from * pow(sc.to / sc.from, t); /* as the sweep spaces them */
-      }
-      case_needs_eta = sc.quantity == VL_SWEEP_V0_ETA;
-    }
+  vl_scene *sc = &a->scene;
+  vl_status st = vl_scene_load(a->case_path, sc, &err);
+  if (st != VL_OK) {
+    fprintf(stderr, "viscolube flattening: %s\n", err.msg);
+    return vl_status_exit_code(st);
   }
-  if (!compound || !surface || !fluid || n_speeds == 0) {
-    fprintf(stderr, "viscolube flattening: missing %s (see viscolube flattening --help)\n",
-            !compound ? "--compound" : !surface ? "--surface" : !fluid ? "--fluid" : "--speeds");
+  if (!a->compound) a->compound = sc->compound;
+  if (!a->surface && sc->surface[0]) a->surface = sc->surface;
+  if (!a->fluid && sc->fluid[0]) a->fluid = sc->fluid;
+  if (!a->have_load) a->load = sc->load_n_per_m;
+  if (!a->have_radius) a->radius = sc->radius_m;
+  if (a->n_speeds > 0) return -1;
+  if (sc->quantity == VL_SWEEP_DEBORAH) {
+    fprintf(stderr, "viscolube flattening: %s: the sweep is in v0 tau/a0; give --speeds\n",
+            a->case_path);
     return 2;
   }
-
-  vl_db *db = NULL;
-  vl_psd psd0 = {0};
-  int have_psd = 0;
-  double eta = 0.0;
-  vl_flattening_config cfg;
-  vl_flattening_config_defaults(&cfg);
-  size_t n_curves = 0, n_u = 0;
-  double *u = NULL, *eps = NULL;
-  curve_info *info = NULL;
-  int rc = 0;
-  st = vl_db_open(g->db_path, &db, &err);
-  if (st == VL_OK) st = vl_db_compound_get(db, compound, &cfg.rubber, &err);
-  if (st == VL_OK) {
-    st = vl_db_surface_get(db, surface, &psd0, &err);
-    have_psd = st == VL_OK;
+  if (sc->points > MAX_SPEEDS) {
+    fprintf(stderr, "viscolube flattening: %s: at most %d speeds (the sweep has %zu points); "
+                    "give --speeds\n", a->case_path, MAX_SPEEDS, sc->points);
+    return 2;
   }
-  if (st == VL_OK) st = vl_db_fluid_get(db, fluid, &eta, &err);
-  if (st == VL_OK && n_hurst > 0 && psd0.kind != VL_PSD_SELF_AFFINE) {
-    vl_error_set(&err, "--hurst applies to self-affine surfaces only ('%s' is tabulated)", surface);
+  a->n_speeds = sc->points;
+  for (size_t k = 0; k < a->n_speeds; k++) {
+    double t = a->n_speeds > 1 ? (double)k / (double)(a->n_speeds - 1) : 0.0;
+    a->speeds[k] = sc->from * pow(sc->to / sc->from, t); /* as the sweep spaces them */
+  }
+  a->case_needs_eta = sc->quantity == VL_SWEEP_V0_ETA;
+  return -1;
+}
+
+/* The materials from the database into cfg and fc (psd0, eta), and the
+ * Hurst exponents to compute (the surface's own when none was given). */
+static vl_status flat_load(vl_db *db, flat_args *a, vl_flattening_config *cfg, flat_curves *fc,
+                           vl_error *err) {
+  vl_status st = vl_db_compound_get(db, a->compound, &cfg->rubber, err);
+  if (st == VL_OK) {
+    st = vl_db_surface_get(db, a->surface, &fc->psd0, err);
+    fc->have_psd = st == VL_OK;
+  }
+  if (st == VL_OK) st = vl_db_fluid_get(db, a->fluid, &fc->eta, err);
+  if (st == VL_OK && a->n_hurst > 0 && fc->psd0.kind != VL_PSD_SELF_AFFINE) {
+    vl_error_set(err, "--hurst applies to self-affine surfaces only ('%s' is tabulated)",
+                 a->surface);
     st = VL_EINPUT;
   }
-  if (st == VL_OK && case_needs_eta)
-    for (size_t k = 0; k < n_speeds; k++) speeds[k] /= eta; /* v0 eta -> v0 */
-  if (st != VL_OK) goto done;
-  if (n_hurst == 0) {
-    hursts[0] = psd0.kind == VL_PSD_SELF_AFFINE ? psd0.hurst : NAN;
-    n_hurst = 1;
+  if (st != VL_OK) return st;
+  if (a->case_needs_eta)
+    for (size_t k = 0; k < a->n_speeds; k++) a->speeds[k] /= fc->eta; /* v0 eta -> v0 */
+  if (a->n_hurst == 0) {
+    a->hursts[0] = fc->psd0.kind == VL_PSD_SELF_AFFINE ? fc->psd0.hurst : NAN;
+    a->n_hurst = 1;
   }
-  cfg.load_n_per_m = load;
-  cfg.radius_m = radius;
-  cfg.eta_pa_s = eta;
-  cfg.response = response;
+  cfg->load_n_per_m = a->load;
+  cfg->radius_m = a->radius;
+  cfg->eta_pa_s = fc->eta;
+  cfg->response = a->response;
+  return VL_OK;
+}
 
-  /* the u/h_rms grid: per_decade points a decade, both ends included */
-  n_u = (size_t)ceil(log10(u_hi / u_lo) * per_decade - 1e-9) + 1;
+/* The u/h_rms grid, per_decade points a decade, both ends included, and
+ * room for the curves. */
+static vl_status flat_grid(const flat_args *a, flat_curves *fc, vl_error *err) {
+  size_t n_u = (size_t)ceil(log10(a->u_hi / a->u_lo) * a->per_decade - 1e-9) + 1;
   if (n_u < 2) n_u = 2;
   if (n_u > MAX_U) {
-    vl_error_set(&err, "--u-range and --per-decade ask for %zu separations (at most %d)", n_u,
+    vl_error_set(err, "--u-range and --per-decade ask for %zu separations (at most %d)", n_u,
                  MAX_U);
-    st = VL_EINPUT;
-    goto done;
+    return VL_EINPUT;
   }
-  n_curves = n_hurst * n_speeds;
-  u = malloc(n_u * sizeof *u);
-  eps = malloc(n_u * n_curves * sizeof *eps);
-  info = calloc(n_curves, sizeof *info);
-  if (!u || !eps || !info) {
-    vl_error_set(&err, "out of memory");
-    st = VL_ENOMEM;
-    goto done;
+  fc->n_u = n_u;
+  fc->n_curves = a->n_hurst * a->n_speeds;
+  fc->u = malloc(n_u * sizeof *fc->u);
+  fc->eps = malloc(n_u * fc->n_curves * sizeof *fc->eps);
+  fc->info = calloc(fc->n_curves, sizeof *fc->info);
+  if (!fc->u || !fc->eps || !fc->info) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
   }
   for (size_t i = 0; i < n_u; i++)
-    u[i] = i + 1 == n_u ? u_hi : u_lo * pow(u_hi / u_lo, (double)i / (double)(n_u - 1));
-  for (size_t h = 0; h < n_hurst && st == VL_OK; h++) {
-    vl_psd variant = {0}, *psd = &psd0;
-    if (psd0.kind == VL_PSD_SELF_AFFINE && hursts[h] != psd0.hurst) {
-      st = vl_psd_init_self_affine(&variant, hursts[h], psd0.q0, psd0.q1, psd0.hrms_m, &err);
+    fc->u[i] = i + 1 == n_u ? a->u_hi
+                            : a->u_lo * pow(a->u_hi / a->u_lo, (double)i / (double)(n_u - 1));
+  return VL_OK;
+}
+
+/* Curve ci (epsilon_f into e) of flattening f at speed v0. */
+static vl_status flat_curve(vl_flattening *f, double hrms_m, double hurst, double v0,
+                            const flat_curves *fc, curve_info *ci, double *e, vl_error *err) {
+  vl_status st = vl_flattening_set_speed(f, v0, err);
+  if (st != VL_OK) return st;
+  ci->hurst = hurst, ci->v0 = v0;
+  vl_flattening_state_get(f, &ci->st);
+  ci->eps_min = INFINITY, ci->eps_max = -INFINITY;
+  for (size_t i = 0; i < fc->n_u; i++) {
+    e[i] = vl_flattening_eps_exact(f, fc->u[i] * hrms_m, NULL);
+    if (e[i] < ci->eps_min) ci->eps_min = e[i], ci->u_min = fc->u[i];
+    if (e[i] > ci->eps_max) ci->eps_max = e[i];
+  }
+  for (size_t j = 0; j < N_TABLE_U; j++)
+    ci->at[j] = vl_flattening_eps_exact(f, table_u[j] * hrms_m, NULL);
+  ci->u90 = crossing(f, hrms_m, fc->n_u, fc->u, e, 0.9);
+  ci->u50 = crossing(f, hrms_m, fc->n_u, fc->u, e, 0.5);
+  return VL_OK;
+}
+
+/* Every curve: per Hurst exponent (the stored surface recomputed with it
+ * when it differs), per speed. */
+static vl_status flat_compute(const flat_args *a, const vl_flattening_config *cfg,
+                              flat_curves *fc, vl_error *err) {
+  vl_status st = VL_OK;
+  const vl_psd *psd0 = &fc->psd0;
+  for (size_t h = 0; h < a->n_hurst && st == VL_OK; h++) {
+    vl_psd variant = {0};
+    const vl_psd *psd = psd0;
+    if (psd0->kind == VL_PSD_SELF_AFFINE && a->hursts[h] != psd0->hurst) {
+      st = vl_psd_init_self_affine(&variant, a->hursts[h], psd0->q0, psd0->q1, psd0->hrms_m,
+                                   err);
       psd = &variant;
     }
     vl_flattening *f = NULL;
-    if (st == VL_OK) st = vl_flattening_create(&cfg, psd, &f, &err);
-    for (size_t k = 0; k < n_speeds && st == VL_OK; k++) {
-      curve_info *ci = &info[h * n_speeds + k];
-      double *e = eps + (h * n_speeds + k) * n_u;
-      st = vl_flattening_set_speed(f, speeds[k], &err);
-      if (st != VL_OK) break;
-      ci->hurst = hursts[h], ci->v0 = speeds[k];
-      vl_flattening_state_get(f, &ci->st);
-      ci->eps_min = INFINITY, ci->eps_max = -INFINITY;
-      for (size_t i = 0; i < n_u; i++) {
-        e[i] = vl_flattening_eps_exact(f, u[i] * psd->hrms_m, NULL);
-        if (e[i] < ci->eps_min) ci->eps_min = e[i], ci->u_min = u[i];
-        if (e[i] > ci->eps_max) ci->eps_max = e[i];
-      }
-      for (size_t j = 0; j < N_TABLE_U; j++)
-        ci->at[j] = vl_flattening_eps_exact(f, table_u[j] * psd->hrms_m, NULL);
-      ci->u90 = crossing(f, psd->hrms_m, n_u, u, e, 0.9);
-      ci->u50 = crossing(f, psd->hrms_m, n_u, u, e, 0.5);
+    if (st == VL_OK) st = vl_flattening_create(cfg, psd, &f, err);
+    for (size_t k = 0; k < a->n_speeds && st == VL_OK; k++) {
+      size_t c = h * a->n_speeds + k;
+      st = flat_curve(f, psd->hrms_m, a->hursts[h], a->speeds[k], fc, &fc->info[c],
+                      fc->eps + c * fc->n_u, err);
     }
     vl_flattening_free(f);
     if (psd == &variant) vl_psd_free(&variant);
   }
-  if (st != VL_OK) goto done;
+  return st;
+}
 
-  /* files */
-  if (vl_cli_make_dirs(out_dir) != 0) {
-    vl_error_set(&err, "%s: cannot create: %s", out_dir, strerror(errno));
-    st = VL_EIO;
-    goto done;
-  }
-  char path[4300], tmp[4400];
-  snprintf(path, sizeof path, "%s/flattening.csv", out_dir);
-  FILE *f = open_tmp(path, tmp, sizeof tmp, &err);
-  if (!f) {
-    st = VL_EIO;
-    goto done;
-  }
+/* DIR/flattening.csv: u_over_hrms, then epsilon_f of every curve. */
+static vl_status write_curves_csv(const char *path, const flat_curves *fc, vl_error *err) {
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
+  FILE *f = af.f;
   fputs("u_over_hrms", f);
-  for (size_t c = 0; c < n_curves; c++) {
-    if (isnan(info[c].hurst)) fprintf(f, ",eps_v%g", info[c].v0); /* tabulated surface */
-    else fprintf(f, ",eps_H%g_v%g", info[c].hurst, info[c].v0);
+  for (size_t c = 0; c < fc->n_curves; c++) {
+    const curve_info *ci = &fc->info[c];
+    if (isnan(ci->hurst)) fprintf(f, ",eps_v%g", ci->v0); /* tabulated surface */
+    else fprintf(f, ",eps_H%g_v%g", ci->hurst, ci->v0);
   }
   fputc('\n', f);
-  for (size_t i = 0; i < n_u; i++) {
-    fprintf(f, "%.8g", u[i]);
-    for (size_t c = 0; c < n_curves; c++) fprintf(f, ",%.10g", eps[c * n_u + i]);
+  for (size_t i = 0; i < fc->n_u; i++) {
+    fprintf(f, "%.8g", fc->u[i]);
+    for (size_t c = 0; c < fc->n_curves; c++) fprintf(f, ",%.10g", fc->eps[c * fc->n_u + i]);
     fputc('\n', f);
   }
-  st = close_tmp(f, tmp, path, &err);
-  if (st != VL_OK) goto done;
-  snprintf(path, sizeof path, "%s/flattening-summary.csv", out_dir);
-  f = open_tmp(path, tmp, sizeof tmp, &err);
-  if (!f) {
-    st = VL_EIO;
-    goto done;
-  }
+  return vl_atomic_file_commit(&af, err);
+}
+
+/* DIR/flattening-summary.csv: one row per curve. */
+static vl_status write_summary_csv(const char *path, const flat_curves *fc, vl_error *err) {
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
+  FILE *f = af.f;
   fputs("hurst,v0_m_s,omega_h_rad_s,e_abs_wh_pa,a_h_m,tan_delta_wh,u_onset_over_hrms,"
         "u90_over_hrms,u50_over_hrms,eps_min,u_at_eps_min_over_hrms,eps_max\n", f);
-  for (size_t c = 0; c < n_curves; c++) {
-    const curve_info *ci = &info[c];
+  for (size_t c = 0; c < fc->n_curves; c++) {
+    const curve_info *ci = &fc->info[c];
     print_opt(f, ci->hurst);
     fprintf(f, ",%g,%.8g,%.8g,%.8g,%.8g,%.8g,", ci->v0, ci->st.omega_h_rad_s,
             ci->st.e_abs_pa, ci->st.a_h_m, ci->st.tan_delta, ci->st.u_onset_m / ci->st.hrms_m);
@@ -373,70 +383,130 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
     print_opt(f, ci->u50);
     fprintf(f, ",%.8g,%.8g,%.8g\n", ci->eps_min, ci->u_min, ci->eps_max);
   }
-  st = close_tmp(f, tmp, path, &err);
-  if (st != VL_OK) goto done;
+  return vl_atomic_file_commit(&af, err);
+}
 
-  /* stdout */
-  if (json) {
-    printf("{\"compound\": \"%s\", \"surface\": \"%s\", \"fluid\": \"%s\", \"eta_pa_s\": %.10g, "
-           "\"load_n_per_m\": %.10g, \"radius_m\": %.10g, \"response\": \"%s\", \"hrms_m\": %.10g, "
-           "\"u_over_hrms\": [",
-           compound, surface, fluid, eta, load, radius, vl_flattening_response_name(response),
-           psd0.hrms_m);
-    for (size_t i = 0; i < n_u; i++) printf("%s%.8g", i ? ", " : "", u[i]);
-    printf("], \"curves\": [");
-    for (size_t c = 0; c < n_curves; c++) {
-      const curve_info *ci = &info[c];
-      printf("%s{\"hurst\": ", c ? ", " : "");
-      json_num(ci->hurst);
-      printf(", \"v0_m_s\": %.10g, \"omega_h_rad_s\": %.10g, \"e_abs_wh_pa\": %.10g, "
-             "\"a_h_m\": %.10g, \"tan_delta_wh\": %.10g, \"u_onset_over_hrms\": %.10g, "
-             "\"u90_over_hrms\": ",
-             ci->v0, ci->st.omega_h_rad_s, ci->st.e_abs_pa, ci->st.a_h_m, ci->st.tan_delta,
-             ci->st.u_onset_m / ci->st.hrms_m);
-      json_num(ci->u90);
-      printf(", \"u50_over_hrms\": ");
-      json_num(ci->u50);
-      printf(", \"eps_min\": %.10g, \"epsilon_f\": [", ci->eps_min);
-      for (size_t i = 0; i < n_u; i++) printf("%s%.10g", i ? ", " : "", eps[c * n_u + i]);
-      printf("]}");
-    }
-    printf("]}\n");
-  } else {
-    printf("viscous flattening: %s on %s in %s (eta %g Pa s), R = %g m, fN = %g N/m, "
-           "response %s\n",
-           compound, surface, fluid, eta, radius, load, vl_flattening_response_name(response));
-    printf("%5s %9s %10s %10s %7s %9s %9s %9s", "H", "v0 m/s", "wH rad/s", "|Er(wH)| Pa",
-           "tan d", "u90/h", "u50/h", "eps_min");
-    for (size_t j = 0; j < N_TABLE_U; j++) {
-      char label[32];
-      snprintf(label, sizeof label, "eps(%g)", table_u[j]);
-      printf(" %10s", label);
-    }
-    printf("\n");
-    for (size_t c = 0; c < n_curves; c++) {
-      const curve_info *ci = &info[c];
-      printf("%5.2f %9.3g %10.3g %10.3g %7.3f %9.3g %9.3g %9.4f", ci->hurst, ci->v0,
-             ci->st.omega_h_rad_s, ci->st.e_abs_pa, ci->st.tan_delta, ci->u90, ci->u50,
-             ci->eps_min);
-      for (size_t j = 0; j < N_TABLE_U; j++) printf(" %10.4f", ci->at[j]);
-      printf("\n");
-    }
-    printf("(u90, u50: u/h_rms where epsilon_f = 0.9, 0.5, nan: not reached in [%g, %g]; "
-           "eps(x): epsilon_f at u/h_rms = x)\n"
-           "wrote %s/flattening.csv and %s/flattening-summary.csv\n",
-           u_lo, u_hi, out_dir, out_dir);
+/* One object: the conditions, the u/h_rms grid and every curve. */
+static void print_json(const flat_args *a, const flat_curves *fc) {
+  vl_json w;
+  vl_json_init(&w, stdout, 10);
+  vl_json_object_begin(&w, VL_JSON_INLINE);
+  vl_json_key_string(&w, "compound", a->compound);
+  vl_json_key_string(&w, "surface", a->surface);
+  vl_json_key_string(&w, "fluid", a->fluid);
+  vl_json_key_number(&w, "eta_pa_s", fc->eta);
+  vl_json_key_number(&w, "load_n_per_m", a->load);
+  vl_json_key_number(&w, "radius_m", a->radius);
+  vl_json_key_string(&w, "response", vl_flattening_response_name(a->response));
+  vl_json_key_number(&w, "hrms_m", fc->psd0.hrms_m);
+  vl_json_key(&w, "u_over_hrms");
+  vl_json_array_begin(&w, VL_JSON_INLINE);
+  for (size_t i = 0; i < fc->n_u; i++) vl_json_number_digits(&w, fc->u[i], 8);
+  vl_json_end(&w);
+  vl_json_key(&w, "curves");
+  vl_json_array_begin(&w, VL_JSON_INLINE);
+  for (size_t c = 0; c < fc->n_curves; c++) {
+    const curve_info *ci = &fc->info[c];
+    vl_json_object_begin(&w, VL_JSON_INLINE);
+    vl_json_key_number(&w, "hurst", ci->hurst);
+    vl_json_key_number(&w, "v0_m_s", ci->v0);
+    vl_json_key_number(&w, "omega_h_rad_s", ci->st.omega_h_rad_s);
+    vl_json_key_number(&w, "e_abs_wh_pa", ci->st.e_abs_pa);
+    vl_json_key_number(&w, "a_h_m", ci->st.a_h_m);
+    vl_json_key_number(&w, "tan_delta_wh", ci->st.tan_delta);
+    vl_json_key_number(&w, "u_onset_over_hrms", ci->st.u_onset_m / ci->st.hrms_m);
+    vl_json_key_number(&w, "u90_over_hrms", ci->u90);
+    vl_json_key_number(&w, "u50_over_hrms", ci->u50);
+    vl_json_key_number(&w, "eps_min", ci->eps_min);
+    vl_json_key(&w, "epsilon_f");
+    vl_json_array_begin(&w, VL_JSON_INLINE);
+    for (size_t i = 0; i < fc->n_u; i++) vl_json_number(&w, fc->eps[c * fc->n_u + i]);
+    vl_json_end(&w);
+    vl_json_end(&w);
   }
+  vl_json_end(&w);
+  vl_json_end(&w);
+  fputc('\n', stdout);
+}
 
-done:
-  if (st != VL_OK) {
+/* The table: one row per curve with epsilon_f at the table's separations. */
+static void print_text(const flat_args *a, const flat_curves *fc) {
+  printf("viscous flattening: %s on %s in %s (eta %g Pa s), R = %g m, fN = %g N/m, "
+         "response %s\n",
+         a->compound, a->surface, a->fluid, fc->eta, a->radius, a->load,
+         vl_flattening_response_name(a->response));
+  printf("%5s %9s %10s %10s %7s %9s %9s %9s", "H", "v0 m/s", "wH rad/s", "|Er(wH)| Pa",
+         "tan d", "u90/h", "u50/h", "eps_min");
+  for (size_t j = 0; j < N_TABLE_U; j++) {
+    char label[32];
+    snprintf(label, sizeof label, "eps(%g)", table_u[j]);
+    printf(" %10s", label);
+  }
+  printf("\n");
+  for (size_t c = 0; c < fc->n_curves; c++) {
+    const curve_info *ci = &fc->info[c];
+    printf("%5.2f %9.3g %10.3g %10.3g %7.3f %9.3g %9.3g %9.4f", ci->hurst, ci->v0,
+           ci->st.omega_h_rad_s, ci->st.e_abs_pa, ci->st.tan_delta, ci->u90, ci->u50,
+           ci->eps_min);
+    for (size_t j = 0; j < N_TABLE_U; j++) printf(" %10.4f", ci->at[j]);
+    printf("\n");
+  }
+  printf("(u90, u50: u/h_rms where epsilon_f = 0.9, 0.5, nan: not reached in [%g, %g]; "
+         "eps(x): epsilon_f at u/h_rms = x)\n"
+         "wrote %s/flattening.csv and %s/flattening-summary.csv\n",
+         a->u_lo, a->u_hi, a->out_dir, a->out_dir);
+}
+
+/* DIR/flattening.csv and DIR/flattening-summary.csv. */
+static vl_status write_files(const flat_args *a, const flat_curves *fc, vl_error *err) {
+  if (vl_cli_make_dirs(a->out_dir) != 0) {
+    vl_error_set(err, "%s: cannot create: %s", a->out_dir, strerror(errno));
+    return VL_EIO;
+  }
+  char path[4300];
+  snprintf(path, sizeof path, "%s/flattening.csv", a->out_dir);
+  vl_status st = write_curves_csv(path, fc, err);
+  if (st != VL_OK) return st;
+  snprintf(path, sizeof path, "%s/flattening-summary.csv", a->out_dir);
+  return write_summary_csv(path, fc, err);
+}
+
+int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
+  flat_args a = {.out_dir = "out/flattening", .load = 117.0, .radius = 1e-3, .u_lo = 1e-3,
+                 .u_hi = 10.0, .per_decade = 20.0, .response = VL_FLATTENING_MODULUS};
+  int rc = flat_parse(argc, argv, &a);
+  if (rc < 0 && a.case_path) rc = flat_from_case(&a);
+  if (rc >= 0) return rc;
+  if (!a.compound || !a.surface || !a.fluid || a.n_speeds == 0) {
+    fprintf(stderr, "viscolube flattening: missing %s (see viscolube flattening --help)\n",
+            !a.compound  ? "--compound"
+            : !a.surface ? "--surface"
+            : !a.fluid   ? "--fluid"
+                         : "--speeds");
+    return 2;
+  }
+  vl_error err = {{0}};
+  vl_db *db = NULL;
+  flat_curves fc = {0};
+  vl_flattening_config cfg;
+  vl_flattening_config_defaults(&cfg);
+  rc = 0;
+  vl_status st = vl_db_open(g->db_path, &db, &err);
+  if (st == VL_OK) st = flat_load(db, &a, &cfg, &fc, &err);
+  if (st == VL_OK) st = flat_grid(&a, &fc, &err);
+  if (st == VL_OK) st = flat_compute(&a, &cfg, &fc, &err);
+  if (st == VL_OK) st = write_files(&a, &fc, &err);
+  if (st == VL_OK) {
+    if (a.json) print_json(&a, &fc);
+    else print_text(&a, &fc);
+  } else {
     fprintf(stderr, "viscolube flattening: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
     rc = vl_status_exit_code(st);
   }
-  free(u);
-  free(eps);
-  free(info);
-  if (have_psd) vl_psd_free(&psd0);
+  free(fc.u);
+  free(fc.eps);
+  free(fc.info);
+  if (fc.have_psd) vl_psd_free(&fc.psd0);
   vl_db_close(db);
   return rc;
 }

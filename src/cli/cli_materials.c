@@ -16,12 +16,6 @@
 #include <sys/stat.h>
 
 #include "cli.h"
-#include "viscolube/csv.h"
-#include "viscolube/database.h"
-#include "viscolube/dma.h"
-#include "viscolube/plot.h"
-#include "viscolube/rheology.h"
-#include "viscolube/roughness.h"
 
 #define TWO_PI 6.283185307179586476925287
 
@@ -59,7 +53,7 @@ static const char *const noun_help[] = {
     [NOUN_COMPOUND] =
         "usage: viscolube [--db PATH] compound VERB ...\n"
         "\n"
-        "Rubber compounds: a creep-form Prony series (MODEL.md section 2)\n"
+        "Rubber compounds: a creep-form Prony series (docs/MODEL.md section 2)\n"
         "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]\n"
         "\n"
         "verbs:\n"
@@ -100,6 +94,138 @@ static const char *const noun_help[] = {
                    "`viscolube fluid VERB --help` describes a verb.\n",
 };
 
+/* `compound show --help` */
+static const char compound_show_help[] =
+    "usage: viscolube [--db PATH] compound show NAME [--json] [--curve FILE]\n"
+    "                                         [--plot [--out DIR]]\n"
+    "\n"
+    "Prints what is stored about compound NAME and the quantities derived from it:\n"
+    "E0, Einf, nu, the loss-tangent peak, the Prony terms and, for a compound fitted\n"
+    "to measured data, the fit report (rms and largest relative error of E' and E'',\n"
+    "terms, frequency window, WLF constants and the shift of each isotherm).\n"
+    "  --json        print one JSON object instead\n"
+    "  --curve FILE  also write FILE (CSV, one row per measured point, sorted by\n"
+    "                reduced frequency): omega_rad_s, frequency_hz, temperature_c,\n"
+    "                reduced_omega_rad_s (a_T omega at tref), storage_pa and\n"
+    "                storage_fit_pa, loss_pa and loss_fit_pa, tan_delta and\n"
+    "                tan_delta_fit (fitted at the reduced frequency), source_line;\n"
+    "                plot measured against fitted over reduced_omega_rad_s.\n"
+    "  --plot        also draw, as PNG and SVG in DIR (default out/compound-NAME):\n"
+    "                moduli (E', E'' and tan delta, measured on the master curve and\n"
+    "                the Prony series, log-log) and, for isotherms, shifts (log10 a_T\n"
+    "                of each isotherm against temperature with the WLF fit).\n";
+
+/* `compound add --help` */
+static const char compound_add_help[] =
+    "usage: viscolube [--db PATH] compound add NAME --prony FILE --e-inf PA --nu NU\n"
+    "                 [--class model|filled|unfilled|other] [--description TEXT]\n"
+    "                 [--tref C] [--wlf-c1 C1 --wlf-c2 C2_K]\n"
+    "       viscolube [--db PATH] compound add NAME --measured FILE [--tref C]\n"
+    "                 [--class CLASS] [--description TEXT] [--nu NU]\n"
+    "                 [--freq-unit Hz|rad/s] [--modulus-unit Pa|kPa|MPa|GPa]\n"
+    "                 [--temp-unit C|K] [--terms-per-decade N]\n"
+    "                 [--fit-weights relative|modulus]\n"
+    "\n"
+    "Registers a rubber compound by its creep-form Prony series\n"
+    "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]  (docs/MODEL.md section 2)\n"
+    "given directly (--prony) or fitted to measured DMA data (--measured).\n"
+    "\n"
+    "  NAME            1-63 characters of A-Z a-z 0-9 . _ + -\n"
+    "  --class CLASS   model, filled, unfilled or other (default other)\n"
+    "  --description TEXT  free text; note the source of the data here\n"
+    "\n"
+    "From a Prony series:\n"
+    "  --prony FILE    CSV with the header line 'A,tau_s' and one term per row:\n"
+    "                  A >= 0 (dimensionless), tau_s > 0 (retardation time, s).\n"
+    "                  An optional units row '1,s' may follow the header; lines\n"
+    "                  starting with '#' are comments. At most 128 terms.\n"
+    "  --e-inf PA      glassy (high-frequency) modulus Einf > 0, Pa\n"
+    "  --nu NU         Poisson ratio, 0 <= nu <= 0.5\n"
+    "  --tref C        reference temperature of the series, Celsius (default 20)\n"
+    "  --wlf-c1 C1, --wlf-c2 C2_K  WLF constants of the compound (both or neither)\n"
+    "The relaxed modulus is E0 = Einf / (1 + sum A_i).\n"
+    "\n"
+    "From measured data (--measured FILE), a DMA export as CSV:\n"
+    "  header row     column names in any order (case, blanks, '_' and '-' ignored):\n"
+    "                   frequency: f, freq, frequency, omega\n"
+    "                   E', E'': E', E_stor, storage / E'', E_loss, loss\n"
+    "                   or E' with tan delta (tan delta, tan_del, tand)\n"
+    "                   or J', J'': J_stor, J_loss (compliances)\n"
+    "                   temperature (optional): T, temp, temperature\n"
+    "                   set (optional): which isotherm a row belongs to\n"
+    "                 A unit may follow a name: 'f [Hz]', 'E' (MPa)'.\n"
+    "  units row      optional, right after the header, e.g. 'Hz,MPa,MPa,C':\n"
+    "                 Hz or rad/s; Pa, kPa, MPa or GPa (compliances 1/MPa ...);\n"
+    "                 C or K; '-' for tan delta and set. Every column needs a unit\n"
+    "                 from the header, the units row or these options (which must\n"
+    "                 agree with the file where both are given):\n"
+    "  --freq-unit Hz|rad/s  --modulus-unit Pa|kPa|MPa|GPa  --temp-unit C|K\n"
+    "  isotherms      with a temperature column, rows are grouped by the set column\n"
+    "                 or, without one, by runs of rows within 1 K; the isotherms are\n"
+    "                 shifted onto each other (time-temperature superposition on\n"
+    "                 log E', and log E'' where it superposes as well) and WLF is\n"
+    "                 fitted to the shifts (3 or more isotherms).\n"
+    "  --tref C       reference temperature of the master curve. Required for a\n"
+    "                 file without temperatures (a master curve) and for a single\n"
+    "                 isotherm (then equal to its temperature); with several\n"
+    "                 isotherms it defaults to the measured temperature nearest 20 C.\n"
+    "  --nu NU        Poisson ratio stored with the fit (default 0.5: DMA in tension\n"
+    "                 of a nearly incompressible rubber)\n"
+    "  --terms-per-decade N  Prony grid density over the master curve (default 2,\n"
+    "                 at most 8); terms the data do not need come out zero\n"
+    "  --fit-weights relative|modulus  relative (default): J' and J'' rows each by\n"
+    "                 their own magnitude, so E' and E'' are fitted to the same\n"
+    "                 relative accuracy; modulus: both by |J|, i.e. the complex\n"
+    "                 modulus to a relative and tan delta to an absolute accuracy\n"
+    "                 (use it when E'' does not superpose, e.g. glassy secondary\n"
+    "                 relaxations)\n"
+    "Refused with FILE:LINE and the column: non-numeric, NaN/Inf, zero or negative\n"
+    "values, unknown/misspelt/missing columns, wrong or mixed units, E' falling\n"
+    "with frequency by over 10 %, isotherms that do not superpose, a master curve\n"
+    "under one decade, fewer points than Prony terms + 1. Nothing is stored then.\n"
+    "The raw points, shifts, master curve and fit are stored in one transaction;\n"
+    "`compound show NAME` prints the fit report.\n";
+
+/* `surface add --help` */
+static const char surface_add_help[] =
+    "usage: viscolube [--db PATH] surface add NAME --self-affine --hurst H --q0 PER_M\n"
+    "                 --q1 PER_M --hrms M [--description TEXT]\n"
+    "       viscolube [--db PATH] surface add NAME --psd FILE [--description TEXT]\n"
+    "\n"
+    "Registers an isotropic roughness power spectrum C(q) (m^4), with\n"
+    "h_rms^2 = 2 pi \\int q C(q) dq.\n"
+    "\n"
+    "  --self-affine   C(q) = C0 (q/q0)^(-2(1+H)) for q0 <= q <= q1; C0 follows\n"
+    "                  from h_rms. Needs all of:\n"
+    "    --hurst H     Hurst exponent, 0 < H <= 1 (fractal dimension 3 - H)\n"
+    "    --q0 PER_M    low wavevector cut-off, 1/m (> 0)\n"
+    "    --q1 PER_M    high wavevector cut-off, 1/m (> q0)\n"
+    "    --hrms M      rms roughness, m (> 0)\n"
+    "  --psd FILE      tabulated spectrum: CSV with the header line 'q_per_m,C_m4',\n"
+    "                  q > 0 strictly increasing, C > 0, at least 2 rows; an optional\n"
+    "                  units row '1/m,m^4' may follow the header. Interpolated as a\n"
+    "                  power law between points, zero outside.\n"
+    "  --description TEXT  free text; note the source of the data here\n";
+
+/* `fluid add --help` */
+static const char fluid_add_help[] =
+    "usage: viscolube [--db PATH] fluid add NAME --viscosity PA_S [--tref C]\n"
+    "                 [--vogel-b K --vogel-c K --law-range TMIN_C,TMAX_C]\n"
+    "                 [--description TEXT]\n"
+    "\n"
+    "Registers a Newtonian lubricant.\n"
+    "  --viscosity PA_S   low-shear viscosity > 0, Pa s (water at 20 C: 1.0e-3)\n"
+    "  --tref C           temperature the viscosity was measured at, Celsius\n"
+    "                     (default 20)\n"
+    "  --vogel-b K, --vogel-c K, --law-range TMIN_C,TMAX_C\n"
+    "                     optional viscosity-temperature law (all three or none):\n"
+    "                     log10 eta = A + B/(T - C), T in K, anchored at the viscosity\n"
+    "                     at tref, trusted from TMIN to TMAX C (the range of its data;\n"
+    "                     it must hold tref). Without a law the fluid is known at tref\n"
+    "                     only (scenes with temperature = on at another temperature\n"
+    "                     are refused). Water: B 247.8, C 140, range 0,100.\n"
+    "  --description TEXT free text; note the source of the data here\n";
+
 static void verb_help(noun_kind kind, const char *verb, FILE *out) {
   const char *noun = kind == NOUN_COMPOUND  ? "compound"
                      : kind == NOUN_SURFACE ? "surface"
@@ -112,25 +238,7 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
             "  --json   print a JSON array of objects instead (the fields of `%s show --json`)\n",
             noun, noun, noun);
   } else if (!strcmp(verb, "show") && kind == NOUN_COMPOUND) {
-    fputs("usage: viscolube [--db PATH] compound show NAME [--json] [--curve FILE]\n"
-          "                                         [--plot [--out DIR]]\n"
-          "\n"
-          "Prints what is stored about compound NAME and the quantities derived from it:\n"
-          "E0, Einf, nu, the loss-tangent peak, the Prony terms and, for a compound fitted\n"
-          "to measured data, the fit report (rms and largest relative error of E' and E'',\n"
-          "terms, frequency window, WLF constants and the shift of each isotherm).\n"
-          "  --json        print one JSON object instead\n"
-          "  --curve FILE  also write FILE (CSV, one row per measured point, sorted by\n"
-          "                reduced frequency): omega_rad_s, frequency_hz, temperature_c,\n"
-          "                reduced_omega_rad_s (a_T omega at tref), storage_pa and\n"
-          "                storage_fit_pa, loss_pa and loss_fit_pa, tan_delta and\n"
-          "                tan_delta_fit (fitted at the reduced frequency), source_line;\n"
-          "                plot measured against fitted over reduced_omega_rad_s.\n"
-          "  --plot        also draw, as PNG and SVG in DIR (default out/compound-NAME):\n"
-          "                moduli (E', E'' and tan delta, measured on the master curve and\n"
-          "                the Prony series, log-log) and, for isotherms, shifts (log10 a_T\n"
-          "                of each isotherm against temperature with the WLF fit).\n",
-          out);
+    fputs(compound_show_help, out);
   } else if (!strcmp(verb, "show")) {
     fprintf(out,
             "usage: viscolube [--db PATH] %s show NAME [--json]\n"
@@ -144,113 +252,10 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
             "\n"
             "Deletes %s NAME (and everything that belongs to it) in one transaction.\n",
             noun, noun);
-  } else if (kind == NOUN_COMPOUND) {
-    fputs("usage: viscolube [--db PATH] compound add NAME --prony FILE --e-inf PA --nu NU\n"
-          "                 [--class model|filled|unfilled|other] [--description TEXT]\n"
-          "                 [--tref C] [--wlf-c1 C1 --wlf-c2 C2_K]\n"
-          "       viscolube [--db PATH] compound add NAME --measured FILE [--tref C]\n"
-          "                 [--class CLASS] [--description TEXT] [--nu NU]\n"
-          "                 [--freq-unit Hz|rad/s] [--modulus-unit Pa|kPa|MPa|GPa]\n"
-          "                 [--temp-unit C|K] [--terms-per-decade N]\n"
-          "                 [--fit-weights relative|modulus]\n"
-          "\n"
-          "Registers a rubber compound by its creep-form Prony series\n"
-          "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]  (MODEL.md section 2)\n"
-          "given directly (--prony) or fitted to measured DMA data (--measured).\n"
-          "\n"
-          "  NAME            1-63 characters of A-Z a-z 0-9 . _ + -\n"
-          "  --class CLASS   model, filled, unfilled or other (default other)\n"
-          "  --description TEXT  free text; note the source of the data here\n"
-          "\n"
-          "From a Prony series:\n"
-          "  --prony FILE    CSV with the header line 'A,tau_s' and one term per row:\n"
-          "                  A >= 0 (dimensionless), tau_s > 0 (retardation time, s).\n"
-          "                  An optional units row '1,s' may follow the header; lines\n"
-          "                  starting with '#' are comments. At most 128 terms.\n"
-          "  --e-inf PA      glassy (high-frequency) modulus Einf > 0, Pa\n"
-          "  --nu NU         Poisson ratio, 0 <= nu <= 0.5\n"
-          "  --tref C        reference temperature of the series, Celsius (default 20)\n"
-          "  --wlf-c1 C1, --wlf-c2 C2_K  WLF constants of the compound (both or neither)\n"
-          "The relaxed modulus is E0 = Einf / (1 + sum A_i).\n"
-          "\n"
-          "From measured data (--measured FILE), a DMA export as CSV:\n"
-          "  header row     column names in any order (case, blanks, '_' and '-' ignored):\n"
-          "                   frequency: f, freq, frequency, omega\n"
-          "                   E', E'': E', E_stor, storage / E'', E_loss, loss\n"
-          "                   or E' with tan delta (tan delta, tan_del, tand)\n"
-          "                   or J', J'': J_stor, J_loss (compliances)\n"
-          "                   temperature (optional): T, temp, temperature\n"
-          "                   set (optional): which isotherm a row belongs to\n"
-          "                 A unit may follow a name: 'f [Hz]', 'E' (MPa)'.\n"
-          "  units row      optional, right after the header, e.g. 'Hz,MPa,MPa,C':\n"
-          "                 Hz or rad/s; Pa, kPa, MPa or GPa (compliances 1/MPa ...);\n"
-          "                 C or K; '-' for tan delta and set. Every column needs a unit\n"
-          "                 from the header, the units row or these options (which must\n"
-          "                 agree with the file where both are given):\n"
-          "  --freq-unit Hz|rad/s  --modulus-unit Pa|kPa|MPa|GPa  --temp-unit C|K\n"
-          "  isotherms      with a temperature column, rows are grouped by the set column\n"
-          "                 or, without one, by runs of rows within 1 K; the isotherms are\n"
-          "                 shifted onto each other (time-temperature superposition on\n"
-          "                 log E', and log E'' where it superposes as well) and WLF is\n"
-          "                 fitted to the shifts (3 or more isotherms).\n"
-          "  --tref C       reference temperature of the master curve. Required for a\n"
-          "                 file without temperatures (a master curve) and for a single\n"
-          "                 isotherm (then equal to its temperature); with several\n"
-          "                 isotherms it defaults to the measured temperature nearest 20 C.\n"
-          "  --nu NU        Poisson ratio stored with the fit (default 0.5: DMA in tension\n"
-          "                 of a nearly incompressible rubber)\n"
-          "  --terms-per-decade N  Prony grid density over the master curve (default 2,\n"
-          "                 at most 8); terms the data do not need come out zero\n"
-          "  --fit-weights relative|modulus  relative (default): J' and J'' rows each by\n"
-          "                 their own magnitude, so E' and E'' are fitted to the same\n"
-          "                 relative accuracy; modulus: both by |J|, i.e. the complex\n"
-          "                 modulus to a relative and tan delta to an absolute accuracy\n"
-          "                 (use it when E'' does not superpose, e.g. glassy secondary\n"
-          "                 relaxations)\n"
-          "Refused with FILE:LINE and the column: non-numeric, NaN/Inf, zero or negative\n"
-          "values, unknown/misspelt/missing columns, wrong or mixed units, E' falling\n"
-          "with frequency by over 10 %, isotherms that do not superpose, a master curve\n"
-          "under one decade, fewer points than Prony terms + 1. Nothing is stored then.\n"
-          "The raw points, shifts, master curve and fit are stored in one transaction;\n"
-          "`compound show NAME` prints the fit report.\n",
-          out);
-  } else if (kind == NOUN_SURFACE) {
-    fputs("usage: viscolube [--db PATH] surface add NAME --self-affine --hurst H --q0 PER_M\n"
-          "                 --q1 PER_M --hrms M [--description TEXT]\n"
-          "       viscolube [--db PATH] surface add NAME --psd FILE [--description TEXT]\n"
-          "\n"
-          "Registers an isotropic roughness power spectrum C(q) (m^4), with\n"
-          "h_rms^2 = 2 pi \\int q C(q) dq.\n"
-          "\n"
-          "  --self-affine   C(q) = C0 (q/q0)^(-2(1+H)) for q0 <= q <= q1; C0 follows\n"
-          "                  from h_rms. Needs all of:\n"
-          "    --hurst H     Hurst exponent, 0 < H <= 1 (fractal dimension 3 - H)\n"
-          "    --q0 PER_M    low wavevector cut-off, 1/m (> 0)\n"
-          "    --q1 PER_M    high wavevector cut-off, 1/m (> q0)\n"
-          "    --hrms M      rms roughness, m (> 0)\n"
-          "  --psd FILE      tabulated spectrum: CSV with the header line 'q_per_m,C_m4',\n"
-          "                  q > 0 strictly increasing, C > 0, at least 2 rows; an optional\n"
-          "                  units row '1/m,m^4' may follow the header. Interpolated as a\n"
-          "                  power law between points, zero outside.\n"
-          "  --description TEXT  free text; note the source of the data here\n",
-          out);
   } else {
-    fputs("usage: viscolube [--db PATH] fluid add NAME --viscosity PA_S [--tref C]\n"
-          "                 [--vogel-b K --vogel-c K --law-range TMIN_C,TMAX_C]\n"
-          "                 [--description TEXT]\n"
-          "\n"
-          "Registers a Newtonian lubricant.\n"
-          "  --viscosity PA_S   low-shear viscosity > 0, Pa s (water at 20 C: 1.0e-3)\n"
-          "  --tref C           temperature the viscosity was measured at, Celsius\n"
-          "                     (default 20)\n"
-          "  --vogel-b K, --vogel-c K, --law-range TMIN_C,TMAX_C\n"
-          "                     optional viscosity-temperature law (all three or none):\n"
-          "                     log10 eta = A + B/(T - C), T in K, anchored at the viscosity\n"
-          "                     at tref, trusted from TMIN to TMAX C (the range of its data;\n"
-          "                     it must hold tref). Without a law the fluid is known at tref\n"
-          "                     only (scenes with temperature = on at another temperature\n"
-          "                     are refused). Water: B 247.8, C 140, range 0,100.\n"
-          "  --description TEXT free text; note the source of the data here\n",
+    fputs(kind == NOUN_COMPOUND  ? compound_add_help
+          : kind == NOUN_SURFACE ? surface_add_help
+                                 : fluid_add_help,
           out);
   }
 }
@@ -360,53 +365,13 @@ static int open_db(const context *cx, const vl_cli_globals *g, vl_db **db) {
 
 /* ---- JSON output ------------------------------------------------------ */
 
-static void json_str(FILE *out, const char *s) {
-  fputc('"', out);
-  for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-    if (*p == '"' || *p == '\\')
-      fprintf(out, "\\%c", *p);
-    else if (*p == '\n')
-      fputs("\\n", out);
-    else if (*p == '\t')
-      fputs("\\t", out);
-    else if (*p < 0x20 || *p == 0x7f)
-      fprintf(out, "\\u%04x", *p);
-    else
-      fputc(*p, out);
-  }
-  fputc('"', out);
-}
+/* Materials are printed exactly (json.h digits 0): what was stored reads
+ * back bit for bit. */
+static void json_start(vl_json *w, FILE *out) { vl_json_init(w, out, 0); }
 
-/* Shortest of %.15g / %.17g that reads back exactly; NaN/Inf as null. */
-static void json_num(FILE *out, double v) {
-  if (!isfinite(v)) {
-    fputs("null", out);
-    return;
-  }
-  char buf[40];
-  snprintf(buf, sizeof buf, "%.15g", v);
-  if (strtod(buf, NULL) != v) snprintf(buf, sizeof buf, "%.17g", v);
-  fputs(buf, out);
-}
-
-static void json_key(FILE *out, int *first, const char *key) {
-  fputs(*first ? "{" : ", ", out);
-  *first = 0;
-  json_str(out, key);
-  fputs(": ", out);
-}
-
-static void json_key_str(FILE *out, int *first, const char *key, const char *v, int null_if_empty) {
-  json_key(out, first, key);
-  if (null_if_empty && (!v || !*v))
-    fputs("null", out);
-  else
-    json_str(out, v);
-}
-
-static void json_key_num(FILE *out, int *first, const char *key, double v) {
-  json_key(out, first, key);
-  json_num(out, v);
+/* A stored text that may be empty (a file name): null when it is. */
+static void key_text_or_null(vl_json *w, const char *key, const char *v) {
+  vl_json_key_string(w, key, v && *v ? v : NULL);
 }
 
 /* ---- compounds -------------------------------------------------------- */
@@ -423,74 +388,76 @@ static compound_derived compound_derive(const vl_db_compound *c) {
   return d;
 }
 
-static void compound_json(FILE *out, const vl_db_compound *c, const vl_db_compound_fit *f) {
+/* The fit report of a measured compound (null for a Prony series). */
+static void fit_json(vl_json *w, const vl_db_compound_fit *f) {
+  vl_json_key(w, "fit");
+  if (!f || !f->has_fit) {
+    vl_json_null(w);
+    return;
+  }
+  vl_json_object_begin(w, VL_JSON_INLINE);
+  vl_json_key_string(w, "input_kind", f->input_kind);
+  vl_json_key_string(w, "weights", f->weights);
+  vl_json_key_integer(w, "n_points", (long long)f->n_points);
+  vl_json_key_integer(w, "n_isotherms", (long long)f->n_isotherms);
+  vl_json_key_number(w, "omega_min_rad_s", f->omega_min_rad_s);
+  vl_json_key_number(w, "omega_max_rad_s", f->omega_max_rad_s);
+  vl_json_key_number(w, "terms_per_decade", f->terms_per_decade);
+  vl_json_key_integer(w, "n_grid", (long long)f->n_grid);
+  vl_json_key_number(w, "rms_rel_storage", f->rms_rel_storage);
+  vl_json_key_number(w, "max_rel_storage", f->max_rel_storage);
+  vl_json_key_number(w, "rms_rel_loss", f->rms_rel_loss);
+  vl_json_key_number(w, "max_rel_loss", f->max_rel_loss);
+  vl_json_key_number(w, "wlf_rms_log10_a_t", f->wlf_rms_log10_a_t);
+  vl_json_key(w, "shifts");
+  vl_json_array_begin(w, VL_JSON_INLINE);
+  for (size_t k = 0; k < f->n_shifts; k++) {
+    vl_json_object_begin(w, VL_JSON_INLINE);
+    vl_json_key_number(w, "temperature_c", f->shift_temperature_c[k]);
+    vl_json_key_number(w, "log10_a_t", f->shift_log10_a_t[k]);
+    vl_json_end(w);
+  }
+  vl_json_end(w);
+  vl_json_end(w);
+}
+
+static void compound_json(vl_json *w, const vl_db_compound *c, const vl_db_compound_fit *f) {
   compound_derived d = compound_derive(c);
-  int first = 1;
-  json_key_str(out, &first, "name", c->name, 0);
-  json_key_str(out, &first, "class", c->class_name, 0);
-  json_key_str(out, &first, "description", c->description, 0);
-  json_key_num(out, &first, "e0_pa", d.e0_pa);
-  json_key_num(out, &first, "e_inf_pa", c->prony.e_inf_pa);
-  json_key_num(out, &first, "nu", c->prony.nu);
-  json_key(out, &first, "loss_peak");
+  vl_json_object_begin(w, VL_JSON_INLINE);
+  vl_json_key_string(w, "name", c->name);
+  vl_json_key_string(w, "class", c->class_name);
+  vl_json_key_string(w, "description", c->description);
+  vl_json_key_number(w, "e0_pa", d.e0_pa);
+  vl_json_key_number(w, "e_inf_pa", c->prony.e_inf_pa);
+  vl_json_key_number(w, "nu", c->prony.nu);
+  vl_json_key(w, "loss_peak");
   if (d.has_peak) {
-    int f2 = 1;
-    json_key_num(out, &f2, "omega_rad_s", d.omega_peak);
-    json_key_num(out, &f2, "frequency_hz", d.omega_peak / TWO_PI);
-    json_key_num(out, &f2, "tan_delta", d.tan_peak);
-    fputc('}', out);
+    vl_json_object_begin(w, VL_JSON_INLINE);
+    vl_json_key_number(w, "omega_rad_s", d.omega_peak);
+    vl_json_key_number(w, "frequency_hz", d.omega_peak / TWO_PI);
+    vl_json_key_number(w, "tan_delta", d.tan_peak);
+    vl_json_end(w);
   } else {
-    fputs("null", out);
+    vl_json_null(w);
   }
-  json_key_num(out, &first, "tref_c", c->tref_c);
-  json_key_num(out, &first, "wlf_c1", c->wlf_c1);
-  json_key_num(out, &first, "wlf_c2_k", c->wlf_c2_k);
-  json_key_str(out, &first, "source_file", c->source_file, 1);
-  json_key_str(out, &first, "method", c->method, 0);
-  json_key_num(out, &first, "fit_rms_error", c->fit_rms_error);
-  json_key_str(out, &first, "created_at", c->created_at, 0);
-  json_key(out, &first, "fit");
-  if (f && f->has_fit) {
-    int f2 = 1;
-    json_key_str(out, &f2, "input_kind", f->input_kind, 0);
-    json_key_str(out, &f2, "weights", f->weights, 0);
-    json_key(out, &f2, "n_points");
-    fprintf(out, "%zu", f->n_points);
-    json_key(out, &f2, "n_isotherms");
-    fprintf(out, "%zu", f->n_isotherms);
-    json_key_num(out, &f2, "omega_min_rad_s", f->omega_min_rad_s);
-    json_key_num(out, &f2, "omega_max_rad_s", f->omega_max_rad_s);
-    json_key_num(out, &f2, "terms_per_decade", f->terms_per_decade);
-    json_key(out, &f2, "n_grid");
-    fprintf(out, "%zu", f->n_grid);
-    json_key_num(out, &f2, "rms_rel_storage", f->rms_rel_storage);
-    json_key_num(out, &f2, "max_rel_storage", f->max_rel_storage);
-    json_key_num(out, &f2, "rms_rel_loss", f->rms_rel_loss);
-    json_key_num(out, &f2, "max_rel_loss", f->max_rel_loss);
-    json_key_num(out, &f2, "wlf_rms_log10_a_t", f->wlf_rms_log10_a_t);
-    json_key(out, &f2, "shifts");
-    fputc('[', out);
-    for (size_t k = 0; k < f->n_shifts; k++) {
-      int f3 = 1;
-      if (k) fputs(", ", out);
-      json_key_num(out, &f3, "temperature_c", f->shift_temperature_c[k]);
-      json_key_num(out, &f3, "log10_a_t", f->shift_log10_a_t[k]);
-      fputc('}', out);
-    }
-    fputs("]}", out);
-  } else {
-    fputs("null", out);
-  }
-  json_key(out, &first, "prony");
-  fputc('[', out);
+  vl_json_key_number(w, "tref_c", c->tref_c);
+  vl_json_key_number(w, "wlf_c1", c->wlf_c1);
+  vl_json_key_number(w, "wlf_c2_k", c->wlf_c2_k);
+  key_text_or_null(w, "source_file", c->source_file);
+  vl_json_key_string(w, "method", c->method);
+  vl_json_key_number(w, "fit_rms_error", c->fit_rms_error);
+  vl_json_key_string(w, "created_at", c->created_at);
+  fit_json(w, f);
+  vl_json_key(w, "prony");
+  vl_json_array_begin(w, VL_JSON_INLINE);
   for (size_t i = 0; i < c->prony.n_terms; i++) {
-    int f2 = 1;
-    if (i) fputs(", ", out);
-    json_key_num(out, &f2, "A", c->prony.A[i]);
-    json_key_num(out, &f2, "tau_s", c->prony.tau_s[i]);
-    fputc('}', out);
+    vl_json_object_begin(w, VL_JSON_INLINE);
+    vl_json_key_number(w, "A", c->prony.A[i]);
+    vl_json_key_number(w, "tau_s", c->prony.tau_s[i]);
+    vl_json_end(w);
   }
-  fputs("]}", out);
+  vl_json_end(w);
+  vl_json_end(w);
 }
 
 /* Prints the fit report of a measured compound (add and show). */
@@ -749,22 +716,22 @@ static int compound_add(const context *cx, const vl_cli_globals *g, int argc, ch
 
 /* ---- surfaces --------------------------------------------------------- */
 
-static void surface_json(FILE *out, const vl_db_surface *s) {
-  int first = 1, tab = s->kind == VL_PSD_TABULATED;
-  json_key_str(out, &first, "name", s->name, 0);
-  json_key_str(out, &first, "kind", tab ? "tabulated" : "self-affine", 0);
-  json_key_str(out, &first, "description", s->description, 0);
-  json_key_num(out, &first, "hrms_m", s->hrms_m);
-  json_key_num(out, &first, "rms_slope", s->rms_slope);
-  json_key_num(out, &first, "c0_m4", tab ? NAN : s->c0_m4);
-  json_key_num(out, &first, "q0_per_m", s->q0_per_m);
-  json_key_num(out, &first, "q1_per_m", s->q1_per_m);
-  json_key_num(out, &first, "hurst", tab ? NAN : s->hurst);
-  json_key(out, &first, "n_points");
-  fprintf(out, "%zu", s->n_points);
-  json_key_str(out, &first, "source_file", s->source_file, 1);
-  json_key_str(out, &first, "created_at", s->created_at, 0);
-  fputc('}', out);
+static void surface_json(vl_json *w, const vl_db_surface *s) {
+  int tab = s->kind == VL_PSD_TABULATED;
+  vl_json_object_begin(w, VL_JSON_INLINE);
+  vl_json_key_string(w, "name", s->name);
+  vl_json_key_string(w, "kind", tab ? "tabulated" : "self-affine");
+  vl_json_key_string(w, "description", s->description);
+  vl_json_key_number(w, "hrms_m", s->hrms_m);
+  vl_json_key_number(w, "rms_slope", s->rms_slope);
+  vl_json_key_number(w, "c0_m4", tab ? NAN : s->c0_m4);
+  vl_json_key_number(w, "q0_per_m", s->q0_per_m);
+  vl_json_key_number(w, "q1_per_m", s->q1_per_m);
+  vl_json_key_number(w, "hurst", tab ? NAN : s->hurst);
+  vl_json_key_integer(w, "n_points", (long long)s->n_points);
+  key_text_or_null(w, "source_file", s->source_file);
+  vl_json_key_string(w, "created_at", s->created_at);
+  vl_json_end(w);
 }
 
 static void surface_text(FILE *out, const vl_db_surface *s) {
@@ -871,22 +838,22 @@ static int surface_add(const context *cx, const vl_cli_globals *g, int argc, cha
 
 /* ---- fluids ----------------------------------------------------------- */
 
-static void fluid_json(FILE *out, const vl_db_fluid *f) {
-  int first = 1;
-  json_key_str(out, &first, "name", f->name, 0);
-  json_key_num(out, &first, "viscosity_pa_s", f->viscosity_pa_s);
-  json_key_num(out, &first, "tref_c", f->tref_c);
+static void fluid_json(vl_json *w, const vl_db_fluid *f) {
+  vl_json_object_begin(w, VL_JSON_INLINE);
+  vl_json_key_string(w, "name", f->name);
+  vl_json_key_number(w, "viscosity_pa_s", f->viscosity_pa_s);
+  vl_json_key_number(w, "tref_c", f->tref_c);
   /* the viscosity law: all null when none is stored */
   int law = f->law.kind != VL_VISCOSITY_LAW_NONE;
-  json_key_str(out, &first, "viscosity_law", law ? vl_viscosity_law_name(f->law.kind) : "", 1);
-  json_key_num(out, &first, "vogel_b_k", law ? f->law.vogel_b_k : NAN);
-  json_key_num(out, &first, "vogel_c_k", law ? f->law.vogel_c_k : NAN);
-  json_key_num(out, &first, "law_tmin_c", law ? f->law.tmin_c : NAN);
-  json_key_num(out, &first, "law_tmax_c", law ? f->law.tmax_c : NAN);
-  json_key_str(out, &first, "description", f->description, 0);
-  json_key_str(out, &first, "source_file", f->source_file, 1);
-  json_key_str(out, &first, "created_at", f->created_at, 0);
-  fputc('}', out);
+  key_text_or_null(w, "viscosity_law", law ? vl_viscosity_law_name(f->law.kind) : "");
+  vl_json_key_number(w, "vogel_b_k", law ? f->law.vogel_b_k : NAN);
+  vl_json_key_number(w, "vogel_c_k", law ? f->law.vogel_c_k : NAN);
+  vl_json_key_number(w, "law_tmin_c", law ? f->law.tmin_c : NAN);
+  vl_json_key_number(w, "law_tmax_c", law ? f->law.tmax_c : NAN);
+  vl_json_key_string(w, "description", f->description);
+  key_text_or_null(w, "source_file", f->source_file);
+  vl_json_key_string(w, "created_at", f->created_at);
+  vl_json_end(w);
 }
 
 static void fluid_text(FILE *out, const vl_db_fluid *f) {
@@ -996,16 +963,17 @@ static int do_list(const context *cx, const vl_cli_globals *g, int argc, char **
   vl_error err;
   vl_status st;
   size_t n = 0;
-  if (json) fputc('[', stdout);
+  vl_json w;
+  json_start(&w, stdout);
+  if (json) vl_json_array_begin(&w, VL_JSON_STACKED);
   if (cx->kind == NOUN_COMPOUND) {
     vl_db_compound *items;
     if ((st = vl_db_compound_list(db, &items, &n, &err)) == VL_OK) {
       for (size_t i = 0; i < n; i++) {
         if (json) {
-          fputs(i ? ",\n " : "", stdout);
           vl_db_compound_fit f;
           if ((st = vl_db_compound_fit_info(db, items[i].name, &f, &err)) != VL_OK) break;
-          compound_json(stdout, &items[i], &f);
+          compound_json(&w, &items[i], &f);
           vl_db_compound_fit_free(&f);
         } else {
           compound_line(stdout, &items[i]);
@@ -1018,8 +986,7 @@ static int do_list(const context *cx, const vl_cli_globals *g, int argc, char **
     if ((st = vl_db_surface_list(db, &items, &n, &err)) == VL_OK) {
       for (size_t i = 0; i < n; i++) {
         if (json) {
-          fputs(i ? ",\n " : "", stdout);
-          surface_json(stdout, &items[i]);
+          surface_json(&w, &items[i]);
         } else {
           surface_line(stdout, &items[i]);
         }
@@ -1031,8 +998,7 @@ static int do_list(const context *cx, const vl_cli_globals *g, int argc, char **
     if ((st = vl_db_fluid_list(db, &items, &n, &err)) == VL_OK) {
       for (size_t i = 0; i < n; i++) {
         if (json) {
-          fputs(i ? ",\n " : "", stdout);
-          fluid_json(stdout, &items[i]);
+          fluid_json(&w, &items[i]);
         } else {
           fluid_line(stdout, &items[i]);
         }
@@ -1040,7 +1006,10 @@ static int do_list(const context *cx, const vl_cli_globals *g, int argc, char **
       free(items);
     }
   }
-  if (json) fputs("]\n", stdout);
+  if (json) {
+    vl_json_end(&w);
+    fputc('\n', stdout);
+  }
   vl_db_close(db);
   return st == VL_OK ? 0 : fail(cx, st, err.msg);
 }
@@ -1058,11 +1027,12 @@ static int write_curve(const context *cx, vl_db *db, const vl_db_compound *c, co
                  "option --curve: compound '%s' has no measured data (it was entered as a Prony "
                  "series)",
                  c->name);
-  FILE *f = fopen(path, "wb");
-  if (!f) {
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, &err) != VL_OK) {
     free(pts);
-    return failf(cx, VL_EIO, "option --curve: cannot write %s: %s", path, strerror(errno));
+    return failf(cx, VL_EIO, "option --curve: %s", err.msg);
   }
+  FILE *f = af.f;
   fprintf(f,
           "# viscolube compound %s: measured points and the stored Prony fit at the reduced\n"
           "# frequency a_T omega of the master curve at tref = %.6g C (source %s)\n",
@@ -1079,8 +1049,8 @@ static int write_curve(const context *cx, vl_db *db, const vl_db_compound *c, co
             p->source_line);
   }
   free(pts);
-  if (fclose(f) != 0)
-    return failf(cx, VL_EIO, "option --curve: cannot write %s: %s", path, strerror(errno));
+  if (vl_atomic_file_commit(&af, &err) != VL_OK)
+    return failf(cx, VL_EIO, "option --curve: %s", err.msg);
   return -1;
 }
 
@@ -1157,6 +1127,45 @@ static int plot_compound(const context *cx, vl_db *db, const vl_db_compound *c,
   return -1;
 }
 
+/* `compound show`, with its options (see do_show): prints the compound,
+ * then writes --curve and --plot. Returns -1 on success, else the exit code
+ * after the message. */
+static int show_compound(const context *cx, vl_db *db, const char *name, const option *opts,
+                         int json) {
+  vl_error err;
+  vl_db_compound *c = malloc(sizeof *c);
+  vl_db_compound_fit f;
+  memset(&f, 0, sizeof f);
+  int rc = -1;
+  vl_status st = c ? vl_db_compound_info(db, name, c, &err) : VL_ENOMEM;
+  if (!c) vl_error_set(&err, "out of memory");
+  if (st == VL_OK) st = vl_db_compound_fit_info(db, name, &f, &err);
+  if (st != VL_OK) {
+    rc = fail(cx, st, err.msg);
+    goto done;
+  }
+  /* the curve first: a failure to write it prints nothing else */
+  if (opts[1].value && (rc = write_curve(cx, db, c, opts[1].value)) >= 0) goto done;
+  if (json) {
+    vl_json w;
+    json_start(&w, stdout);
+    compound_json(&w, c, &f);
+    fputc('\n', stdout); /* the object is complete before any message */
+  } else {
+    compound_text(stdout, c, &f);
+  }
+  if (opts[2].value) {
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s", opts[3].value ? opts[3].value : "");
+    if (!opts[3].value) snprintf(dir, sizeof dir, "out/compound-%s", c->name);
+    rc = plot_compound(cx, db, c, &f, dir, json);
+  }
+done:
+  vl_db_compound_fit_free(&f);
+  free(c);
+  return rc;
+}
+
 static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
   option opts[] = {{"--json", NULL, NULL},
                    {"--curve", "FILE", NULL},
@@ -1173,55 +1182,24 @@ static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **
   vl_db *db = NULL;
   if ((rc = open_db(cx, g, &db)) >= 0) return rc;
   vl_error err;
-  vl_status st;
+  vl_status st = VL_OK;
+  vl_json w;
+  json_start(&w, stdout);
   if (cx->kind == NOUN_COMPOUND) {
-    vl_db_compound *c = malloc(sizeof *c);
-    vl_db_compound_fit f;
-    memset(&f, 0, sizeof f);
-    st = c ? vl_db_compound_info(db, name, c, &err) : VL_ENOMEM;
-    if (!c) vl_error_set(&err, "out of memory");
-    if (st == VL_OK) st = vl_db_compound_fit_info(db, name, &f, &err);
-    /* the curve first: a failure to write it prints nothing else */
-    if (st == VL_OK && opts[1].value && (rc = write_curve(cx, db, c, opts[1].value)) >= 0) {
-      vl_db_compound_fit_free(&f);
-      free(c);
-      vl_db_close(db);
-      return rc;
-    }
-    if (st == VL_OK) {
-      if (json) {
-        compound_json(stdout, c, &f);
-      } else {
-        compound_text(stdout, c, &f);
-      }
-    }
-    if (st == VL_OK && opts[2].value) {
-      char dir[4200];
-      snprintf(dir, sizeof dir, "%s", opts[3].value ? opts[3].value : "");
-      if (!opts[3].value) snprintf(dir, sizeof dir, "out/compound-%s", c->name);
-      if (json) fputc('\n', stdout); /* the object is complete before any message */
-      rc = plot_compound(cx, db, c, &f, dir, json);
-      if (rc >= 0 || json) {
-        vl_db_compound_fit_free(&f);
-        free(c);
-        vl_db_close(db);
-        return rc >= 0 ? rc : 0;
-      }
-    }
-    vl_db_compound_fit_free(&f);
-    free(c);
+    rc = show_compound(cx, db, name, opts, json);
   } else if (cx->kind == NOUN_SURFACE) {
     vl_db_surface s;
     if ((st = vl_db_surface_info(db, name, &s, &err)) == VL_OK)
-      json ? surface_json(stdout, &s) : surface_text(stdout, &s);
+      json ? surface_json(&w, &s) : surface_text(stdout, &s);
   } else {
     vl_db_fluid f;
     if ((st = vl_db_fluid_info(db, name, &f, &err)) == VL_OK)
-      json ? fluid_json(stdout, &f) : fluid_text(stdout, &f);
+      json ? fluid_json(&w, &f) : fluid_text(stdout, &f);
   }
-  if (st == VL_OK && json) fputc('\n', stdout);
+  if (st == VL_OK && json && cx->kind != NOUN_COMPOUND) fputc('\n', stdout);
+  if (st != VL_OK) rc = fail(cx, st, err.msg);
   vl_db_close(db);
-  return st == VL_OK ? 0 : fail(cx, st, err.msg);
+  return rc >= 0 ? rc : 0;
 }
 
 static int do_remove(const context *cx, const vl_cli_globals *g, int argc, char **argv) {

@@ -5,15 +5,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "cli.h"
-#include "viscolube/csv.h"
-#include "viscolube/database.h"
-#include "viscolube/output.h"
-#include "viscolube/plot.h"
-#include "viscolube/scene.h"
-#include "viscolube/simulation.h"
 
 #define MAX_COMPOUNDS 8
 
@@ -75,9 +68,9 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
     else if (!strcmp(o, "--radius")) c->radius = d;
     else if (!strcmp(o, "--sigma-s")) c->sigma_s = d;
     else {
-      if (d < 16 || d > VL_GRID_GRADED_MAX || d != floor(d)) {
-        fprintf(stderr, "viscolube %s: option --grid needs a whole number in [16, %d]\n", cmd,
-                VL_GRID_GRADED_MAX);
+      if (d < VL_GRID_MIN || d > VL_GRID_GRADED_MAX || d != floor(d)) {
+        fprintf(stderr, "viscolube %s: option --grid needs a whole number in [%d, %d]\n", cmd,
+                VL_GRID_MIN, VL_GRID_GRADED_MAX);
         return -1;
       }
       c->grid = (size_t)d;
@@ -191,23 +184,23 @@ static void friction_usage(FILE *out) {
         out);
 }
 
-int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 0, NULL, 0, 0, 0, NAN};
-  const char *compound = NULL;
-  double speed = 0.0;
+/* The options of `friction`: -1 to go on, else the exit code (0 after
+ * --help). */
+static int friction_args(int argc, char **argv, conditions *c, const char **compound,
+                         double *speed) {
   int have_speed = 0;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       friction_usage(stdout);
       return 0;
     }
-    int r = common_option("friction", argc, argv, &i, &c);
+    int r = common_option("friction", argc, argv, &i, c);
     if (r < 0) return 2;
     if (r) continue;
     if (!strcmp(argv[i], "--compound") && i + 1 < argc) {
-      compound = argv[++i];
+      *compound = argv[++i];
     } else if (!strcmp(argv[i], "--speed")) {
-      if (!parse_number("friction", "--speed", i + 1 < argc ? argv[i + 1] : NULL, &speed, 1))
+      if (!parse_number("friction", "--speed", i + 1 < argc ? argv[i + 1] : NULL, speed, 1))
         return 2;
       have_speed = 1;
       i++;
@@ -217,96 +210,120 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
       return 2;
     }
   }
-  if (!need("friction", "--compound", compound) || !need("friction", "--surface", c.surface) ||
-      !need("friction", "--fluid", c.fluid) || !need("friction", "--speed", have_speed ? "" : NULL))
+  if (!need("friction", "--compound", *compound) || !need("friction", "--surface", c->surface) ||
+      !need("friction", "--fluid", c->fluid) ||
+      !need("friction", "--speed", have_speed ? "" : NULL))
     return 2;
+  return -1;
+}
+
+/* The point at v0 = speed: first a direct solve from the Hertz guess; if it
+ * fails, continuation from the boundary regime (v0 eta = 1e-12 Pa m), 4
+ * points a decade. *sim is the simulation of the last attempt (the caller
+ * frees it); stats->converged + failed counts the points solved. */
+static vl_status solve_point(vl_scene *sc, vl_db *db, double speed, double eta,
+                             vl_simulation **sim, vl_point *pt, vl_sweep_stats *stats,
+                             vl_error *err) {
+  vl_status st = VL_OK;
+  for (int attempt = 0; st == VL_OK && attempt < 2; attempt++) {
+    sc->to = speed * eta;
+    sc->from = attempt == 0 ? sc->to : fmin(1e-12, 0.1 * sc->to);
+    sc->points = attempt == 0 ? 1 : (size_t)ceil(4.0 * log10(sc->to / sc->from)) + 1;
+    vl_simulation_free(*sim);
+    *sim = NULL;
+    st = vl_simulation_create(sc, db, sim, err);
+    if (st != VL_OK) break;
+    size_t n = vl_simulation_points(*sim);
+    vl_point *pts = calloc(n, sizeof *pts);
+    if (!pts) {
+      st = VL_ENOMEM;
+      vl_error_set(err, "out of memory");
+      break;
+    }
+    vl_sweep_stats one;
+    st = vl_simulation_run(*sim, pts, NULL, NULL, &one, err);
+    stats->converged += one.converged;
+    stats->failed += one.failed;
+    *pt = pts[n - 1];
+    free(pts);
+    if (pt->converged) break;
+  }
+  return st;
+}
+
+/* The point as JSON; with --temperature the temperature, shift and
+ * viscosity come first in the same object. */
+static void friction_json(const conditions *c, vl_simulation *sim, double eta,
+                          const vl_point *pt, const vl_curve_meta *meta) {
+  vl_json w;
+  vl_json_init(&w, stdout, 10);
+  vl_json_object_begin(&w, VL_JSON_INLINE);
+  if (c->have_temperature) {
+    vl_json_key_number(&w, "temperature_c", c->temperature_c);
+    vl_json_key_number(&w, "a_T", vl_simulation_shift_factor(sim));
+    vl_json_key_number(&w, "eta_pa_s", eta);
+  }
+  vl_point_json_members(&w, pt, meta);
+  vl_json_end(&w);
+  fputc('\n', stdout);
+}
+
+static void friction_text(const conditions *c, const char *compound, double speed,
+                          vl_simulation *sim, double eta, const vl_point *pt,
+                          const vl_sweep_stats *stats) {
+  const vl_psd *psd = vl_simulation_psd(sim);
+  double hrms = psd ? psd->hrms_m : 0.0;
+  printf("%s on %s in %s at v0 = %g m/s (v0 eta = %g Pa m), R = %g m, fN = %g N/m\n", compound,
+         c->surface, c->fluid, speed, speed * eta, c->radius, c->load);
+  if (c->have_temperature)
+    printf("  at %g C: compound times x a_T = %.4g (WLF), fluid viscosity %.4g Pa s\n",
+           c->temperature_c, vl_simulation_shift_factor(sim), eta);
+  printf("  mu      = %.5g\n  mu_Rc   = %.5g   (hysteresis under the solid contact)\n"
+         "  mu_Rf   = %.5g   (asymmetry of the fluid pressure)\n"
+         "  mu_Sc   = %.5g   (shear in the real contact area)\n"
+         "  mu_Sf   = %.5g   (fluid shear)\n",
+         pt->mu, pt->mu_Rc + 0.0, pt->mu_Rf + 0.0, pt->mu_Sc + 0.0, pt->mu_Sf + 0.0);
+  printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
+         "regime: %s\n  Q = %.3g; %ld Newton iterations, residual %.2g (%zu continuation "
+         "points)\n",
+         pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0,
+         100.0 * (1.0 - pt->fluid_load_fraction), vl_regime_name(pt->regime), pt->Q,
+         pt->iterations, pt->residual, stats->converged + stats->failed);
+}
+
+int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
+  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 0, NULL, 0, 0, 0, NAN};
+  const char *compound = NULL;
+  double speed = 0.0;
+  int rc = friction_args(argc, argv, &c, &compound, &speed);
+  if (rc >= 0) return rc;
   vl_scene sc;
   if (!make_scene("friction", &c, compound, &sc)) return 2;
   vl_error err = {{0}};
   vl_db *db = NULL;
   vl_simulation *sim = NULL;
-  vl_status st = vl_db_open(g->db_path, &db, &err);
   double eta = 0.0;
-  if (st == VL_OK) st = compound_at(db, &c, compound, &err);
-  if (st == VL_OK) st = fluid_eta(db, &c, &eta, &err);
   vl_point pt = {0};
   vl_sweep_stats stats = {0};
-  /* first a direct solve from the Hertz guess; if it fails, continuation
-   * from the boundary regime (v0 eta = 1e-12 Pa m), 4 points a decade */
-  for (int attempt = 0; st == VL_OK && attempt < 2; attempt++) {
-    sc.to = speed * eta;
-    sc.from = attempt == 0 ? sc.to : fmin(1e-12, 0.1 * sc.to);
-    sc.points = attempt == 0 ? 1 : (size_t)ceil(4.0 * log10(sc.to / sc.from)) + 1;
-    vl_simulation_free(sim);
-    sim = NULL;
-    st = vl_simulation_create(&sc, db, &sim, &err);
-    if (st != VL_OK) break;
-    size_t n = vl_simulation_points(sim);
-    vl_point *pts = calloc(n, sizeof *pts);
-    if (!pts) {
-      st = VL_ENOMEM;
-      vl_error_set(&err, "out of memory");
-      break;
-    }
-    vl_sweep_stats one;
-    st = vl_simulation_run(sim, pts, NULL, NULL, &one, &err);
-    stats.converged += one.converged;
-    stats.failed += one.failed;
-    pt = pts[n - 1];
-    free(pts);
-    if (pt.converged) break;
-  }
-  int rc = 0;
+  vl_status st = vl_db_open(g->db_path, &db, &err);
+  if (st == VL_OK) st = compound_at(db, &c, compound, &err);
+  if (st == VL_OK) st = fluid_eta(db, &c, &eta, &err);
+  if (st == VL_OK) st = solve_point(&sc, db, speed, eta, &sim, &pt, &stats, &err);
+  rc = 0;
   if (st != VL_OK) {
     fprintf(stderr, "viscolube friction: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
     rc = vl_status_exit_code(st);
-  } else {
-    const vl_psd *psd = vl_simulation_psd(sim);
-    double hrms = psd ? psd->hrms_m : 0.0;
-    vl_curve_meta meta = {eta, 0.0, vl_contact_a0(vl_simulation_contact(sim))};
-    if (c.json && c.have_temperature) {
-      /* the point's object with the temperature, shift and viscosity first */
-      char *obj = NULL;
-      size_t len = 0;
-      FILE *m = open_memstream(&obj, &len);
-      if (m) {
-        vl_print_point_json(m, &pt, &meta);
-        fclose(m);
-      }
-      if (!m || !obj) {
-        fprintf(stderr, "viscolube friction: out of memory\n");
-        rc = vl_status_exit_code(VL_ENOMEM);
-      } else {
-        printf("{\"temperature_c\": %.10g, \"a_T\": %.10g, \"eta_pa_s\": %.10g, %s\n",
-               c.temperature_c, vl_simulation_shift_factor(sim), eta, obj + 1);
-      }
-      free(obj);
-    } else if (c.json) {
-      vl_print_point_json(stdout, &pt, &meta);
-      fputc('\n', stdout);
-    } else if (pt.converged) {
-      printf("%s on %s in %s at v0 = %g m/s (v0 eta = %g Pa m), R = %g m, fN = %g N/m\n",
-             compound, c.surface, c.fluid, speed, speed * eta, c.radius, c.load);
-      if (c.have_temperature)
-        printf("  at %g C: compound times x a_T = %.4g (WLF), fluid viscosity %.4g Pa s\n",
-               c.temperature_c, vl_simulation_shift_factor(sim), eta);
-      printf("  mu      = %.5g\n  mu_Rc   = %.5g   (hysteresis under the solid contact)\n"
-             "  mu_Rf   = %.5g   (asymmetry of the fluid pressure)\n"
-             "  mu_Sc   = %.5g   (shear in the real contact area)\n"
-             "  mu_Sf   = %.5g   (fluid shear)\n",
-             pt.mu, pt.mu_Rc + 0.0, pt.mu_Rf + 0.0, pt.mu_Sc + 0.0, pt.mu_Sf + 0.0);
-      printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
-             "regime: %s\n  Q = %.3g; %ld Newton iterations, residual %.2g (%zu continuation "
-             "points)\n",
-             pt.u_min_m, hrms > 0 ? pt.u_min_m / hrms : 0.0, 100.0 * (1.0 - pt.fluid_load_fraction),
-             vl_regime_name(pt.regime), pt.Q, pt.iterations, pt.residual, stats.converged + stats.failed);
-    }
-    if (!pt.converged) {
-      fprintf(stderr, "viscolube friction: the solve did not converge at v0 = %g m/s "
-                      "(%ld iterations, residual %.3g)\n", speed, pt.iterations, pt.residual);
-      rc = vl_status_exit_code(VL_ENOCONV);
-    }
+    goto done;
   }
+  vl_curve_meta meta = {eta, 0.0, vl_contact_a0(vl_simulation_contact(sim))};
+  if (c.json) friction_json(&c, sim, eta, &pt, &meta);
+  else if (pt.converged) friction_text(&c, compound, speed, sim, eta, &pt, &stats);
+  if (!pt.converged) {
+    fprintf(stderr, "viscolube friction: the solve did not converge at v0 = %g m/s "
+                    "(%ld iterations, residual %.3g)\n", speed, pt.iterations, pt.residual);
+    rc = vl_status_exit_code(VL_ENOCONV);
+  }
+done:
   vl_simulation_free(sim);
   vl_db_close(db);
   return rc;
@@ -332,30 +349,49 @@ static void compare_usage(FILE *out) {
         out);
 }
 
-int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {NULL, NULL, 117.0, 1e-3, 1e6, 0, NULL, 0, 0, 0, NAN};
-  char list[MAX_COMPOUNDS * 128] = "";
+/* What `compare` was asked for. */
+typedef struct {
+  conditions c;
+  char list[MAX_COMPOUNDS * 128]; /* --compounds, cut by names[] */
   char *names[MAX_COMPOUNDS];
-  size_t nc = 0;
-  double from = 1e-12, to = 0.1, points = 45;
-  const char *out_dir = "out/compare";
+  size_t nc;
+  double from, to, points;
+  const char *out_dir;
+} compare_args;
+
+/* The curves of the compounds, side by side: compound k's point i is
+ * pts[k * n + i]. */
+typedef struct {
+  size_t n;
+  vl_point *pts;
+  double *hrms; /* of each compound's surface (1 when smooth) */
+  double eta;   /* Pa s, the fluid's (at --temperature) */
+  size_t failed;
+} compare_curves;
+
+/* The options of `compare`: -1 to go on, else the exit code (0 after
+ * --help). */
+static int compare_parse(int argc, char **argv, compare_args *a) {
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       compare_usage(stdout);
       return 0;
     }
-    int r = common_option("compare", argc, argv, &i, &c);
+    int r = common_option("compare", argc, argv, &i, &a->c);
     if (r < 0) return 2;
     if (r) continue;
     const char *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (!strcmp(argv[i], "--compounds") && v) {
-      snprintf(list, sizeof list, "%s", v);
+      snprintf(a->list, sizeof a->list, "%s", v);
       i++;
     } else if (!strcmp(argv[i], "--out") && v) {
-      out_dir = v;
+      a->out_dir = v;
       i++;
-    } else if (!strcmp(argv[i], "--from") || !strcmp(argv[i], "--to") || !strcmp(argv[i], "--points")) {
-      double *dst = !strcmp(argv[i], "--from") ? &from : !strcmp(argv[i], "--to") ? &to : &points;
+    } else if (!strcmp(argv[i], "--from") || !strcmp(argv[i], "--to") ||
+               !strcmp(argv[i], "--points")) {
+      double *dst = !strcmp(argv[i], "--from") ? &a->from
+                    : !strcmp(argv[i], "--to") ? &a->to
+                                               : &a->points;
       if (!parse_number("compare", argv[i], v, dst, 1)) return 2;
       i++;
     } else {
@@ -364,163 +400,212 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
       return 2;
     }
   }
+  return -1;
+}
+
+/* Cuts --compounds into names and checks that everything needed was given. */
+static int compare_check(compare_args *a) {
   char *save = NULL;
-  for (char *t = strtok_r(list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-    if (nc == MAX_COMPOUNDS) {
+  for (char *t = strtok_r(a->list, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+    if (a->nc == MAX_COMPOUNDS) {
       fprintf(stderr, "viscolube compare: at most %d compounds\n", MAX_COMPOUNDS);
       return 2;
     }
-    names[nc++] = t;
+    a->names[a->nc++] = t;
   }
-  if (!need("compare", "--compounds", nc ? "" : NULL) || !need("compare", "--surface", c.surface) ||
-      !need("compare", "--fluid", c.fluid))
+  if (!need("compare", "--compounds", a->nc ? "" : NULL) ||
+      !need("compare", "--surface", a->c.surface) || !need("compare", "--fluid", a->c.fluid))
     return 2;
-  if (!(to > from) || points != floor(points) || points < 2 || points > 10000) {
+  if (!(a->to > a->from) || a->points != floor(a->points) || a->points < 2 || a->points > 10000) {
     fprintf(stderr, "viscolube compare: need --from < --to and a whole --points in [2, 10000]\n");
     return 2;
   }
+  return -1;
+}
+
+/* Before anything is computed or written: every compound exists and, with
+ * --temperature, can be taken there (WLF constants, fluid law); the output
+ * directory exists. */
+static vl_status compare_prepare(vl_db *db, const compare_args *a, compare_curves *cv,
+                                 vl_error *err) {
+  vl_status st = VL_OK;
+  for (size_t k = 0; st == VL_OK && k < a->nc; k++) {
+    vl_prony probe;
+    st = vl_db_compound_get(db, a->names[k], &probe, err);
+  }
+  for (size_t k = 0; st == VL_OK && k < a->nc; k++) st = compound_at(db, &a->c, a->names[k], err);
+  if (st == VL_OK && a->c.have_temperature) st = fluid_eta(db, &a->c, &cv->eta, err);
+  if (st == VL_OK && vl_cli_make_dirs(a->out_dir) != 0) {
+    vl_error_set(err, "%s: cannot create: %s", a->out_dir, strerror(errno));
+    st = VL_EIO;
+  }
+  return st;
+}
+
+/* Runs compound k's sweep into cv and writes DIR/<compound>/curve.csv.
+ * Returns 2 after the message when the scene cannot be made, else -1 with
+ * *st the status. */
+static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curves *cv,
+                       vl_status *st, vl_error *err) {
+  vl_scene sc;
+  if (!make_scene("compare", &a->c, a->names[k], &sc)) return 2;
+  sc.from = a->from, sc.to = a->to, sc.points = cv->n;
+  vl_simulation *sim = NULL;
+  *st = vl_simulation_create(&sc, db, &sim, err);
+  if (*st != VL_OK) return -1;
+  cv->eta = vl_simulation_eta(sim);
+  const vl_psd *psd = vl_simulation_psd(sim);
+  cv->hrms[k] = psd ? psd->hrms_m : 1.0;
+  vl_sweep_stats stats;
+  if (!a->c.json) fprintf(stderr, "compare: %s ...\n", a->names[k]);
+  vl_point *pts = cv->pts + k * cv->n;
+  *st = vl_simulation_run(sim, pts, NULL, NULL, &stats, err);
+  cv->failed += stats.failed;
+  char dir[4200], path[4300];
+  snprintf(dir, sizeof dir, "%s/%s", a->out_dir, a->names[k]);
+  if (*st == VL_OK && vl_cli_make_dirs(dir) != 0) {
+    vl_error_set(err, "%s: cannot create: %s", dir, strerror(errno));
+    *st = VL_EIO;
+  }
+  if (*st == VL_OK) {
+    vl_curve_meta meta = {cv->eta, vl_simulation_tau(sim),
+                          vl_contact_a0(vl_simulation_contact(sim))};
+    snprintf(path, sizeof path, "%s/curve.csv", dir);
+    *st = vl_write_curve_csv(path, cv->n, pts, &meta, err);
+  }
+  vl_simulation_free(sim);
+  return -1;
+}
+
+/* DIR/compare.csv: one row per v0*eta, the compounds side by side. */
+static vl_status write_compare_csv(const char *path, const compare_args *a,
+                                   const compare_curves *cv, vl_error *err) {
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
+  FILE *f = af.f;
+  fputs("v0_eta_pa_m", f);
+  for (size_t k = 0; k < a->nc; k++) {
+    const char *m = a->names[k];
+    fprintf(f, ",mu_%s,mu_Rc_%s,mu_Rf_%s,mu_Sc_%s,mu_Sf_%s,u_min_over_hrms_%s,converged_%s", m, m,
+            m, m, m, m, m);
+  }
+  /* with --temperature the rows say at which temperature and viscosity
+   * (appended: the columns of a reference-temperature run are unchanged) */
+  if (a->c.have_temperature) fputs(",temperature_c,eta_pa_s", f);
+  fputc('\n', f);
+  for (size_t i = 0; i < cv->n; i++) {
+    fprintf(f, "%.10g", cv->pts[i].v0_m_s * cv->eta);
+    for (size_t k = 0; k < a->nc; k++) {
+      const vl_point *p = &cv->pts[k * cv->n + i];
+      if (p->converged)
+        fprintf(f, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,1", p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0,
+                p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m / cv->hrms[k]);
+      else
+        fputs(",,,,,,,0", f);
+    }
+    if (a->c.have_temperature) fprintf(f, ",%.10g,%.10g", a->c.temperature_c, cv->eta);
+    fputc('\n', f);
+  }
+  return vl_atomic_file_commit(&af, err);
+}
+
+/* The table: mu and u_min/h_rms of each compound at every v0*eta. */
+static void compare_table(const compare_args *a, const compare_curves *cv) {
+  if (a->c.have_temperature)
+    printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.temperature_c,
+           cv->eta);
+  printf("%12s", "v0_eta_pa_m");
+  for (size_t k = 0; k < a->nc; k++) printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
+  printf("\n");
+  for (size_t i = 0; i < cv->n; i++) {
+    printf("%12.4g", cv->pts[i].v0_m_s * cv->eta);
+    for (size_t k = 0; k < a->nc; k++) {
+      const vl_point *p = &cv->pts[k * cv->n + i];
+      if (p->converged) printf(" %14.5g %14.4g", p->mu, p->u_min_m / cv->hrms[k]);
+      else printf(" %14s %14s", "-", "-");
+    }
+    printf("\n");
+  }
+}
+
+/* One object: [temperature_c, eta_pa_s,] v0_eta_pa_m, and each compound's
+ * curve under its name. */
+static void compare_json(const compare_args *a, const compare_curves *cv) {
+  vl_json w;
+  vl_json_init(&w, stdout, 10);
+  vl_json_object_begin(&w, VL_JSON_INLINE);
+  if (a->c.have_temperature) {
+    vl_json_key_number(&w, "temperature_c", a->c.temperature_c);
+    vl_json_key_number(&w, "eta_pa_s", cv->eta);
+  }
+  vl_json_key(&w, "v0_eta_pa_m");
+  vl_json_array_begin(&w, VL_JSON_INLINE);
+  for (size_t i = 0; i < cv->n; i++) vl_json_number_digits(&w, cv->pts[i].v0_m_s * cv->eta, 6);
+  vl_json_end(&w);
+  for (size_t k = 0; k < a->nc; k++) {
+    vl_curve_meta meta = {cv->eta, 0.0, 0.0};
+    vl_json_key(&w, a->names[k]);
+    vl_curve_json(&w, cv->n, cv->pts + k * cv->n, &meta);
+  }
+  vl_json_end(&w);
+  fputc('\n', stdout);
+}
+
+/* --plot: DIR/compare-mu and DIR/compare-umin. */
+static vl_status compare_plots(const compare_args *a, const compare_curves *cv, vl_error *err) {
+  vl_plot_curve curves[MAX_COMPOUNDS];
+  for (size_t k = 0; k < a->nc; k++)
+    curves[k] = (vl_plot_curve){a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0},
+                                cv->hrms[k]};
+  vl_plot_options opt;
+  vl_plot_options_defaults(&opt);
+  opt.mark_half_load = true;
+  char stem[4300];
+  snprintf(stem, sizeof stem, "%s/compare-mu", a->out_dir);
+  vl_status st =
+      vl_plot_compare(stem, a->nc, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_MU, &opt, NULL, err);
+  if (st == VL_OK) {
+    snprintf(stem, sizeof stem, "%s/compare-umin", a->out_dir);
+    st = vl_plot_compare(stem, a->nc, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_U_MIN, &opt, NULL, err);
+  }
+  return st;
+}
+
+int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
+  compare_args a = {.c = {NULL, NULL, 117.0, 1e-3, 1e6, 0, NULL, 0, 0, 0, NAN},
+                    .from = 1e-12, .to = 0.1, .points = 45, .out_dir = "out/compare"};
+  int rc = compare_parse(argc, argv, &a);
+  if (rc < 0) rc = compare_check(&a);
+  if (rc >= 0) return rc;
   vl_error err = {{0}};
   vl_db *db = NULL;
   vl_status st = vl_db_open(g->db_path, &db, &err);
-  size_t n = (size_t)points;
-  vl_point *pts = calloc(n * nc, sizeof *pts);
-  double *hrms = calloc(nc, sizeof *hrms), eta = 0.0;
-  int rc = 0;
-  size_t failed = 0;
-  if (!pts || !hrms) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
-  /* every name must exist before anything is computed or written */
-  for (size_t k = 0; st == VL_OK && k < nc; k++) {
-    vl_prony probe;
-    st = vl_db_compound_get(db, names[k], &probe, &err);
-  }
-  /* and, with --temperature, be usable there (WLF constants, fluid law) */
-  for (size_t k = 0; st == VL_OK && k < nc; k++) st = compound_at(db, &c, names[k], &err);
-  if (st == VL_OK && c.have_temperature) st = fluid_eta(db, &c, &eta, &err);
-  if (st == VL_OK && vl_cli_make_dirs(out_dir) != 0) {
-    vl_error_set(&err, "%s: cannot create: %s", out_dir, strerror(errno));
-    st = VL_EIO;
-  }
-  for (size_t k = 0; st == VL_OK && k < nc; k++) {
-    vl_scene sc;
-    if (!make_scene("compare", &c, names[k], &sc)) {
-      rc = 2;
-      goto done;
-    }
-    sc.from = from, sc.to = to, sc.points = n;
-    vl_simulation *sim = NULL;
-    st = vl_simulation_create(&sc, db, &sim, &err);
-    if (st != VL_OK) break;
-    eta = vl_simulation_eta(sim);
-    const vl_psd *psd = vl_simulation_psd(sim);
-    hrms[k] = psd ? psd->hrms_m : 1.0;
-    vl_sweep_stats stats;
-    if (!c.json) fprintf(stderr, "compare: %s ...\n", names[k]);
-    st = vl_simulation_run(sim, pts + k * n, NULL, NULL, &stats, &err);
-    failed += stats.failed;
-    char dir[4200], path[4300];
-    snprintf(dir, sizeof dir, "%s/%s", out_dir, names[k]);
-    if (st == VL_OK && vl_cli_make_dirs(dir) != 0) {
-      vl_error_set(&err, "%s: cannot create: %s", dir, strerror(errno));
-      st = VL_EIO;
-    }
-    if (st == VL_OK) {
-      vl_curve_meta meta = {eta, vl_simulation_tau(sim), vl_contact_a0(vl_simulation_contact(sim))};
-      snprintf(path, sizeof path, "%s/curve.csv", dir);
-      st = vl_write_curve_csv(path, n, pts + k * n, &meta, &err);
-    }
-    vl_simulation_free(sim);
-  }
-  if (st != VL_OK) goto done;
-  /* side by side: DIR/compare.csv and the table */
+  compare_curves cv = {.n = (size_t)a.points};
+  cv.pts = calloc(cv.n * a.nc, sizeof *cv.pts);
+  cv.hrms = calloc(a.nc, sizeof *cv.hrms);
+  rc = 0;
+  if (!cv.pts || !cv.hrms) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
+  if (st == VL_OK) st = compare_prepare(db, &a, &cv, &err);
+  for (size_t k = 0; st == VL_OK && k < a.nc; k++)
+    if ((rc = compare_one(db, &a, k, &cv, &st, &err)) >= 0) goto done;
+  rc = 0;
   char path[4300];
-  snprintf(path, sizeof path, "%s/compare.csv", out_dir);
-  FILE *f = fopen(path, "w");
-  if (!f) {
-    vl_error_set(&err, "%s: cannot write: %s", path, strerror(errno));
-    st = VL_EIO;
-    goto done;
-  }
-  fputs("v0_eta_pa_m", f);
-  for (size_t k = 0; k < nc; k++)
-    fprintf(f, ",mu_%s,mu_Rc_%s,mu_Rf_%s,mu_Sc_%s,mu_Sf_%s,u_min_over_hrms_%s,converged_%s",
-            names[k], names[k], names[k], names[k], names[k], names[k], names[k]);
-  /* with --temperature the rows say at which temperature and viscosity
-   * (appended: the columns of a reference-temperature run are unchanged) */
-  if (c.have_temperature) fputs(",temperature_c,eta_pa_s", f);
-  fputc('\n', f);
-  if (!c.json) {
-    if (c.have_temperature)
-      printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", c.temperature_c,
-             eta);
-    printf("%12s", "v0_eta_pa_m");
-    for (size_t k = 0; k < nc; k++) printf(" %14.14s %14s", names[k], "u_min/h_rms");
-    printf("\n");
-  } else {
-    printf("{");
-    if (c.have_temperature)
-      printf("\"temperature_c\": %.10g, \"eta_pa_s\": %.10g, ", c.temperature_c, eta);
-    printf("\"v0_eta_pa_m\": [");
-    for (size_t i = 0; i < n; i++) printf("%s%.6g", i ? ", " : "", pts[i].v0_m_s * eta);
-    printf("]");
-  }
-  for (size_t i = 0; i < n; i++) {
-    double x = pts[i].v0_m_s * eta;
-    fprintf(f, "%.10g", x);
-    if (!c.json) printf("%12.4g", x);
-    for (size_t k = 0; k < nc; k++) {
-      const vl_point *p = &pts[k * n + i];
-      if (p->converged) {
-        fprintf(f, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,1", p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0,
-                p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m / hrms[k]);
-        if (!c.json) printf(" %14.5g %14.4g", p->mu, p->u_min_m / hrms[k]);
-      } else {
-        fputs(",,,,,,,0", f);
-        if (!c.json) printf(" %14s %14s", "-", "-");
-      }
-    }
-    if (c.have_temperature) fprintf(f, ",%.10g,%.10g", c.temperature_c, eta);
-    fputc('\n', f);
-    if (!c.json) printf("\n");
-  }
-  if (c.json) {
-    for (size_t k = 0; k < nc; k++) {
-      vl_curve_meta meta = {eta, 0.0, 0.0};
-      printf(", \"%s\": ", names[k]);
-      vl_print_curve_json(stdout, n, pts + k * n, &meta);
-    }
-    printf("}\n");
-  }
-  if (fclose(f) != 0) {
-    vl_error_set(&err, "%s: write failed", path);
-    st = VL_EIO;
-    goto done;
-  }
-  if (c.plot) {
-    vl_plot_curve curves[MAX_COMPOUNDS];
-    for (size_t k = 0; k < nc; k++)
-      curves[k] = (vl_plot_curve){names[k], n, pts + k * n, {eta, 0.0, 0.0}, hrms[k]};
-    vl_plot_options opt;
-    vl_plot_options_defaults(&opt);
-    opt.mark_half_load = true;
-    char stem[4300];
-    snprintf(stem, sizeof stem, "%s/compare-mu", out_dir);
-    st = vl_plot_compare(stem, nc, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_MU, &opt, NULL, &err);
-    if (st == VL_OK) {
-      snprintf(stem, sizeof stem, "%s/compare-umin", out_dir);
-      st = vl_plot_compare(stem, nc, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_U_MIN, &opt, NULL, &err);
-    }
-    if (st != VL_OK) goto done;
-  }
-  if (!c.json) printf("wrote %s and %s/<compound>/curve.csv%s\n", path, out_dir,
-                      c.plot ? " and compare-mu/compare-umin figures" : "");
-  if (failed) rc = vl_status_exit_code(VL_ENOCONV);
+  snprintf(path, sizeof path, "%s/compare.csv", a.out_dir);
+  if (st == VL_OK) st = write_compare_csv(path, &a, &cv, &err);
+  if (st != VL_OK) goto done;
+  if (a.c.json) compare_json(&a, &cv);
+  else compare_table(&a, &cv);
+  if (a.c.plot && (st = compare_plots(&a, &cv, &err)) != VL_OK) goto done;
+  if (!a.c.json) printf("wrote %s and %s/<compound>/curve.csv%s\n", path, a.out_dir,
+                        a.c.plot ? " and compare-mu/compare-umin figures" : "");
+  if (cv.failed) rc = vl_status_exit_code(VL_ENOCONV);
 done:
   if (st != VL_OK) {
     fprintf(stderr, "viscolube compare: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
     rc = vl_status_exit_code(st);
   }
-  free(pts);
-  free(hrms);
+  free(cv.pts);
+  free(cv.hrms);
   vl_db_close(db);
   return rc;
 }

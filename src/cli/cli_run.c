@@ -8,11 +8,6 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "viscolube/database.h"
-#include "viscolube/output.h"
-#include "viscolube/plot.h"
-#include "viscolube/scene.h"
-#include "viscolube/simulation.h"
 
 static void run_usage(FILE *out) {
   fputs("usage: viscolube run SCENE [--out DIR] [--json] [--plot]\n"
@@ -184,11 +179,34 @@ typedef struct {
   double h_rms_m;
 } kept_curve;
 
+/* The table of a curve: one row per point, then the solver's statistics. */
+static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
+                        const vl_curve_meta *meta, const vl_sweep_stats *stats) {
+  printf("%11s %11s %10s %10s %10s %10s %10s %10s %12s %4s %4s\n", "v0_m_s",
+         vl_sweep_quantity_name(scene->quantity), "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf",
+         "u_min_m", "regime", "conv", "iter");
+  for (size_t i = 0; i < n; i++) {
+    const vl_point *p = &pts[i];
+    double q = sweep_value(scene->quantity, p, meta);
+    if (p->converged)
+      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld\n",
+             p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0,
+             p->mu_Sf + 0.0, p->u_min_m, vl_regime_name(p->regime), "yes", p->iterations);
+    else
+      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld\n", p->v0_m_s, q, "-",
+             "-", "-", "-", "-", "-", "-", "NO", p->iterations);
+  }
+  printf("%zu converged, %zu failed, %ld Newton iterations, %.3f s (%.1f ms per point)\n",
+         stats->converged, stats->failed, stats->newton_iterations, stats->seconds,
+         1e3 * stats->seconds / (double)n);
+}
+
 /* Runs one curve of the scene (one fluid) into out_dir. *failed counts the
- * points that did not converge. json_sep: NULL for a single curve, else the
- * key this curve gets in the JSON object. */
+ * points that did not converge. json: NULL for the table, else the writer
+ * the curve goes to. fluid_key: NULL for a single curve, else the name of
+ * this curve's fluid (its key in the JSON object, in the figures' title). */
 static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *db,
-                         const char *out_dir, int json, const char *json_key, int plot,
+                         const char *out_dir, vl_json *json, const char *fluid_key, int plot,
                          kept_curve *keep, size_t *failed, vl_error *err) {
   vl_simulation *sim = NULL;
   vl_point *pts = NULL;
@@ -244,32 +262,14 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
   *failed += stats.failed;
   char plots[256] = "";
   if (plot) {
-    st = write_plots(out_dir, scene, json_key, sim, n, pts, &meta, &ctx, plots, sizeof plots, err);
+    st = write_plots(out_dir, scene, fluid_key, sim, n, pts, &meta, &ctx, plots, sizeof plots, err);
     if (st != VL_OK) goto done;
   }
   if (json) {
-    if (json_key) printf("\"%s\": ", json_key);
-    vl_print_curve_json(stdout, n, pts, &meta);
+    if (fluid_key) vl_json_key(json, fluid_key);
+    vl_curve_json(json, n, pts, &meta);
   } else {
-    printf("%11s %11s %10s %10s %10s %10s %10s %10s %12s %4s %4s\n", "v0_m_s",
-           vl_sweep_quantity_name(scene->quantity), "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf",
-           "u_min_m", "regime", "conv", "iter");
-    for (size_t i = 0; i < n; i++) {
-      const vl_point *p = &pts[i];
-      double q = scene->quantity == VL_SWEEP_V0       ? p->v0_m_s
-                 : scene->quantity == VL_SWEEP_V0_ETA ? p->v0_m_s * meta.eta_pa_s
-                                                      : p->v0_m_s * meta.tau_s / meta.a0_m;
-      if (p->converged)
-        printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld\n",
-               p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0,
-               p->mu_Sf + 0.0, p->u_min_m, vl_regime_name(p->regime), "yes", p->iterations);
-      else
-        printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld\n", p->v0_m_s, q, "-",
-               "-", "-", "-", "-", "-", "-", "NO", p->iterations);
-    }
-    printf("%zu converged, %zu failed, %ld Newton iterations, %.3f s (%.1f ms per point)\n",
-           stats.converged, stats.failed, stats.newton_iterations, stats.seconds,
-           1e3 * stats.seconds / (double)n);
+    print_table(scene, n, pts, &meta, &stats);
     printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
     if (plot) printf("plots (png, svg) in %s: %s\n", out_dir, plots);
   }
@@ -392,24 +392,28 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   }
   st = vl_db_open(g->db_path, &db, &err);
   if (st != VL_OK) goto fail;
+  vl_json w, *jw = json ? &w : NULL;
+  vl_json_init(&w, stdout, 10);
   if (scene.n_fluids <= 1) {
-    st = run_one(scene_path, &scene, db, out_dir, json, NULL, plot, NULL, &failed, &err);
+    st = run_one(scene_path, &scene, db, out_dir, jw, NULL, plot, NULL, &failed, &err);
     if (st != VL_OK) goto fail;
   } else {
     /* one curve per fluid, each in DIR/<fluid>/ */
-    if (json) fputs("{\n", stdout);
+    if (jw) vl_json_object_begin(jw, VL_JSON_BLOCKS);
     for (size_t k = 0; k < scene.n_fluids; k++) {
       vl_scene one = scene;
       snprintf(one.fluid, sizeof one.fluid, "%s", scene.fluids[k]);
       one.n_fluids = 1;
       char dir[4200];
       snprintf(dir, sizeof dir, "%s/%s", out_dir, one.fluid);
-      if (json && k) fputs(",\n", stdout);
-      st = run_one(scene_path, &one, db, dir, json, one.fluid, plot, plot ? &curves[k] : NULL,
+      st = run_one(scene_path, &one, db, dir, jw, one.fluid, plot, plot ? &curves[k] : NULL,
                    &failed, &err);
       if (st != VL_OK) goto fail;
     }
-    if (json) fputs("}\n", stdout);
+    if (jw) {
+      vl_json_end(jw);
+      fputc('\n', stdout);
+    }
     if (plot) {
       st = plot_all_fluids(&scene, out_dir, curves, json, &err);
       if (st != VL_OK) goto fail;

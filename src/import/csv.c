@@ -232,218 +232,257 @@ static vl_status grow(vl_csv *out, size_t *cap) {
   return VL_OK;
 }
 
+/* The state of one vl_csv_read_text. */
+typedef struct {
+  const char *src;           /* the file name in messages */
+  const vl_csv_column *cols; /* the requested columns */
+  size_t n_cols;
+  span *cells;         /* the fields of the current line (n_cols + 1 kept) */
+  size_t *map;         /* field f of the file holds column map[f] */
+  size_t n_fields;     /* fields of the header, hence of every row */
+  size_t line_no;      /* 1-based line being read */
+  size_t cap;          /* rows allocated in out */
+  char hdr[512];       /* the expected header, for messages */
+  char units_row[256]; /* the units row the file would need, for messages */
+  vl_csv *out;
+} csv_reader;
+
+/* The error of a header cell `name` (field f) that names no requested
+ * column, with the closest name as a hint when it is a likely misspelling. */
+static vl_status unknown_column(const csv_reader *r, span name, size_t f, vl_error *err) {
+  char shown[64];
+  show(name, shown, sizeof shown);
+  size_t best = r->n_cols, best_d = 9;
+  for (size_t k = 0; k < r->n_cols; k++) {
+    size_t d = span_eq_nocase(name, r->cols[k].name) ? 0 : distance(name, r->cols[k].name);
+    if (d < best_d) best_d = d, best = k;
+  }
+  if (best < r->n_cols && best_d <= 2)
+    vl_error_set(err,
+                 "%s:%zu: header field %zu: unknown column '%s' (did you mean '%s'? "
+                 "expected the header '%s')",
+                 r->src, r->line_no, f + 1, shown, r->cols[best].name, r->hdr);
+  else
+    vl_error_set(err, "%s:%zu: header field %zu: unknown column '%s' (expected the header '%s')",
+                 r->src, r->line_no, f + 1, shown, r->hdr);
+  return VL_EINPUT;
+}
+
+/* The header line: every field names a distinct requested column, every
+ * column that is not optional is there. Sets map, n_fields, the presence
+ * flags of out and the expected units row. */
+static vl_status read_header(csv_reader *r, span line, vl_error *err) {
+  size_t n_cols = r->n_cols;
+  size_t count = split(line, r->cells, n_cols + 1);
+  size_t stored = count < n_cols + 1 ? count : n_cols + 1;
+  int all_numbers = 1;
+  for (size_t f = 0; f < stored && all_numbers; f++) {
+    double v;
+    const char *why;
+    if (parse_span(r->cells[f], &v, &why) != VL_OK) all_numbers = 0;
+  }
+  if (all_numbers) {
+    vl_error_set(err, "%s:%zu: missing header: expected the column names '%s' before the numbers",
+                 r->src, r->line_no, r->hdr);
+    return VL_EINPUT;
+  }
+  for (size_t f = 0; f < stored; f++) {
+    span name = unquote(r->cells[f]);
+    if (name.n == 0) {
+      vl_error_set(err, "%s:%zu: header field %zu is empty (expected the header '%s')", r->src,
+                   r->line_no, f + 1, r->hdr);
+      return VL_EINPUT;
+    }
+    size_t c = 0;
+    while (c < n_cols && !span_eq(name, r->cols[c].name))
+      c++;
+    if (c == n_cols) return unknown_column(r, name, f, err);
+    if (r->out->present[c]) {
+      vl_error_set(err, "%s:%zu: header field %zu: column '%s' appears twice", r->src, r->line_no,
+                   f + 1, r->cols[c].name);
+      return VL_EINPUT;
+    }
+    r->out->present[c] = 1;
+    r->map[f] = c;
+  }
+  for (size_t c = 0; c < n_cols; c++) {
+    if (!r->out->present[c] && !r->cols[c].optional) {
+      vl_error_set(err, "%s:%zu: the header lacks column '%s' (expected the header '%s')", r->src,
+                   r->line_no, r->cols[c].name, r->hdr);
+      return VL_EINPUT;
+    }
+  }
+  r->n_fields = count;
+  expected_units(r->cols, r->map, r->n_fields, r->units_row, sizeof r->units_row);
+  return VL_OK;
+}
+
+/* The first row after the header (split into cells): *is_units = 1 if it
+ * is the optional units row, recognised by a non-numeric cell that spells
+ * its column's unit; then every cell must. Otherwise the row is data. */
+static vl_status read_units_row(const csv_reader *r, int *is_units, vl_error *err) {
+  *is_units = 0;
+  for (size_t f = 0; f < r->n_fields && !*is_units; f++) {
+    double v;
+    const char *why;
+    span u = unquote(r->cells[f]);
+    if (parse_span(u, &v, &why) != VL_OK && units_match(u, r->cols[r->map[f]].units)) *is_units = 1;
+  }
+  if (!*is_units) return VL_OK;
+  for (size_t f = 0; f < r->n_fields; f++) {
+    span u = unquote(r->cells[f]);
+    if (!units_match(u, r->cols[r->map[f]].units)) {
+      char shown[64];
+      show(u, shown, sizeof shown);
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %zu): '%s' is not the expected unit (the "
+                   "optional units row after the header must read '%s')",
+                   r->src, r->line_no, r->cols[r->map[f]].name, f + 1, shown, r->units_row);
+      return VL_EINPUT;
+    }
+  }
+  return VL_OK;
+}
+
+/* Field f of a data row: a number of the column's sign that, for an
+ * increasing column, exceeds the row before. first_row: a misspelt units
+ * row reads as a bad first data row, and the message says so. */
+static vl_status read_cell(const csv_reader *r, size_t f, int first_row, double *out,
+                           vl_error *err) {
+  const vl_csv_column *col = &r->cols[r->map[f]];
+  const vl_csv *csv = r->out;
+  double v = 0.0;
+  const char *why = NULL;
+  char shown[64];
+  span cell = trim(r->cells[f]);
+  show(cell, shown, sizeof shown);
+  if (parse_span(cell, &v, &why) != VL_OK) {
+    int hint = first_row && !strcmp(why, "not a number");
+    vl_error_set(err, "%s:%zu: column '%s' (field %zu): %s (got '%s')%s%s%s", r->src, r->line_no,
+                 col->name, f + 1, why, shown,
+                 hint ? "; an optional units row after the header must read '" : "",
+                 hint ? r->units_row : "", hint ? "'" : "");
+    return VL_EINPUT;
+  }
+  if ((col->sign == VL_CSV_POSITIVE && !(v > 0.0)) ||
+      (col->sign == VL_CSV_NONNEGATIVE && !(v >= 0.0))) {
+    vl_error_set(err, "%s:%zu: column '%s' (field %zu): must be %s (got '%s')", r->src, r->line_no,
+                 col->name, f + 1, col->sign == VL_CSV_POSITIVE ? "> 0" : ">= 0", shown);
+    return VL_EINPUT;
+  }
+  if (col->increasing && csv->n_rows > 0) {
+    double prev = csv->values[(csv->n_rows - 1) * r->n_cols + r->map[f]];
+    if (!(v > prev)) {
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %zu): values must increase strictly down the "
+                   "file (got %.17g after %.17g on line %zu)",
+                   r->src, r->line_no, col->name, f + 1, v, prev, csv->lines[csv->n_rows - 1]);
+      return VL_EINPUT;
+    }
+  }
+  *out = v;
+  return VL_OK;
+}
+
+/* A data row (split into cells) appended to out; the columns absent from
+ * the file are NAN. */
+static vl_status read_data_row(csv_reader *r, int first_row, vl_error *err) {
+  vl_csv *out = r->out;
+  vl_status st;
+  if (out->n_rows == r->cap && (st = grow(out, &r->cap)) != VL_OK) {
+    vl_error_set(err, "%s:%zu: out of memory", r->src, r->line_no);
+    return st;
+  }
+  double *row = out->values + out->n_rows * r->n_cols;
+  for (size_t c = 0; c < r->n_cols; c++)
+    row[c] = NAN;
+  for (size_t f = 0; f < r->n_fields; f++)
+    if ((st = read_cell(r, f, first_row, &row[r->map[f]], err)) != VL_OK) return st;
+  out->lines[out->n_rows++] = r->line_no;
+  return VL_OK;
+}
+
 vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
                            const vl_csv_column *cols, size_t n_cols, vl_csv *out, vl_error *err) {
   vl_status st = VL_OK;
-  span *cells = NULL;
-  size_t *map = NULL;
-  size_t cap = 0, line_no = 0, n_fields = 0, header_line = 0, last_line = 0;
+  size_t header_line = 0, last_line = 0;
   enum { HEADER, UNITS, DATA } stage = HEADER;
-  char hdr[512], shown[64], units_row[256] = "";
-  const char *src = source ? source : "<text>";
+  csv_reader r = {.src = source ? source : "<text>", .cols = cols, .n_cols = n_cols, .out = out};
 
   memset(out, 0, sizeof *out);
   if (!cols || n_cols == 0 || (!text && len > 0)) {
-    vl_error_set(err, "%s: no columns requested (a bug in the caller)", src);
+    vl_error_set(err, "%s: no columns requested (a bug in the caller)", r.src);
     return VL_EINTERNAL;
   }
-  expected_header(cols, n_cols, hdr, sizeof hdr);
-  out->source = strdup(src);
+  expected_header(cols, n_cols, r.hdr, sizeof r.hdr);
+  out->source = strdup(r.src);
   out->n_cols = n_cols;
   out->present = calloc(n_cols, sizeof *out->present);
-  cells = malloc((n_cols + 1) * sizeof *cells);
-  map = malloc((n_cols + 1) * sizeof *map);
-  if (!out->source || !out->present || !cells || !map) {
+  r.cells = malloc((n_cols + 1) * sizeof *r.cells);
+  r.map = malloc((n_cols + 1) * sizeof *r.map);
+  if (!out->source || !out->present || !r.cells || !r.map) {
     st = VL_ENOMEM;
-    vl_error_set(err, "%s: out of memory", src);
+    vl_error_set(err, "%s: out of memory", r.src);
     goto cleanup;
   }
 
   size_t pos = 0;
   if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) pos = 3;
   while (pos < len) {
-    line_no++;
+    r.line_no++;
     const char *nl = memchr(text + pos, '\n', len - pos);
     size_t end = nl ? (size_t)(nl - text) : len;
     span line = {text + pos, end - pos};
     pos = end + 1;
     if (line.n > 0 && line.p[line.n - 1] == '\r') line.n--;
     if (memchr(line.p, '\0', line.n)) {
-      vl_error_set(err, "%s:%zu: contains a NUL byte (not a text file?)", src, line_no);
+      vl_error_set(err, "%s:%zu: contains a NUL byte (not a text file?)", r.src, r.line_no);
       st = VL_EINPUT;
       goto cleanup;
     }
     span t = trim(line);
     if (t.n == 0 || t.p[0] == '#') continue;
-    last_line = line_no;
+    last_line = r.line_no;
 
     if (stage == HEADER) {
-      size_t count = split(line, cells, n_cols + 1);
-      size_t stored = count < n_cols + 1 ? count : n_cols + 1;
-      int all_numbers = 1;
-      for (size_t f = 0; f < stored && all_numbers; f++) {
-        double v;
-        const char *why;
-        if (parse_span(cells[f], &v, &why) != VL_OK) all_numbers = 0;
-      }
-      if (all_numbers) {
-        vl_error_set(err,
-                     "%s:%zu: missing header: expected the column names '%s' before the numbers",
-                     src, line_no, hdr);
-        st = VL_EINPUT;
-        goto cleanup;
-      }
-      for (size_t f = 0; f < stored; f++) {
-        span name = unquote(cells[f]);
-        show(name, shown, sizeof shown);
-        if (name.n == 0) {
-          vl_error_set(err, "%s:%zu: header field %zu is empty (expected the header '%s')", src,
-                       line_no, f + 1, hdr);
-          st = VL_EINPUT;
-          goto cleanup;
-        }
-        size_t c = 0;
-        while (c < n_cols && !span_eq(name, cols[c].name))
-          c++;
-        if (c == n_cols) {
-          size_t best = n_cols, best_d = 9;
-          for (size_t k = 0; k < n_cols; k++) {
-            size_t d = span_eq_nocase(name, cols[k].name) ? 0 : distance(name, cols[k].name);
-            if (d < best_d) best_d = d, best = k;
-          }
-          if (best < n_cols && best_d <= 2)
-            vl_error_set(err,
-                         "%s:%zu: header field %zu: unknown column '%s' (did you mean '%s'? "
-                         "expected the header '%s')",
-                         src, line_no, f + 1, shown, cols[best].name, hdr);
-          else
-            vl_error_set(err,
-                         "%s:%zu: header field %zu: unknown column '%s' (expected the header '%s')",
-                         src, line_no, f + 1, shown, hdr);
-          st = VL_EINPUT;
-          goto cleanup;
-        }
-        if (out->present[c]) {
-          vl_error_set(err, "%s:%zu: header field %zu: column '%s' appears twice", src, line_no,
-                       f + 1, cols[c].name);
-          st = VL_EINPUT;
-          goto cleanup;
-        }
-        out->present[c] = 1;
-        map[f] = c;
-      }
-      for (size_t c = 0; c < n_cols; c++) {
-        if (!out->present[c] && !cols[c].optional) {
-          vl_error_set(err, "%s:%zu: the header lacks column '%s' (expected the header '%s')", src,
-                       line_no, cols[c].name, hdr);
-          st = VL_EINPUT;
-          goto cleanup;
-        }
-      }
-      n_fields = count;
-      header_line = line_no;
-      expected_units(cols, map, n_fields, units_row, sizeof units_row);
+      if ((st = read_header(&r, line, err)) != VL_OK) goto cleanup;
+      header_line = r.line_no;
       stage = UNITS;
       continue;
     }
-
-    size_t count = split(line, cells, n_fields);
-    if (count != n_fields) {
+    size_t count = split(line, r.cells, r.n_fields);
+    if (count != r.n_fields) {
       vl_error_set(err, "%s:%zu: expected %zu comma-separated fields like the header, found %zu",
-                   src, line_no, n_fields, count);
+                   r.src, r.line_no, r.n_fields, count);
       st = VL_EINPUT;
       goto cleanup;
     }
-
     int first_row = stage == UNITS;
     if (stage == UNITS) {
       stage = DATA;
-      /* A units row is recognised by a non-numeric cell that spells its
-       * column's unit; then every cell must. Otherwise the row is data. */
-      int is_units = 0;
-      for (size_t f = 0; f < n_fields && !is_units; f++) {
-        double v;
-        const char *why;
-        span u = unquote(cells[f]);
-        if (parse_span(u, &v, &why) != VL_OK && units_match(u, cols[map[f]].units)) is_units = 1;
-      }
+      int is_units;
+      if ((st = read_units_row(&r, &is_units, err)) != VL_OK) goto cleanup;
       if (is_units) {
-        for (size_t f = 0; f < n_fields; f++) {
-          span u = unquote(cells[f]);
-          if (!units_match(u, cols[map[f]].units)) {
-            show(u, shown, sizeof shown);
-            vl_error_set(err,
-                         "%s:%zu: column '%s' (field %zu): '%s' is not the expected unit (the "
-                         "optional units row after the header must read '%s')",
-                         src, line_no, cols[map[f]].name, f + 1, shown, units_row);
-            st = VL_EINPUT;
-            goto cleanup;
-          }
-        }
         out->has_units_row = 1;
         continue;
       }
     }
-
-    if (out->n_rows == cap && (st = grow(out, &cap)) != VL_OK) {
-      vl_error_set(err, "%s:%zu: out of memory", src, line_no);
-      goto cleanup;
-    }
-    double *row = out->values + out->n_rows * n_cols;
-    for (size_t c = 0; c < n_cols; c++)
-      row[c] = NAN;
-    for (size_t f = 0; f < n_fields; f++) {
-      const vl_csv_column *col = &cols[map[f]];
-      double v = 0.0;
-      const char *why = NULL;
-      span cell = trim(cells[f]);
-      show(cell, shown, sizeof shown);
-      if (parse_span(cell, &v, &why) != VL_OK) {
-        /* A misspelt units row reads as a bad first data row: say so. */
-        int hint = first_row && !strcmp(why, "not a number");
-        vl_error_set(err, "%s:%zu: column '%s' (field %zu): %s (got '%s')%s%s%s", src, line_no,
-                     col->name, f + 1, why, shown,
-                     hint ? "; an optional units row after the header must read '" : "",
-                     hint ? units_row : "", hint ? "'" : "");
-        st = VL_EINPUT;
-        goto cleanup;
-      }
-      if ((col->sign == VL_CSV_POSITIVE && !(v > 0.0)) ||
-          (col->sign == VL_CSV_NONNEGATIVE && !(v >= 0.0))) {
-        vl_error_set(err, "%s:%zu: column '%s' (field %zu): must be %s (got '%s')", src, line_no,
-                     col->name, f + 1, col->sign == VL_CSV_POSITIVE ? "> 0" : ">= 0", shown);
-        st = VL_EINPUT;
-        goto cleanup;
-      }
-      if (col->increasing && out->n_rows > 0) {
-        double prev = out->values[(out->n_rows - 1) * n_cols + map[f]];
-        if (!(v > prev)) {
-          vl_error_set(err,
-                       "%s:%zu: column '%s' (field %zu): values must increase strictly down the "
-                       "file (got %.17g after %.17g on line %zu)",
-                       src, line_no, col->name, f + 1, v, prev, out->lines[out->n_rows - 1]);
-          st = VL_EINPUT;
-          goto cleanup;
-        }
-      }
-      row[map[f]] = v;
-    }
-    out->lines[out->n_rows++] = line_no;
+    if ((st = read_data_row(&r, first_row, err)) != VL_OK) goto cleanup;
   }
 
   if (stage == HEADER) {
-    vl_error_set(err, "%s:%zu: empty file (expected the header '%s' and data rows)", src,
-                 line_no ? line_no : 1, hdr);
+    vl_error_set(err, "%s:%zu: empty file (expected the header '%s' and data rows)", r.src,
+                 r.line_no ? r.line_no : 1, r.hdr);
     st = VL_EINPUT;
   } else if (out->n_rows == 0) {
-    vl_error_set(err, "%s:%zu: no data rows after the header on line %zu", src, last_line,
+    vl_error_set(err, "%s:%zu: no data rows after the header on line %zu", r.src, last_line,
                  header_line);
     st = VL_EINPUT;
   }
 
 cleanup:
-  free(cells);
-  free(map);
+  free(r.cells);
+  free(r.map);
   if (st != VL_OK) vl_csv_free(out);
   return st;
 }

@@ -300,46 +300,9 @@ typedef struct {
   const unit_def *unit[R_COUNT];
 } layout;
 
-/* Reads the header and the optional units row; fills lay. */
-static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error *err) {
-  size_t pos = 0, line_no = 0, n;
-  const char *p;
-  const char *cell[MAX_FIELDS + 1];
-  size_t cell_n[MAX_FIELDS + 1];
-  for (int r = 0; r < R_COUNT; r++)
-    lay->col_of_role[r] = lay->field_of_role[r] = -1;
-  if (!next_line(text, len, &pos, &line_no, &p, &n)) {
-    vl_error_set(err,
-                 "%s:%zu: empty file (expected a header such as 'f,E_stor,E_loss,T' and data "
-                 "rows)",
-                 lay->src, line_no ? line_no : 1);
-    return VL_EINPUT;
-  }
-  lay->header_line = line_no;
-  size_t count = split_cells(p, n, cell, cell_n, MAX_FIELDS + 1);
-  if (count > MAX_FIELDS) {
-    vl_error_set(err, "%s:%zu: the header has %zu columns; a DMA file has at most %d", lay->src,
-                 line_no, count, MAX_FIELDS);
-    return VL_EINPUT;
-  }
-  int all_numbers = 1;
-  for (size_t k = 0; k < count; k++) {
-    field *f = &lay->fields[k];
-    memset(f, 0, sizeof *f);
-    if (!cell_text(cell[k], cell_n[k], f->text, sizeof f->text)) {
-      vl_error_set(err, "%s:%zu: header field %zu is too long to be a column name", lay->src,
-                   line_no, k + 1);
-      return VL_EINPUT;
-    }
-    if (!is_number(f->text)) all_numbers = 0;
-  }
-  if (all_numbers) {
-    vl_error_set(err,
-                 "%s:%zu: missing header: expected column names such as 'f,E_stor,E_loss,T' "
-                 "before the numbers",
-                 lay->src, line_no);
-    return VL_EINPUT;
-  }
+/* The role of every header field (lay->fields[0..count), their text already
+ * read): each a known column name, none twice. Sets lay->n_fields. */
+static vl_status header_roles(layout *lay, size_t count, size_t line_no, vl_error *err) {
   for (size_t k = 0; k < count; k++) {
     field *f = &lay->fields[k];
     if (!f->text[0]) {
@@ -380,7 +343,13 @@ static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error
     lay->field_of_role[r] = (int)k;
   }
   lay->n_fields = count;
-  int *fr = lay->field_of_role;
+  return VL_OK;
+}
+
+/* The columns a DMA file needs together: a frequency, and E' with E'' or
+ * tan delta, or J' with J''. */
+static vl_status check_roles(const layout *lay, size_t line_no, vl_error *err) {
+  const int *fr = lay->field_of_role;
   if (fr[R_FREQ] < 0) {
     vl_error_set(err, "%s:%zu: the header lacks a frequency column (f, freq or omega)", lay->src,
                  line_no);
@@ -408,42 +377,93 @@ static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error
                  fr[R_STORAGE] < 0 ? "storage modulus E' (E_stor)" : "loss modulus E'' (E_loss)");
     return VL_EINPUT;
   }
+  return VL_OK;
+}
 
-  /* Units row: the next line, when one of its cells is not a number but
-   * spells its column's unit (the CSV reader applies the same rule). */
-  if (next_line(text, len, &pos, &line_no, &p, &n)) {
-    count = split_cells(p, n, cell, cell_n, MAX_FIELDS + 1);
-    if (count == lay->n_fields) {
-      char u[MAX_FIELDS][CELL_MAX];
-      int is_units = 0;
-      for (size_t k = 0; k < count; k++) {
-        if (!cell_text(cell[k], cell_n[k], u[k], CELL_MAX)) u[k][0] = '\x01', u[k][1] = '\0';
-        unit_family fam = roles[lay->fields[k].r].family;
-        if (!is_number(u[k]) && find_unit(fam, u[k])) is_units = 1;
-      }
-      if (is_units) {
-        lay->units_line = line_no;
-        for (size_t k = 0; k < count; k++) {
-          field *f = &lay->fields[k];
-          unit_family fam = roles[f->r].family;
-          if (!find_unit(fam, u[k])) {
-            char list[128];
-            family_list(fam, ", ", list, sizeof list);
-            vl_error_set(err,
-                         "%s:%zu: column '%s' (field %zu): '%.40s' is not a unit of %s "
-                         "(expected %s%s)",
-                         lay->src, line_no, f->text, k + 1, u[k][0] == '\x01' ? "?" : u[k],
-                         roles[f->r].what, fam == U_NONE ? "'-', '1' or nothing" : "one of ",
-                         fam == U_NONE ? "" : list);
-            return VL_EINPUT;
-          }
-          snprintf(f->row_unit, sizeof f->row_unit, "%s", u[k]);
-          f->has_row_unit = 1;
-        }
-      }
+/* The line after the header (p, n; line line_no) is the units row when one
+ * of its cells is not a number but spells its column's unit (the CSV reader
+ * applies the same rule); then every cell must, and the fields get their
+ * row_unit. Otherwise it is data and lay is left as it is. */
+static vl_status scan_units_row(layout *lay, const char *p, size_t n, size_t line_no,
+                                vl_error *err) {
+  const char *cell[MAX_FIELDS + 1];
+  size_t cell_n[MAX_FIELDS + 1];
+  size_t count = split_cells(p, n, cell, cell_n, MAX_FIELDS + 1);
+  if (count != lay->n_fields) return VL_OK;
+  char u[MAX_FIELDS][CELL_MAX];
+  int is_units = 0;
+  for (size_t k = 0; k < count; k++) {
+    if (!cell_text(cell[k], cell_n[k], u[k], CELL_MAX)) u[k][0] = '\x01', u[k][1] = '\0';
+    unit_family fam = roles[lay->fields[k].r].family;
+    if (!is_number(u[k]) && find_unit(fam, u[k])) is_units = 1;
+  }
+  if (!is_units) return VL_OK;
+  lay->units_line = line_no;
+  for (size_t k = 0; k < count; k++) {
+    field *f = &lay->fields[k];
+    unit_family fam = roles[f->r].family;
+    if (!find_unit(fam, u[k])) {
+      char list[128];
+      family_list(fam, ", ", list, sizeof list);
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %zu): '%.40s' is not a unit of %s "
+                   "(expected %s%s)",
+                   lay->src, line_no, f->text, k + 1, u[k][0] == '\x01' ? "?" : u[k],
+                   roles[f->r].what, fam == U_NONE ? "'-', '1' or nothing" : "one of ",
+                   fam == U_NONE ? "" : list);
+      return VL_EINPUT;
     }
+    snprintf(f->row_unit, sizeof f->row_unit, "%s", u[k]);
+    f->has_row_unit = 1;
   }
   return VL_OK;
+}
+
+/* Reads the header and the optional units row; fills lay. */
+static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error *err) {
+  size_t pos = 0, line_no = 0, n;
+  const char *p;
+  const char *cell[MAX_FIELDS + 1];
+  size_t cell_n[MAX_FIELDS + 1];
+  for (int r = 0; r < R_COUNT; r++)
+    lay->col_of_role[r] = lay->field_of_role[r] = -1;
+  if (!next_line(text, len, &pos, &line_no, &p, &n)) {
+    vl_error_set(err,
+                 "%s:%zu: empty file (expected a header such as 'f,E_stor,E_loss,T' and data "
+                 "rows)",
+                 lay->src, line_no ? line_no : 1);
+    return VL_EINPUT;
+  }
+  lay->header_line = line_no;
+  size_t count = split_cells(p, n, cell, cell_n, MAX_FIELDS + 1);
+  if (count > MAX_FIELDS) {
+    vl_error_set(err, "%s:%zu: the header has %zu columns; a DMA file has at most %d", lay->src,
+                 line_no, count, MAX_FIELDS);
+    return VL_EINPUT;
+  }
+  int all_numbers = 1;
+  for (size_t k = 0; k < count; k++) {
+    field *f = &lay->fields[k];
+    memset(f, 0, sizeof *f);
+    if (!cell_text(cell[k], cell_n[k], f->text, sizeof f->text)) {
+      vl_error_set(err, "%s:%zu: header field %zu is too long to be a column name", lay->src,
+                   line_no, k + 1);
+      return VL_EINPUT;
+    }
+    if (!is_number(f->text)) all_numbers = 0;
+  }
+  if (all_numbers) {
+    vl_error_set(err,
+                 "%s:%zu: missing header: expected column names such as 'f,E_stor,E_loss,T' "
+                 "before the numbers",
+                 lay->src, line_no);
+    return VL_EINPUT;
+  }
+  vl_status st = header_roles(lay, count, line_no, err);
+  if (st == VL_OK) st = check_roles(lay, line_no, err);
+  if (st == VL_OK && next_line(text, len, &pos, &line_no, &p, &n))
+    st = scan_units_row(lay, p, n, line_no, err);
+  return st;
 }
 
 /* Settles the unit of every column from the header, the units row and the
@@ -569,67 +589,83 @@ static vl_status alloc_arrays(vl_measured *m, size_t n, int compliance) {
   return VL_OK;
 }
 
-/* Groups the points into isotherms (see dma.h); fills m->isotherm,
- * n_isotherms, iso_temperature_c (increasing) and iso_points. */
-static vl_status group_isotherms(vl_measured *m, const double *set, const layout *lay,
-                                 vl_error *err) {
-  size_t n = m->n, ng = 0;
-  vl_status st = VL_OK;
-  size_t *gid = malloc(n * sizeof *gid), *map = NULL, *cnt = NULL;
-  double *sum = NULL, *gset = NULL, *tmin = NULL, *tmax = NULL;
-  size_t *first = NULL;
-  group_key *keys = NULL;
-  sum = malloc(n * sizeof *sum);
-  gset = malloc(n * sizeof *gset);
-  tmin = malloc(n * sizeof *tmin);
-  tmax = malloc(n * sizeof *tmax);
-  cnt = calloc(n, sizeof *cnt);
-  first = malloc(n * sizeof *first);
-  if (!gid || !sum || !gset || !tmin || !tmax || !cnt || !first) {
-    st = VL_ENOMEM;
-    goto cleanup;
-  }
-  for (size_t k = 0; k < n; k++) {
+/* The isotherms of group_isotherms as first found, before merging: by the
+ * set column when there is one, else runs of consecutive points within
+ * VL_DMA_ISOTHERM_TOL_K of the run's first temperature. Arrays of m->n. */
+typedef struct {
+  size_t n;            /* groups found */
+  size_t *gid;         /* the group of each point */
+  size_t *cnt, *first; /* points of each group; its first point */
+  double *sum, *gset;  /* sum of its temperatures; its set value */
+  double *tmin, *tmax; /* range of its temperatures */
+} raw_groups;
+
+static void raw_groups_free(raw_groups *rg) {
+  free(rg->gid);
+  free(rg->cnt);
+  free(rg->first);
+  free(rg->sum);
+  free(rg->gset);
+  free(rg->tmin);
+  free(rg->tmax);
+}
+
+/* Finds the raw groups of m's points (rg allocated for m->n points). A set
+ * spanning more than twice the tolerance is refused. */
+static vl_status find_groups(const vl_measured *m, const double *set, const layout *lay,
+                             raw_groups *rg, vl_error *err) {
+  size_t ng = 0;
+  for (size_t k = 0; k < m->n; k++) {
     double t = m->temperature_c[k];
     size_t g = ng;
     if (set) {
       for (size_t j = 0; j < ng; j++)
-        if (gset[j] == set[k]) g = j;
-    } else if (ng > 0 && fabs(t - m->temperature_c[first[ng - 1]]) <= VL_DMA_ISOTHERM_TOL_K) {
+        if (rg->gset[j] == set[k]) g = j;
+    } else if (ng > 0 && fabs(t - m->temperature_c[rg->first[ng - 1]]) <= VL_DMA_ISOTHERM_TOL_K) {
       g = ng - 1;
     }
     if (g == ng) {
-      gset[ng] = set ? set[k] : 0.0;
-      first[ng] = k;
-      sum[ng] = 0.0;
-      tmin[ng] = tmax[ng] = t;
+      rg->gset[ng] = set ? set[k] : 0.0;
+      rg->first[ng] = k;
+      rg->sum[ng] = 0.0;
+      rg->tmin[ng] = rg->tmax[ng] = t;
       ng++;
     }
-    gid[k] = g;
-    sum[g] += t;
-    cnt[g]++;
-    tmin[g] = fmin(tmin[g], t);
-    tmax[g] = fmax(tmax[g], t);
-    if (set && tmax[g] - tmin[g] > 2.0 * VL_DMA_ISOTHERM_TOL_K) {
+    rg->gid[k] = g;
+    rg->sum[g] += t;
+    rg->cnt[g]++;
+    rg->tmin[g] = fmin(rg->tmin[g], t);
+    rg->tmax[g] = fmax(rg->tmax[g], t);
+    if (set && rg->tmax[g] - rg->tmin[g] > 2.0 * VL_DMA_ISOTHERM_TOL_K) {
       vl_error_set(err,
                    "%s:%zu: column '%s' (field %d): set %g spans %.4g to %.4g C; an isotherm "
                    "must be measured at one temperature (within %g K)",
                    m->source, m->line[k], lay->fields[lay->field_of_role[R_TEMP]].text,
-                   lay->field_of_role[R_TEMP] + 1, set[k], tmin[g], tmax[g],
+                   lay->field_of_role[R_TEMP] + 1, set[k], rg->tmin[g], rg->tmax[g],
                    2.0 * VL_DMA_ISOTHERM_TOL_K);
-      st = VL_EINPUT;
-      goto cleanup;
+      rg->n = ng;
+      return VL_EINPUT;
     }
   }
-  /* sort groups by mean temperature; merge those within the tolerance */
-  keys = malloc(ng * sizeof *keys);
-  map = malloc(ng * sizeof *map);
+  rg->n = ng;
+  return VL_OK;
+}
+
+/* Sorts the raw groups by mean temperature and merges neighbours within
+ * the tolerance into the isotherms of m (isotherm, n_isotherms,
+ * iso_temperature_c, iso_points; iso_log10_a_t allocated). VL_ENOMEM
+ * without a message. */
+static vl_status merge_groups(vl_measured *m, const raw_groups *rg) {
+  size_t ng = rg->n;
+  vl_status st = VL_OK;
+  group_key *keys = malloc(ng * sizeof *keys);
+  size_t *map = malloc(ng * sizeof *map);
   if (!keys || !map) {
     st = VL_ENOMEM;
     goto cleanup;
   }
   for (size_t g = 0; g < ng; g++)
-    keys[g] = (group_key){sum[g] / (double)cnt[g], g};
+    keys[g] = (group_key){rg->sum[g] / (double)rg->cnt[g], g};
   qsort(keys, ng, sizeof *keys, cmp_group);
   size_t out = 0;
   double msum = 0.0, mcnt = 0.0;
@@ -641,8 +677,8 @@ static vl_status group_isotherms(vl_measured *m, const double *set, const layout
       msum = mcnt = 0.0;
       map[g] = out++;
     }
-    msum += sum[g];
-    mcnt += (double)cnt[g];
+    msum += rg->sum[g];
+    mcnt += (double)rg->cnt[g];
   }
   m->n_isotherms = out;
   m->iso_temperature_c = calloc(out, sizeof *m->iso_temperature_c);
@@ -652,15 +688,42 @@ static vl_status group_isotherms(vl_measured *m, const double *set, const layout
     st = VL_ENOMEM;
     goto cleanup;
   }
-  for (size_t k = 0; k < n; k++) {
-    size_t g = map[gid[k]];
+  for (size_t k = 0; k < m->n; k++) {
+    size_t g = map[rg->gid[k]];
     m->isotherm[k] = g;
     m->iso_temperature_c[g] += m->temperature_c[k];
     m->iso_points[g]++;
   }
   for (size_t g = 0; g < out; g++)
     m->iso_temperature_c[g] /= (double)m->iso_points[g];
-  for (size_t k = 0; k < n && out > 1; k++) {
+
+cleanup:
+  free(keys);
+  free(map);
+  return st;
+}
+
+/* Groups the points into isotherms (see dma.h); fills m->isotherm,
+ * n_isotherms, iso_temperature_c (increasing) and iso_points. */
+static vl_status group_isotherms(vl_measured *m, const double *set, const layout *lay,
+                                 vl_error *err) {
+  size_t n = m->n;
+  vl_status st = VL_OK;
+  raw_groups rg = {0};
+  rg.gid = malloc(n * sizeof *rg.gid);
+  rg.sum = malloc(n * sizeof *rg.sum);
+  rg.gset = malloc(n * sizeof *rg.gset);
+  rg.tmin = malloc(n * sizeof *rg.tmin);
+  rg.tmax = malloc(n * sizeof *rg.tmax);
+  rg.cnt = calloc(n, sizeof *rg.cnt);
+  rg.first = malloc(n * sizeof *rg.first);
+  if (!rg.gid || !rg.sum || !rg.gset || !rg.tmin || !rg.tmax || !rg.cnt || !rg.first) {
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  if ((st = find_groups(m, set, lay, &rg, err)) != VL_OK) goto cleanup;
+  if ((st = merge_groups(m, &rg)) != VL_OK) goto cleanup;
+  for (size_t k = 0; k < n && m->n_isotherms > 1; k++) {
     if (m->iso_points[m->isotherm[k]] < 2) {
       vl_error_set(err,
                    "%s:%zu: the isotherm at %.4g C has a single point: each temperature needs a "
@@ -673,15 +736,7 @@ static vl_status group_isotherms(vl_measured *m, const double *set, const layout
 
 cleanup:
   if (st == VL_ENOMEM) vl_error_set(err, "%s: out of memory grouping isotherms", m->source);
-  free(gid);
-  free(map);
-  free(cnt);
-  free(sum);
-  free(gset);
-  free(tmin);
-  free(tmax);
-  free(first);
-  free(keys);
+  raw_groups_free(&rg);
   return st;
 }
 
@@ -714,12 +769,12 @@ static vl_status check_increasing(const vl_measured *m, const order_key *ord, co
   return VL_OK;
 }
 
-/* Shifts the isotherms to tref (see dma.h) and fills the reduced
- * frequencies. */
-static vl_status superpose(vl_measured *m, const order_key *ord, double tref_c, vl_error *err) {
-  size_t ni = m->n_isotherms;
+/* superpose with nothing to shift: a master curve (no temperature column),
+ * whose reference temperature must be given, or a single isotherm, which
+ * must lie at tref_c (if given). */
+static vl_status no_shift(vl_measured *m, double tref_c, vl_error *err) {
   const double tol = VL_DMA_ISOTHERM_TOL_K;
-  double tmin = m->iso_temperature_c[0], tmax = m->iso_temperature_c[ni - 1];
+  double tmin = m->iso_temperature_c[0];
   if (!m->has_temperature) {
     if (isnan(tref_c)) {
       vl_error_set(err,
@@ -731,53 +786,71 @@ static vl_status superpose(vl_measured *m, const order_key *ord, double tref_c, 
     m->tref_c = tref_c;
     return VL_OK;
   }
-  if (ni == 1) {
-    if (isnan(tref_c)) {
-      vl_error_set(err,
-                   "%s: every row is at one temperature (%.4g C): give --tref %.4g to take this "
-                   "isotherm as the master curve (one isotherm cannot be shifted)",
-                   m->source, tmin, tmin);
-      return VL_EINPUT;
-    }
-    if (fabs(tref_c - tmin) > tol) {
-      vl_error_set(err,
-                   "%s: a single isotherm at %.4g C cannot be shifted to %.4g C without WLF "
-                   "constants: measure more temperatures or use --tref %.4g",
-                   m->source, tmin, tref_c, tmin);
-      return VL_EINPUT;
-    }
-    m->tref_c = tref_c;
-    return VL_OK;
+  if (isnan(tref_c)) {
+    vl_error_set(err,
+                 "%s: every row is at one temperature (%.4g C): give --tref %.4g to take this "
+                 "isotherm as the master curve (one isotherm cannot be shifted)",
+                 m->source, tmin, tmin);
+    return VL_EINPUT;
   }
-  if (isnan(tref_c)) { /* default: the isotherm nearest room temperature */
-    tref_c = m->iso_temperature_c[0];
+  if (fabs(tref_c - tmin) > tol) {
+    vl_error_set(err,
+                 "%s: a single isotherm at %.4g C cannot be shifted to %.4g C without WLF "
+                 "constants: measure more temperatures or use --tref %.4g",
+                 m->source, tmin, tref_c, tmin);
+    return VL_EINPUT;
+  }
+  m->tref_c = tref_c;
+  return VL_OK;
+}
+
+/* The reference temperature of two or more isotherms: *tref_c, or when it
+ * is NAN the isotherm nearest room temperature, within the measured range;
+ * *ref gets the isotherm nearest to it, which with only two isotherms (no
+ * WLF fit to interpolate) must be at it. */
+static vl_status reference_isotherm(const vl_measured *m, double *tref_c, size_t *ref,
+                                    vl_error *err) {
+  size_t ni = m->n_isotherms;
+  const double tol = VL_DMA_ISOTHERM_TOL_K;
+  double tmin = m->iso_temperature_c[0], tmax = m->iso_temperature_c[ni - 1];
+  if (isnan(*tref_c)) { /* default: the isotherm nearest room temperature */
+    *tref_c = m->iso_temperature_c[0];
     for (size_t g = 1; g < ni; g++)
-      if (fabs(m->iso_temperature_c[g] - DEFAULT_TREF_C) < fabs(tref_c - DEFAULT_TREF_C))
-        tref_c = m->iso_temperature_c[g];
+      if (fabs(m->iso_temperature_c[g] - DEFAULT_TREF_C) < fabs(*tref_c - DEFAULT_TREF_C))
+        *tref_c = m->iso_temperature_c[g];
   }
-  if (tref_c < tmin - tol || tref_c > tmax + tol) {
+  if (*tref_c < tmin - tol || *tref_c > tmax + tol) {
     vl_error_set(err,
                  "%s: reference temperature %.4g C lies outside the measured %.4g to %.4g C: "
                  "the shifts cannot be extrapolated",
-                 m->source, tref_c, tmin, tmax);
+                 m->source, *tref_c, tmin, tmax);
     return VL_EINPUT;
   }
-  size_t ref = 0;
+  *ref = 0;
   for (size_t g = 1; g < ni; g++)
-    if (fabs(m->iso_temperature_c[g] - tref_c) < fabs(m->iso_temperature_c[ref] - tref_c)) ref = g;
-  if (ni == 2 && fabs(m->iso_temperature_c[ref] - tref_c) > tol) {
+    if (fabs(m->iso_temperature_c[g] - *tref_c) < fabs(m->iso_temperature_c[*ref] - *tref_c))
+      *ref = g;
+  if (ni == 2 && fabs(m->iso_temperature_c[*ref] - *tref_c) > tol) {
     vl_error_set(err,
                  "%s: with two isotherms (%.4g and %.4g C) there is no WLF fit to interpolate "
                  "the shift: use one of their temperatures as --tref",
                  m->source, tmin, tmax);
     return VL_EINPUT;
   }
+  return VL_OK;
+}
 
+/* lat[g] = log10 a_T of isotherm g relative to isotherm ref, by
+ * vl_tts_chain over the points in the order ord (isotherm, frequency). A
+ * warmer isotherm that shifts the wrong way is refused. */
+static vl_status chain_shifts(const vl_measured *m, const order_key *ord, size_t ref, double *lat,
+                              vl_error *err) {
+  size_t ni = m->n_isotherms;
   vl_status st = VL_OK;
   vl_tts_isotherm *iso = calloc(ni, sizeof *iso);
   double *lw = malloc(m->n * sizeof *lw), *l1 = malloc(m->n * sizeof *l1);
-  double *l2 = malloc(m->n * sizeof *l2), *lat = malloc(ni * sizeof *lat);
-  if (!iso || !lw || !l1 || !l2 || !lat) {
+  double *l2 = malloc(m->n * sizeof *l2);
+  if (!iso || !lw || !l1 || !l2) {
     vl_error_set(err, "%s: out of memory shifting isotherms", m->source);
     st = VL_ENOMEM;
     goto cleanup;
@@ -808,30 +881,59 @@ static vl_status superpose(vl_measured *m, const order_key *ord, double tref_c, 
       goto cleanup;
     }
   }
+
+cleanup:
+  free(iso);
+  free(lw);
+  free(l1);
+  free(l2);
+  return st;
+}
+
+/* With three isotherms or more: fits WLF to the shifts lat about the
+ * reference isotherm ref, re-refers it to tref_c into m->wlf_*, and makes
+ * lat relative to tref_c. */
+static vl_status wlf_refer(vl_measured *m, size_t ref, double tref_c, double *lat, vl_error *err) {
+  size_t ni = m->n_isotherms;
   double tr = m->iso_temperature_c[ref];
-  m->wlf_c1 = m->wlf_c2_k = m->wlf_rms = NAN;
-  if (ni >= 3) {
-    double c1, c2, rms;
-    if ((st = vl_wlf_fit(ni, m->iso_temperature_c, lat, tr, &c1, &c2, &rms, err)) != VL_OK) {
-      vl_error_prefix(err, "%s", m->source);
-      goto cleanup;
-    }
-    /* WLF about tr re-referred to tref exactly: with u = tref - tr,
-     * C2' = C2 + u, C1' = C1 C2 / C2', and every shift loses a_T(tref). */
-    double u = tref_c - tr, c2n = c2 + u;
-    if (!(c2n > 0.0)) {
-      vl_error_set(err, "%s: the WLF fit (C2 = %.4g K about %.4g C) does not reach %.4g C",
-                   m->source, c2, tr, tref_c);
-      st = VL_EINPUT;
-      goto cleanup;
-    }
-    double at_tref = vl_wlf_log10_shift(c1, c2, tref_c, tr);
-    for (size_t g = 0; g < ni; g++)
-      lat[g] -= at_tref;
-    m->wlf_c1 = c1 * c2 / c2n;
-    m->wlf_c2_k = c2n;
-    m->wlf_rms = rms;
+  double c1, c2, rms;
+  vl_status st = vl_wlf_fit(ni, m->iso_temperature_c, lat, tr, &c1, &c2, &rms, err);
+  if (st != VL_OK) {
+    vl_error_prefix(err, "%s", m->source);
+    return st;
   }
+  /* WLF about tr re-referred to tref exactly: with u = tref - tr,
+   * C2' = C2 + u, C1' = C1 C2 / C2', and every shift loses a_T(tref). */
+  double u = tref_c - tr, c2n = c2 + u;
+  if (!(c2n > 0.0)) {
+    vl_error_set(err, "%s: the WLF fit (C2 = %.4g K about %.4g C) does not reach %.4g C", m->source,
+                 c2, tr, tref_c);
+    return VL_EINPUT;
+  }
+  double at_tref = vl_wlf_log10_shift(c1, c2, tref_c, tr);
+  for (size_t g = 0; g < ni; g++)
+    lat[g] -= at_tref;
+  m->wlf_c1 = c1 * c2 / c2n;
+  m->wlf_c2_k = c2n;
+  m->wlf_rms = rms;
+  return VL_OK;
+}
+
+/* Shifts the isotherms to tref (see dma.h) and fills the reduced
+ * frequencies. */
+static vl_status superpose(vl_measured *m, const order_key *ord, double tref_c, vl_error *err) {
+  if (!m->has_temperature || m->n_isotherms == 1) return no_shift(m, tref_c, err);
+  size_t ni = m->n_isotherms, ref = 0;
+  vl_status st = reference_isotherm(m, &tref_c, &ref, err);
+  if (st != VL_OK) return st;
+  double *lat = malloc(ni * sizeof *lat);
+  if (!lat) {
+    vl_error_set(err, "%s: out of memory shifting isotherms", m->source);
+    return VL_ENOMEM;
+  }
+  if ((st = chain_shifts(m, ord, ref, lat, err)) != VL_OK) goto cleanup;
+  m->wlf_c1 = m->wlf_c2_k = m->wlf_rms = NAN;
+  if (ni >= 3 && (st = wlf_refer(m, ref, tref_c, lat, err)) != VL_OK) goto cleanup;
   for (size_t g = 0; g < ni; g++)
     m->iso_log10_a_t[g] = lat[g];
   for (size_t k = 0; k < m->n; k++)
@@ -839,11 +941,143 @@ static vl_status superpose(vl_measured *m, const order_key *ord, double tref_c, 
   m->tref_c = tref_c;
 
 cleanup:
-  free(iso);
-  free(lw);
-  free(l1);
-  free(l2);
   free(lat);
+  return st;
+}
+
+/* The column list for the CSV reader, one column per role present in role
+ * order, named as in this file, with the units of its family (unit_lists
+ * holds their text); lay->col_of_role gets their indices. Returns their
+ * count. */
+static size_t csv_columns(layout *lay, vl_csv_column *cols, char (*unit_lists)[160]) {
+  size_t nc = 0;
+  for (int r = 0; r < R_COUNT; r++) {
+    int f = lay->field_of_role[r];
+    if (f < 0) continue;
+    family_list(roles[r].family, "|", unit_lists[r], sizeof unit_lists[r]);
+    cols[nc] = (vl_csv_column){.name = lay->fields[f].text,
+                               .units = unit_lists[r],
+                               .sign = (r == R_TEMP || r == R_SET) ? VL_CSV_ANY : VL_CSV_POSITIVE};
+    lay->col_of_role[r] = (int)nc++;
+  }
+  return nc;
+}
+
+/* E' and E'' (and J', J'' for compliances) of point k from row k of csv in
+ * SI units: from J' and J'', or E' with E'' and/or tan delta, which must
+ * then agree. */
+static vl_status point_moduli(vl_measured *m, size_t k, const vl_csv *csv, const layout *lay,
+                              vl_error *err) {
+  const int *cr = lay->col_of_role;
+  if (m->kind == VL_DMA_COMPLIANCE) {
+    double j1 = vl_csv_value(csv, k, (size_t)cr[R_J1]) * lay->unit[R_J1]->factor;
+    double j2 = vl_csv_value(csv, k, (size_t)cr[R_J2]) * lay->unit[R_J2]->factor;
+    double mag2 = j1 * j1 + j2 * j2; /* E = 1/J with J = J' - i J'' */
+    m->j1_per_pa[k] = j1;
+    m->j2_per_pa[k] = j2;
+    m->storage_pa[k] = j1 / mag2;
+    m->loss_pa[k] = j2 / mag2;
+    return VL_OK;
+  }
+  double e1 = vl_csv_value(csv, k, (size_t)cr[R_STORAGE]) * lay->unit[R_STORAGE]->factor;
+  m->storage_pa[k] = e1;
+  if (cr[R_LOSS] < 0) {
+    m->loss_pa[k] = vl_csv_value(csv, k, (size_t)cr[R_TAN]) * e1;
+    return VL_OK;
+  }
+  m->loss_pa[k] = vl_csv_value(csv, k, (size_t)cr[R_LOSS]) * lay->unit[R_LOSS]->factor;
+  if (cr[R_TAN] >= 0) {
+    double td = vl_csv_value(csv, k, (size_t)cr[R_TAN]), ratio = m->loss_pa[k] / e1;
+    if (fabs(td - ratio) > TAN_CONSISTENCY * ratio) {
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %d): tan delta %.6g differs from E''/E' = "
+                   "%.6g by more than %.0f %% (are the columns mixed up?)",
+                   lay->src, m->line[k], lay->fields[lay->field_of_role[R_TAN]].text,
+                   lay->field_of_role[R_TAN] + 1, td, ratio, 100.0 * TAN_CONSISTENCY);
+      return VL_EINPUT;
+    }
+  }
+  return VL_OK;
+}
+
+/* Point k of m from row k of csv, in SI units: line, frequency, moduli,
+ * temperature (tref_c, or 0 if NAN, without a temperature column) and set
+ * value (when set is not NULL). */
+static vl_status convert_point(vl_measured *m, size_t k, const vl_csv *csv, const layout *lay,
+                               double tref_c, double *set, vl_error *err) {
+  const int *cr = lay->col_of_role;
+  m->line[k] = csv->lines[k];
+  m->omega_rad_s[k] = vl_csv_value(csv, k, (size_t)cr[R_FREQ]) * lay->unit[R_FREQ]->factor;
+  vl_status st = point_moduli(m, k, csv, lay, err);
+  if (st != VL_OK) return st;
+  if (!(isfinite(m->omega_rad_s[k]) && isfinite(m->storage_pa[k]) && isfinite(m->loss_pa[k]) &&
+        m->storage_pa[k] > 0.0 && m->loss_pa[k] > 0.0 && m->omega_rad_s[k] > 0.0)) {
+    vl_error_set(err, "%s:%zu: a value is out of range after conversion to SI units", lay->src,
+                 m->line[k]);
+    return VL_EINPUT;
+  }
+  if (!m->has_temperature) {
+    m->temperature_c[k] = isnan(tref_c) ? 0.0 : tref_c;
+    return VL_OK;
+  }
+  double raw = vl_csv_value(csv, k, (size_t)cr[R_TEMP]);
+  double t = raw + lay->unit[R_TEMP]->offset;
+  if (!(t > -273.15)) {
+    vl_error_set(err, "%s:%zu: column '%s' (field %d): %.6g %s is not above absolute zero",
+                 lay->src, m->line[k], lay->fields[lay->field_of_role[R_TEMP]].text,
+                 lay->field_of_role[R_TEMP] + 1, raw, lay->unit[R_TEMP]->name);
+    return VL_EINPUT;
+  }
+  m->temperature_c[k] = t;
+  if (set) set[k] = vl_csv_value(csv, k, (size_t)cr[R_SET]);
+  return VL_OK;
+}
+
+/* The one isotherm of a file without temperatures (a master curve). */
+static vl_status one_isotherm(vl_measured *m, vl_error *err) {
+  m->n_isotherms = 1;
+  m->iso_temperature_c = calloc(1, sizeof *m->iso_temperature_c);
+  m->iso_log10_a_t = calloc(1, sizeof *m->iso_log10_a_t);
+  m->iso_points = calloc(1, sizeof *m->iso_points);
+  if (!m->iso_temperature_c || !m->iso_log10_a_t || !m->iso_points) {
+    vl_error_set(err, "%s: out of memory", m->source);
+    return VL_ENOMEM;
+  }
+  m->iso_points[0] = m->n;
+  m->iso_temperature_c[0] = m->temperature_c[0];
+  return VL_OK;
+}
+
+/* The Prony fit of the master curve (the reduced frequencies) into
+ * m->prony and m->fit. A curve of less than a decade, or with too few
+ * points for the grid, is refused here with the file's own figures. */
+static vl_status fit_master_curve(vl_measured *m, const vl_dma_options *o, vl_error *err) {
+  double wmin = INFINITY, wmax = 0.0;
+  for (size_t k = 0; k < m->n; k++) {
+    wmin = fmin(wmin, m->reduced_omega_rad_s[k]);
+    wmax = fmax(wmax, m->reduced_omega_rad_s[k]);
+  }
+  if (!(wmax >= 10.0 * wmin * (1.0 - 1e-12))) {
+    vl_error_set(err,
+                 "%s: the %s spans %.2f decades of frequency (%.4g to %.4g rad/s): a Prony fit "
+                 "needs at least one decade",
+                 m->source, m->n_isotherms > 1 ? "master curve" : "data", log10(wmax / wmin), wmin,
+                 wmax);
+    return VL_EINPUT;
+  }
+  double per_decade =
+      o->terms_per_decade > 0.0 ? o->terms_per_decade : VL_PRONY_FIT_DEFAULT_PER_DECADE;
+  size_t ng = vl_prony_fit_grid(wmin, wmax, per_decade, NULL, 0);
+  if (ng > 0 && m->n < ng + 1) {
+    vl_error_set(err,
+                 "%s: %zu points cannot determine %zu Prony terms and Einf over %.2f decades at "
+                 "%g terms per decade: give more points or fewer terms per decade",
+                 m->source, m->n, ng, log10(wmax / wmin), per_decade);
+    return VL_EINPUT;
+  }
+  vl_status st = vl_prony_fit(m->n, m->reduced_omega_rad_s, m->storage_pa, m->loss_pa,
+                              o->terms_per_decade, o->weights, o->nu, &m->prony, &m->fit, err);
+  if (st != VL_OK) vl_error_prefix(err, "%s", m->source);
   return st;
 }
 
@@ -875,18 +1109,7 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
   }
   if ((st = scan_header(text ? text : "", len, &lay, err)) != VL_OK) goto cleanup;
   if ((st = resolve_units(&lay, &o, err)) != VL_OK) goto cleanup;
-
-  /* the column list for the CSV reader, named as in this file */
-  size_t nc = 0;
-  for (int r = 0; r < R_COUNT; r++) {
-    int f = lay.field_of_role[r];
-    if (f < 0) continue;
-    family_list(roles[r].family, "|", unit_lists[r], sizeof unit_lists[r]);
-    cols[nc] = (vl_csv_column){.name = lay.fields[f].text,
-                               .units = unit_lists[r],
-                               .sign = (r == R_TEMP || r == R_SET) ? VL_CSV_ANY : VL_CSV_POSITIVE};
-    lay.col_of_role[r] = (int)nc++;
-  }
+  size_t nc = csv_columns(&lay, cols, unit_lists);
   if ((st = vl_csv_read_text(text, len, lay.src, cols, nc, &csv, err)) != VL_OK) goto cleanup;
   if (csv.n_rows > VL_DMA_MAX_POINTS) {
     vl_error_set(err, "%s:%zu: more than %d data points: thin the data first", lay.src,
@@ -911,77 +1134,14 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
     st = VL_ENOMEM;
     goto cleanup;
   }
-  for (size_t k = 0; k < m->n; k++) {
-    m->line[k] = csv.lines[k];
-    m->omega_rad_s[k] = vl_csv_value(&csv, k, (size_t)cr[R_FREQ]) * lay.unit[R_FREQ]->factor;
-    if (m->kind == VL_DMA_COMPLIANCE) {
-      double j1 = vl_csv_value(&csv, k, (size_t)cr[R_J1]) * lay.unit[R_J1]->factor;
-      double j2 = vl_csv_value(&csv, k, (size_t)cr[R_J2]) * lay.unit[R_J2]->factor;
-      double mag2 = j1 * j1 + j2 * j2; /* E = 1/J with J = J' - i J'' */
-      m->j1_per_pa[k] = j1;
-      m->j2_per_pa[k] = j2;
-      m->storage_pa[k] = j1 / mag2;
-      m->loss_pa[k] = j2 / mag2;
-    } else {
-      double e1 = vl_csv_value(&csv, k, (size_t)cr[R_STORAGE]) * lay.unit[R_STORAGE]->factor;
-      m->storage_pa[k] = e1;
-      if (cr[R_LOSS] >= 0) {
-        m->loss_pa[k] = vl_csv_value(&csv, k, (size_t)cr[R_LOSS]) * lay.unit[R_LOSS]->factor;
-        if (cr[R_TAN] >= 0) {
-          double td = vl_csv_value(&csv, k, (size_t)cr[R_TAN]), ratio = m->loss_pa[k] / e1;
-          if (fabs(td - ratio) > TAN_CONSISTENCY * ratio) {
-            vl_error_set(err,
-                         "%s:%zu: column '%s' (field %d): tan delta %.6g differs from E''/E' = "
-                         "%.6g by more than %.0f %% (are the columns mixed up?)",
-                         lay.src, m->line[k], lay.fields[lay.field_of_role[R_TAN]].text,
-                         lay.field_of_role[R_TAN] + 1, td, ratio, 100.0 * TAN_CONSISTENCY);
-            st = VL_EINPUT;
-            goto cleanup;
-          }
-        }
-      } else {
-        m->loss_pa[k] = vl_csv_value(&csv, k, (size_t)cr[R_TAN]) * e1;
-      }
-    }
-    if (!(isfinite(m->omega_rad_s[k]) && isfinite(m->storage_pa[k]) && isfinite(m->loss_pa[k]) &&
-          m->storage_pa[k] > 0.0 && m->loss_pa[k] > 0.0 && m->omega_rad_s[k] > 0.0)) {
-      vl_error_set(err, "%s:%zu: a value is out of range after conversion to SI units", lay.src,
-                   m->line[k]);
-      st = VL_EINPUT;
-      goto cleanup;
-    }
-    if (m->has_temperature) {
-      double raw = vl_csv_value(&csv, k, (size_t)cr[R_TEMP]);
-      double t = raw + lay.unit[R_TEMP]->offset;
-      if (!(t > -273.15)) {
-        vl_error_set(err, "%s:%zu: column '%s' (field %d): %.6g %s is not above absolute zero",
-                     lay.src, m->line[k], lay.fields[lay.field_of_role[R_TEMP]].text,
-                     lay.field_of_role[R_TEMP] + 1, raw, lay.unit[R_TEMP]->name);
-        st = VL_EINPUT;
-        goto cleanup;
-      }
-      m->temperature_c[k] = t;
-      if (set) set[k] = vl_csv_value(&csv, k, (size_t)cr[R_SET]);
-    } else {
-      m->temperature_c[k] = isnan(o.tref_c) ? 0.0 : o.tref_c;
-    }
-  }
+  for (size_t k = 0; k < m->n; k++)
+    if ((st = convert_point(m, k, &csv, &lay, o.tref_c, set, err)) != VL_OK) goto cleanup;
 
-  if (m->has_temperature) {
-    if ((st = group_isotherms(m, set, &lay, err)) != VL_OK) goto cleanup;
-  } else {
-    m->n_isotherms = 1;
-    m->iso_temperature_c = calloc(1, sizeof *m->iso_temperature_c);
-    m->iso_log10_a_t = calloc(1, sizeof *m->iso_log10_a_t);
-    m->iso_points = calloc(1, sizeof *m->iso_points);
-    if (!m->iso_temperature_c || !m->iso_log10_a_t || !m->iso_points) {
-      vl_error_set(err, "%s: out of memory", lay.src);
-      st = VL_ENOMEM;
-      goto cleanup;
-    }
-    m->iso_points[0] = m->n;
-    m->iso_temperature_c[0] = m->temperature_c[0];
-  }
+  if (m->has_temperature)
+    st = group_isotherms(m, set, &lay, err);
+  else
+    st = one_isotherm(m, err);
+  if (st != VL_OK) goto cleanup;
   if (!(ord = malloc(m->n * sizeof *ord))) {
     vl_error_set(err, "%s: out of memory", lay.src);
     st = VL_ENOMEM;
@@ -999,36 +1159,7 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
   } else if (m->n_isotherms == 1) {
     m->iso_log10_a_t[0] = 0.0;
   }
-
-  /* the master curve and its fit */
-  double wmin = INFINITY, wmax = 0.0;
-  for (size_t k = 0; k < m->n; k++) {
-    wmin = fmin(wmin, m->reduced_omega_rad_s[k]);
-    wmax = fmax(wmax, m->reduced_omega_rad_s[k]);
-  }
-  if (!(wmax >= 10.0 * wmin * (1.0 - 1e-12))) {
-    vl_error_set(err,
-                 "%s: the %s spans %.2f decades of frequency (%.4g to %.4g rad/s): a Prony fit "
-                 "needs at least one decade",
-                 lay.src, m->n_isotherms > 1 ? "master curve" : "data", log10(wmax / wmin), wmin,
-                 wmax);
-    st = VL_EINPUT;
-    goto cleanup;
-  }
-  double per_decade =
-      o.terms_per_decade > 0.0 ? o.terms_per_decade : VL_PRONY_FIT_DEFAULT_PER_DECADE;
-  size_t ng = vl_prony_fit_grid(wmin, wmax, per_decade, NULL, 0);
-  if (ng > 0 && m->n < ng + 1) {
-    vl_error_set(err,
-                 "%s: %zu points cannot determine %zu Prony terms and Einf over %.2f decades at "
-                 "%g terms per decade: give more points or fewer terms per decade",
-                 lay.src, m->n, ng, log10(wmax / wmin), per_decade);
-    st = VL_EINPUT;
-    goto cleanup;
-  }
-  st = vl_prony_fit(m->n, m->reduced_omega_rad_s, m->storage_pa, m->loss_pa, o.terms_per_decade,
-                    o.weights, o.nu, &m->prony, &m->fit, err);
-  if (st != VL_OK) vl_error_prefix(err, "%s", lay.src);
+  st = fit_master_curve(m, &o, err);
 
 cleanup:
   vl_csv_free(&csv);

@@ -5,7 +5,7 @@
  * by the active-set algorithm of Lawson & Hanson ("Solving Least Squares
  * Problems", 1974, chapter 23, algorithm NNLS), with each unconstrained
  * sub-problem solved by GSL's Householder QR. GSL has no NNLS of its own.
- * Used by the Prony fit (prony_fit.h), where the creep form of MODEL.md
+ * Used by the Prony fit (prony_fit.h), where the creep form of docs/MODEL.md
  * section 2 is linear in its non-negative coefficients. */
 #ifndef VISCOLUBE_NNLS_H
 #define VISCOLUBE_NNLS_H

@@ -9,7 +9,7 @@
  *
  * Shifts are found pairwise between neighbouring isotherms from the overlap
  * of their curves in the (log w, log E') and (log w, log E'') planes, and
- * chained from the reference isotherm outwards. The WLF equation (MODEL.md
+ * chained from the reference isotherm outwards. The WLF equation (docs/MODEL.md
  * section 2) is then fitted to the chained shifts. */
 #ifndef VISCOLUBE_TTS_H
 #define VISCOLUBE_TTS_H

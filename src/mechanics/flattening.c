@@ -34,6 +34,7 @@
 
 #include "viscolube/flattening.h"
 #include "viscolube/rheology.h"
+#include "gsl_errors.h"
 
 /* Gauss-Legendre in ln q: 8 nodes on panels of at most a quarter decade.
  * The integrand q^2 C(q) A(T/q^2) turns over within about a decade of q
@@ -145,9 +146,8 @@ static vl_status build_quadrature(vl_flattening *f, const vl_psd *psd, vl_error 
   b[m - 1] = lb;
   size_t np = m - 1;
 
-  gsl_error_handler_t *old = gsl_set_error_handler_off();
+  vl_gsl_errors_off();
   gsl_integration_glfixed_table *gl = gsl_integration_glfixed_table_alloc(GL_ORDER);
-  gsl_set_error_handler(old);
   f->nq = np * GL_ORDER;
   f->w = malloc(f->nq * sizeof *f->w);
   f->iq2 = malloc(f->nq * sizeof *f->iq2);

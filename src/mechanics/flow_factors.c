@@ -1,4 +1,4 @@
-/* Flow and shear-stress factors (FLOW_FACTORS.md, MODEL.md sections 5 and 7).
+/* Flow and shear-stress factors (docs/FLOW_FACTORS.md, docs/MODEL.md sections 5 and 7).
  *
  * patir-cheng works in the nominal separation H = h/sigma. The hot path
  * (called for every grid node in every residual and Jacobian) is:
@@ -42,6 +42,8 @@
  *         0 for H <= 0.
  */
 #include "viscolube/flow_factors.h"
+
+#include "flow_factors_emt.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -342,7 +344,8 @@ static const vl_flow_factor_values smooth_values = {1.0, 0.0, 1.0, 0.0, 1.0};
 void vl_flow_factors_eval(vl_flow_factor_kind kind, double u_m, double hrms_m,
                           vl_flow_factor_values *v, vl_flow_factor_values *d) {
   if (d) *d = (vl_flow_factor_values){0};
-  if (isnan(u_m) || isnan(hrms_m)) {
+  if (isnan(u_m) || isnan(hrms_m) || kind == VL_FLOW_FACTORS_PERSSON_EMT) {
+    /* persson-emt needs its table: vl_flow_factors_eval_table */
     *v = (vl_flow_factor_values){NAN, NAN, NAN, NAN, NAN};
     if (d) *d = *v;
     return;
@@ -377,10 +380,31 @@ void vl_flow_factors_eval(vl_flow_factor_kind kind, double u_m, double hrms_m,
   }
 }
 
+void vl_flow_factors_eval_table(vl_flow_factor_kind kind, const vl_emt_table *table, double u_m,
+                                double hrms_m, vl_flow_factor_values *v,
+                                vl_flow_factor_values *d) {
+  if (kind != VL_FLOW_FACTORS_PERSSON_EMT) {
+    vl_flow_factors_eval(kind, u_m, hrms_m, v, d);
+    return;
+  }
+  if (!table || !(hrms_m > 0.0)) {
+    *v = (vl_flow_factor_values){NAN, NAN, NAN, NAN, NAN};
+    if (d) *d = *v;
+    return;
+  }
+  /* the table's factors are functions of x = u/h0; at a local h_rms they
+   * are the same functions of u/hrms_m = (u k)/h0, k = h0/hrms_m */
+  double k = vl_emt_table_hrms(table) / hrms_m;
+  vl_emt_table_eval(table, u_m * k, v, d);
+  if (d) {
+    d->phi_p *= k, d->phi_s *= k, d->phi_f *= k, d->phi_fs *= k, d->phi_fp *= k;
+  }
+}
+
 void vl_flow_factors_terms(vl_flow_factor_kind kind, double u_m, double hrms_m, vl_flow_terms *t,
                            vl_flow_terms *d) {
   if (d) *d = (vl_flow_terms){0};
-  if (isnan(u_m) || isnan(hrms_m)) {
+  if (isnan(u_m) || isnan(hrms_m) || kind == VL_FLOW_FACTORS_PERSSON_EMT) {
     *t = (vl_flow_terms){NAN, NAN, NAN, NAN};
     if (d) *d = *t;
     return;
@@ -414,19 +438,21 @@ const char *vl_flow_factors_name(vl_flow_factor_kind kind) {
   switch (kind) {
   case VL_FLOW_FACTORS_SMOOTH: return "smooth";
   case VL_FLOW_FACTORS_PATIR_CHENG: return "patir-cheng";
+  case VL_FLOW_FACTORS_PERSSON_EMT: return "persson-emt";
   }
   return "unknown";
 }
 
 vl_status vl_flow_factors_parse(const char *name, vl_flow_factor_kind *kind, vl_error *err) {
-  static const vl_flow_factor_kind all[] = {VL_FLOW_FACTORS_SMOOTH, VL_FLOW_FACTORS_PATIR_CHENG};
+  static const vl_flow_factor_kind all[] = {VL_FLOW_FACTORS_SMOOTH, VL_FLOW_FACTORS_PATIR_CHENG,
+                                            VL_FLOW_FACTORS_PERSSON_EMT};
   for (size_t i = 0; name && i < sizeof all / sizeof all[0]; i++) {
     if (!strcmp(name, vl_flow_factors_name(all[i]))) {
       *kind = all[i];
       return VL_OK;
     }
   }
-  vl_error_set(err, "unknown flow-factor model '%s' (expected smooth or patir-cheng)",
+  vl_error_set(err, "unknown flow-factor model '%s' (expected smooth, patir-cheng or persson-emt)",
                name ? name : "(null)");
   return VL_EINPUT;
 }

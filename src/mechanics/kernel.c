@@ -1,6 +1,6 @@
 /* viscolube: surface-displacement influence coefficients (kernel.h).
  *
- * Closed form (derived for the convention of MODEL.md section 1; the paper's
+ * Closed form (derived for the convention of docs/MODEL.md section 1; the paper's
  * Appendix A uses x + v0 t, i.e. the mirror image, and has typos).
  *
  * Everything is written in units of the cell width delta: x = d/delta,
@@ -43,6 +43,7 @@
  *    computed by T_1 = g(z)/beta, T_{n+1} = (T_n + (n-1)!/x^n)/beta. The series
  *    converges like (2|x|)^{-2k} (the only singularity of L is at a = 0). */
 #include "kernel.h"
+#include "gsl_errors.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -236,7 +237,7 @@ double vl_kernel_viscoelastic(double d, double delta, double b) {
   if (!(delta > 0.0) || !(b >= 0.0)) return NAN;
   double x = d / delta, beta = b / delta;
   if (beta < BETA_NEGLIGIBLE) return vl_kernel_elastic(d, delta);
-  gsl_set_error_handler_off();
+  vl_gsl_errors_off();
   double kve;
   if (beta <= VL_KERNEL_BETA_SWITCH)
     kve = cell_log(x) + kve_minus_k_small(x, beta);
@@ -249,7 +250,7 @@ void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t
   size_t n = t->n, m = 2 * n - 1;
   double delta = t->delta, ld = log(delta);
   double *coef = t->coef;
-  gsl_set_error_handler_off();
+  vl_gsl_errors_off();
 
   /* total = delta [ (1 + sum A) (log delta + k) + sum_k A_k (kve_k - k) ].
    * In branch (I), kve - k = -beta (log|a+/a-| + g(z+) - g(z-)): the log part

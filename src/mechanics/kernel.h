@@ -1,6 +1,6 @@
 /* viscolube: surface-displacement influence coefficients on a uniform grid.
  *
- * Sign convention (MODEL.md section 1 and 3): cylinder frame, rubber moving
+ * Sign convention (docs/MODEL.md section 1 and 3): cylinder frame, rubber moving
  * at +v0 along x. The surface displacement from a pressure p0(x) is
  *   w(x) = -(2/(pi Erinf)) \int dx' p0(x') [ log|x-x'|
  *            + sum_i A_i \int_0^inf ds e^{-s} log|x - x' - b_i s| ],  b_i = v0 tau_i.

@@ -45,6 +45,7 @@
 #include <gsl/gsl_sf_expint.h>
 
 #include "viscolube/persson.h"
+#include "gsl_errors.h"
 
 #include "blob.h"
 
@@ -550,7 +551,7 @@ vl_status vl_persson_build(const vl_psd *psd, size_t n_table, vl_persson **out, 
   vl_persson *t = NULL;
   rule r = {0};
   *out = NULL;
-  gsl_set_error_handler_off();
+  vl_gsl_errors_off();
   if (!psd_usable(psd)) {
     vl_error_set(err, "Persson table: the PSD is not initialised or invalid");
     return VL_EINPUT;
@@ -685,7 +686,6 @@ static double exact_integrand(double sigma, void *p) {
 double vl_persson_separation_exact(const vl_persson *t, double s) {
   if (isnan(s)) return NAN;
   if (s <= 0.0) return INFINITY;
-  gsl_set_error_handler_off();
   const vl_psd *psd = &t->psd;
   double sigma_end = sigma_of_dt(log(psd->q1 / psd->q0));
   /* Near sigma = 0 the integrand is ~ c E1(b^2/sigma^2), b ~ s: a
@@ -883,7 +883,7 @@ vl_status vl_persson_deserialize(const vl_psd *psd, const void *blob, size_t len
   const unsigned char *b = blob;
   vl_persson *t = NULL;
   *out = NULL;
-  gsl_set_error_handler_off();
+  vl_gsl_errors_off();
   if (!psd_usable(psd)) {
     vl_error_set(err, "Persson table: the PSD is not initialised or invalid");
     return VL_EINPUT;

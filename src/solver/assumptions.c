@@ -144,7 +144,10 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
     snprintf(w, sizeof w, "reduced Reynolds number %.2g > 1 at 1000 kg/m^3 (fluid inertia)", re);
     append(warnings, cap, w);
   }
-  if (rough && hrms > 0.0 && pt->fluid_load_fraction > FLUID_MATTERS) {
+  /* persson-emt is defined at every separation, down to the contact's own
+   * percolation (its limits are those of the mean-field contact law) */
+  if (rough && hrms > 0.0 && pt->fluid_load_fraction > FLUID_MATTERS &&
+      cfg->flow_factors != VL_FLOW_FACTORS_PERSSON_EMT) {
     bool smooth = cfg->flow_factors == VL_FLOW_FACTORS_SMOOTH;
     double lim = smooth ? SMOOTH_FACTORS_HRMS : PATIR_CHENG_HRMS;
     if (pt->u_min_m < lim * hrms) {

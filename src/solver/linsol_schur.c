@@ -252,7 +252,7 @@ static int schur_free(SUNLinearSolver S) {
 }
 
 SUNLinearSolver vl_linsol_schur_create(long n, long of, long ih, SUNContext ctx) {
-  if (n < 2 || of != n || ih != 2 * n) return NULL; /* the layout of contact.c */
+  if (n < 2 || of != n || ih != 2 * n) return NULL; /* the contact's layout */
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   if (!S) return NULL;
   schur_content *c = calloc(1, sizeof *c);

@@ -1,7 +1,7 @@
 /* A SUNLinearSolver for the rough wet contact's Jacobian that eliminates
  * the Reynolds rows first. Private to the library.
  *
- * Layout (contact.c): unknowns [u_0..u_{n-1}, pf_0..pf_{n-1}, h0]. The
+ * Layout (contact_internal.h): unknowns [u_0..u_{n-1}, pf_0..pf_{n-1}, h0]. The
  * Reynolds rows (of..of+n-1) depend on pf only through the fluxes of their
  * two faces, so their pf block Bp is tridiagonal; it is an M-matrix (the
  * Poiseuille conductances and the Fischer-Burmeister weights are >= 0).
@@ -25,7 +25,7 @@
 #include <sundials/sundials_linearsolver.h>
 
 /* n: grid nodes; the system has 2n + 1 unknowns: u at 0..n-1, pf at
- * of..of+n-1, h0 at ih (of = n, ih = 2n in contact.c). NULL on allocation
+ * of..of+n-1, h0 at ih (of = n, ih = 2n in the contact). NULL on allocation
  * failure. */
 SUNLinearSolver vl_linsol_schur_create(long n, long of, long ih, SUNContext ctx);
 

@@ -26,7 +26,7 @@ typedef enum {
   K_RADIUS, K_LOAD, K_SIGMA_S,
   K_QUANTITY, K_FROM, K_TO, K_POINTS, K_FIELDS_AT,
   K_VISCOELASTIC, K_ROUGHNESS, K_FLUID, K_SOLID_SHEAR, K_VISCOUS_FLATTENING, K_TEMPERATURE,
-  K_FLOW_FACTORS, K_TEMPERATURE_C,
+  K_FLOW_FACTORS, K_FILM_CUTOFF, K_TEMPERATURE_C,
   K_GRID, K_GRID_GROWTH, K_DOMAIN, K_TOLERANCE, K_LINEAR_SOLVER, K_PERSSON_TABLE,
   K_COUNT
 } key_id;
@@ -55,6 +55,7 @@ static const struct {
     [K_VISCOUS_FLATTENING] = {"effects", "viscous_flattening", false},
     [K_TEMPERATURE] = {"effects", "temperature", false},
     [K_FLOW_FACTORS] = {"effects", "flow_factors", false},
+    [K_FILM_CUTOFF] = {"effects", "film_cutoff_m", false},
     [K_TEMPERATURE_C] = {"effects", "temperature_c", false},
     [K_GRID] = {"numerics", "grid", false},
     [K_GRID_GROWTH] = {"numerics", "grid_growth", false},
@@ -63,9 +64,6 @@ static const struct {
     [K_LINEAR_SOLVER] = {"numerics", "linear_solver", false},
     [K_PERSSON_TABLE] = {"numerics", "persson_table", false},
 };
-
-static const char *const sections[] = {"scene", "materials", "contact", "sweep", "effects",
-                                       "numerics"};
 
 typedef struct {
   vl_scene *scene;
@@ -77,6 +75,29 @@ typedef struct {
   const char *cursor;    /* reader position in the text */
   int key_line[K_COUNT]; /* where each key was set; 0 = not in the file */
 } parse_state;
+
+/* Sets key id (of section) from value, or records why it cannot: returns 1
+ * to go on, 0 to stop inih. */
+typedef int (*section_fn)(parse_state *ps, key_id id, const char *section, const char *key,
+                          const char *value);
+static int scene_key(parse_state *, key_id, const char *, const char *, const char *);
+static int materials_key(parse_state *, key_id, const char *, const char *, const char *);
+static int contact_key(parse_state *, key_id, const char *, const char *, const char *);
+static int sweep_key(parse_state *, key_id, const char *, const char *, const char *);
+static int effects_key(parse_state *, key_id, const char *, const char *, const char *);
+static int numerics_key(parse_state *, key_id, const char *, const char *, const char *);
+
+static const struct {
+  const char *name;
+  section_fn set;
+} sections[] = {
+    {"scene", scene_key},
+    {"materials", materials_key},
+    {"contact", contact_key},
+    {"sweep", sweep_key},
+    {"effects", effects_key},
+    {"numerics", numerics_key},
+};
 
 const char *vl_sweep_quantity_name(vl_sweep_quantity q) {
   switch (q) {
@@ -181,8 +202,8 @@ static void key_hint(const char *section, const char *key, char *hint, size_t si
 static void unknown_section(parse_state *ps, const char *section) {
   char hint[64] = "";
   for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
-    if (edit_distance(section, sections[s]) <= 2)
-      snprintf(hint, sizeof hint, " (did you mean [%s]?)", sections[s]);
+    if (edit_distance(section, sections[s].name) <= 2)
+      snprintf(hint, sizeof hint, " (did you mean [%s]?)", sections[s].name);
   vl_error_set(ps->err, "%s:%d: unknown section [%s]%s (known: scene, materials, contact, "
                "sweep, effects, numerics)", ps->path, ps->line, section, hint);
   ps->status = VL_EINPUT;
@@ -203,65 +224,44 @@ static int copy_name(parse_state *ps, const char *section, const char *key, char
     return 1;                                                                                      \
   } while (0)
 
-/* One key = value: inih calls this for every assignment, in file order. */
-static int handler(void *user, const char *section, const char *key, const char *value) {
-  parse_state *ps = user;
-  vl_scene *sc = ps->scene;
-  if (ps->status != VL_OK) return 0; /* inih goes on after an error: keep the first */
-
-  if (!section[0]) {
-    vl_error_set(ps->err, "%s:%d: key '%s' before any [section]", ps->path, ps->line, key);
-    ps->status = VL_EINPUT;
-    ps->err_line = ps->line;
-    return 0;
-  }
-  bool known_section = false;
-  for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
-    if (!strcmp(section, sections[s])) known_section = true;
-  if (!known_section) { /* normally caught by the reader at the header line */
-    unknown_section(ps, section);
-    return 0;
-  }
-  int id = -1;
-  for (int k = 0; k < K_COUNT; k++)
-    if (!strcmp(keys[k].section, section) && !strcmp(keys[k].key, key)) id = k;
-  if (id < 0) {
-    char hint[128];
-    key_hint(section, key, hint, sizeof hint);
-    return fail(ps, section, key, "unknown key%s", hint);
-  }
-  if (ps->key_line[id]) {
-    char why[64];
-    snprintf(why, sizeof why, "given twice (first on line %d)", ps->key_line[id]);
-    return fail(ps, section, key, "%s", why);
-  }
-  ps->key_line[id] = ps->line;
-
-  switch ((key_id)id) {
+static int scene_key(parse_state *ps, key_id id, const char *section, const char *key,
+                     const char *value) {
+  switch (id) {
   case K_TITLE:
-    snprintf(sc->title, sizeof sc->title, "%s", value);
+    snprintf(ps->scene->title, sizeof ps->scene->title, "%s", value);
     return 1;
+  default: return fail(ps, section, key, "unknown key%s", "");
+  }
+}
+
+/* A comma-separated list runs one curve per fluid (e.g. a viscosity series). */
+static int fluid_names(parse_state *ps, const char *section, const char *key, const char *value) {
+  vl_scene *sc = ps->scene;
+  char buf[VL_FLUIDS_MAX * VL_NAME_MAX];
+  snprintf(buf, sizeof buf, "%s", value);
+  sc->n_fluids = 0;
+  char *save = NULL;
+  for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+    while (*tok == ' ' || *tok == '\t') tok++;
+    size_t len = strlen(tok);
+    while (len && (tok[len - 1] == ' ' || tok[len - 1] == '\t')) tok[--len] = '\0';
+    if (sc->n_fluids >= VL_FLUIDS_MAX)
+      return fail(ps, section, key, "at most 8 fluids, got '%s'", value);
+    if (!copy_name(ps, section, key, sc->fluids[sc->n_fluids], tok)) return 0;
+    sc->n_fluids++;
+  }
+  if (sc->n_fluids == 0) return fail(ps, section, key, "bad name '%s'", value);
+  snprintf(sc->fluid, sizeof sc->fluid, "%s", sc->fluids[0]);
+  return 1;
+}
+
+static int materials_key(parse_state *ps, key_id id, const char *section, const char *key,
+                         const char *value) {
+  vl_scene *sc = ps->scene;
+  switch (id) {
   case K_COMPOUND: return copy_name(ps, section, key, sc->compound, value);
   case K_SURFACE: return copy_name(ps, section, key, sc->surface, value);
-  case K_FLUID_NAME: {
-    /* a comma-separated list runs one curve per fluid (e.g. a viscosity series) */
-    char buf[VL_FLUIDS_MAX * VL_NAME_MAX];
-    snprintf(buf, sizeof buf, "%s", value);
-    sc->n_fluids = 0;
-    char *save = NULL;
-    for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-      while (*tok == ' ' || *tok == '\t') tok++;
-      size_t len = strlen(tok);
-      while (len && (tok[len - 1] == ' ' || tok[len - 1] == '\t')) tok[--len] = '\0';
-      if (sc->n_fluids >= VL_FLUIDS_MAX)
-        return fail(ps, section, key, "at most 8 fluids, got '%s'", value);
-      if (!copy_name(ps, section, key, sc->fluids[sc->n_fluids], tok)) return 0;
-      sc->n_fluids++;
-    }
-    if (sc->n_fluids == 0) return fail(ps, section, key, "bad name '%s'", value);
-    snprintf(sc->fluid, sizeof sc->fluid, "%s", sc->fluids[0]);
-    return 1;
-  }
+  case K_FLUID_NAME: return fluid_names(ps, section, key, value);
   case K_ELASTIC_MODULUS:
     if (!strcmp(value, "relaxed")) sc->elastic = VL_ELASTIC_RELAXED;
     else if (!strcmp(value, "glassy")) sc->elastic = VL_ELASTIC_GLASSY;
@@ -271,12 +271,28 @@ static int handler(void *user, const char *section, const char *key, const char 
       return fail(ps, section, key, "expected relaxed, glassy or a modulus in Pa, got '%s'",
                   value);
     return 1;
+  default: return fail(ps, section, key, "unknown key%s", "");
+  }
+}
+
+static int contact_key(parse_state *ps, key_id id, const char *section, const char *key,
+                       const char *value) {
+  vl_scene *sc = ps->scene;
+  switch (id) {
   case K_RADIUS: POSITIVE(radius_m);
   case K_LOAD: POSITIVE(load_n_per_m);
   case K_SIGMA_S:
     if (!parse_double(value, &sc->sigma_s_pa) || sc->sigma_s_pa < 0.0)
       return fail(ps, section, key, "expected a number >= 0, got '%s'", value);
     return 1;
+  default: return fail(ps, section, key, "unknown key%s", "");
+  }
+}
+
+static int sweep_key(parse_state *ps, key_id id, const char *section, const char *key,
+                     const char *value) {
+  vl_scene *sc = ps->scene;
+  switch (id) {
   case K_QUANTITY:
     if (!strcmp(value, "v0")) sc->quantity = VL_SWEEP_V0;
     else if (!strcmp(value, "v0_eta")) sc->quantity = VL_SWEEP_V0_ETA;
@@ -298,6 +314,14 @@ static int handler(void *user, const char *section, const char *key, const char 
     sc->n_fields_at = (size_t)n;
     return 1;
   }
+  default: return fail(ps, section, key, "unknown key%s", "");
+  }
+}
+
+static int effects_key(parse_state *ps, key_id id, const char *section, const char *key,
+                       const char *value) {
+  vl_scene *sc = ps->scene;
+  switch (id) {
   case K_VISCOELASTIC:
   case K_ROUGHNESS:
   case K_FLUID:
@@ -315,20 +339,41 @@ static int handler(void *user, const char *section, const char *key, const char 
   }
   case K_FLOW_FACTORS:
     if (vl_flow_factors_parse(value, &sc->effects.flow_factors, NULL) != VL_OK)
-      return fail(ps, section, key, "expected smooth or patir-cheng, got '%s'", value);
+      return fail(ps, section, key, "expected smooth, patir-cheng or persson-emt, got '%s'",
+                  value);
+    return 1;
+  case K_FILM_CUTOFF:
+    if (!parse_double(value, &sc->effects.film_cutoff_m) ||
+        !(sc->effects.film_cutoff_m > 0.0 && sc->effects.film_cutoff_m <= VL_FILM_CUTOFF_MAX_M))
+      return fail(ps, section, key, "expected a film cut-off in (0, 1e-6] m, got '%s'", value);
     return 1;
   case K_TEMPERATURE_C:
     if (!parse_double(value, &sc->effects.temperature_c) || sc->effects.temperature_c < -273.15)
       return fail(ps, section, key, "expected a temperature in C, got '%s'", value);
     return 1;
+  default: return fail(ps, section, key, "unknown key%s", "");
+  }
+}
+
+/* The limits are the solver's (contact.h). */
+static int numerics_key(parse_state *ps, key_id id, const char *section, const char *key,
+                        const char *value) {
+  vl_scene *sc = ps->scene;
+  switch (id) {
   case K_GRID:
-    if (!parse_size(value, &sc->grid) || sc->grid < 16 || sc->grid > VL_GRID_GRADED_MAX)
+    if (!parse_size(value, &sc->grid) || sc->grid < VL_GRID_MIN || sc->grid > VL_GRID_GRADED_MAX)
       return fail(ps, section, key,
-                  "expected a whole number in [16, " VL_STR(VL_GRID_GRADED_MAX) "], got '%s'", value);
+                  "expected a whole number in [" VL_STR(VL_GRID_MIN) ", "
+                  VL_STR(VL_GRID_GRADED_MAX) "], got '%s'", value);
     return 1;
   case K_GRID_GROWTH:
-    if (!parse_double(value, &sc->grid_growth) || !(sc->grid_growth >= 1.0 && sc->grid_growth <= 2.0))
-      return fail(ps, section, key, "expected a ratio in [1, 2] (1: uniform grid), got '%s'", value);
+    if (!parse_double(value, &sc->grid_growth) ||
+        !(sc->grid_growth >= 1.0 && sc->grid_growth <= VL_GRID_GROWTH_MAX)) {
+      char why[96];
+      snprintf(why, sizeof why, "expected a ratio in [1, %g] (1: uniform grid), got '%%s'",
+               VL_GRID_GROWTH_MAX);
+      return fail(ps, section, key, why, value);
+    }
     return 1;
   case K_DOMAIN: {
     double d[2];
@@ -355,9 +400,45 @@ static int handler(void *user, const char *section, const char *key, const char 
     if (!parse_size(value, &sc->persson_table) || sc->persson_table < 64 || sc->persson_table > 100000)
       return fail(ps, section, key, "expected a whole number in [64, 100000], got '%s'", value);
     return 1;
-  case K_COUNT: break;
+  default: return fail(ps, section, key, "unknown key%s", "");
   }
-  return fail(ps, section, key, "unknown key%s", "");
+}
+
+/* One key = value: inih calls this for every assignment, in file order.
+ * Finds the section and the key, refuses a key given twice, and hands the
+ * value to the section's handler. */
+static int handler(void *user, const char *section, const char *key, const char *value) {
+  parse_state *ps = user;
+  if (ps->status != VL_OK) return 0; /* inih goes on after an error: keep the first */
+
+  if (!section[0]) {
+    vl_error_set(ps->err, "%s:%d: key '%s' before any [section]", ps->path, ps->line, key);
+    ps->status = VL_EINPUT;
+    ps->err_line = ps->line;
+    return 0;
+  }
+  int sec = -1;
+  for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
+    if (!strcmp(section, sections[s].name)) sec = (int)s;
+  if (sec < 0) { /* normally caught by the reader at the header line */
+    unknown_section(ps, section);
+    return 0;
+  }
+  int id = -1;
+  for (int k = 0; k < K_COUNT; k++)
+    if (!strcmp(keys[k].section, section) && !strcmp(keys[k].key, key)) id = k;
+  if (id < 0) {
+    char hint[128];
+    key_hint(section, key, hint, sizeof hint);
+    return fail(ps, section, key, "unknown key%s", hint);
+  }
+  if (ps->key_line[id]) {
+    char why[64];
+    snprintf(why, sizeof why, "given twice (first on line %d)", ps->key_line[id]);
+    return fail(ps, section, key, "%s", why);
+  }
+  ps->key_line[id] = ps->line;
+  return sections[sec].set(ps, (key_id)id, section, key, value);
 }
 
 /* inih reader over a string that counts lines, so the handler knows where
@@ -385,7 +466,8 @@ static char *reader(char *str, int num, void *stream) {
     size_t n = (size_t)(close - (text + b)) - 1;
     bool known = false;
     for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
-      if (strlen(sections[s]) == n && !strncmp(text + b + 1, sections[s], n)) known = true;
+      if (strlen(sections[s].name) == n && !strncmp(text + b + 1, sections[s].name, n))
+        known = true;
     if (!known) {
       char name[64];
       snprintf(name, sizeof name, "%.*s", (int)(n < 60 ? n : 60), text + b + 1);
@@ -406,38 +488,30 @@ static char *reader(char *str, int num, void *stream) {
   return str;
 }
 
+/* A contact configuration's numerics as a scene's [numerics] keys. */
+static void numerics_from(vl_scene *sc, const vl_contact_config *cfg) {
+  sc->grid = cfg->grid, sc->grid_growth = cfg->grid_growth, sc->tolerance = cfg->tolerance;
+  sc->domain_min_a0 = cfg->x_min_a0, sc->domain_max_a0 = cfg->x_max_a0;
+}
+
 void vl_scene_defaults(vl_scene *sc) {
   memset(sc, 0, sizeof *sc);
   sc->effects.viscoelastic = true;
   sc->elastic = VL_ELASTIC_RELAXED;
   sc->effects.temperature_c = NAN;
-  sc->grid = 512;
-  sc->grid_growth = 1.0;
-  /* symmetric about the axis: an elastic contact then has exactly zero
-   * rolling friction on the grid, so small viscoelastic shifts are resolved */
-  sc->domain_min_a0 = -1.5;
-  sc->domain_max_a0 = 1.5;
-  sc->tolerance = 1e-9;
-  sc->linear_solver = VL_LINSOL_SCHUR;
+  sc->effects.film_cutoff_m = VL_FILM_CUTOFF_DEFAULT_M;
+  vl_contact_config cfg; /* the solver's numerics of a dry contact */
+  vl_contact_config_defaults(&cfg);
+  numerics_from(sc, &cfg);
+  sc->linear_solver = cfg.linear_solver;
   sc->persson_table = 0;
 }
 
 void vl_scene_default_numerics(vl_scene *sc) {
-  vl_scene dry;
-  vl_scene_defaults(&dry);
-  sc->grid = dry.grid, sc->grid_growth = dry.grid_growth, sc->tolerance = dry.tolerance;
-  sc->domain_min_a0 = dry.domain_min_a0, sc->domain_max_a0 = dry.domain_max_a0;
-  if (!sc->effects.fluid) return;
-  /* a lubricated contact needs room for the inlet meniscus and the film
-   * build-up upstream of the contact (MODEL.md section 5) */
-  sc->tolerance = VL_WET_TOLERANCE;
-  sc->domain_max_a0 = VL_WET_DOMAIN_MAX_A0;
-  if (sc->effects.roughness) {
-    sc->grid = VL_WET_ROUGH_GRID, sc->grid_growth = VL_WET_GRID_GROWTH;
-    sc->domain_min_a0 = VL_WET_ROUGH_DOMAIN_MIN_A0;
-  } else {
-    sc->grid = VL_WET_GRID, sc->domain_min_a0 = VL_WET_DOMAIN_MIN_A0;
-  }
+  vl_contact_config cfg;
+  vl_contact_config_defaults(&cfg);
+  vl_contact_numerics_defaults(sc->effects.roughness, sc->effects.fluid, &cfg);
+  numerics_from(sc, &cfg);
 }
 
 /* An error about key id found after the whole file is read: it names the
@@ -515,6 +589,10 @@ static vl_status scene_check(parse_state *ps) {
     return check_fail(ps, K_VISCOUS_FLATTENING, "on needs [effects] fluid = on");
   /* the temperature effect shifts the compound (WLF) and the fluid (its
    * viscosity law) to one stated temperature: there is no default */
+  if (!ps->key_line[K_FLOW_FACTORS] && sc->effects.roughness && sc->effects.fluid)
+    sc->effects.flow_factors = VL_SCENE_ROUGH_FLOW_FACTORS;
+  if (ps->key_line[K_FILM_CUTOFF] && sc->effects.flow_factors != VL_FLOW_FACTORS_PERSSON_EMT)
+    return check_fail(ps, K_FILM_CUTOFF, "applies to [effects] flow_factors = persson-emt only");
   if (sc->effects.temperature && !ps->key_line[K_TEMPERATURE_C])
     return check_fail(ps, K_TEMPERATURE, "on needs [effects] temperature_c (Celsius)");
   if (!sc->effects.temperature && ps->key_line[K_TEMPERATURE_C])

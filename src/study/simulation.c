@@ -2,6 +2,8 @@
 #include "viscolube/simulation.h"
 #include "viscolube/persson.h"
 
+#include "flow_factors_emt.h"
+
 #include "viscolube/assumptions.h"
 
 #include "viscolube/flattening.h"
@@ -17,7 +19,8 @@ struct vl_simulation {
   bool have_psd;
   vl_psd psd;
   vl_persson *table;
-  vl_flattening *flattening; /* [effects] viscous_flattening = on, else NULL */
+  vl_emt_table *flow_table; /* persson-emt only */
+  vl_flattening_config flattening; /* [effects] viscous_flattening = on: its settings */
   double eta_pa_s;
   double temperature_c; /* [effects] temperature: the scene's; NAN when off */
   double a_T;           /* WLF shift applied to the compound's times (1 when off) */
@@ -199,6 +202,14 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     st = vl_db_persson_table(db, scene->surface, &sim->psd, scene->persson_table, &sim->table, NULL,
                              err);
     if (st != VL_OK) goto fail;
+    if (scene->effects.fluid && scene->effects.flow_factors == VL_FLOW_FACTORS_PERSSON_EMT) {
+      st = vl_db_flow_table(db, scene->surface, &sim->psd, scene->effects.film_cutoff_m, 0,
+                            &sim->flow_table, NULL, err);
+      if (st != VL_OK) {
+        vl_error_prefix(err, "%s: [effects] flow_factors = persson-emt", scene->path);
+        goto fail;
+      }
+    }
   }
   vl_contact_config cfg;
   vl_contact_config_defaults(&cfg);
@@ -218,6 +229,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   /* only a scene with the fluid effect gets fluid unknowns */
   cfg.eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
   cfg.flow_factors = scene->effects.flow_factors;
+  cfg.flow_table = sim->flow_table;
   cfg.grid = scene->grid;
   cfg.grid_growth = scene->grid_growth;
   cfg.x_min_a0 = scene->domain_min_a0;
@@ -229,18 +241,14 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
      * temperature), the surface, the contact's load and radius (aH, so wH)
      * and the fluid at the scene's temperature; the scene parser has made
      * sure roughness and fluid are on */
-    vl_flattening_config fc;
-    vl_flattening_config_defaults(&fc);
-    fc.rubber = cfg.rubber;
-    fc.load_n_per_m = cfg.load_n_per_m;
-    fc.radius_m = cfg.radius_m;
-    fc.eta_pa_s = cfg.eta_pa_s;
-    st = vl_flattening_create(&fc, &sim->psd, &sim->flattening, err);
-    if (st != VL_OK) {
-      vl_error_prefix(err, "%s: [effects] viscous_flattening", scene->path);
-      goto fail;
-    }
-    cfg.flattening = sim->flattening;
+    vl_flattening_config *fc = &sim->flattening;
+    vl_flattening_config_defaults(fc);
+    fc->rubber = cfg.rubber;
+    fc->load_n_per_m = cfg.load_n_per_m;
+    fc->radius_m = cfg.radius_m;
+    fc->eta_pa_s = cfg.eta_pa_s;
+    cfg.flattening = fc; /* the contact builds its own evaluator from it */
+    cfg.flattening_psd = &sim->psd;
   }
   sim->cfg = cfg;
   st = vl_contact_create(&cfg, &sim->contact, err);
@@ -260,8 +268,8 @@ fail:
 void vl_simulation_free(vl_simulation *sim) {
   if (!sim) return;
   vl_contact_free(sim->contact);
-  vl_flattening_free(sim->flattening); /* after the contact that uses it */
   vl_persson_free(sim->table);
+  vl_emt_table_free(sim->flow_table);
   if (sim->have_psd) vl_psd_free(&sim->psd);
   free(sim->v0);
   free(sim->fields);

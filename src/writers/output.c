@@ -1,10 +1,10 @@
 /* Curve and field writers (output.h). */
 #include "viscolube/output.h"
 
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <string.h>
+
+#include "viscolube/atomic_file.h"
 
 const char *const vl_curve_columns[] = {
     "v0_m_s", "v0_eta_pa_m", "deborah", "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf", "u_min_m",
@@ -53,37 +53,18 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
   }
 }
 
-/* Opens path.tmp for writing; the caller renames it into place. */
-static FILE *open_tmp(const char *path, char *tmp, size_t size, vl_error *err) {
-  snprintf(tmp, size, "%s.tmp", path);
-  FILE *f = fopen(tmp, "w");
-  if (!f) vl_error_set(err, "%s: cannot write: %s", tmp, strerror(errno));
-  return f;
-}
-
-static vl_status close_rename(FILE *f, const char *tmp, const char *path, vl_error *err) {
-  int bad = ferror(f);
-  if (fclose(f) != 0 || bad || rename(tmp, path) != 0) {
-    vl_error_set(err, "%s: write failed: %s", path, strerror(errno));
-    remove(tmp);
-    return VL_EIO;
-  }
-  return VL_OK;
-}
-
 vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
                              const vl_curve_meta *meta, vl_error *err) {
-  char tmp[4200];
-  FILE *f = open_tmp(path, tmp, sizeof tmp, err);
-  if (!f) return VL_EIO;
-  vl_print_curve_csv(f, n, pts, meta);
-  return close_rename(f, tmp, path, err);
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
+  vl_print_curve_csv(af.f, n, pts, meta);
+  return vl_atomic_file_commit(&af, err);
 }
 
 vl_status vl_write_fields_csv(const char *path, const vl_fields *fl, double a0_m, vl_error *err) {
-  char tmp[4200];
-  FILE *f = open_tmp(path, tmp, sizeof tmp, err);
-  if (!f) return VL_EIO;
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
+  FILE *f = af.f;
   fputs("x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction", f);
   fputs(fl->width_m ? ",cell_width_m\n" : "\n", f);
   for (size_t i = 0; i < fl->n; i++) {
@@ -94,50 +75,54 @@ vl_status vl_write_fields_csv(const char *path, const vl_fields *fl, double a0_m
     if (fl->width_m) fprintf(f, ",%.10g", fl->width_m[i]);
     fputc('\n', f);
   }
-  return close_rename(f, tmp, path, err);
+  return vl_atomic_file_commit(&af, err);
 }
 
-static void jnum(FILE *out, const char *key, double v, int ok, int comma) {
-  if (ok && isfinite(v)) fprintf(out, "\"%s\": %.10g", key, plain_zero(v));
-  else fprintf(out, "\"%s\": null", key);
-  if (comma) fputs(", ", out);
+/* A number of the point as its CSV cell has it: null where the cell is
+ * empty (not defined, or the point did not converge). */
+static void member(vl_json *w, const char *key, double v, int ok) {
+  vl_json_key(w, key);
+  if (ok) vl_json_number_digits(w, v, 10);
+  else vl_json_null(w);
 }
 
-void vl_print_point_json(FILE *out, const vl_point *p, const vl_curve_meta *meta) {
+void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *meta) {
   int ok = p->converged;
-  fputc('{', out);
-  jnum(out, "v0_m_s", p->v0_m_s, 1, 1);
-  jnum(out, "v0_eta_pa_m", p->v0_m_s * meta->eta_pa_s, meta->eta_pa_s > 0, 1);
-  jnum(out, "deborah", meta->a0_m > 0 ? p->v0_m_s * meta->tau_s / meta->a0_m : 0,
-       meta->tau_s > 0 && meta->a0_m > 0, 1);
-  jnum(out, "mu", p->mu, ok, 1);
-  jnum(out, "mu_Rc", p->mu_Rc, ok, 1);
-  jnum(out, "mu_Rf", p->mu_Rf, ok, 1);
-  jnum(out, "mu_Sc", p->mu_Sc, ok, 1);
-  jnum(out, "mu_Sf", p->mu_Sf, ok, 1);
-  jnum(out, "u_min_m", p->u_min_m, ok, 1);
-  jnum(out, "u_central_m", p->u_central_m, ok, 1);
-  jnum(out, "contact_width_m", p->contact_width_m, ok, 1);
-  jnum(out, "fluid_load_fraction", p->fluid_load_fraction, ok, 1);
-  if (ok) fprintf(out, "\"regime\": \"%s\", ", vl_regime_name(p->regime));
-  else fputs("\"regime\": null, ", out);
-  jnum(out, "E_wH_pa", p->E_wH_pa, 1, 1);
-  jnum(out, "a_H_m", p->a_H_m, 1, 1);
-  jnum(out, "Q", p->Q, 1, 1);
-  jnum(out, "x_centroid_m", p->x_centroid_m, ok, 1);
-  jnum(out, "load_error", p->load_error, ok, 1);
-  fprintf(out, "\"converged\": %s, \"iterations\": %ld, ", ok ? "true" : "false", p->iterations);
-  jnum(out, "residual", p->residual, 1, 1);
-  jnum(out, "eps_f_min", p->eps_f_min, ok, 1);
-  fprintf(out, "\"warnings\": \"%s\"}", p->warnings);
+  member(w, "v0_m_s", p->v0_m_s, 1);
+  member(w, "v0_eta_pa_m", p->v0_m_s * meta->eta_pa_s, meta->eta_pa_s > 0);
+  member(w, "deborah", meta->a0_m > 0 ? p->v0_m_s * meta->tau_s / meta->a0_m : 0,
+         meta->tau_s > 0 && meta->a0_m > 0);
+  member(w, "mu", p->mu, ok);
+  member(w, "mu_Rc", p->mu_Rc, ok);
+  member(w, "mu_Rf", p->mu_Rf, ok);
+  member(w, "mu_Sc", p->mu_Sc, ok);
+  member(w, "mu_Sf", p->mu_Sf, ok);
+  member(w, "u_min_m", p->u_min_m, ok);
+  member(w, "u_central_m", p->u_central_m, ok);
+  member(w, "contact_width_m", p->contact_width_m, ok);
+  member(w, "fluid_load_fraction", p->fluid_load_fraction, ok);
+  vl_json_key_string(w, "regime", ok ? vl_regime_name(p->regime) : NULL);
+  member(w, "E_wH_pa", p->E_wH_pa, 1);
+  member(w, "a_H_m", p->a_H_m, 1);
+  member(w, "Q", p->Q, 1);
+  member(w, "x_centroid_m", p->x_centroid_m, ok);
+  member(w, "load_error", p->load_error, ok);
+  vl_json_key(w, "converged");
+  vl_json_bool(w, ok);
+  vl_json_key_integer(w, "iterations", p->iterations);
+  member(w, "residual", p->residual, 1);
+  member(w, "eps_f_min", p->eps_f_min, ok);
+  vl_json_key_string(w, "warnings", p->warnings);
 }
 
-void vl_print_curve_json(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta) {
-  fputs("[\n", out);
-  for (size_t i = 0; i < n; i++) {
-    fputs("  ", out);
-    vl_print_point_json(out, &pts[i], meta);
-    fputs(i + 1 < n ? ",\n" : "\n", out);
-  }
-  fputs("]\n", out);
+void vl_point_json(vl_json *w, const vl_point *p, const vl_curve_meta *meta) {
+  vl_json_object_begin(w, VL_JSON_INLINE);
+  vl_point_json_members(w, p, meta);
+  vl_json_end(w);
+}
+
+void vl_curve_json(vl_json *w, size_t n, const vl_point *pts, const vl_curve_meta *meta) {
+  vl_json_array_begin(w, VL_JSON_ROWS);
+  for (size_t i = 0; i < n; i++) vl_point_json(w, &pts[i], meta);
+  vl_json_end(w);
 }

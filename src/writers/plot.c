@@ -7,7 +7,9 @@
  *
  * Output goes through a FILE we open ourselves and hand to PLplot (plsfile):
  * with only a file name PLplot retries fopen and then exits the process
- * when the file cannot be created. PLplot closes the FILE in plend1. */
+ * when the file cannot be created. PLplot closes the FILE in plend1; it is
+ * a second stream on the temporary of atomic_file.h, which is fsynced and
+ * renamed into place afterwards. */
 #include "viscolube/plot.h"
 
 #include <errno.h>
@@ -15,8 +17,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <plplot.h>
+
+#include "viscolube/atomic_file.h"
 
 #define PAGE_W_DEFAULT 1000
 #define PAGE_H_DEFAULT 750
@@ -662,6 +667,62 @@ static bool file_complete(const char *path, bool png) {
 
 typedef void (*draw_fn)(fig *f, const void *ctx);
 
+/* A second stream on af's open file, for PLplot, which closes the stream
+ * it is given (in plend1) while af must stay open to be fsynced and
+ * renamed. NULL when out of descriptors. */
+static FILE *plplot_stream(const vl_atomic_file *af) {
+  int fd = dup(fileno(af->f));
+  FILE *fp = fd >= 0 ? fdopen(fd, "wb") : NULL;
+  if (!fp && fd >= 0) close(fd);
+  return fp;
+}
+
+/* Draws one figure into path with the PLplot device dev, through a
+ * temporary renamed into place once PLplot has reported no error and the
+ * file ends as a complete PNG (png) or SVG does. */
+static vl_status draw_file(const char *path, const char *dev, bool png,
+                           const vl_plot_options *opt, draw_fn draw, const void *ctx, fig *f,
+                           vl_error *err) {
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
+  FILE *fp = plplot_stream(&af);
+  if (!fp) {
+    vl_error_set(err, "%s: cannot write: %s", path, strerror(errno));
+    vl_atomic_file_abort(&af);
+    return VL_EIO;
+  }
+  abort_msg[0] = '\0';
+  plsabort(on_abort);
+  PLINT strm;
+  plmkstrm(&strm);
+  plsdev(dev);
+  plsfile(fp); /* PLplot owns fp from here and closes it in plend1 */
+  plspage(0, 0, opt->width_px, opt->height_px, 0, 0);
+  plscolbg(255, 255, 255);
+  plinit();
+  pladv(0); /* exactly once: a second page is dropped with a warning */
+  PLFLT x0, x1, y0, y1;
+  plgspa(&x0, &x1, &y0, &y1);
+  f->pw = x1 - x0;
+  f->ph = y1 - y0;
+  f->scratch = 14;
+  draw(f, ctx);
+  draw_title(f, opt->title);
+  plend1();
+  plsabort(NULL);
+  if (abort_msg[0]) {
+    vl_atomic_file_abort(&af);
+    vl_error_set(err, "%s: PLplot: %s", path, abort_msg);
+    return VL_EINTERNAL;
+  }
+  if (!file_complete(af.tmp, png)) {
+    vl_atomic_file_abort(&af);
+    vl_error_set(err, "%s: write failed (file incomplete)", path);
+    return VL_EIO;
+  }
+  return vl_atomic_file_commit(&af, err);
+}
+
 /* Draws the figure once per selected format into stem.EXT. */
 static vl_status render(const char *stem, const vl_plot_options *opt_in, draw_fn draw,
                         const void *ctx, vl_plot_report *rep, vl_error *err) {
@@ -688,49 +749,12 @@ static vl_status render(const char *stem, const vl_plot_options *opt_in, draw_fn
   } formats[] = {{VL_PLOT_PNG, "png", "pngcairo"}, {VL_PLOT_SVG, "svg", "svgcairo"}};
   for (size_t k = 0; k < 2; k++) {
     if (!(opt.formats & formats[k].flag)) continue;
-    char path[4200], tmp[4300];
+    char path[4200];
     snprintf(path, sizeof path, "%s.%s", stem, formats[k].ext);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    FILE *fp = fopen(tmp, "wb");
-    if (!fp) {
-      vl_error_set(err, "%s: cannot write: %s", tmp, strerror(errno));
-      return VL_EIO;
-    }
-    abort_msg[0] = '\0';
-    plsabort(on_abort);
-    PLINT strm;
-    plmkstrm(&strm);
-    plsdev(formats[k].dev);
-    plsfile(fp); /* PLplot owns fp from here and closes it in plend1 */
-    plspage(0, 0, opt.width_px, opt.height_px, 0, 0);
-    plscolbg(255, 255, 255);
-    plinit();
-    pladv(0); /* exactly once: a second page is dropped with a warning */
     fig f = {0};
-    PLFLT x0, x1, y0, y1;
-    plgspa(&x0, &x1, &y0, &y1);
-    f.pw = x1 - x0;
-    f.ph = y1 - y0;
-    f.scratch = 14;
-    draw(&f, ctx);
-    draw_title(&f, opt.title);
-    plend1();
-    plsabort(NULL);
-    if (abort_msg[0]) {
-      remove(tmp);
-      vl_error_set(err, "%s: PLplot: %s", path, abort_msg);
-      return VL_EINTERNAL;
-    }
-    if (!file_complete(tmp, formats[k].flag == VL_PLOT_PNG)) {
-      remove(tmp);
-      vl_error_set(err, "%s: write failed (file incomplete)", path);
-      return VL_EIO;
-    }
-    if (rename(tmp, path) != 0) {
-      vl_error_set(err, "%s: cannot write: %s", path, strerror(errno));
-      remove(tmp);
-      return VL_EIO;
-    }
+    vl_status st = draw_file(path, formats[k].dev, formats[k].flag == VL_PLOT_PNG, &opt, draw,
+                             ctx, &f, err);
+    if (st != VL_OK) return st;
     r.series = f.series;
     r.failed_markers = f.failed;
     r.x_lo = f.x.log ? pow(10.0, f.x.lo) : f.x.lo;

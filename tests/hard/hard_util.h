@@ -29,7 +29,7 @@
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 
-/* The seed's model rubber and cylinder (CASES.md fig05: E0 = 3.6 MPa,
+/* The seed's model rubber and cylinder (docs/CASES.md fig05: E0 = 3.6 MPa,
  * Einf/E0 = 10, tau = 0.1 s, nu = 0.5, R = 1 cm, fN = 1 kN/m; paper
  * surface H = 0.8, q0 = 2e5 1/m, q1 = 7.8e9 1/m, h_rms = 3 um). */
 #define HARD_E0 3.6e6
@@ -418,7 +418,7 @@ static inline unsigned hard_check_point(hard_ctx *x, vl_point *pt) {
    * viscoelastic (and = 0 for an elastic) solid; the discrete centroid can
    * sit up to about one cell off (the domain is not symmetric about the
    * axis), so mu_Rc >= -dx/R. Wet: the fluid can push the solid contact
-   * behind the axis (MODEL.md section 7): no sign. The total friction times
+   * behind the axis (docs/MODEL.md section 7): no sign. The total friction times
    * v0 is the dissipated power: mu >= -dx/R always. */
   double slack = x->dx / x->cfg.radius_m;
   /* where the pressure reaches an end of the domain the contact is cut

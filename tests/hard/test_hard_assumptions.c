@@ -1,6 +1,6 @@
 /* vl_assumptions_check (src/assumptions.c): each assumption check fires on
  * a point built to violate it and stays silent on one built to respect it;
- * the rms slope agrees with the closed form of VALIDATION.md section 4
+ * the rms slope agrees with the closed form of docs/VALIDATION.md section 4
  * (independent of the PSD module); the warning column stays well formed
  * (';'-separated, no commas or quotes, never cut, no repeats). */
 #include <setjmp.h>
@@ -41,7 +41,7 @@ static vl_point benign_point(double hrms) {
 }
 
 /* rms slope^2 = 2 pi \int q^3 C dq = 2 pi C0 q0^4 [(q1/q0)^(2(1-H)) - 1]/(2(1-H)),
- * C0 = H h^2/(pi q0^2 [1 - (q0/q1)^(2H)]) (VALIDATION.md section 4). */
+ * C0 = H h^2/(pi q0^2 [1 - (q0/q1)^(2H)]) (docs/VALIDATION.md section 4). */
 static double slope_closed_form(double H, double q0, double q1, double h) {
   double c0 = H * h * h / (M_PI * q0 * q0 * (1.0 - pow(q0 / q1, 2.0 * H)));
   return sqrt(2.0 * M_PI * c0 * pow(q0, 4.0) * (pow(q1 / q0, 2.0 * (1.0 - H)) - 1.0) /

@@ -36,13 +36,15 @@ static int teardown(void **state) {
   return 0;
 }
 
-/* The seed's scene (fig05 geometry, model rubber), dry smooth, grid 64. */
+/* The seed's scene (fig05 geometry, model rubber), dry smooth, grid 64 on
+ * [-1.6, 1.4] a0. */
 static void seed_config(vl_contact_config *cfg) {
   vl_contact_config_defaults(cfg);
   cfg->rubber = vl_prony_single(HARD_E0, 10.0, HARD_TAU, HARD_NU);
   cfg->radius_m = HARD_RADIUS;
   cfg->load_n_per_m = HARD_LOAD;
   cfg->grid = 64;
+  cfg->x_min_a0 = -1.6, cfg->x_max_a0 = 1.4;
 }
 
 /* One refused configuration: VL_EINPUT, a message naming `needle`, no

@@ -4,7 +4,7 @@
  * Derivation (lengths in a0, pressures in p0, b = De = v0 tau/a0; with
  * a0^2 = 4 fN R/(pi Er0) one has Er0/R = 2 p0/a0 and Er_inf = (1+A) Er0).
  *
- * 1. Displacement (MODEL.md §3): w = -(2/(pi Einf)) \int p(x')[L + A K](x-x'),
+ * 1. Displacement (docs/MODEL.md §3): w = -(2/(pi Einf)) \int p(x')[L + A K](x-x'),
  *    L(y) = log|y|, K(y) = \int_0^inf e^{-s} log|y - b s| ds.
  *    Writing K(y) = (1/b) \int_{-inf}^y e^{-(y-z)/b} log|z| dz shows
  *    (1 + b d/dy) K = log|y|: the memory integral is a causal exponential

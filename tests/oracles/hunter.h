@@ -76,7 +76,7 @@ int vl_oracle_hunter_pressure_array(const vl_oracle_hunter_solution *s,
                                     size_t n, const double *x_over_a0,
                                     double *p_over_p0);
 
-/* Hertz line contact (VALIDATION.md §1) with modulus Er0*ratio, in the a0/p0
+/* Hertz line contact (docs/VALIDATION.md §1) with modulus Er0*ratio, in the a0/p0
  * scales: half width 1/sqrt(ratio), p_max sqrt(ratio). ratio = 1: relaxed,
  * ratio = Einf/E0: glassy. */
 double vl_oracle_hertz_pressure(double ratio, double x_over_a0);

@@ -1,4 +1,4 @@
-/* Test oracle: Persson's linear-order rolling friction (VALIDATION.md §3),
+/* Test oracle: Persson's linear-order rolling friction (docs/VALIDATION.md §3),
  * for a standard linear solid 1/Er(w) = (1/Er_inf)[1 + A/(1 - i w tau)],
  * A = Einf/E0 - 1, tau the retardation time. GSL + libm only.
  *

@@ -1,0 +1,57 @@
+/* viscolube: what a solve produces, as plain data: one operating point
+ * (vl_point), the fields on the grid (vl_fields) and the lubrication regime.
+ * SI units throughout. The writers (output.h, plot.h) format these and need
+ * nothing of the solver that fills them (contact.h). */
+#ifndef VISCOLUBE_RESULTS_H
+#define VISCOLUBE_RESULTS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#define VL_WARN_MAX 256
+
+/* Result of one operating point, SI units. */
+typedef struct {
+  double v0_m_s;
+  bool converged;
+  long iterations;            /* Newton iterations of this call (smooth wet: including a
+                               * failed continuation attempt and coarse-grid starts) */
+  double residual;            /* final scaled residual norm (max norm) */
+  double mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf;
+  double u_min_m, u_central_m;/* min separation; separation at the pressure centroid */
+  double x_centroid_m;        /* pressure centroid (negative: inlet side) */
+  double contact_width_m;     /* extent where pc >= 1% of its maximum */
+  double fluid_load_fraction; /* \int pf / fN */
+  double load_error;          /* |\int p - fN| / fN */
+  double E_wH_pa;             /* |Er(wH)| (rough) or Er of the relaxed state */
+  double a_H_m;               /* Hertz half-width with |Er(wH)| */
+  double Q;                   /* rolling number (wet rough only; else 0) */
+  double peak_pressure_pa, x_peak_m;
+  double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
+  double x_min_film_m;        /* where u is smallest (EHL constriction: outlet side, x > 0) */
+  int regime;                 /* vl_regime */
+  double eps_f_min;           /* smallest epsilon_f(u) over the grid (viscous flattening);
+                               * 1 when the effect is off */
+  char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
+} vl_point;
+
+/* Lubrication regime by the share of the load carried by the fluid. */
+typedef enum {
+  VL_REGIME_DRY = 0,     /* no fluid */
+  VL_REGIME_BOUNDARY,    /* fluid carries < 5 % of the load */
+  VL_REGIME_MIXED,       /* 5 % ... 95 % */
+  VL_REGIME_HYDRODYNAMIC /* > 95 % */
+} vl_regime;
+
+/* "dry", "boundary", "mixed", "hydrodynamic"; "?" for anything else. */
+const char *vl_regime_name(int regime);
+
+/* Fields on the grid, SI; arrays of length n owned by the caller. */
+typedef struct {
+  size_t n;
+  double *x_m, *p_f_pa, *p_c_pa, *u_m, *area_ratio;
+  double *film_fraction; /* theta: 1 in the full film, < 1 where cavitated; may be NULL */
+  double *width_m;       /* cell widths (graded grids are not uniform); may be NULL */
+} vl_fields;
+
+#endif

@@ -1,0 +1,208 @@
+/* The contact solver's private state and the functions its files share.
+ * Private to src/solver; the public API is viscolube/contact.h.
+ *
+ * The solver is split by responsibility (each file says which equations of
+ * docs/MODEL.md it implements):
+ *   contact.c           creation (scales, unknowns, allocation) and release;
+ *   contact_config.c    numerics defaults and limits, validation of a
+ *                       configuration, the film and inlet-length estimates;
+ *   contact_grid.c      the grid (uniform or graded cells) and the influence
+ *                       coefficients at a speed;
+ *   contact_equations.c the discretised equations: state, residual and
+ *                       Jacobian, Fischer-Burmeister, Couette faces,
+ *                       Reynolds row weights and fluid scales;
+ *   contact_start.c     initial guesses: Hertz, the rigid cylinder, the
+ *                       coarse-grid and dry starts, the speed predictor;
+ *   contact_kinsol.c    KINSOL glue and the solve with its continuation and
+ *                       fallbacks;
+ *   contact_report.c    results: the point's friction integrals and derived
+ *                       quantities, the fields;
+ *   contact_test.c      the test aids of contact_test.h. */
+#ifndef VISCOLUBE_CONTACT_INTERNAL_H
+#define VISCOLUBE_CONTACT_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <time.h>
+
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+
+#include "viscolube/contact.h"
+
+#include "contact_test.h"
+#include "kernel.h"
+
+/* Smoothing of the Fischer-Burmeister function: p u = FB_EPS at the contact
+ * edge instead of 0, far below the tolerance, but the function stays
+ * differentiable where both p and u vanish. */
+#define FB_EPS 1e-18
+/* The same for the cavitation of a smooth film, where it must be far
+ * smaller: FB(pf, R) = 0 means pf R = eps/2, and the far inlet of a stiff
+ * contact has pf ~ 1e-7 (of its peak) with R = (flux imbalance)/(its
+ * sensitivity to pf), a sensitivity of ~1e11 there: 1e-18 left the inlet
+ * flux off by 1 %. */
+#define FB_EPS_FILM 1e-200
+
+/* Smallest grid of the coarse levels used to start smooth wet solves. */
+#define VL_COARSE_MIN 96
+
+struct vl_contact {
+  vl_contact_config cfg;
+  bool rough, wet;
+  size_t n;        /* grid nodes */
+  size_t nc;       /* contact unknowns (n; 0 for a smooth wet contact) */
+  size_t nf;       /* fluid unknowns (n when wet, else 0) */
+  size_t nunk;     /* unknowns: nc contact + nf fluid + rigid approach */
+  size_t of, ih;   /* offsets of the fluid unknowns and of the rigid approach */
+  double er_ref;   /* reduced modulus defining a0 (relaxed, or the elastic one) */
+  double er_inf;   /* reduced glassy modulus (kernel prefactor) */
+  double a0, p0, uscale, dxi, kfac; /* dxi: width of the uniform cells */
+  double hrms;     /* rms roughness (m), 0 when smooth */
+  double *xi;      /* node positions x/a0 (cell centres) */
+  double *wc;      /* cell widths /a0 */
+  double *hf;      /* n + 1 face distances /a0: node to node, half a cell at both ends */
+  /* graded grid (vl_contact_config.grid_growth): cell i is uniform cells
+   * first[i] .. first[i] + span[i] - 1 of an nv-cell uniform grid (span odd,
+   * so its node is uniform node first[i] + span[i]/2); psum: prefix sums of
+   * the uniform Toeplitz coefficients. All NULL on a uniform grid (nv = n). */
+  size_t nv, *first, *span;
+  double *psum;
+  double *A, *beta;/* Prony strengths and v0 tau_k / a0 */
+  vl_toeplitz kern;
+  double *M;       /* dense influence matrix, row-major: U_i += M[i n + j] P_j */
+  double v0;       /* speed the kernel is built for (NAN: not yet) */
+  bool kernel_ready;
+  double e_abs, a_h, omega_h, sfac; /* asperity state; P = sfac * s(u) */
+  /* fluid scales of the current solve: pf = kappa p0 Pf; flux in units of
+   * v0 us/2 (lambda: its Poiseuille coefficient); rough Reynolds rows per
+   * Couette flux v0 u_ref/2 (rscale = 1/u_ref), see vl_contact_reynolds_weights */
+  double kappa, lambda, rscale, u_ref;
+  double *rw;         /* weight of Reynolds row i (frozen during a solve) */
+  double v_state;     /* speed at which y was last converged (0: initial guess) */
+  double q_rolling;   /* rolling number (wet, rough, viscoelastic), else 0 */
+  double *P, *dPdU;   /* contact pressure (p0) and dP/dU on the grid */
+  double *F;          /* fluid pressure (p0) */
+  double *U;          /* separation (a0^2/R) */
+  double *g, *dg, *cf, *dcf; /* conductance u^3 phi_p and Couette film u + h phi_s, /us^3, /us */
+  double *Jf;         /* face fluxes, n + 1 */
+  double *D;          /* rough: elasticity residual U - G */
+  vl_flattening *flattening; /* owned; NULL when cfg.flattening is NULL */
+  double *sf, *dsf;   /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
+                       * NULL when off */
+  double *theta;      /* film fraction (report only) */
+  vl_contact *coarse; /* smooth wet: half-size grid for fresh starts (NULL when small) */
+  bool no_fallback;   /* inside the viscosity-continuation fallback of a fresh start */
+  vl_contact *dry;    /* smooth wet viscoelastic, coarsest level: the dry contact on the same
+                       * grid, whose solution starts the wet one (NULL otherwise) */
+  vl_contact_timing timing; /* cost counters (vl_contact_timing_get) */
+  SUNContext ctx;
+  N_Vector y, y_saved, y_outer, ones, fwork;
+  SUNMatrix J;
+  SUNLinearSolver LS;
+  SUNLinearSolver schur; /* the inner solver of LS when VL_LINSOL_SCHUR applies (not owned) */
+  void *kmem;
+};
+
+/* Wall-clock seconds (CLOCK_MONOTONIC), for the cost counters. */
+static inline double vl_contact_now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Out of memory while building c: says so in err (every step of
+ * vl_contact_create explains its own failure) and returns VL_ENOMEM. */
+static inline vl_status vl_contact_nomem(const vl_contact *c, vl_error *err) {
+  vl_error_set(err, "out of memory for a %zu-node contact solver", c->cfg.grid);
+  return VL_ENOMEM;
+}
+
+/* contact_config.c */
+
+/* VL_OK when cfg describes a contact vl_contact_create can build, else
+ * VL_EINPUT (or the rubber's own status) with the reason in err. Changes
+ * nothing. */
+vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err);
+
+/* Minimum film (m) of a smooth wet contact of cfg at v0, estimated as the
+ * larger of Martin's rigid film and the isoviscous-elastic one (contact.h,
+ * vl_contact_inlet_length_m). */
+double vl_contact_film_estimate(const vl_contact_config *cfg, double v0);
+
+/* contact_grid.c */
+
+/* Lays out the cells of c->cfg's grid (uniform, or graded when grid_growth
+ * > 1): sets n, nv, span, first, xi, wc, hf, dxi and allocates psum.
+ * VL_EINPUT (message in err) when the graded grid has more than
+ * VL_CONTACT_MAX_CELLS cells, VL_ENOMEM. */
+vl_status vl_contact_grid_init(vl_contact *c, vl_error *err);
+
+/* Builds the Toeplitz kernel of the uniform grid for the Prony strengths
+ * (c->A must be filled); the influence matrix follows at each speed. */
+vl_status vl_contact_kernel_init(vl_contact *c, vl_error *err);
+
+/* Makes the asperity state, the flattening's speed and the influence
+ * matrix those of speed v0 (a no-op when v0 is the current speed; the
+ * elastic kernel is built once). */
+void vl_contact_set_speed(vl_contact *c, double v0);
+
+/* contact_equations.c */
+
+/* Everything the residual needs from the unknowns y: contact pressure P
+ * (and dP/dU), fluid pressure F, separation U, flow quantities and face
+ * fluxes. */
+void vl_contact_eval_state(vl_contact *c, const double *y);
+
+/* \int (pf + pc) dx / fN from the current state (needs vl_contact_eval_state). */
+double vl_contact_load_sum(const vl_contact *c);
+
+/* Reynolds row i before complementarity (needs vl_contact_eval_state). */
+double vl_contact_reynolds_residual(const vl_contact *c, size_t i);
+
+/* Weights of the Reynolds rows for the next solve, from the current state
+ * (needs vl_contact_eval_state). */
+void vl_contact_reynolds_weights(vl_contact *c);
+
+/* Scales of the fluid unknowns for a solve at v0, from the current state,
+ * then the Reynolds row weights; rescales c->y accordingly. */
+void vl_contact_fluid_scales(vl_contact *c, double v0);
+
+/* The residual f(y) (nunk values). Returns 0, or 1 when y is not
+ * admissible (a non-finite entry, or a closed smooth film): KINSOL then
+ * shortens the step. */
+int vl_contact_residual(vl_contact *c, const double *y, double *f);
+
+/* The analytic Jacobian at y into the column-major nunk x nunk matrix Jd,
+ * every entry written. */
+void vl_contact_jacobian(vl_contact *c, const double *y, double *Jd);
+
+/* contact_kinsol.c */
+
+/* KINSOL's residual and Jacobian callbacks (timed; user is the contact). */
+int vl_contact_residual_fn(N_Vector yv, N_Vector fv, void *user);
+int vl_contact_jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vector t1,
+                           N_Vector t2);
+
+/* Creates the SUNDIALS context, vectors, matrix, linear solver and KINSOL
+ * memory of c (sizes and configuration set). VL_ENOMEM or VL_EINTERNAL,
+ * with the reason in err. */
+vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err);
+
+/* contact_start.c */
+
+/* Starts a smooth wet solve without a usable previous state; adds the
+ * Newton iterations spent to *nni. */
+void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni);
+
+/* Predictor of a continuation step to speed v0 (rough films). */
+void vl_contact_predict_state(vl_contact *c, double v0);
+
+/* contact_report.c */
+
+/* Fills the derived quantities of pt from the current (converged) state. */
+void vl_contact_report(vl_contact *c, vl_point *pt);
+
+#endif

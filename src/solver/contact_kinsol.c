@@ -1,0 +1,344 @@
+/* KINSOL glue and the solve: the Newton iteration on the residual and
+ * Jacobian of contact_equations.c (with line search, and the step refused
+ * where a smooth film would close), the linear solvers (LAPACK, SUNDIALS,
+ * the Schur complement of the Reynolds rows) wrapped to count their cost,
+ * and the solve of one operating point with its fallbacks: a fresh start
+ * after a failed continuation, continuation in viscosity for thin smooth
+ * films, and the state restored when everything fails. */
+#include "contact_internal.h"
+
+#include <float.h>
+#include <kinsol/kinsol.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "linsol_lapack.h"
+#include "linsol_schur.h"
+
+/* A SUNLinearSolver that forwards to an inner one and times its set-up
+ * (factorisation) and solves: the cost split of vl_contact_timing. */
+typedef struct {
+  SUNLinearSolver inner;
+  vl_contact_timing *timing;
+} timed_ls;
+
+static SUNLinearSolver_Type timed_gettype(SUNLinearSolver S) {
+  return SUNLinSolGetType(((timed_ls *)S->content)->inner);
+}
+static SUNLinearSolver_ID timed_getid(SUNLinearSolver S) {
+  return SUNLinSolGetID(((timed_ls *)S->content)->inner);
+}
+static int timed_initialize(SUNLinearSolver S) {
+  return SUNLinSolInitialize(((timed_ls *)S->content)->inner);
+}
+static int timed_setup(SUNLinearSolver S, SUNMatrix A) {
+  timed_ls *t = S->content;
+  double t0 = vl_contact_now_s();
+  int r = SUNLinSolSetup(t->inner, A);
+  t->timing->t_setup_s += vl_contact_now_s() - t0;
+  t->timing->setups++;
+  return r;
+}
+static int timed_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realtype tol) {
+  timed_ls *t = S->content;
+  double t0 = vl_contact_now_s();
+  int r = SUNLinSolSolve(t->inner, A, x, b, tol);
+  t->timing->t_solve_s += vl_contact_now_s() - t0;
+  t->timing->solves++;
+  return r;
+}
+static sunindextype timed_lastflag(SUNLinearSolver S) {
+  return SUNLinSolLastFlag(((timed_ls *)S->content)->inner);
+}
+static int timed_space(SUNLinearSolver S, long *lenrw, long *leniw) {
+  return SUNLinSolSpace(((timed_ls *)S->content)->inner, lenrw, leniw);
+}
+static int timed_free(SUNLinearSolver S) {
+  if (!S) return SUNLS_SUCCESS;
+  if (S->content) {
+    SUNLinSolFree(((timed_ls *)S->content)->inner);
+    free(S->content);
+    S->content = NULL;
+  }
+  SUNLinSolFreeEmpty(S);
+  return SUNLS_SUCCESS;
+}
+
+/* Wraps inner (owned from here on, freed with the wrapper, also on failure). */
+static SUNLinearSolver timed_ls_create(SUNLinearSolver inner, vl_contact_timing *timing,
+                                       SUNContext ctx) {
+  if (!inner) return NULL;
+  SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
+  timed_ls *t = S ? malloc(sizeof *t) : NULL;
+  if (!t) {
+    if (S) SUNLinSolFreeEmpty(S);
+    SUNLinSolFree(inner);
+    return NULL;
+  }
+  t->inner = inner, t->timing = timing;
+  S->content = t;
+  S->ops->gettype = timed_gettype;
+  S->ops->getid = timed_getid;
+  S->ops->initialize = timed_initialize;
+  S->ops->setup = timed_setup;
+  S->ops->solve = timed_solve;
+  S->ops->lastflag = timed_lastflag;
+  S->ops->space = timed_space;
+  S->ops->free = timed_free;
+  return S;
+}
+
+int vl_contact_residual_fn(N_Vector yv, N_Vector fv, void *user) {
+  vl_contact *c = user;
+  double t0 = vl_contact_now_s();
+  int r = vl_contact_residual(c, N_VGetArrayPointer(yv), N_VGetArrayPointer(fv));
+  c->timing.t_residual_s += vl_contact_now_s() - t0;
+  c->timing.residuals++;
+  return r;
+}
+
+int vl_contact_jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vector t1,
+                           N_Vector t2) {
+  (void)fv, (void)t1, (void)t2;
+  vl_contact *c = user;
+  double t0 = vl_contact_now_s();
+  vl_contact_jacobian(c, N_VGetArrayPointer(yv), SUNDenseMatrix_Data(J));
+  c->timing.t_jacobian_s += vl_contact_now_s() - t0;
+  c->timing.jacobians++;
+  return 0;
+}
+
+static int skip_zero(SUNMatrix A) {
+  (void)A;
+  return SUNMAT_SUCCESS;
+}
+
+/* The library never prints: KINSOL's messages are dropped, its return flags
+ * reported in vl_error instead. */
+static void silent_error_handler(int code, const char *module, const char *function, char *msg,
+                                 void *user) {
+  (void)code, (void)module, (void)function, (void)msg, (void)user;
+}
+
+vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err) {
+  const vl_contact_config *cfg = &c->cfg;
+  sunindextype m = (sunindextype)c->nunk;
+  if (SUNContext_Create(NULL, &c->ctx) != 0) return vl_contact_nomem(c, err);
+  c->y = N_VNew_Serial(m, c->ctx);
+  c->y_saved = N_VNew_Serial(m, c->ctx);
+  c->y_outer = N_VNew_Serial(m, c->ctx);
+  c->ones = N_VNew_Serial(m, c->ctx);
+  c->fwork = N_VNew_Serial(m, c->ctx);
+  c->J = SUNDenseMatrix(m, m, c->ctx);
+  if (!c->y || !c->y_saved || !c->y_outer || !c->ones || !c->fwork || !c->J)
+    return vl_contact_nomem(c, err);
+  N_VConst(1.0, c->ones);
+  /* KINSOL zeroes the matrix before every Jacobian call, element by
+   * element (a fifth of a rough wet solve's time at N = 512);
+   * vl_contact_jacobian writes every entry itself (rough) or zeroes by
+   * memset */
+  c->J->ops->zero = skip_zero;
+  SUNLinearSolver inner;
+  if (cfg->linear_solver == VL_LINSOL_SUNDIALS) {
+    inner = SUNLinSol_Dense(c->y, c->J, c->ctx);
+  } else if (cfg->linear_solver == VL_LINSOL_SCHUR && c->rough && c->wet) {
+    inner = c->schur = vl_linsol_schur_create((long)c->n, (long)c->of, (long)c->ih, c->ctx);
+  } else {
+    inner = vl_linsol_lapack_create((long)c->nunk, c->ctx);
+  }
+  c->LS = timed_ls_create(inner, &c->timing, c->ctx);
+  if (!c->LS) return vl_contact_nomem(c, err);
+  c->kmem = KINCreate(c->ctx);
+  if (!c->kmem) return vl_contact_nomem(c, err);
+  if (KINInit(c->kmem, vl_contact_residual_fn, c->y) != KIN_SUCCESS ||
+      KINSetUserData(c->kmem, c) != KIN_SUCCESS ||
+      KINSetLinearSolver(c->kmem, c->LS, c->J) != KIN_SUCCESS ||
+      KINSetJacFn(c->kmem, vl_contact_jacobian_fn) != KIN_SUCCESS ||
+      KINSetFuncNormTol(c->kmem, cfg->tolerance) != KIN_SUCCESS ||
+      KINSetScaledStepTol(c->kmem, 1e-14) != KIN_SUCCESS ||
+      KINSetMaxSetupCalls(c->kmem, 1) != KIN_SUCCESS ||
+      KINSetNumMaxIters(c->kmem, cfg->max_iterations) != KIN_SUCCESS ||
+      KINSetPrintLevel(c->kmem, 0) != KIN_SUCCESS) {
+    vl_error_set(err, "KINSOL set-up failed");
+    return VL_EINTERNAL;
+  }
+  KINSetErrHandlerFn(c->kmem, silent_error_handler, NULL);
+  return VL_OK;
+}
+
+/* Newton (KINSOL) from the current y at speed v0; scales set here. Adds
+ * the iterations to *nni; returns whether our own residual check passed
+ * (KINSOL also returns success when the step, not the residual, became
+ * small). */
+static bool newton(vl_contact *c, double v0, long *nni, int *flag, double *fnorm) {
+  vl_contact_fluid_scales(c, v0);
+  double t0 = vl_contact_now_s();
+  *flag = KINSol(c->kmem, c->y, KIN_LINESEARCH, c->ones, c->ones);
+  c->timing.t_newton_s += vl_contact_now_s() - t0;
+  c->timing.newtons++;
+  long it = 0;
+  KINGetNumNonlinSolvIters(c->kmem, &it);
+  *nni += it;
+  *fnorm = INFINITY;
+  if (vl_contact_residual_fn(c->y, c->fwork, c) == 0) *fnorm = N_VMaxNorm(c->fwork);
+  return *flag >= 0 && *fnorm <= c->cfg.tolerance;
+}
+
+/* The scales a failed solve restores with its state. */
+typedef struct {
+  double kappa, lambda, rscale, u_ref, v0;
+} solve_scales;
+
+/* A thin smooth film that a fresh start misses: starts afresh at a
+ * viscosity 10, 100, ... times larger (thicker film, wider inlet and outlet
+ * zones) and comes down by continuation in viscosity. Returns whether that
+ * converged at the contact's viscosity (then *flag = 0 and *fnorm is the
+ * residual); the viscosity is the contact's again either way. Adds the
+ * iterations to *nni. */
+static bool viscosity_fallback(vl_contact *c, double v0_m_s, long *nni, int *flag, double *fnorm) {
+  bool ok = false;
+  double eta = c->cfg.eta_pa_s, v_state = c->v_state;
+  N_VScale(1.0, c->y_saved, c->y_outer); /* the inner solves reuse y_saved */
+  c->no_fallback = true;
+  for (int k = 1; k <= 6 && !ok; k++) {
+    vl_point tp;
+    vl_contact_set_viscosity(c, eta * pow(10.0, k), NULL);
+    c->v_state = 0.0;
+    if (vl_contact_solve(c, v0_m_s, &tp, NULL) != VL_OK) {
+      *nni += tp.iterations;
+      continue;
+    }
+    *nni += tp.iterations;
+    ok = vl_contact_solve_viscosity(c, v0_m_s, eta, 10.0, &tp, NULL) == VL_OK;
+    *nni += tp.iterations;
+    if (ok) {
+      *fnorm = tp.residual;
+      *flag = 0;
+    }
+    break;
+  }
+  c->no_fallback = false;
+  vl_contact_set_viscosity(c, eta, NULL);
+  N_VScale(1.0, c->y_outer, c->y_saved);
+  if (!ok) c->v_state = v_state;
+  return ok;
+}
+
+/* A solve that failed: says why in err, goes back to the last converged
+ * state, its speed and scales, and reports the point as not converged
+ * (never NaN). */
+static vl_status solve_failed(vl_contact *c, double v0_m_s, const solve_scales *saved, int flag,
+                              long nni, double fnorm, vl_point *pt, vl_error *err) {
+  bool smooth_wet = c->wet && !c->rough;
+  bool closed = smooth_wet && (flag == KIN_REPTD_SYSFUNC_ERR || flag == KIN_FIRST_SYSFUNC_ERR);
+  char *flag_name = KINGetReturnFlagName(flag); /* malloc'd by SUNDIALS */
+  vl_error_set(err, "no convergence at v0 = %g m/s: KINSOL flag %d (%s), %ld iterations, "
+                    "residual %.3g%s",
+               v0_m_s, flag, flag_name ? flag_name : "?", nni, fnorm,
+               closed ? " (Newton steps kept closing the film: the grid is probably too coarse "
+                        "for the inlet and outlet zones of this soft EHL film; refine it or "
+                        "narrow the domain)"
+                      : "");
+  free(flag_name);
+  N_VScale(1.0, c->y_saved, c->y);
+  if (saved->v0 == saved->v0) vl_contact_set_speed(c, saved->v0);
+  c->kappa = saved->kappa, c->lambda = saved->lambda, c->rscale = saved->rscale;
+  c->u_ref = saved->u_ref;
+  if (c->wet) {
+    vl_contact_eval_state(c, N_VGetArrayPointer(c->y));
+    vl_contact_reynolds_weights(c);
+  }
+  memset(pt, 0, sizeof *pt);
+  pt->v0_m_s = v0_m_s;
+  pt->converged = false;
+  pt->iterations = nni;
+  pt->residual = isfinite(fnorm) ? fnorm : DBL_MAX;
+  pt->regime = c->wet ? VL_REGIME_BOUNDARY : VL_REGIME_DRY;
+  return VL_ENOCONV;
+}
+
+vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
+  memset(pt, 0, sizeof *pt);
+  pt->v0_m_s = v0_m_s;
+  if (!(v0_m_s >= 0.0 && isfinite(v0_m_s)) || (c->wet && !(v0_m_s > 0.0))) {
+    vl_error_set(err, "speed must be finite and %s 0 (got %g m/s)", c->wet ? ">" : ">=", v0_m_s);
+    return VL_EINPUT;
+  }
+  N_VScale(1.0, c->y, c->y_saved);
+  solve_scales saved = {c->kappa, c->lambda, c->rscale, c->u_ref, c->v0};
+  vl_contact_set_speed(c, v0_m_s);
+  bool smooth_wet = c->wet && !c->rough, fresh = smooth_wet && c->v_state == 0.0;
+  long nni = 0;
+  int flag;
+  double fnorm;
+  if (fresh) vl_contact_smooth_wet_start(c, v0_m_s, &nni);
+  vl_contact_predict_state(c, v0_m_s);
+  bool ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  if (!ok && smooth_wet && !fresh) {
+    /* continuation from the previous speed failed: start afresh */
+    vl_contact_smooth_wet_start(c, v0_m_s, &nni);
+    ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  }
+  if (!ok && smooth_wet && !c->no_fallback) ok = viscosity_fallback(c, v0_m_s, &nni, &flag, &fnorm);
+  if (!ok) return solve_failed(c, v0_m_s, &saved, flag, nni, fnorm, pt, err);
+  pt->iterations = nni;
+  pt->residual = fnorm;
+  pt->converged = true;
+  c->v_state = v0_m_s;
+  vl_contact_report(c, pt);
+  return VL_OK;
+}
+
+vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err) {
+  if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s))) {
+    vl_error_set(err, "viscosity: a wet contact takes a finite eta > 0 (got %g Pa s%s)", eta_pa_s,
+                 c->wet ? "" : ", contact created dry");
+    return VL_EINPUT;
+  }
+  if (c->q_rolling > 0.0) c->q_rolling *= eta_pa_s / c->cfg.eta_pa_s; /* Q ~ eta */
+  c->cfg.eta_pa_s = eta_pa_s;
+  /* epsilon_f depends on eta v0: its table is rebuilt (eta validated above) */
+  if (c->flattening) vl_flattening_set_viscosity(c->flattening, eta_pa_s, NULL);
+  if (c->coarse) vl_contact_set_viscosity(c->coarse, eta_pa_s, NULL);
+  return VL_OK;
+}
+
+double vl_contact_viscosity(const vl_contact *c) { return c->cfg.eta_pa_s; }
+
+/* Log-spaced steps from the current viscosity to the target; a failed step
+ * is halved (in log eta) up to 6 times, each from the last converged state. */
+vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa_s,
+                                     double max_ratio, vl_point *pt, vl_error *err) {
+  memset(pt, 0, sizeof *pt);
+  pt->v0_m_s = v0_m_s;
+  if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s)) || !(max_ratio > 1.0)) {
+    vl_error_set(err, "viscosity continuation needs a wet contact, eta > 0 and max_ratio > 1 "
+                      "(got eta %g Pa s, max_ratio %g)", eta_pa_s, max_ratio);
+    return VL_EINPUT;
+  }
+  double eta = c->cfg.eta_pa_s, lstep = log(max_ratio);
+  long nni = 0;
+  vl_status st = VL_OK;
+  int halvings = 0;
+  for (;;) {
+    double gap = log(eta_pa_s / eta);
+    double step = fabs(gap) <= lstep ? gap : copysign(lstep, gap);
+    double eta_next = fabs(gap) <= lstep ? eta_pa_s : eta * exp(step);
+    vl_contact_set_viscosity(c, eta_next, NULL);
+    st = vl_contact_solve(c, v0_m_s, pt, err);
+    nni += pt->iterations;
+    if (st == VL_OK) {
+      eta = eta_next;
+      if (eta == eta_pa_s) break;
+      continue;
+    }
+    vl_contact_set_viscosity(c, eta, NULL); /* back to the converged state's */
+    if (st != VL_ENOCONV || ++halvings > 6) break;
+    lstep *= 0.5;
+  }
+  pt->iterations = nni;
+  return st;
+}

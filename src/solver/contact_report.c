@@ -1,0 +1,165 @@
+/* Results of a converged state (docs/MODEL.md sections 7 and 8): the friction
+ * integrals mu_Rc, mu_Rf (the pressures against the slope of the gap),
+ * mu_Sc (sigma_s over the real contact area) and mu_Sf (the film's shear,
+ * Couette weighted by the film fraction theta in the cavitated zone, and
+ * Poiseuille), the derived quantities of a point (films, centroid, contact
+ * width, fluid load share, regime, warnings), and the fields on the grid. */
+#include "contact_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+const char *vl_regime_name(int regime) {
+  switch (regime) {
+  case VL_REGIME_DRY: return "dry";
+  case VL_REGIME_BOUNDARY: return "boundary";
+  case VL_REGIME_MIXED: return "mixed";
+  case VL_REGIME_HYDRODYNAMIC: return "hydrodynamic";
+  }
+  return "?";
+}
+
+static void add_warning(vl_point *pt, const char *w) {
+  size_t len = strlen(pt->warnings);
+  snprintf(pt->warnings + len, sizeof pt->warnings - len, "%s%s", len ? ";" : "", w);
+}
+
+/* Film fraction theta per node (1 in the full film): downstream of film
+ * rupture the flux stays that of the last full-film face while the
+ * full-film Couette flux grows, so the gap is only partly filled (mass
+ * conservation). Needs vl_contact_eval_state. */
+static void film_fraction(const vl_contact *c, const double *y, double *theta) {
+  size_t n = c->n;
+  double jcur = c->Jf[0];
+  for (size_t i = 0; i < n; i++) {
+    bool cavitated = c->wet && y[c->of + i] <= 1e-12 &&
+                     vl_contact_reynolds_residual(c, i) > c->cfg.tolerance;
+    if (!cavitated) {
+      theta[i] = 1.0;
+      jcur = c->Jf[i + 1];
+    } else {
+      theta[i] = c->cf[i] > 0.0 ? fmin(1.0, fmax(jcur, 0.0) / c->cf[i]) : 1.0;
+    }
+  }
+}
+
+/* Real contact area ratio of node i (needs vl_contact_eval_state). Rough: Persson's
+ * A/A0 at pc/|Er|; flattened (flat_scale) at pc/(|Er| s), the unflattened
+ * surface's area at separation u/s (0 where s = 0: no contact pressure). */
+static double area_at(const vl_contact *c, size_t i) {
+  if (!c->rough) return c->P[i] > 1e-9 ? 1.0 : 0.0;
+  double s = c->sf ? c->sf[i] : 1.0;
+  return s > 0.0 ? vl_persson_area_ratio(c->cfg.roughness, c->P[i] / (c->sfac * s), NULL) : 0.0;
+}
+
+/* Fills the derived quantities of pt from the current state. */
+void vl_contact_report(vl_contact *c, vl_point *pt) {
+  size_t n = c->n;
+  const double *y = N_VGetArrayPointer(c->y);
+  vl_contact_eval_state(c, y);
+  const vl_contact_config *cfg = &c->cfg;
+  double fN = cfg->load_n_per_m, R = cfg->radius_m;
+  double sum_pcx = 0.0, sum_pfx = 0.0, sum_pf = 0.0, sum_area = 0.0;
+  double pmax = 0.0, pfmax = 0.0, umin = INFINITY, couette = 0.0, poiseuille = 0.0;
+  size_t imax = 0, iumin = 0;
+  double *theta = c->theta;
+  if (c->wet) film_fraction(c, y, theta);
+  pt->eps_f_min = c->sf ? INFINITY : 1.0;
+  if (c->sf)
+    for (size_t i = 0; i < n; i++) pt->eps_f_min = fmin(pt->eps_f_min, c->sf[i] * c->sf[i]);
+  for (size_t i = 0; i < n; i++) {
+    double pc = c->P[i] * c->p0, pf = c->F[i] * c->p0, x = c->xi[i] * c->a0;
+    double dx = c->wc[i] * c->a0;
+    sum_pcx += pc * x * dx;
+    sum_pfx += pf * x * dx;
+    sum_pf += pf * dx;
+    double area = area_at(c, i);
+    sum_area += area * dx;
+    if (pc + pf > pmax) pmax = pc + pf, imax = i;
+    pfmax = fmax(pfmax, pf);
+    if (c->U[i] < umin) umin = c->U[i], iumin = i;
+    if (c->wet) {
+      double u = fmax(c->U[i], 0.0) * c->uscale;
+      vl_flow_factor_values v;
+      /* flattened: the factors of h_rms s (as in vl_contact_eval_state) */
+      vl_flow_factors_eval_table(cfg->flow_factors, cfg->flow_table, u, c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
+      /* node gradient: mean of the two face gradients (pf = 0 beyond the ends) */
+      double left = (c->F[i] - (i > 0 ? c->F[i - 1] : 0.0)) / (c->hf[i] * c->a0);
+      double right = ((i + 1 < n ? c->F[i + 1] : 0.0) - c->F[i]) / (c->hf[i + 1] * c->a0);
+      double dpdx = 0.5 * (left + right) * c->p0;
+      /* a smooth hard contact (u = 0) carries no fluid shear: sigma_s acts there */
+      if (!(!c->rough && area > 0.0) && u > 0.0)
+        couette += theta[i] * (v.phi_f + v.phi_fs) * cfg->eta_pa_s * c->v0 / u * dx;
+      poiseuille += -v.phi_fp * 0.5 * u * dpdx * dx;
+    }
+  }
+  pt->x_centroid_m = (sum_pcx + sum_pfx) / fN;
+  pt->mu_Rc = -sum_pcx / (fN * R);
+  pt->mu_Rf = -sum_pfx / (fN * R);
+  pt->mu_Sc = cfg->sigma_s_pa * sum_area / fN;
+  pt->mu_Sf_couette = couette / fN;
+  pt->mu_Sf_poiseuille = poiseuille / fN;
+  pt->mu_Sf = pt->mu_Sf_couette + pt->mu_Sf_poiseuille;
+  pt->mu = pt->mu_Rc + pt->mu_Rf + pt->mu_Sc + pt->mu_Sf;
+  pt->u_min_m = fmax(umin, 0.0) * c->uscale;
+  pt->x_min_film_m = c->xi[iumin] * c->a0;
+  /* separation at the pressure centroid (linear interpolation on nodes) */
+  double xc = pt->x_centroid_m / c->a0;
+  size_t k = 0;
+  while (k + 2 < n && c->xi[k + 1] <= xc) k++;
+  double w = fmin(fmax((xc - c->xi[k]) / c->hf[k + 1], 0.0), 1.0);
+  pt->u_central_m = fmax((1 - w) * c->U[k] + w * c->U[k + 1], 0.0) * c->uscale;
+  /* contact extent where the total pressure >= 1% of its peak, interpolated */
+  double thr = 0.01 * pmax / c->p0;
+#define PTOT(j) (c->P[j] + c->F[j])
+  size_t lo = imax, hi = imax;
+  while (lo > 0 && PTOT(lo - 1) >= thr) lo--;
+  while (hi + 1 < n && PTOT(hi + 1) >= thr) hi++;
+  double xl = c->xi[lo], xr = c->xi[hi];
+  if (lo > 0) xl -= c->hf[lo] * (PTOT(lo) - thr) / (PTOT(lo) - PTOT(lo - 1));
+  if (hi + 1 < n) xr += c->hf[hi + 1] * (PTOT(hi) - thr) / (PTOT(hi) - PTOT(hi + 1));
+  pt->contact_width_m = pmax > 0 ? (xr - xl) * c->a0 : 0.0;
+  pt->fluid_load_fraction = sum_pf / fN;
+  pt->load_error = fabs(vl_contact_load_sum(c) - 1.0);
+  pt->E_wH_pa = c->e_abs;
+  pt->a_H_m = c->a_h;
+  pt->Q = c->q_rolling;
+  pt->peak_pressure_pa = pmax;
+  pt->x_peak_m = c->xi[imax] * c->a0;
+  pt->regime = !c->wet                          ? VL_REGIME_DRY
+               : pt->fluid_load_fraction < 0.05 ? VL_REGIME_BOUNDARY
+               : pt->fluid_load_fraction > 0.95 ? VL_REGIME_HYDRODYNAMIC
+                                                : VL_REGIME_MIXED;
+  if (pmax > 0 && (PTOT(0) > 1e-3 * pmax / c->p0 || PTOT(n - 1) > 1e-3 * pmax / c->p0))
+    add_warning(pt, "pressure reaches the domain edge (domain too short)");
+  /* a smooth film is fed from far upstream: with the inlet end less than 5
+   * inlet lengths sqrt(2 R u_min) ahead of the pressure zone (where the
+   * pressure reaches 1 % of its peak) the film is short by about a percent
+   * or more (rigid cylinder, closed form: 2 %; soft EHL, measured: 0.1 to
+   * 0.4 %, 1.2 % at 2.5 lengths) */
+  if (c->wet && !c->rough && pmax > 0 &&
+      (xl - c->xi[0] + c->hf[0]) * c->a0 < 5.0 * sqrt(2.0 * cfg->radius_m * pt->u_min_m))
+    add_warning(pt, "inlet shorter than 5 inlet lengths sqrt(2 R u_min) ahead of the pressure "
+                    "(fully flooded film underestimated)");
+#undef PTOT
+  (void)pfmax;
+}
+
+void vl_contact_fields(const vl_contact *c, vl_fields *f) {
+  size_t n = c->n;
+  const double *y = N_VGetArrayPointer(c->y);
+  vl_contact *mc = (vl_contact *)c; /* work arrays only */
+  vl_contact_eval_state(mc, y);
+  double *theta = mc->theta;
+  if (c->wet) film_fraction(c, y, theta);
+  for (size_t i = 0; i < n && i < f->n; i++) {
+    f->x_m[i] = c->xi[i] * c->a0;
+    f->p_c_pa[i] = c->P[i] * c->p0;
+    f->p_f_pa[i] = c->F[i] * c->p0;
+    f->u_m[i] = fmax(c->U[i], 0.0) * c->uscale;
+    f->area_ratio[i] = area_at(c, i);
+    if (f->film_fraction) f->film_fraction[i] = c->wet ? theta[i] : 1.0;
+    if (f->width_m) f->width_m[i] = c->wc[i] * c->a0;
+  }
+}

@@ -1,0 +1,189 @@
+/* Initial guesses of the Newton solve: the relaxed Hertz contact
+ * (docs/MODEL.md section 9: the scales a0, p0), with Persson's separation under
+ * it on a rough surface (section 4); for a smooth film the rigid cylinder's
+ * Reynolds pressure (Martin, section 5), the dry contact of a viscoelastic
+ * solid, or the converged solution of a half-size grid; and the predictor of
+ * a continuation step in speed. */
+#include "contact_internal.h"
+
+#include <math.h>
+
+/* Hertz gap outside a contact of half-width 1 (units a0^2/R, x in a0). */
+static double hertz_gap(double xi) {
+  double ax = fabs(xi);
+  if (ax <= 1.0) return 0.0;
+  double r = sqrt(ax * ax - 1.0);
+  return 0.5 * (ax * r - log(ax + r));
+}
+
+void vl_contact_reset(vl_contact *c) {
+  size_t n = c->n;
+  double *y = N_VGetArrayPointer(c->y);
+  vl_contact_set_speed(c, c->v0 == c->v0 ? c->v0 : 0.0);
+  for (size_t i = 0; i < n; i++) {
+    double x = c->xi[i];
+    double p = fabs(x) < 1.0 ? sqrt(1.0 - x * x) : 0.0;
+    if (!c->rough) {
+      y[i] = p; /* contact pressure, or fluid pressure when smooth wet (kappa = 1) */
+    } else {
+      /* Separation of the rough contact under the Hertz pressure, plus the
+       * Hertz gap outside. */
+      double s = p * c->p0 / c->e_abs;
+      double u = vl_persson_separation(c->cfg.roughness, s > 0.0 ? s : 1e-12);
+      y[i] = u / c->uscale + hertz_gap(x);
+    }
+  }
+  if (c->nc) for (size_t i = 0; i < c->nf; i++) y[c->of + i] = 0.0;
+  c->kappa = 1.0;
+  c->v_state = 0.0;
+  /* h0 that best satisfies the gap equation inside the contact */
+  y[c->ih] = 0.0;
+  vl_contact_eval_state(c, y);
+  double sum = 0.0;
+  size_t cnt = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (fabs(c->xi[i]) < 1.0) {
+      sum += c->rough ? c->D[i] : -c->U[i];
+      cnt++;
+    }
+  }
+  y[c->ih] = cnt ? sum / (double)cnt : 0.0;
+}
+
+/* Rigid-cylinder Reynolds pressure (Swift-Stieber outlet) for the gap
+ * h0 (1 + X^2), X = x/b, b = sqrt(2 R h0), fed from X_in: dp/dX is
+ * proportional to (H - Hc)/H^3, integrated in closed form with
+ * I2 = \int dX/H^2 and I3 = \int dX/H^3; the outlet Xc solves p(Xc) = 0.
+ * Returns the unnormalised shape at X (0 beyond Xc). */
+static double rigid_i2(double X) { return 0.5 * (X / (1.0 + X * X) + atan(X)); }
+static double rigid_i3(double X) {
+  double H = 1.0 + X * X;
+  return X / (4.0 * H * H) + 3.0 * X / (8.0 * H) + 0.375 * atan(X);
+}
+static double rigid_outlet(double X_in, double X_max) {
+  double lo = 0.0, hi = X_max;
+  double a2 = rigid_i2(X_in), a3 = rigid_i3(X_in);
+#define G(X) ((rigid_i2(X) - a2) - (1.0 + (X) * (X)) * (rigid_i3(X) - a3))
+  if (!(G(hi) < 0.0)) return X_max;
+  for (int it = 0; it < 100; it++) {
+    double mid = 0.5 * (lo + hi);
+    if (G(mid) > 0.0) lo = mid; else hi = mid;
+  }
+#undef G
+  return 0.5 * (lo + hi);
+}
+
+/* A fresh smooth wet solve starts from a film with a pressure that carries
+ * the load (a start without pressure leaves the load independent of the
+ * rigid approach: singular Jacobian). The film is vl_contact_film_estimate; the
+ * pressure is the rigid cylinder's (Martin) where that film exceeds the
+ * soft estimate, else the relaxed Hertz pressure (the soft EHL pressure is
+ * nearly Hertzian); the rigid approach puts the minimum film at the
+ * estimate. Newton then corrects the shape. */
+static void wet_smooth_guess(vl_contact *c, double v0) {
+  size_t n = c->n;
+  double *y = N_VGetArrayPointer(c->y);
+  const vl_contact_config *cfg = &c->cfg;
+  double um = 0.5 * v0, eta = cfg->eta_pa_s, R = cfg->radius_m, fN = cfg->load_n_per_m;
+  double h = vl_contact_film_estimate(&c->cfg, v0);
+  bool rigid = h <= 4.894 * eta * um * R / fN * (1.0 + 1e-12);
+  double b = sqrt(2.0 * R * h) / c->a0; /* in a0 */
+  double X_in = c->xi[0] / b - 0.5 * c->dxi / b, X_max = c->xi[n - 1] / b + 0.5 * c->dxi / b;
+  double Xc = rigid ? rigid_outlet(X_in, X_max) : 0.0, Hc = 1.0 + Xc * Xc;
+  double a2 = rigid_i2(X_in), a3 = rigid_i3(X_in), sum = 0.0;
+  /* a viscoelastic solid: the dry contact at this speed (same grid), the
+   * limit of a thin film; Hertz would leave the gap far from flat (the
+   * solid is stiffer and the pressure asymmetric at v0 tau ~ a0) */
+  bool dry = false;
+  if (!rigid && c->dry) {
+    vl_point dp;
+    vl_contact_reset(c->dry);
+    dry = vl_contact_solve(c->dry, v0, &dp, NULL) == VL_OK;
+  }
+  for (size_t i = 0; i < n; i++) {
+    double x = c->xi[i], p;
+    if (dry) {
+      p = fmax(c->dry->P[i], 0.0);
+    } else if (rigid) {
+      double X = x / b;
+      p = X < Xc ? fmax((rigid_i2(X) - a2) - Hc * (rigid_i3(X) - a3), 0.0) : 0.0;
+    } else {
+      p = fabs(x) < 1.0 ? sqrt(1.0 - x * x) : 0.0;
+    }
+    c->F[i] = p;
+    sum += p;
+  }
+  double scale = sum > 0.0 ? (0.5 * M_PI) / (sum * c->dxi) : 0.0, fmx = 0.0;
+  for (size_t i = 0; i < n; i++) fmx = fmax(fmx, c->F[i] *= scale);
+  c->kappa = fmx > 0.0 ? fmx : 1.0;
+  for (size_t i = 0; i < n; i++) y[c->of + i] = c->F[i] / c->kappa;
+  y[c->ih] = 0.0;
+  vl_contact_eval_state(c, y);
+  double umin = INFINITY;
+  for (size_t i = 0; i < n; i++) umin = fmin(umin, c->U[i]);
+  y[c->ih] = h / c->uscale - umin;
+}
+
+/* Starts a smooth wet solve without a usable previous state: the converged
+ * solution of the coarse level (itself started the same way), interpolated,
+ * or on the coarsest level the analytic guess. Cavitation is a free
+ * boundary that a semismooth Newton step moves by about one cell (cells
+ * beyond it are held at pf = 0 by the linearised complementarity), so a
+ * start whose film rupture is n cells off costs n iterations; each level
+ * halves that distance in its own cells. Adds the Newton iterations spent
+ * to *nni. */
+void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni) {
+  vl_contact *cc = c->coarse;
+  if (cc) {
+    vl_point cp;
+    cc->v_state = 0.0; /* a fresh start there too */
+    vl_status st = vl_contact_solve(cc, v0, &cp, NULL);
+    *nni += cp.iterations;
+    if (st == VL_OK) {
+      /* pressure (p0) linear between the coarse nodes, 0 on the domain ends;
+       * rigid approach such that the minimum films agree */
+      size_t n = c->n, m = cc->n;
+      double *y = N_VGetArrayPointer(c->y), fmx = 0.0, umin_c = INFINITY, umin = INFINITY;
+      vl_contact_eval_state(cc, N_VGetArrayPointer(cc->y));
+      for (size_t k = 0; k < m; k++) umin_c = fmin(umin_c, cc->U[k]);
+      for (size_t i = 0; i < n; i++) {
+        double t = (c->xi[i] - cc->xi[0]) / cc->dxi, f;
+        if (t <= 0.0) {
+          f = cc->F[0] * fmax(0.0, 1.0 + 2.0 * t);
+        } else if (t >= (double)(m - 1)) {
+          f = cc->F[m - 1] * fmax(0.0, 1.0 - 2.0 * (t - (double)(m - 1)));
+        } else {
+          size_t k = (size_t)t;
+          double w = t - (double)k;
+          f = (1.0 - w) * cc->F[k] + w * cc->F[k + 1];
+        }
+        c->F[i] = f;
+        fmx = fmax(fmx, f);
+      }
+      c->kappa = fmx > 0.0 ? fmx : 1.0;
+      for (size_t i = 0; i < n; i++) y[c->of + i] = c->F[i] / c->kappa;
+      y[c->ih] = 0.0;
+      vl_contact_eval_state(c, y);
+      for (size_t i = 0; i < n; i++) umin = fmin(umin, c->U[i]);
+      y[c->ih] = umin_c - umin;
+      return;
+    }
+  }
+  wet_smooth_guess(c, v0);
+}
+
+/* Predictor of a continuation step to speed v0 from the converged state at
+ * v_state (rough films; a smooth film has its own fresh starts). At a fixed
+ * film the hydrodynamic pressure grows like v0 (the Reynolds equation is
+ * linear in pf and eta v0), so pf starts scaled by v0/v_state: in boundary
+ * lubrication, where the film does not change, that is the solution. fig05
+ * at N = 512: 946 Newton iterations for 62 points down to 515 (13 per
+ * boundary point down to 1-3). A secant in log v0 on the separation and pf
+ * (from the state before) was tried and cost more (544-735 iterations): the
+ * cavitation boundary, not the predictor, limits the steps near the
+ * transition. */
+void vl_contact_predict_state(vl_contact *c, double v0) {
+  if (!c->rough || !(c->v_state > 0.0)) return;
+  double *y = N_VGetArrayPointer(c->y), grow = v0 / c->v_state;
+  for (size_t i = 0; i < c->nf; i++) y[c->of + i] *= grow;
+}

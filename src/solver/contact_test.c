@@ -1,0 +1,111 @@
+/* The test aids of contact_test.h: the Jacobian checked against finite
+ * differences of the residual, the face fluxes of the Reynolds equation
+ * (docs/MODEL.md section 5) as discretised, the cells and influence coefficients
+ * (section 3), and the cost counters. */
+#include "contact_internal.h"
+
+#include <math.h>
+#include <string.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "linsol_schur.h"
+
+/* The finite-difference comparison of vl_contact_jacobian_check, per block
+ * of rows (contact, Reynolds, load): max |J_fd - J| in worst[b], max |J| in
+ * scale[b]. Returns false on allocation failure. */
+static bool jacobian_compare(vl_contact *c, double v0_m_s, double worst[3], double scale[3]) {
+  vl_contact_set_speed(c, v0_m_s);
+  size_t m = c->nunk;
+  SUNMatrix J = SUNDenseMatrix((sunindextype)m, (sunindextype)m, c->ctx);
+  N_Vector yp = N_VClone(c->y), fp = N_VClone(c->y), fm = N_VClone(c->y);
+  if (!J || !yp || !fp || !fm) {
+    if (J) SUNMatDestroy(J);
+    if (yp) N_VDestroy(yp);
+    if (fp) N_VDestroy(fp);
+    if (fm) N_VDestroy(fm);
+    return false;
+  }
+  vl_contact_jacobian_fn(c->y, c->fwork, J, c, NULL, NULL);
+  double *Jd = SUNDenseMatrix_Data(J);
+  for (int b = 0; b < 3; b++) worst[b] = scale[b] = 0.0;
+#define BLOCK(i) ((i) < c->nc ? 0 : (i) < c->ih ? 1 : 2)
+  for (size_t j = 0; j < m; j++)
+    for (size_t i = 0; i < m; i++) scale[BLOCK(i)] = fmax(scale[BLOCK(i)], fabs(Jd[j * m + i]));
+  double *y = N_VGetArrayPointer(yp);
+  for (size_t j = 0; j < m; j++) {
+    N_VScale(1.0, c->y, yp);
+    double h = 1e-6 * fmax(fabs(y[j]), 1e-3);
+    y[j] += h;
+    vl_contact_residual_fn(yp, fp, c);
+    y[j] -= 2.0 * h;
+    vl_contact_residual_fn(yp, fm, c);
+    const double *a = N_VGetArrayPointer(fp), *b = N_VGetArrayPointer(fm);
+    for (size_t i = 0; i < m; i++)
+      worst[BLOCK(i)] = fmax(worst[BLOCK(i)], fabs((a[i] - b[i]) / (2.0 * h) - Jd[j * m + i]));
+  }
+#undef BLOCK
+  SUNMatDestroy(J);
+  N_VDestroy(yp);
+  N_VDestroy(fp);
+  N_VDestroy(fm);
+  return true;
+}
+
+double vl_contact_jacobian_check(vl_contact *c, double v0_m_s) {
+  double worst[3], scale[3];
+  if (!jacobian_compare(c, v0_m_s, worst, scale)) return -1.0;
+  return fmax(worst[0], fmax(worst[1], worst[2])) / fmax(scale[0], fmax(scale[1], scale[2]));
+}
+
+double vl_contact_jacobian_check_blocks(vl_contact *c, double v0_m_s, double rel[3]) {
+  double worst[3], scale[3];
+  if (!jacobian_compare(c, v0_m_s, worst, scale)) return -1.0;
+  double r = 0.0;
+  for (int b = 0; b < 3; b++) {
+    rel[b] = scale[b] > 0.0 ? worst[b] / scale[b] : 0.0;
+    r = fmax(r, rel[b]);
+  }
+  return r;
+}
+
+size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap) {
+  if (!c->wet) return 0;
+  vl_contact *mc = (vl_contact *)c; /* work arrays only */
+  vl_contact_eval_state(mc, N_VGetArrayPointer(c->y));
+  double unit = 0.5 * c->v0 * c->uscale; /* J is stored in units of v0 us/2 */
+  for (size_t f = 0; f <= c->n && f < cap; f++) flux_m2_s[f] = c->Jf[f] * unit;
+  return c->n + 1;
+}
+
+void vl_contact_timing_get(const vl_contact *c, vl_contact_timing *t) {
+  memset(t, 0, sizeof *t);
+  for (int k = 0; k < 3; k++) {
+    /* c, then its helper contacts (which may own helpers in turn) */
+    const vl_contact *h = k == 0 ? c : k == 1 ? c->coarse : c->dry;
+    if (!h) continue;
+    vl_contact_timing s = h->timing;
+    if (k > 0) vl_contact_timing_get(h, &s);
+    t->residuals += s.residuals, t->jacobians += s.jacobians, t->setups += s.setups;
+    t->solves += s.solves, t->kernels += s.kernels, t->newtons += s.newtons;
+    t->t_residual_s += s.t_residual_s, t->t_jacobian_s += s.t_jacobian_s;
+    t->t_setup_s += s.t_setup_s, t->t_solve_s += s.t_solve_s;
+    t->t_kernel_s += s.t_kernel_s, t->t_newton_s += s.t_newton_s;
+    t->linsol_fallbacks += k > 0 ? s.linsol_fallbacks : vl_linsol_schur_fallbacks(h->schur);
+  }
+}
+
+void vl_contact_timing_reset(vl_contact *c) {
+  memset(&c->timing, 0, sizeof c->timing);
+  if (c->coarse) vl_contact_timing_reset(c->coarse);
+  if (c->dry) vl_contact_timing_reset(c->dry);
+}
+
+void vl_contact_cell(const vl_contact *c, size_t i, double *x_a0, double *width_a0) {
+  *x_a0 = c->xi[i], *width_a0 = c->wc[i];
+}
+double vl_contact_influence(vl_contact *c, double v0_m_s, size_t i, size_t j) {
+  vl_contact_set_speed(c, v0_m_s);
+  return c->M[i * c->n + j];
+}
+
+const vl_flattening *vl_contact_flattening(const vl_contact *c) { return c->flattening; }
