@@ -138,6 +138,10 @@ static double cdf(const ftab *t, double z) {
   return ftab_eval(t, z);
 }
 
+enum { TAB_E1, TAB_PHI }; /* what ftab_fill tabulates */
+
+/* Fills t with E1(e^v) (TAB_E1) or Phi(z) (TAB_PHI) on [lo, hi]; 0 when
+ * out of memory or GSL fails (t half filled: ftab_free it). */
 static int ftab_fill(ftab *t, double lo, double hi, int which) {
   t->lo = lo;
   t->inv_h = TAB_PER_UNIT;
@@ -148,7 +152,7 @@ static int ftab_fill(ftab *t, double lo, double hi, int which) {
   double h = 1.0 / TAB_PER_UNIT;
   for (size_t i = 0; i < t->n; i++) {
     double v = lo + (double)i * h;
-    if (which == 0) { /* E1(e^v), d/dv = -exp(-e^v) */
+    if (which == TAB_E1) { /* E1(e^v), d/dv = -exp(-e^v) */
       double ev = exp(v);
       gsl_sf_result r;
       if (gsl_sf_expint_E1_e(ev, &r) != GSL_SUCCESS) return 0;
@@ -418,7 +422,8 @@ static vl_status ws_init(ws *w, const vl_psd *psd, double film_cutoff_m, vl_erro
       goto cleanup;
     }
   }
-  if (!ftab_fill(&w->e1, E1_VLO, E1_VHI, 0) || !ftab_fill(&w->phi, -Z_TAIL, Z_TAIL, 1)) {
+  if (!ftab_fill(&w->e1, E1_VLO, E1_VHI, TAB_E1) ||
+      !ftab_fill(&w->phi, -Z_TAIL, Z_TAIL, TAB_PHI)) {
     if (!w->e1.f || !w->e1.hd || !w->phi.f || !w->phi.hd) goto nomem;
     vl_error_set(err, "persson-emt: E1 failed while tabulating it");
     st = VL_EINTERNAL;
@@ -617,6 +622,13 @@ static double bin_groups(ws *w, double x) {
     w->mass[j] += c0 * (b - a) + c2 * (b * b * b - a * a * a) / 3.0;
     w->gap[j] = 0.5 * (a + b);
   }
+  /* P stays a distribution: the open bins hold 1 - A/A0 (what was dropped
+   * beyond G_BODY, and the rounding of the Taylor pieces, is spread) */
+  double open = 0.0;
+  for (size_t j = 0; j < w->nb; j++)
+    open += w->mass[j];
+  for (size_t j = 0; j < w->nb && open > 0.0; j++)
+    w->mass[j] *= w->Ac[w->ny] / open;
   for (size_t j = 0; j < w->nb; j++)
     mean += w->mass[j] * w->gap[j];
   for (size_t j = 0; j < w->nb; j++)
@@ -690,12 +702,19 @@ static void medium(size_t n, const double *g, const double *m, double contact, d
     u += m[j] * g[j];
     if (c > 0.0) uw += m[j] * g[j] * 2.0 * c / (g3 + c);
   }
+  /* Both shear factors count only the gaps wider than the film cut-off:
+   * narrower ones are boundary contact, sheared at sigma_s. For phi_fs this
+   * is also what keeps it finite: at and below percolation (c = 0) its sum
+   * has no lower cut-off and grew without limit as the first bin narrowed
+   * (45.8 at the seed PSD's percolation with a 1e-8 h_rms bin, 63.0 with
+   * 1e-10); with the cut-off it is 0.038 there, continuous through
+   * percolation, and the tabulated rows above x = 0.1 do not move. */
   double fs = 0.0, f = 0.0;
   for (size_t j = 0; j < n; j++) {
-    if (!(m[j] > 0.0)) continue;
+    if (!(m[j] > 0.0) || !(g[j] > gcut)) continue;
     double g3 = g[j] * g[j] * g[j];
     fs += m[j] * g[j] * (g[j] - uw) / (g3 + c);
-    if (g[j] > gcut) f += m[j] / g[j];
+    f += m[j] / g[j];
   }
   out->x = u;
   out->phi_p = c / (u * u * u);
@@ -826,16 +845,27 @@ static int x_perc_usable(double x_perc) {
   return isfinite(x_perc) && x_perc > 0.0 && x_perc < 0.1 * VL_EMT_X_MAX;
 }
 
-/* The nodes (ln x) for percolation point x_perc: geometric from
- * x_perc/X_BELOW_PERC to VL_EMT_X_MAX, the nearest moved onto x_perc. */
+/* The nodes (ln x) for percolation point x_perc: n - N_CLUSTER geometric
+ * from x_perc/X_BELOW_PERC to VL_EMT_X_MAX, the nearest moved onto x_perc,
+ * then N_CLUSTER more just above it, at CLUSTER[i] of the way (in ln x) to
+ * the next: phi_fs falls from its percolated value with a logarithmic
+ * singularity there (c^{1/3} cuts off the smallest gaps), which a single
+ * interval would overshoot by 2x. */
+#define N_CLUSTER 3
+static const double CLUSTER[N_CLUSTER] = {1e-3, 1e-2, 1e-1};
+
 static void place_nodes(double x_perc, size_t n, double *lx) {
+  size_t ng = n - N_CLUSTER, near = 0;
   double a = log(x_perc / X_BELOW_PERC), b = log(VL_EMT_X_MAX), lp = log(x_perc);
-  size_t near = 0;
-  for (size_t k = 0; k < n; k++) {
-    lx[k] = k + 1 == n ? b : a + (b - a) * (double)k / (double)(n - 1);
+  for (size_t k = 0; k < ng; k++) {
+    lx[k] = k + 1 == ng ? b : a + (b - a) * (double)k / (double)(ng - 1);
     if (fabs(lx[k] - lp) < fabs(lx[near] - lp)) near = k;
   }
   lx[near] = lp;
+  double gap = lx[near + 1] - lp;
+  memmove(lx + near + 1 + N_CLUSTER, lx + near + 1, (ng - near - 1) * sizeof *lx);
+  for (size_t i = 0; i < N_CLUSTER; i++)
+    lx[near + 1 + i] = lp + CLUSTER[i] * gap;
 }
 
 /* Fritsch-Butland slope at an interior node from the two secants. */
@@ -1056,8 +1086,9 @@ double vl_emt_table_percolation(const vl_emt_table *t) { return t->x_perc; }
 
 /* ------------------------------------------------------ serialised form */
 
-/* The blob (VL_EMT_FORMAT 1), every field little-endian, doubles as their
- * IEEE-754 bits (blob.h):
+/* The blob, every field little-endian, doubles as their IEEE-754 bits
+ * (blob.h). Formats 1 and 2 share the layout; 2 is the build with
+ * FLOW_FACTORS.md's sub-surface Eq. 8 and the bins ending at G_BODY:
  *   "VLEF", u32 format, u64 n                               (16 bytes)
  *   PSD fingerprint (VL_BLOB_PSD_WORDS u64)                 (64 bytes)
  *   f64 h_rms, film cut-off (m), x_perc                     (24 bytes)
@@ -1137,15 +1168,16 @@ static int blob_header_ok(const unsigned char *b, size_t len, size_t *n, vl_erro
 }
 
 /* Reads the fingerprint, scalars and values of a checked blob into t and
- * checks them against psd and the cut-off. */
-static int blob_read(vl_emt_table *t, const unsigned char *b, const vl_psd *psd,
-                     double film_cutoff_m, vl_error *err) {
+ * checks them against psd and the cut-off: VL_OK, VL_EINPUT (err says why)
+ * or VL_ENOMEM. */
+static vl_status blob_read(vl_emt_table *t, const unsigned char *b, const vl_psd *psd,
+                           double film_cutoff_m, vl_error *err) {
   const unsigned char *p = b + 16;
   vl_blob_psd_fingerprint(psd, t->fp);
   for (int i = 0; i < VL_BLOB_PSD_WORDS; i++, p += 8) {
     if (vl_blob_get_u64(p) != t->fp[i]) {
       vl_error_set(err, "built for another PSD");
-      return 0;
+      return VL_EINPUT;
     }
   }
   double *scalars[3] = {&t->hrms, &t->cutoff, &t->x_perc};
@@ -1153,15 +1185,24 @@ static int blob_read(vl_emt_table *t, const unsigned char *b, const vl_psd *psd,
     *scalars[i] = vl_blob_double(vl_blob_get_u64(p));
   if (vl_blob_bits(t->hrms) != vl_blob_bits(vl_psd_hrms(psd))) {
     vl_error_set(err, "its h_rms is not the surface's");
-    return 0;
+    return VL_EINPUT;
   }
   if (vl_blob_bits(t->cutoff) != vl_blob_bits(film_cutoff_m)) {
     vl_error_set(err, "built for a film cut-off of %g m, not %g m", t->cutoff, film_cutoff_m);
-    return 0;
+    return VL_EINPUT;
   }
-  if (!x_perc_usable(t->x_perc)) {
-    vl_error_set(err, "percolation point u/h_rms = %g out of range", t->x_perc);
-    return 0;
+  /* the percolation point, from which the nodes follow, is recomputed (a
+   * few ms: the quadrature of Persson's u(s) once) */
+  ws w;
+  double s_perc;
+  vl_status st = ws_init(&w, psd, film_cutoff_m, err);
+  if (st != VL_OK) return st;
+  double x_perc = percolation_x(&w, &s_perc);
+  ws_free(&w);
+  if (vl_blob_bits(t->x_perc) != vl_blob_bits(x_perc) || !x_perc_usable(x_perc)) {
+    vl_error_set(err, "its percolation point u/h_rms = %g is not the surface's (%g)", t->x_perc,
+                 x_perc);
+    return VL_EINPUT;
   }
   double *arrays[NF + 1];
   blob_arrays(t, arrays);
@@ -1170,8 +1211,8 @@ static int blob_read(vl_emt_table *t, const unsigned char *b, const vl_psd *psd,
       arrays[a][k] = vl_blob_double(vl_blob_get_u64(p));
   place_nodes(t->x_perc, t->n, t->lx);
   for (size_t k = 0; k < t->n; k++)
-    if (!node_ok(t, k, err)) return 0;
-  return 1;
+    if (!node_ok(t, k, err)) return VL_EINPUT;
+  return VL_OK;
 }
 
 vl_status vl_emt_table_deserialize(const vl_psd *psd, double film_cutoff_m, const void *blob,
@@ -1189,10 +1230,11 @@ vl_status vl_emt_table_deserialize(const vl_psd *psd, double film_cutoff_m, cons
   }
   vl_status st = table_alloc(n, &t, err);
   if (st != VL_OK) return st;
-  if (!blob_read(t, blob, psd, film_cutoff_m, err)) {
+  st = blob_read(t, blob, psd, film_cutoff_m, err);
+  if (st != VL_OK) {
     vl_error_prefix(err, "stored persson-emt table");
     vl_emt_table_free(t);
-    return VL_EINPUT;
+    return st;
   }
   set_slopes(t);
   *out = t;

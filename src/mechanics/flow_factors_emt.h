@@ -32,7 +32,7 @@
  * layout AND the build algorithm, so it MUST be bumped whenever
  * vl_emt_table_build's result can change (grids, repairs, bins, the medium,
  * node placement, psd.c's moments) as well as when the layout changes. */
-#define VL_EMT_FORMAT 1
+#define VL_EMT_FORMAT 3
 
 /* The factors at one separation, with what the model knows on the way. */
 typedef struct {
@@ -76,10 +76,11 @@ vl_status vl_emt_table_serialize(const vl_emt_table *table, void **blob, size_t 
 /* Rebuilds a table from a blob of vl_emt_table_serialize for this psd and
  * film cut-off; the result answers every query bit for bit like the table
  * that was serialised. The blob is untrusted: its length, magic, format,
- * checksum, node count, the PSD fingerprint, h_rms recomputed from psd, the
- * film cut-off, the node abscissae (recomputed from the stored percolation
- * point) and every value (finite, in range, zero pressure flow exactly up to
- * the percolation point) are checked. On failure *out is NULL and the
+ * checksum, node count, the PSD fingerprint, h_rms and the percolation point
+ * recomputed from psd (a few ms), the film cut-off, and every value (finite,
+ * in range, zero pressure flow exactly up to the percolation point, contact
+ * falling with x) are checked; the nodes follow from the percolation
+ * point. On failure *out is NULL and the
  * status is VL_EINPUT (corrupt, stale, of another PSD or cut-off) or
  * VL_ENOMEM. */
 vl_status vl_emt_table_deserialize(const vl_psd *psd, double film_cutoff_m, const void *blob,
