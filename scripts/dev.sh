@@ -23,7 +23,7 @@ case "${1:-}" in
     # the Stribeck curves side by side and figures in out/compare/.
     build/viscolube compound list
     exec build/viscolube compare --compounds sbr-unfilled,sbr-filled --surface paper-0.5um \
-      --fluid water --from 1e-12 --to 0.1 --points 45 --flow-factors smooth --plot \
+      --fluid water --from 1e-12 --to 0.1 --points 45 --plot \
       --out out/compare
     ;;
   test)
