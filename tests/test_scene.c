@@ -549,6 +549,28 @@ static void test_inconsistent_effects(void **state) {
   parse_ok(edit(edit(BASE, fx, "viscoelastic = on\nroughness = on\nflow_factors = patir-cheng"),
                 "compound = model-rubber", "compound = model-rubber\nsurface = paper-3um"));
   assert_int_equal(g_scene.effects.flow_factors, VL_FLOW_FACTORS_PATIR_CHENG);
+  /* a rough wet scene that names no model gets persson-emt with a 1 nm
+   * film cut-off; a rough dry one keeps smooth (it has no film) */
+  static char rough[2048]; /* edit()'s buffers are reused: keep a copy */
+  snprintf(rough, sizeof rough, "%s",
+           edit(BASE, "compound = model-rubber",
+                "compound = model-rubber\nsurface = paper-3um\nfluid = water"));
+  parse_ok(edit(rough, fx, "viscoelastic = on\nroughness = on\nfluid = on"));
+  assert_int_equal(g_scene.effects.flow_factors, VL_FLOW_FACTORS_PERSSON_EMT);
+  assert_true(g_scene.effects.film_cutoff_m == 1e-9);
+  parse_ok(edit(rough, fx, "viscoelastic = on\nroughness = on"));
+  assert_int_equal(g_scene.effects.flow_factors, VL_FLOW_FACTORS_SMOOTH);
+  parse_ok(edit(rough, fx, "roughness = on\nfluid = on\nflow_factors = persson-emt\n"
+                           "film_cutoff_m = 3e-10"));
+  assert_true(g_scene.effects.film_cutoff_m == 3e-10);
+  /* the cut-off: persson-emt only, a length in (0, 1e-6] m */
+  parse_fails(edit(rough, fx, "roughness = on\nfluid = on\nflow_factors = patir-cheng\n"
+                              "film_cutoff_m = 1e-9"),
+              20, "[effects] film_cutoff_m", "persson-emt only");
+  parse_fails(edit(rough, fx, "roughness = on\nfluid = on\nfilm_cutoff_m = 0"), 19,
+              "[effects] film_cutoff_m", "(0, 1e-6]");
+  parse_fails(edit(rough, fx, "roughness = on\nfluid = on\nfilm_cutoff_m = 2e-6"), 19,
+              "[effects] film_cutoff_m", "'2e-6'");
 }
 
 /* ---- files --------------------------------------------------------------- */
