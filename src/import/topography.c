@@ -5,6 +5,8 @@
 
 #include "viscolube/topography.h"
 
+#include "slurp.h"
+
 #include <errno.h>
 #include <fftw3.h>
 #include <limits.h>
@@ -646,47 +648,12 @@ vl_status vl_topography_read_text(const char *text, size_t len, const char *sour
 }
 
 vl_status vl_topography_read_file(const char *path, vl_topography *out, vl_error *err) {
-  vl_status st = VL_OK;
   char *buf = NULL;
-  size_t len = 0, cap = 0;
+  size_t len = 0;
   memset(out, 0, sizeof *out);
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    vl_error_set(err, "%s: cannot open: %s", path, strerror(errno));
-    return VL_EIO;
-  }
-  for (;;) {
-    if (len == cap) {
-      if (cap >= VL_TOPOGRAPHY_MAX_BYTES) {
-        vl_error_set(err, "%s: larger than %zu MiB: not a topography file", path,
-                     VL_TOPOGRAPHY_MAX_BYTES >> 20);
-        st = VL_EINPUT;
-        goto cleanup;
-      }
-      size_t ncap = cap ? 2 * cap : 65536;
-      char *nb = realloc(buf, ncap);
-      if (!nb) {
-        vl_error_set(err, "%s: out of memory", path);
-        st = VL_ENOMEM;
-        goto cleanup;
-      }
-      buf = nb;
-      cap = ncap;
-    }
-    size_t got = fread(buf + len, 1, cap - len, f);
-    len += got;
-    if (got == 0) break;
-  }
-  if (ferror(f)) {
-    vl_error_set(err, "%s: cannot read: %s", path, strerror(errno));
-    st = VL_EIO;
-    goto cleanup;
-  }
-  st = vl_topography_read_text(buf, len, path, out, err);
-
-cleanup:
+  vl_status st = vl_slurp(path, VL_TOPOGRAPHY_MAX_BYTES, "a topography file", &buf, &len, err);
+  if (st == VL_OK) st = vl_topography_read_text(buf, len, path, out, err);
   free(buf);
-  fclose(f);
   return st;
 }
 
