@@ -16,7 +16,7 @@ static void usage(FILE *out) {
         "\n"
         "nouns:\n"
         "  compound   rubber compounds (Prony series): list, show, add, remove\n"
-        "  surface    roughness power spectra: list, show, add, remove\n"
+        "  surface    roughness power spectra: list, show, add, remove, flow-factors\n"
         "  fluid      lubricants: list, show, add, remove\n"
         "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
         "  friction   one operating point of a stored compound/surface/fluid triple\n"
