@@ -71,10 +71,11 @@
 #include "viscolube/flow_factors.h"
 #include "viscolube/flattening.h"
 
-/* import: measured data (CSV, DMA) and Prony fits */
+/* import: measured data (CSV, DMA), Prony fits, topography to PSD */
 #include "viscolube/csv.h"
 #include "viscolube/dma.h"
 #include "viscolube/prony_fit.h"
+#include "viscolube/topography.h"
 
 /* solver: one operating point, sweeps, results, model-validity checks */
 #include "viscolube/results.h"

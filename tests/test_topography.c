@@ -756,6 +756,12 @@ static void test_psd_refusals(void **state) {
   assert_int_equal(vl_topography_psd(&t, NULL, &p, &err), VL_EINPUT);
   assert_non_null(strstr(err.msg, "no roughness left"));
   assert_null(p.q_per_m);
+  /* constant heights: their rms about the mean is 0 and the detrended rms
+   * round-off of the height (it was accepted as a 3.7e-26 m surface) */
+  for (size_t j = 0; j < 64; j++)
+    t.h_m[j] = 3.3e-6;
+  assert_int_equal(vl_topography_psd(&t, NULL, &p, &err), VL_EINPUT);
+  assert_non_null(strstr(err.msg, "no roughness left"));
   for (size_t j = 0; j < 64; j++)
     t.h_m[j] = 1e-9 * sin(0.3 * (double)j * (double)j);
   struct {

@@ -11,7 +11,6 @@
 #include <string.h>
 
 #include "cli.h"
-#include "viscolube/topography.h" /* not (yet) in the umbrella header */
 
 #define FF_MAX_POINTS 10000
 #define FF_X_LO 1e-3

@@ -687,15 +687,21 @@ static plane fit_plane(const vl_topography *t) {
 }
 
 /* rms about the mean, for telling a plane from a rough surface */
+/* The scale the flatness test compares with: the rms of the heights about
+ * their mean, and at least their magnitude (a constant height map has a
+ * zero rms about its mean, and its detrended rms is round-off of the
+ * magnitude: 3.7e-26 m was accepted as a surface). */
 static double raw_rms(const vl_topography *t) {
   size_t n = t->nx * t->ny;
-  double m = 0.0, s = 0.0;
-  for (size_t k = 0; k < n; k++)
+  double m = 0.0, s = 0.0, big = 0.0;
+  for (size_t k = 0; k < n; k++) {
     m += t->h_m[k];
+    big = fmax(big, fabs(t->h_m[k]));
+  }
   m /= (double)n;
   for (size_t k = 0; k < n; k++)
     s += (t->h_m[k] - m) * (t->h_m[k] - m);
-  return sqrt(s / (double)n);
+  return fmax(sqrt(s / (double)n), big);
 }
 
 static double residual(const vl_topography *t, const plane *p, size_t i, size_t j) {
