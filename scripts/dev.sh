@@ -9,15 +9,21 @@ cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
 scripts/install-deps.sh
 
-build() { # dir, extra cmake args...
+configure() { # dir, extra cmake args...
   local dir=$1; shift
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVL_WERROR=ON "$@" >/dev/null
-  cmake --build "$dir" -j "$jobs"
+}
+
+build() { # dir, extra cmake args...: everything (library, program, tests, benchmarks)
+  configure "$@"
+  cmake --build "$1" -j "$jobs"
 }
 
 case "${1:-}" in
   run)
-    build build
+    # the program alone: the tests, fuzz targets and benchmarks wait for `test`
+    configure build
+    cmake --build build -j "$jobs" --target viscolube_cli
     # The main job on the embedded default database (created on first use):
     # filled against unfilled rubber in water (the seed's Figs. 15-17), with
     # the Stribeck curves side by side and figures in out/compare/.

@@ -3,10 +3,13 @@
 #define VL_CLI_H
 
 /* The program uses the library through its public header only. */
+#include <stdio.h>
+
 #include "viscolube.h"
 
 typedef struct {
   const char *db_path; /* --db PATH, else $VISCOLUBE_DB, else NULL = default */
+  int quiet;           /* --quiet: no warnings or progress on stderr */
 } vl_cli_globals;
 
 /* `compound|surface|fluid VERB ...` (argv[0] is the noun). Returns exit code. */
@@ -42,5 +45,23 @@ int vl_cli_surface_add_topography(const vl_cli_globals *g, const char *name, con
 /* mkdir -p: creates path and its missing parents (0 on success, -1 with
  * errno set). */
 int vl_cli_make_dirs(const char *path);
+
+/* Checks an output folder before anything is computed: creates it (and
+ * its parents) if missing, and makes sure it is a folder the program can
+ * write in (a probe file is created and removed). VL_OK, else VL_EIO with
+ * a message naming the folder and the option that gave it. */
+vl_status vl_cli_check_out_dir(const char *option, const char *path, vl_error *err);
+
+/* The model-validity warnings of points pts[0..n) (vl_point.warnings), one
+ * line per kind ("warning: [label: ]TEXT — points 1-45 of 45 (v0 = ...)"),
+ * a number that varies over the points shown as its range; for n = 1
+ * without the points. label may be NULL. Returns the number of lines. */
+size_t vl_cli_print_warnings(FILE *out, const char *label, size_t n, const vl_point *pts);
+
+/* The points that did not converge: a line with their count and the exit
+ * status, then one line each (speed, iterations, residual; at most ten).
+ * where (may be NULL) is appended to the first line. Returns the count. */
+size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size_t n,
+                             const vl_point *pts, const char *where);
 
 #endif
