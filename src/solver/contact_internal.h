@@ -93,7 +93,9 @@ struct vl_contact {
   double *sf, *dsf;   /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
                        * NULL when off */
   double *theta;      /* film fraction (report only) */
-  vl_contact *coarse; /* smooth wet: half-size grid for fresh starts (NULL when small) */
+  vl_contact *coarse; /* smooth wet: half-size grid for fresh starts (NULL when small);
+                       * rough wet: the smooth film whose solution starts a lifted rough
+                       * film (created on first use, vl_contact_rough_wet_film_start) */
   bool no_fallback;   /* inside the viscosity-continuation fallback of a fresh start */
   vl_contact *dry;    /* smooth wet viscoelastic, coarsest level: the dry contact on the same
                        * grid, whose solution starts the wet one (NULL otherwise) */
@@ -199,6 +201,20 @@ void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni);
 
 /* Predictor of a continuation step to speed v0 (rough films). */
 void vl_contact_predict_state(vl_contact *c, double v0);
+
+/* Starts a rough wet solve at v0 from the dry contact's solution at v0
+ * (separations and rigid approach; no fluid pressure): the limit of a film
+ * that carries nothing. Solves the dry contact (its helper is created on
+ * first use) and adds its Newton iterations to *nni; false, with c
+ * unchanged, when that fails or the helper cannot be made. */
+bool vl_contact_rough_wet_dry_start(vl_contact *c, double v0, long *nni);
+
+/* Starts a rough wet solve at v0 from the smooth film's solution at v0
+ * (separation and fluid pressure interpolated from a uniform grid over the
+ * same domain; c->coarse, created on first use): the limit of a film that
+ * has lifted the solid off the asperities. Adds the smooth solve's Newton
+ * iterations to *nni; false, with c unchanged, when it fails. */
+bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni);
 
 /* contact_report.c */
 

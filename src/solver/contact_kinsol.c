@@ -4,7 +4,9 @@
  * the Schur complement of the Reynolds rows) wrapped to count their cost,
  * and the solve of one operating point with its fallbacks: a fresh start
  * after a failed continuation, continuation in viscosity for thin smooth
- * films, and the state restored when everything fails. */
+ * films, the dry contact's or the smooth film's solution for a rough film
+ * that Hertz does not start, and the state restored when everything
+ * fails. */
 #include "contact_internal.h"
 
 #include <float.h>
@@ -271,6 +273,7 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
   solve_scales saved = {c->kappa, c->lambda, c->rscale, c->u_ref, c->v0};
   vl_contact_set_speed(c, v0_m_s);
   bool smooth_wet = c->wet && !c->rough, fresh = smooth_wet && c->v_state == 0.0;
+  bool rough_fresh = c->wet && c->rough && c->v_state == 0.0;
   long nni = 0;
   int flag;
   double fnorm;
@@ -283,6 +286,15 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
     ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
   }
   if (!ok && smooth_wet && !c->no_fallback) ok = viscosity_fallback(c, v0_m_s, &nni, &flag, &fnorm);
+  if (!ok && rough_fresh && vl_contact_rough_wet_dry_start(c, v0_m_s, &nni)) {
+    /* Hertz did not start this rough film: start from the dry contact at
+     * this speed, the closed film (contact_start.c says when that helps) */
+    ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  }
+  if (!ok && rough_fresh && vl_contact_rough_wet_film_start(c, v0_m_s, &nni)) {
+    /* nor the dry contact: start from the smooth film, the lifted one */
+    ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  }
   if (!ok) return solve_failed(c, v0_m_s, &saved, flag, nni, fnorm, pt, err);
   pt->iterations = nni;
   pt->residual = fnorm;

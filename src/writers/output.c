@@ -49,9 +49,11 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->contact_width_m, ok);
     cell(out, p->fluid_load_fraction, ok);
     fprintf(out, ",%s", ok ? vl_regime_name(p->regime) : "");
-    cell(out, p->E_wH_pa, 1);
-    cell(out, p->a_H_m, 1);
-    cell(out, p->Q, 1);
+    /* derived from the solved state: a failed point has none (its struct
+     * holds zeros, which read as values) */
+    cell(out, p->E_wH_pa, ok);
+    cell(out, p->a_H_m, ok);
+    cell(out, p->Q, ok);
     cell(out, p->x_centroid_m, ok);
     cell(out, p->load_error, ok);
     fprintf(out, ",%d,%ld", p->converged ? 1 : 0, p->iterations);
@@ -111,9 +113,9 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "contact_width_m", p->contact_width_m, ok);
   member(w, "fluid_load_fraction", p->fluid_load_fraction, ok);
   vl_json_key_string(w, "regime", ok ? vl_regime_name(p->regime) : NULL);
-  member(w, "E_wH_pa", p->E_wH_pa, 1);
-  member(w, "a_H_m", p->a_H_m, 1);
-  member(w, "Q", p->Q, 1);
+  member(w, "E_wH_pa", p->E_wH_pa, ok);
+  member(w, "a_H_m", p->a_H_m, ok);
+  member(w, "Q", p->Q, ok);
   member(w, "x_centroid_m", p->x_centroid_m, ok);
   member(w, "load_error", p->load_error, ok);
   vl_json_key(w, "converged");
