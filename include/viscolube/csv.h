@@ -1,31 +1,44 @@
 /* viscolube: a small strict reader of numeric CSV files.
  *
- * Used for material tables (Prony terms, tabulated PSDs) and meant to be
- * reused for measured data (DMA files). The format is deliberately narrow so
- * that a mistake in a file is reported instead of silently misread:
+ * Used for material tables (Prony terms, tabulated PSDs) and for measured
+ * data (DMA files). The format is deliberately narrow so that a mistake in
+ * a file is reported instead of silently misread:
  *
  *   - Lines end in LF or CRLF; a UTF-8 byte-order mark is skipped. Lines that
  *     are blank or whose first non-blank character is '#' are ignored (they
  *     still count for line numbers), so a file can carry its provenance.
- *   - The first other line is the header: comma-separated column names,
- *     matched exactly (case-sensitive, surrounding blanks and one pair of
- *     double quotes removed). Every required column must appear once; no
- *     unknown column is allowed; the order is free.
+ *   - Fields are separated by commas, semicolons or tabs, as the file shows:
+ *     the delimiter that splits the header and the first 50 rows after it
+ *     into the same number of fields (ambiguity is an error naming both).
+ *     With ';' or a tab, numbers may use a decimal comma ("0,25"); then a
+ *     '.' in a number is refused (it would be a thousands separator).
+ *   - Spreadsheets (.xlsx, .xlsm, .xls, .ods, or a ZIP or OLE2 signature at
+ *     the start) are refused with a sentence telling how to export CSV.
+ *   - The first other line is the header: column names, matched exactly
+ *     (case-sensitive, surrounding blanks and one pair of double quotes
+ *     removed). Every required column must appear once; no unknown column is
+ *     allowed unless the caller ignores them (vl_csv_options); the order is
+ *     free.
  *   - Units row (optional). The line after the header is a units row exactly
  *     when at least one of its cells is not a number; it is then accepted only
  *     if every cell is one of the expected spellings of its column's units
  *     (e.g. "1,s" for A,tau_s or "1/m,m^4" for q_per_m,C_m4). Anything else
  *     there (e.g. "Pa,s", or a typo in a number) is an error naming the cell
  *     and the units row the file would need. A row of numbers is data.
- *   - Every data row has as many cells as the header; every cell is a decimal
- *     number ([+-]digits[.digits][e[+-]digits]), finite and within double
- *     range. NaN, Inf, hex floats, empty cells and thousands separators are
- *     rejected. Per-column sign and ordering constraints are checked here.
+ *   - Every data row has as many cells as the header; every cell of a
+ *     requested column is a decimal number ([+-]digits[.digits][e[+-]digits]),
+ *     finite and within double range. NaN, Inf, hex floats, empty cells and
+ *     thousands separators are rejected. Per-column sign and ordering
+ *     constraints are checked here. Cells of ignored columns are not read.
  *   - At least one data row.
  *
  * Every error is one sentence of the form
  *   "FILE:LINE: column 'NAME' (field K): what is wrong (got 'TEXT')"
- * (file-level errors omit the column). The reader never prints. */
+ * (file-level errors omit the column). Data rows are all read before the
+ * reader gives up: the message then holds one such sentence per offending
+ * line, one per text line, up to 20 (as many as fit in a vl_error), then
+ * "FILE: and N more problems (M lines at fault in all)". The reader never
+ * prints. */
 #ifndef VISCOLUBE_CSV_H
 #define VISCOLUBE_CSV_H
 
@@ -60,7 +73,19 @@ typedef struct {
   size_t *lines;     /* 1-based source line of each data row (owned) */
   int *present;      /* n_cols flags (owned) */
   int has_units_row; /* the file had a (matching) units row */
+  char delimiter;    /* ',', ';' or '\t' as read */
+  int decimal_comma; /* numbers were read with a decimal comma */
+  size_t n_ignored;  /* header columns ignored (vl_csv_options.ignore_unknown) */
+  char *ignored;     /* their names, "'run', 'force'" (owned; NULL when none) */
 } vl_csv;
+
+/* How to read (all zero: the defaults of vl_csv_read_text). */
+typedef struct {
+  int ignore_unknown; /* nonzero: header columns no requested column names are skipped (listed
+                         in vl_csv.ignored) instead of refused */
+  char delimiter;     /* ',', ';' or '\t'; 0: detected from the file (see above) */
+  int decimal_comma;  /* with a given ';' or '\t' delimiter: numbers use a decimal comma */
+} vl_csv_options;
 
 /* Reads and checks the CSV file at path against the n_cols column specs.
  * On success *out owns its arrays (release with vl_csv_free); on failure
@@ -74,6 +99,11 @@ vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n
  * messages. The text need not be NUL-terminated and is not modified. */
 vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
                            const vl_csv_column *cols, size_t n_cols, vl_csv *out, vl_error *err);
+
+/* As vl_csv_read_text with options (NULL: the defaults). */
+vl_status vl_csv_read_text_opts(const char *text, size_t len, const char *source,
+                                const vl_csv_column *cols, size_t n_cols,
+                                const vl_csv_options *opts, vl_csv *out, vl_error *err);
 
 /* Releases what a vl_csv owns and empties it; accepts an empty table. */
 void vl_csv_free(vl_csv *csv);

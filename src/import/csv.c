@@ -4,6 +4,7 @@
 #include "viscolube/csv.h"
 
 #include "edit_distance.h"
+#include "import_text.h"
 
 #include <errno.h>
 #include <math.h>
@@ -64,19 +65,14 @@ static void show(span s, char *buf, size_t size) {
   buf[k] = '\0';
 }
 
-/* Splits a line at commas into at most cap cells; returns the total count
- * (which may exceed cap: only the first cap are stored). */
-static size_t split(span line, span *cells, size_t cap) {
-  size_t count = 0;
-  const char *start = line.p, *end = line.p + line.n;
-  for (const char *c = line.p;; c++) {
-    if (c == end || *c == ',') {
-      if (count < cap) cells[count] = (span){start, (size_t)(c - start)};
-      count++;
-      if (c == end) break;
-      start = c + 1;
-    }
-  }
+/* Splits a line at the delimiter into at most cap cells, through the
+ * scratch arrays tp, tn (cap entries); returns the total count (which may
+ * exceed cap: only the first cap are stored). */
+static size_t split(span line, char delimiter, span *cells, const char **tp, size_t *tn,
+                    size_t cap) {
+  size_t count = vl_import_split(line.p, line.n, delimiter, tp, tn, cap);
+  for (size_t k = 0; k < count && k < cap; k++)
+    cells[k] = (span){tp[k], tn[k]};
   return count;
 }
 
@@ -99,62 +95,8 @@ static size_t distance(span a, const char *b) {
   return vl_edit_distance(a.p, a.n, b, strlen(b), false);
 }
 
-/* Strict decimal syntax: [+-]digits[.digits] or [+-].digits, optional
- * exponent. Rejects what strtod would also take: nan, inf, hex, blanks. */
-static int decimal_syntax(const char *s) {
-  const char *p = s;
-  if (*p == '+' || *p == '-') p++;
-  size_t digits = 0;
-  while (*p >= '0' && *p <= '9')
-    p++, digits++;
-  if (*p == '.') {
-    p++;
-    while (*p >= '0' && *p <= '9')
-      p++, digits++;
-  }
-  if (digits == 0) return 0;
-  if (*p == 'e' || *p == 'E') {
-    p++;
-    if (*p == '+' || *p == '-') p++;
-    if (!(*p >= '0' && *p <= '9')) return 0;
-    while (*p >= '0' && *p <= '9')
-      p++;
-  }
-  return *p == '\0';
-}
-
-static vl_status parse_span(span s, double *out, const char **why) {
-  s = trim(s);
-  char buf[NUMBER_MAX_CHARS + 1];
-  if (s.n == 0) {
-    *why = "empty cell";
-    return VL_EINPUT;
-  }
-  if (s.n > NUMBER_MAX_CHARS) {
-    *why = "not a number";
-    return VL_EINPUT;
-  }
-  memcpy(buf, s.p, s.n);
-  buf[s.n] = '\0';
-  if (!decimal_syntax(buf)) {
-    const char *b = buf + (buf[0] == '+' || buf[0] == '-');
-    span t = {b, strlen(b)};
-    if (span_eq_nocase(t, "nan") || span_eq_nocase(t, "inf") || span_eq_nocase(t, "infinity"))
-      *why = "NaN and infinity are not allowed";
-    else
-      *why = "not a number";
-    return VL_EINPUT;
-  }
-  errno = 0;
-  double v = strtod(buf, NULL);
-  /* ERANGE also flags underflow: a value below 1e-308 in a material file is
-   * a unit mistake, not data, so it is refused like an overflow. */
-  if (errno == ERANGE || !isfinite(v)) {
-    *why = "outside the range of a double";
-    return VL_EINPUT;
-  }
-  *out = v;
-  return VL_OK;
+static vl_status parse_span(span s, int decimal_comma, double *out, const char **why) {
+  return vl_import_parse_number(s.p, s.n, decimal_comma, out, why);
 }
 
 vl_status vl_csv_parse_double(const char *text, double *out, const char **why) {
@@ -164,7 +106,7 @@ vl_status vl_csv_parse_double(const char *text, double *out, const char **why) {
     *why = "empty cell";
     return VL_EINPUT;
   }
-  return parse_span((span){text, strlen(text)}, out, why);
+  return parse_span((span){text, strlen(text)}, 0, out, why);
 }
 
 void vl_csv_free(vl_csv *csv) {
@@ -173,6 +115,7 @@ void vl_csv_free(vl_csv *csv) {
   free(csv->values);
   free(csv->lines);
   free(csv->present);
+  free(csv->ignored);
   memset(csv, 0, sizeof *csv);
 }
 
@@ -206,15 +149,19 @@ static int units_match(span cell, const char *units) {
   }
 }
 
-/* The units row the file would need, in the file's column order. */
-static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields, char *buf,
-                           size_t size) {
+/* A field of the file that no requested column takes (ignore_unknown). */
+#define IGNORED ((size_t)-1)
+
+/* The units row the file would need, in the file's column order and with
+ * its delimiter (ignored fields left empty). */
+static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields,
+                           char delimiter, char *buf, size_t size) {
   size_t k = 0;
   buf[0] = '\0';
   for (size_t f = 0; f < n_fields && k < size; f++) {
-    const char *u = cols[map[f]].units ? cols[map[f]].units : "";
+    const char *u = map[f] == IGNORED ? "" : cols[map[f]].units ? cols[map[f]].units : "";
     size_t n = strcspn(u, "|");
-    int w = snprintf(buf + k, size - k, "%s%.*s", f ? "," : "", (int)n, u);
+    int w = snprintf(buf + k, size - k, "%s%.*s", f ? (delimiter == '\t' ? "\t" : delimiter == ';' ? ";" : ",") : "", (int)n, u);
     if (w < 0) break;
     k += (size_t)w;
   }
@@ -232,13 +179,19 @@ static vl_status grow(vl_csv *out, size_t *cap) {
   return VL_OK;
 }
 
+/* Header fields beyond this are refused: no table of ours has that many. */
+#define MAX_FIELDS 256
 /* The state of one vl_csv_read_text. */
 typedef struct {
   const char *src;           /* the file name in messages */
   const vl_csv_column *cols; /* the requested columns */
   size_t n_cols;
-  span *cells;         /* the fields of the current line (n_cols + 1 kept) */
-  size_t *map;         /* field f of the file holds column map[f] */
+  vl_csv_options opt;
+  span *cells;         /* the fields of the current line (cell_cap kept) */
+  const char **tp;     /* split scratch (cell_cap) */
+  size_t *tn;
+  size_t cell_cap;
+  size_t *map;         /* field f of the file holds column map[f], or IGNORED */
   size_t n_fields;     /* fields of the header, hence of every row */
   size_t line_no;      /* 1-based line being read */
   size_t cap;          /* rows allocated in out */
@@ -268,25 +221,60 @@ static vl_status unknown_column(const csv_reader *r, span name, size_t f, vl_err
   return VL_EINPUT;
 }
 
-/* The header line: every field names a distinct requested column, every
- * column that is not optional is there. Sets map, n_fields, the presence
- * flags of out and the expected units row. */
+/* Appends 'name' to the list of ignored columns of out. */
+static vl_status note_ignored(vl_csv *out, span name) {
+  char shown[64];
+  show(name, shown, sizeof shown);
+  size_t old = out->ignored ? strlen(out->ignored) : 0, add = strlen(shown) + 4;
+  char *s = realloc(out->ignored, old + add + 1);
+  if (!s) return VL_ENOMEM;
+  snprintf(s + old, add + 1, "%s'%s'", old ? ", " : "", shown);
+  out->ignored = s;
+  out->n_ignored++;
+  return VL_OK;
+}
+
+/* Splits the header line and sizes the cell arrays for it. */
+static vl_status header_cells(csv_reader *r, span line, size_t *count, vl_error *err) {
+  *count = vl_import_split(line.p, line.n, r->opt.delimiter, NULL, NULL, 0);
+  if (*count > MAX_FIELDS) {
+    vl_error_set(err, "%s:%zu: the header has %zu fields; a table has at most %d", r->src,
+                 r->line_no, *count, MAX_FIELDS);
+    return VL_EINPUT;
+  }
+  r->cell_cap = (*count > r->n_cols ? *count : r->n_cols) + 1;
+  r->cells = malloc(r->cell_cap * sizeof *r->cells);
+  r->tp = malloc(r->cell_cap * sizeof *r->tp);
+  r->tn = malloc(r->cell_cap * sizeof *r->tn);
+  r->map = malloc(r->cell_cap * sizeof *r->map);
+  if (!r->cells || !r->tp || !r->tn || !r->map) {
+    vl_error_set(err, "%s: out of memory", r->src);
+    return VL_ENOMEM;
+  }
+  split(line, r->opt.delimiter, r->cells, r->tp, r->tn, r->cell_cap);
+  return VL_OK;
+}
+
+/* The header line: every field names a distinct requested column (or is
+ * ignored, with ignore_unknown), every column that is not optional is
+ * there. Sets map, n_fields, the presence flags of out, its ignored list
+ * and the expected units row. */
 static vl_status read_header(csv_reader *r, span line, vl_error *err) {
-  size_t n_cols = r->n_cols;
-  size_t count = split(line, r->cells, n_cols + 1);
-  size_t stored = count < n_cols + 1 ? count : n_cols + 1;
+  size_t n_cols = r->n_cols, count;
+  vl_status st = header_cells(r, line, &count, err);
+  if (st != VL_OK) return st;
   int all_numbers = 1;
-  for (size_t f = 0; f < stored && all_numbers; f++) {
+  for (size_t f = 0; f < count && all_numbers; f++) {
     double v;
     const char *why;
-    if (parse_span(r->cells[f], &v, &why) != VL_OK) all_numbers = 0;
+    if (parse_span(r->cells[f], r->opt.decimal_comma, &v, &why) != VL_OK) all_numbers = 0;
   }
   if (all_numbers) {
     vl_error_set(err, "%s:%zu: missing header: expected the column names '%s' before the numbers",
                  r->src, r->line_no, r->hdr);
     return VL_EINPUT;
   }
-  for (size_t f = 0; f < stored; f++) {
+  for (size_t f = 0; f < count; f++) {
     span name = unquote(r->cells[f]);
     if (name.n == 0) {
       vl_error_set(err, "%s:%zu: header field %zu is empty (expected the header '%s')", r->src,
@@ -296,7 +284,15 @@ static vl_status read_header(csv_reader *r, span line, vl_error *err) {
     size_t c = 0;
     while (c < n_cols && !span_eq(name, r->cols[c].name))
       c++;
-    if (c == n_cols) return unknown_column(r, name, f, err);
+    if (c == n_cols && !r->opt.ignore_unknown) return unknown_column(r, name, f, err);
+    if (c == n_cols) {
+      r->map[f] = IGNORED;
+      if (note_ignored(r->out, name) != VL_OK) {
+        vl_error_set(err, "%s: out of memory", r->src);
+        return VL_ENOMEM;
+      }
+      continue;
+    }
     if (r->out->present[c]) {
       vl_error_set(err, "%s:%zu: header field %zu: column '%s' appears twice", r->src, r->line_no,
                    f + 1, r->cols[c].name);
@@ -313,25 +309,29 @@ static vl_status read_header(csv_reader *r, span line, vl_error *err) {
     }
   }
   r->n_fields = count;
-  expected_units(r->cols, r->map, r->n_fields, r->units_row, sizeof r->units_row);
+  expected_units(r->cols, r->map, r->n_fields, r->opt.delimiter, r->units_row,
+                 sizeof r->units_row);
   return VL_OK;
 }
 
 /* The first row after the header (split into cells): *is_units = 1 if it
  * is the optional units row, recognised by a non-numeric cell that spells
- * its column's unit; then every cell must. Otherwise the row is data. */
+ * its column's unit; then every cell of a requested column must.
+ * Otherwise the row is data. */
 static vl_status read_units_row(const csv_reader *r, int *is_units, vl_error *err) {
   *is_units = 0;
   for (size_t f = 0; f < r->n_fields && !*is_units; f++) {
     double v;
     const char *why;
     span u = unquote(r->cells[f]);
-    if (parse_span(u, &v, &why) != VL_OK && units_match(u, r->cols[r->map[f]].units)) *is_units = 1;
+    if (r->map[f] != IGNORED && parse_span(u, r->opt.decimal_comma, &v, &why) != VL_OK &&
+        units_match(u, r->cols[r->map[f]].units))
+      *is_units = 1;
   }
   if (!*is_units) return VL_OK;
   for (size_t f = 0; f < r->n_fields; f++) {
     span u = unquote(r->cells[f]);
-    if (!units_match(u, r->cols[r->map[f]].units)) {
+    if (r->map[f] != IGNORED && !units_match(u, r->cols[r->map[f]].units)) {
       char shown[64];
       show(u, shown, sizeof shown);
       vl_error_set(err,
@@ -356,7 +356,7 @@ static vl_status read_cell(const csv_reader *r, size_t f, int first_row, double 
   char shown[64];
   span cell = trim(r->cells[f]);
   show(cell, shown, sizeof shown);
-  if (parse_span(cell, &v, &why) != VL_OK) {
+  if (parse_span(cell, r->opt.decimal_comma, &v, &why) != VL_OK) {
     int hint = first_row && !strcmp(why, "not a number");
     vl_error_set(err, "%s:%zu: column '%s' (field %zu): %s (got '%s')%s%s%s", r->src, r->line_no,
                  col->name, f + 1, why, shown,
@@ -385,7 +385,8 @@ static vl_status read_cell(const csv_reader *r, size_t f, int first_row, double 
 }
 
 /* A data row (split into cells) appended to out; the columns absent from
- * the file are NAN. */
+ * the file are NAN. A bad cell leaves out as it was: VL_EINPUT, err says
+ * why. */
 static vl_status read_data_row(csv_reader *r, int first_row, vl_error *err) {
   vl_csv *out = r->out;
   vl_status st;
@@ -397,34 +398,74 @@ static vl_status read_data_row(csv_reader *r, int first_row, vl_error *err) {
   for (size_t c = 0; c < r->n_cols; c++)
     row[c] = NAN;
   for (size_t f = 0; f < r->n_fields; f++)
-    if ((st = read_cell(r, f, first_row, &row[r->map[f]], err)) != VL_OK) return st;
+    if (r->map[f] != IGNORED && (st = read_cell(r, f, first_row, &row[r->map[f]], err)) != VL_OK)
+      return st;
   out->lines[out->n_rows++] = r->line_no;
   return VL_OK;
 }
 
-vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
-                           const vl_csv_column *cols, size_t n_cols, vl_csv *out, vl_error *err) {
+/* The sentence for a row with the wrong number of fields. */
+static void ragged_row(const csv_reader *r, size_t count, vl_problems *pr) {
+  char d = r->opt.delimiter;
+  vl_problems_add(pr, r->line_no, "%s:%zu: expected %zu %s-separated fields like the header, "
+                  "found %zu%s",
+                  r->src, r->line_no, r->n_fields, d == ',' ? "comma" : d == ';' ? "semicolon" : "tab",
+                  count,
+                  d == ',' && count > r->n_fields
+                      ? " (numbers with a decimal comma need ';' or a tab between the fields)"
+                      : "");
+}
+
+/* The options in force: the caller's, the dialect detected when it gives
+ * no delimiter. */
+static vl_status settle_options(csv_reader *r, const char *text, size_t len,
+                                const vl_csv_options *opts, vl_error *err) {
+  vl_csv_options o = {0};
+  if (opts) o = *opts;
+  if (o.delimiter == 0) {
+    vl_dialect d;
+    vl_status st = vl_import_detect_dialect(text, len, r->src, &d, err);
+    if (st != VL_OK) return st;
+    o.delimiter = d.delimiter;
+    o.decimal_comma = d.decimal_comma;
+  } else if (o.delimiter != ',' && o.delimiter != ';' && o.delimiter != '\t') {
+    vl_error_set(err, "%s: the delimiter must be ',', ';' or a tab (a bug in the caller)", r->src);
+    return VL_EINTERNAL;
+  }
+  if (o.delimiter == ',') o.decimal_comma = 0;
+  r->opt = o;
+  r->out->delimiter = o.delimiter;
+  r->out->decimal_comma = o.decimal_comma;
+  return VL_OK;
+}
+
+vl_status vl_csv_read_text_opts(const char *text, size_t len, const char *source,
+                                const vl_csv_column *cols, size_t n_cols,
+                                const vl_csv_options *opts, vl_csv *out, vl_error *err) {
   vl_status st = VL_OK;
   size_t header_line = 0, last_line = 0;
   enum { HEADER, UNITS, DATA } stage = HEADER;
   csv_reader r = {.src = source ? source : "<text>", .cols = cols, .n_cols = n_cols, .out = out};
+  vl_problems pr;
+  vl_problems_init(&pr);
 
   memset(out, 0, sizeof *out);
   if (!cols || n_cols == 0 || (!text && len > 0)) {
     vl_error_set(err, "%s: no columns requested (a bug in the caller)", r.src);
     return VL_EINTERNAL;
   }
+  if (!text) text = "";
   expected_header(cols, n_cols, r.hdr, sizeof r.hdr);
   out->source = strdup(r.src);
   out->n_cols = n_cols;
   out->present = calloc(n_cols, sizeof *out->present);
-  r.cells = malloc((n_cols + 1) * sizeof *r.cells);
-  r.map = malloc((n_cols + 1) * sizeof *r.map);
-  if (!out->source || !out->present || !r.cells || !r.map) {
+  if (!out->source || !out->present) {
     st = VL_ENOMEM;
     vl_error_set(err, "%s: out of memory", r.src);
     goto cleanup;
   }
+  if ((st = vl_import_refuse_spreadsheet(text, len, r.src, err)) != VL_OK) goto cleanup;
+  if ((st = settle_options(&r, text, len, opts, err)) != VL_OK) goto cleanup;
 
   size_t pos = 0;
   if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) pos = 3;
@@ -450,12 +491,11 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
       stage = UNITS;
       continue;
     }
-    size_t count = split(line, r.cells, r.n_fields);
+    size_t count = split(line, r.opt.delimiter, r.cells, r.tp, r.tn, r.n_fields);
     if (count != r.n_fields) {
-      vl_error_set(err, "%s:%zu: expected %zu comma-separated fields like the header, found %zu",
-                   r.src, r.line_no, r.n_fields, count);
-      st = VL_EINPUT;
-      goto cleanup;
+      ragged_row(&r, count, &pr);
+      stage = DATA;
+      continue;
     }
     int first_row = stage == UNITS;
     if (stage == UNITS) {
@@ -467,12 +507,22 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
         continue;
       }
     }
-    if ((st = read_data_row(&r, first_row, err)) != VL_OK) goto cleanup;
+    vl_error one;
+    if ((st = read_data_row(&r, first_row, &one)) == VL_EINPUT) {
+      vl_problems_add(&pr, r.line_no, "%s", one.msg);
+      st = VL_OK;
+    } else if (st != VL_OK) {
+      vl_error_set(err, "%s", one.msg);
+      goto cleanup;
+    }
   }
 
   if (stage == HEADER) {
     vl_error_set(err, "%s:%zu: empty file (expected the header '%s' and data rows)", r.src,
                  r.line_no ? r.line_no : 1, r.hdr);
+    st = VL_EINPUT;
+  } else if (pr.total > 0) {
+    vl_problems_finish(&pr, r.src, err);
     st = VL_EINPUT;
   } else if (out->n_rows == 0) {
     vl_error_set(err, "%s:%zu: no data rows after the header on line %zu", r.src, last_line,
@@ -482,9 +532,16 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
 
 cleanup:
   free(r.cells);
+  free(r.tp);
+  free(r.tn);
   free(r.map);
   if (st != VL_OK) vl_csv_free(out);
   return st;
+}
+
+vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
+                           const vl_csv_column *cols, size_t n_cols, vl_csv *out, vl_error *err) {
+  return vl_csv_read_text_opts(text, len, source, cols, n_cols, NULL, out, err);
 }
 
 vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols, vl_csv *out,
