@@ -124,9 +124,77 @@ vl_status vl_csv_parse_double(const char *text, double *out, const char **why);
  * and nu are left as they were). */
 vl_status vl_csv_read_prony(const char *path, vl_prony *prony, vl_error *err);
 
-/* Tabulated isotropic 2-D PSD: header "q_per_m,C_m4" (optional units row
- * "1/m,m^4"), q > 0 strictly increasing, C > 0, at least 2 rows. On success
- * *psd is initialised by vl_psd_init_tabulated (caller vl_psd_free). */
+/* ---- tabulated PSD files -------------------------------------------------
+ *
+ * The delimiter, decimal-comma, comment and number rules above. The header
+ * names a wavevector column and a spectrum column (any order; other
+ * columns are ignored and listed in the notes), each with its unit:
+ *   q: q, wavevector, wavenumber, k            1/m, 1/mm, 1/um (1/µm), 1/nm;
+ *                                              also m^-1, per_m, ...
+ *   C: C, C(q), PSD (2-D unless the unit says otherwise), C2D, C2, PSD2D
+ *      (2-D), C1D, C1, PSD1D (1-D)             m^4, mm^4, um^4, nm^4 (2-D),
+ *                                              m^3 ... nm^3 (1-D); m4, um4 ...
+ * Names are compared in any case without blanks, '_', '-' and '.'; the
+ * unit in brackets ("q [1/um]", "C (m^4)"), after a '_' ("q_per_m",
+ * "C_m4"), or in a units row right after the header ("1/m,m^4"); header
+ * and units row must agree. Rows in any order of q (sorted, noted); rows
+ * repeating a q (within 1e-9 relative) are merged into one with the mean
+ * C (noted); q > 0, C > 0; at least 2 distinct q.
+ *
+ * A 2-D spectrum is the isotropic C(q) of this project (h_rms^2 =
+ * 2 pi \int q C dq). A 1-D one is a profile's two-sided C1(q)
+ * (h_rms^2 = \int_{-inf}^{inf} C1 dq, m^3), converted by the inverse Abel
+ * transform of topography.h (step 6) when the caller asks for it
+ * (VL_PSD_FILE_1D); given where a 2-D one is expected (VL_PSD_FILE_2D), a
+ * column whose name or unit says 1-D is refused with a sentence naming the
+ * option. Plausibility: a spectrum whose h_rms lies outside
+ * [VL_PSD_HRMS_MIN_M, VL_PSD_HRMS_MAX_M] or whose rms slope exceeds
+ * VL_PSD_SLOPE_MAX is refused, naming which and the likely unit mistake. */
+
+#define VL_PSD_HRMS_MIN_M 1e-10 /* 0.1 nm: below an atomic step */
+#define VL_PSD_HRMS_MAX_M 1e-3  /* 1 mm: no contact roughness */
+#define VL_PSD_SLOPE_MAX 10.0   /* rms slope: beyond ~84 degrees on average */
+
+/* What a PSD file holds (see above). */
+typedef enum {
+  VL_PSD_FILE_2D = 0, /* the isotropic 2-D C(q), m^4 */
+  VL_PSD_FILE_1D = 1  /* a profile's 1-D C1(q), m^3, converted to C(q) */
+} vl_psd_file_kind;
+
+/* "2d", "1d". */
+const char *vl_psd_file_kind_name(vl_psd_file_kind kind);
+
+/* "2d"/"2D" or "1d"/"1D" into *kind; VL_EINPUT otherwise. */
+vl_status vl_psd_file_kind_parse(const char *text, vl_psd_file_kind *kind);
+
+/* What reading a PSD file did, for the caller to tell the user. */
+typedef struct {
+  size_t n_rows;    /* data rows read */
+  size_t n_merged;  /* rows merged into another of the same q */
+  int reordered;    /* the rows were not in increasing q (sorted) */
+  int converted_1d; /* a 1-D spectrum converted to the 2-D one */
+  size_t n_dropped; /* 1-D points whose 2-D C came out <= 0 (dropped) */
+  double hrms_m;    /* of the tabulated 2-D spectrum */
+  double rms_slope;
+  char notes[1024]; /* one sentence per line ('\n' after each): the dialect, ignored columns,
+                       unit conversion, sorting, merging, the 1-D conversion */
+} vl_psd_read_report;
+
+/* Reads the PSD file text[0..len) (named source in messages) holding the
+ * kind of spectrum given. On VL_OK *psd is initialised by
+ * vl_psd_init_tabulated (caller vl_psd_free) and *report (may be NULL)
+ * says what was done; on failure *psd is empty and err holds the sentence
+ * (with FILE:LINE where a row or the header is at fault; every offending
+ * row at once). VL_EINPUT, VL_ENOMEM. */
+vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
+                               vl_psd_file_kind kind, vl_psd *psd, vl_psd_read_report *report,
+                               vl_error *err);
+
+/* As vl_csv_read_psd_text for the file at path; VL_EIO if unreadable. */
+vl_status vl_csv_read_psd_file(const char *path, vl_psd_file_kind kind, vl_psd *psd,
+                               vl_psd_read_report *report, vl_error *err);
+
+/* vl_csv_read_psd_file for a 2-D spectrum, without the report. */
 vl_status vl_csv_read_psd(const char *path, vl_psd *psd, vl_error *err);
 
 #endif
