@@ -265,7 +265,7 @@ static void test_surface_add_show_remove(void **state) {
 
   /* A two-point table is an exact power law C = Cs (q/qa)^(-2(1+H)), so
    * h_rms^2 = (pi Cs qa^2 / H) (1 - (qa/qb)^(2H)) (closed form, 1e-12). */
-  const double H = 0.8, qa = 1e5, qb = 1e8, Cs = 1e-20, Cb = Cs * pow(qb / qa, -2.0 * (1.0 + H));
+  const double H = 0.8, qa = 1e5, qb = 1e8, Cs = 1e-22, Cb = Cs * pow(qb / qa, -2.0 * (1.0 + H));
   char text[256];
   snprintf(text, sizeof text, "q_per_m,C_m4\n1/m,m^4\n%.17g,%.17g\n%.17g,%.17g\n", qa, Cs, qb, Cb);
   const char *csv = vl_test_scratch("psd.csv", text);
@@ -334,14 +334,14 @@ static void test_bad_files(void **state) {
   struct {
     const char *file, *text, *where, *what;
   } psd[] = {
-      {"unsorted.csv", "q_per_m,C_m4\n1e6,1e-22\n1e5,1e-20\n", "unsorted.csv:3:", "'q_per_m'"},
-      {"dupq.csv", "q_per_m,C_m4\n1e5,1e-20\n1e5,1e-21\n", "dupq.csv:3:", "increase"},
+      {"steep.csv", "q_per_m,C_m4\n1e6,1e-22\n1e5,1e-20\n", "steep.csv:", "rms slope"},
+      {"dupq.csv", "q_per_m,C_m4\n1e5,1e-20\n1e5,1e-21\n", "dupq.csv:3:", "distinct q"},
       {"negq.csv", "q_per_m,C_m4\n-1e5,1e-20\n1e6,1e-21\n", "negq.csv:2:", "'q_per_m'"},
       {"zeroc.csv", "q_per_m,C_m4\n1e5,0\n1e6,1e-21\n", "zeroc.csv:2:", "'C_m4'"},
       {"negc.csv", "q_per_m,C_m4\n1e5,1e-20\n1e6,-1e-21\n", "negc.csv:3:", "'C_m4'"},
       {"psdunits.csv", "q_per_m,C_m4\n1/m,m^2\n1e5,1e-20\n1e6,1e-21\n",
-       "psdunits.csv:2:", "'1/m,m^4'"},
-      {"psdhdr.csv", "q,C\n1e5,1e-20\n1e6,1e-21\n", "psdhdr.csv:1:", "unknown column 'q'"},
+       "psdunits.csv:2:", "'m^2'"},
+      {"psdhdr.csv", "q,C\n1e5,1e-20\n1e6,1e-21\n", "psdhdr.csv:1:", "no unit"},
       {"one.csv", "q_per_m,C_m4\n1e5,1e-20\n", "one.csv:2:", "at least 2"},
       {"psdempty.csv", "", "psdempty.csv:1:", "empty file"},
       {"psdnan.csv", "q_per_m,C_m4\n1e5,nan\n1e6,1e-21\n", "psdnan.csv:2:", "NaN"},

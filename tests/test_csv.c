@@ -254,7 +254,7 @@ static void test_psd_reader(void **state) {
   const char *dir = vl_test_tmpdir();
   char path[4200];
   snprintf(path, sizeof path, "%s/psd.csv", dir);
-  const double H = 0.8, qa = 1e5, qb = 1e8, Cs = 1e-20;
+  const double H = 0.8, qa = 1e5, qb = 1e8, Cs = 1e-22; /* h_rms 2 um, rms slope 1.5 */
   double Cb = Cs * pow(qb / qa, -2.0 * (1.0 + H));
   char text[256];
   snprintf(text, sizeof text, "q_per_m,C_m4\n1/m,m^4\n%.17g,%.17g\n%.17g,%.17g\n", qa, Cs, qb, Cb);

@@ -68,6 +68,14 @@
  * in the pyvisco master curve); a real decrease is larger. */
 #define VL_DMA_DECREASE_TOL 0.10
 #define VL_DMA_MAX_POINTS 20000
+#define VL_DMA_NOTES_MAX 2048
+/* Warning thresholds (a note starting "warning: " in vl_measured.notes):
+ * the WLF fit misses the shifts by more than this rms in log10 a_T
+ * (decades; the shifts of thermorheologically simple data scatter by a few
+ * hundredths), or the Prony fit misses E' or E'' by more than this rms
+ * relative error (the data's own scatter is typically 1-2 %). */
+#define VL_DMA_WARN_WLF_RMS 0.2
+#define VL_DMA_WARN_FIT_RMS 0.05
 
 typedef enum {
   VL_DMA_STORAGE_LOSS = 0,  /* E', E'' (tan delta may be present too) */
@@ -78,6 +86,17 @@ typedef enum {
 /* "storage-loss", "storage-tan-delta", "compliance". */
 const char *vl_dma_kind_name(vl_dma_kind kind);
 
+/* Whether the file's moduli are tensile (E) or shear (G). */
+typedef enum {
+  VL_DMA_MODULI_AUTO = 0, /* from the column names: G', G'', |G*| are shear, E', E'', |E*|
+                             tensile; names that say neither ("storage modulus") tensile */
+  VL_DMA_MODULI_TENSILE,  /* tensile; a shear name in the header is refused */
+  VL_DMA_MODULI_SHEAR     /* shear, whatever the names (an E name is refused) */
+} vl_dma_moduli;
+
+/* "auto", "tensile", "shear". */
+const char *vl_dma_moduli_name(vl_dma_moduli moduli);
+
 typedef struct {
   const char *freq_unit;    /* "Hz" or "rad/s"; NULL: from the file */
   const char *modulus_unit; /* "Pa", "kPa", "MPa", "GPa" (compliances in its
@@ -86,11 +105,13 @@ typedef struct {
   double tref_c;            /* reference temperature; NAN: not given */
   double terms_per_decade;  /* Prony grid density; 0: the default */
   vl_prony_weights weights; /* Prony fit row weights (prony_fit.h) */
-  double nu;                /* Poisson ratio stored with the series */
+  double nu;                /* Poisson ratio stored with the series, and the one that converts
+                               shear moduli: E = 2 (1 + nu) G */
+  vl_dma_moduli moduli;     /* tensile or shear (see vl_dma_moduli) */
 } vl_dma_options;
 
 /* No units, tref NAN, default grid, relative weights, nu = 0.5 (rubber,
- * DMA in tension). */
+ * DMA in tension), moduli from the names. */
 vl_dma_options vl_dma_options_default(void);
 
 /* The result of an import: the data as read (SI, file order), the
@@ -116,6 +137,15 @@ typedef struct {
   double wlf_rms;          /* rms residual of the WLF fit in log10 a_T */
   vl_prony prony;          /* the fitted series at tref_c */
   vl_prony_fit_report fit;
+  int shear;               /* the file held shear moduli, converted: E = 2 (1 + nu) G */
+  char delimiter;          /* the file's delimiter (',', ';' or '\t') */
+  int decimal_comma;       /* its numbers had decimal commas */
+  size_t n_ignored;        /* header columns not used */
+  size_t n_extrapolated;   /* neighbouring isotherms shifted across a gap or a thin overlap */
+  size_t n_warnings;       /* the lines of notes that start "warning: " */
+  char notes[VL_DMA_NOTES_MAX]; /* what the user should know, one sentence per line ('\n'
+                                   after each): conversions, ignored columns, the dialect,
+                                   warnings on the superposition and the fit */
 } vl_measured;
 
 /* Reads, shifts and fits the DMA file at path (see above). On VL_OK *out

@@ -4,9 +4,12 @@
 #include "viscolube/csv.h"
 
 #include "edit_distance.h"
+#include "abel.h"
+#include "import_text.h"
 
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +21,11 @@
 #define NUMBER_MAX_CHARS 128
 /* Longest excerpt of a bad cell quoted back in a message. */
 #define SHOW_MAX_CHARS 40
+
+/* Header fields beyond this are refused: no table of ours has that many. */
+#define MAX_FIELDS 256
+/* Longest header cell a PSD column name is looked for in. */
+#define CELL_TEXT_MAX 64
 
 typedef struct {
   const char *p;
@@ -32,6 +40,26 @@ static span trim(span s) {
   while (s.n > 0 && is_blank(s.p[s.n - 1]))
     s.n--;
   return s;
+}
+
+/* The next line of text that is not blank and not a '#' comment (CR
+ * removed; a leading byte-order mark skipped); 0 at the end. */
+static int next_meaningful(const char *text, size_t len, size_t *pos, size_t *line_no,
+                           span *line) {
+  if (*pos == 0 && len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) *pos = 3;
+  while (*pos < len) {
+    (*line_no)++;
+    const char *start = text + *pos;
+    const char *nl = memchr(start, '\n', len - *pos);
+    size_t n = nl ? (size_t)(nl - start) : len - *pos;
+    *pos += n + 1;
+    if (n > 0 && start[n - 1] == '\r') n--;
+    span t = trim((span){start, n});
+    if (t.n == 0 || t.p[0] == '#') continue;
+    *line = (span){start, n};
+    return 1;
+  }
+  return 0;
 }
 
 /* Header and units cells may be quoted by spreadsheet exports. */
@@ -64,19 +92,14 @@ static void show(span s, char *buf, size_t size) {
   buf[k] = '\0';
 }
 
-/* Splits a line at commas into at most cap cells; returns the total count
- * (which may exceed cap: only the first cap are stored). */
-static size_t split(span line, span *cells, size_t cap) {
-  size_t count = 0;
-  const char *start = line.p, *end = line.p + line.n;
-  for (const char *c = line.p;; c++) {
-    if (c == end || *c == ',') {
-      if (count < cap) cells[count] = (span){start, (size_t)(c - start)};
-      count++;
-      if (c == end) break;
-      start = c + 1;
-    }
-  }
+/* Splits a line at the delimiter into at most cap cells, through the
+ * scratch arrays tp, tn (cap entries); returns the total count (which may
+ * exceed cap: only the first cap are stored). */
+static size_t split(span line, char delimiter, span *cells, const char **tp, size_t *tn,
+                    size_t cap) {
+  size_t count = vl_import_split(line.p, line.n, delimiter, tp, tn, cap);
+  for (size_t k = 0; k < count && k < cap; k++)
+    cells[k] = (span){tp[k], tn[k]};
   return count;
 }
 
@@ -99,62 +122,8 @@ static size_t distance(span a, const char *b) {
   return vl_edit_distance(a.p, a.n, b, strlen(b), false);
 }
 
-/* Strict decimal syntax: [+-]digits[.digits] or [+-].digits, optional
- * exponent. Rejects what strtod would also take: nan, inf, hex, blanks. */
-static int decimal_syntax(const char *s) {
-  const char *p = s;
-  if (*p == '+' || *p == '-') p++;
-  size_t digits = 0;
-  while (*p >= '0' && *p <= '9')
-    p++, digits++;
-  if (*p == '.') {
-    p++;
-    while (*p >= '0' && *p <= '9')
-      p++, digits++;
-  }
-  if (digits == 0) return 0;
-  if (*p == 'e' || *p == 'E') {
-    p++;
-    if (*p == '+' || *p == '-') p++;
-    if (!(*p >= '0' && *p <= '9')) return 0;
-    while (*p >= '0' && *p <= '9')
-      p++;
-  }
-  return *p == '\0';
-}
-
-static vl_status parse_span(span s, double *out, const char **why) {
-  s = trim(s);
-  char buf[NUMBER_MAX_CHARS + 1];
-  if (s.n == 0) {
-    *why = "empty cell";
-    return VL_EINPUT;
-  }
-  if (s.n > NUMBER_MAX_CHARS) {
-    *why = "not a number";
-    return VL_EINPUT;
-  }
-  memcpy(buf, s.p, s.n);
-  buf[s.n] = '\0';
-  if (!decimal_syntax(buf)) {
-    const char *b = buf + (buf[0] == '+' || buf[0] == '-');
-    span t = {b, strlen(b)};
-    if (span_eq_nocase(t, "nan") || span_eq_nocase(t, "inf") || span_eq_nocase(t, "infinity"))
-      *why = "NaN and infinity are not allowed";
-    else
-      *why = "not a number";
-    return VL_EINPUT;
-  }
-  errno = 0;
-  double v = strtod(buf, NULL);
-  /* ERANGE also flags underflow: a value below 1e-308 in a material file is
-   * a unit mistake, not data, so it is refused like an overflow. */
-  if (errno == ERANGE || !isfinite(v)) {
-    *why = "outside the range of a double";
-    return VL_EINPUT;
-  }
-  *out = v;
-  return VL_OK;
+static vl_status parse_span(span s, int decimal_comma, double *out, const char **why) {
+  return vl_import_parse_number(s.p, s.n, decimal_comma, out, why);
 }
 
 vl_status vl_csv_parse_double(const char *text, double *out, const char **why) {
@@ -164,7 +133,7 @@ vl_status vl_csv_parse_double(const char *text, double *out, const char **why) {
     *why = "empty cell";
     return VL_EINPUT;
   }
-  return parse_span((span){text, strlen(text)}, out, why);
+  return parse_span((span){text, strlen(text)}, 0, out, why);
 }
 
 void vl_csv_free(vl_csv *csv) {
@@ -173,6 +142,7 @@ void vl_csv_free(vl_csv *csv) {
   free(csv->values);
   free(csv->lines);
   free(csv->present);
+  free(csv->ignored);
   memset(csv, 0, sizeof *csv);
 }
 
@@ -206,15 +176,19 @@ static int units_match(span cell, const char *units) {
   }
 }
 
-/* The units row the file would need, in the file's column order. */
-static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields, char *buf,
-                           size_t size) {
+/* A field of the file that no requested column takes (ignore_unknown). */
+#define IGNORED ((size_t)-1)
+
+/* The units row the file would need, in the file's column order and with
+ * its delimiter (ignored fields left empty). */
+static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields,
+                           char delimiter, char *buf, size_t size) {
   size_t k = 0;
   buf[0] = '\0';
   for (size_t f = 0; f < n_fields && k < size; f++) {
-    const char *u = cols[map[f]].units ? cols[map[f]].units : "";
+    const char *u = map[f] == IGNORED ? "" : cols[map[f]].units ? cols[map[f]].units : "";
     size_t n = strcspn(u, "|");
-    int w = snprintf(buf + k, size - k, "%s%.*s", f ? "," : "", (int)n, u);
+    int w = snprintf(buf + k, size - k, "%s%.*s", f ? (delimiter == '\t' ? "\t" : delimiter == ';' ? ";" : ",") : "", (int)n, u);
     if (w < 0) break;
     k += (size_t)w;
   }
@@ -237,8 +211,12 @@ typedef struct {
   const char *src;           /* the file name in messages */
   const vl_csv_column *cols; /* the requested columns */
   size_t n_cols;
-  span *cells;         /* the fields of the current line (n_cols + 1 kept) */
-  size_t *map;         /* field f of the file holds column map[f] */
+  vl_csv_options opt;
+  span *cells;         /* the fields of the current line (cell_cap kept) */
+  const char **tp;     /* split scratch (cell_cap) */
+  size_t *tn;
+  size_t cell_cap;
+  size_t *map;         /* field f of the file holds column map[f], or IGNORED */
   size_t n_fields;     /* fields of the header, hence of every row */
   size_t line_no;      /* 1-based line being read */
   size_t cap;          /* rows allocated in out */
@@ -268,25 +246,60 @@ static vl_status unknown_column(const csv_reader *r, span name, size_t f, vl_err
   return VL_EINPUT;
 }
 
-/* The header line: every field names a distinct requested column, every
- * column that is not optional is there. Sets map, n_fields, the presence
- * flags of out and the expected units row. */
+/* Appends 'name' to the list of ignored columns of out. */
+static vl_status note_ignored(vl_csv *out, span name) {
+  char shown[64];
+  show(name, shown, sizeof shown);
+  size_t old = out->ignored ? strlen(out->ignored) : 0, add = strlen(shown) + 4;
+  char *s = realloc(out->ignored, old + add + 1);
+  if (!s) return VL_ENOMEM;
+  snprintf(s + old, add + 1, "%s'%s'", old ? ", " : "", shown);
+  out->ignored = s;
+  out->n_ignored++;
+  return VL_OK;
+}
+
+/* Splits the header line and sizes the cell arrays for it. */
+static vl_status header_cells(csv_reader *r, span line, size_t *count, vl_error *err) {
+  *count = vl_import_split(line.p, line.n, r->opt.delimiter, NULL, NULL, 0);
+  if (*count > MAX_FIELDS) {
+    vl_error_set(err, "%s:%zu: the header has %zu fields; a table has at most %d", r->src,
+                 r->line_no, *count, MAX_FIELDS);
+    return VL_EINPUT;
+  }
+  r->cell_cap = (*count > r->n_cols ? *count : r->n_cols) + 1;
+  r->cells = malloc(r->cell_cap * sizeof *r->cells);
+  r->tp = malloc(r->cell_cap * sizeof *r->tp);
+  r->tn = malloc(r->cell_cap * sizeof *r->tn);
+  r->map = malloc(r->cell_cap * sizeof *r->map);
+  if (!r->cells || !r->tp || !r->tn || !r->map) {
+    vl_error_set(err, "%s: out of memory", r->src);
+    return VL_ENOMEM;
+  }
+  split(line, r->opt.delimiter, r->cells, r->tp, r->tn, r->cell_cap);
+  return VL_OK;
+}
+
+/* The header line: every field names a distinct requested column (or is
+ * ignored, with ignore_unknown), every column that is not optional is
+ * there. Sets map, n_fields, the presence flags of out, its ignored list
+ * and the expected units row. */
 static vl_status read_header(csv_reader *r, span line, vl_error *err) {
-  size_t n_cols = r->n_cols;
-  size_t count = split(line, r->cells, n_cols + 1);
-  size_t stored = count < n_cols + 1 ? count : n_cols + 1;
+  size_t n_cols = r->n_cols, count;
+  vl_status st = header_cells(r, line, &count, err);
+  if (st != VL_OK) return st;
   int all_numbers = 1;
-  for (size_t f = 0; f < stored && all_numbers; f++) {
+  for (size_t f = 0; f < count && all_numbers; f++) {
     double v;
     const char *why;
-    if (parse_span(r->cells[f], &v, &why) != VL_OK) all_numbers = 0;
+    if (parse_span(r->cells[f], r->opt.decimal_comma, &v, &why) != VL_OK) all_numbers = 0;
   }
   if (all_numbers) {
     vl_error_set(err, "%s:%zu: missing header: expected the column names '%s' before the numbers",
                  r->src, r->line_no, r->hdr);
     return VL_EINPUT;
   }
-  for (size_t f = 0; f < stored; f++) {
+  for (size_t f = 0; f < count; f++) {
     span name = unquote(r->cells[f]);
     if (name.n == 0) {
       vl_error_set(err, "%s:%zu: header field %zu is empty (expected the header '%s')", r->src,
@@ -296,7 +309,15 @@ static vl_status read_header(csv_reader *r, span line, vl_error *err) {
     size_t c = 0;
     while (c < n_cols && !span_eq(name, r->cols[c].name))
       c++;
-    if (c == n_cols) return unknown_column(r, name, f, err);
+    if (c == n_cols && !r->opt.ignore_unknown) return unknown_column(r, name, f, err);
+    if (c == n_cols) {
+      r->map[f] = IGNORED;
+      if (note_ignored(r->out, name) != VL_OK) {
+        vl_error_set(err, "%s: out of memory", r->src);
+        return VL_ENOMEM;
+      }
+      continue;
+    }
     if (r->out->present[c]) {
       vl_error_set(err, "%s:%zu: header field %zu: column '%s' appears twice", r->src, r->line_no,
                    f + 1, r->cols[c].name);
@@ -313,25 +334,29 @@ static vl_status read_header(csv_reader *r, span line, vl_error *err) {
     }
   }
   r->n_fields = count;
-  expected_units(r->cols, r->map, r->n_fields, r->units_row, sizeof r->units_row);
+  expected_units(r->cols, r->map, r->n_fields, r->opt.delimiter, r->units_row,
+                 sizeof r->units_row);
   return VL_OK;
 }
 
 /* The first row after the header (split into cells): *is_units = 1 if it
  * is the optional units row, recognised by a non-numeric cell that spells
- * its column's unit; then every cell must. Otherwise the row is data. */
+ * its column's unit; then every cell of a requested column must.
+ * Otherwise the row is data. */
 static vl_status read_units_row(const csv_reader *r, int *is_units, vl_error *err) {
   *is_units = 0;
   for (size_t f = 0; f < r->n_fields && !*is_units; f++) {
     double v;
     const char *why;
     span u = unquote(r->cells[f]);
-    if (parse_span(u, &v, &why) != VL_OK && units_match(u, r->cols[r->map[f]].units)) *is_units = 1;
+    if (r->map[f] != IGNORED && parse_span(u, r->opt.decimal_comma, &v, &why) != VL_OK &&
+        units_match(u, r->cols[r->map[f]].units))
+      *is_units = 1;
   }
   if (!*is_units) return VL_OK;
   for (size_t f = 0; f < r->n_fields; f++) {
     span u = unquote(r->cells[f]);
-    if (!units_match(u, r->cols[r->map[f]].units)) {
+    if (r->map[f] != IGNORED && !units_match(u, r->cols[r->map[f]].units)) {
       char shown[64];
       show(u, shown, sizeof shown);
       vl_error_set(err,
@@ -356,7 +381,7 @@ static vl_status read_cell(const csv_reader *r, size_t f, int first_row, double 
   char shown[64];
   span cell = trim(r->cells[f]);
   show(cell, shown, sizeof shown);
-  if (parse_span(cell, &v, &why) != VL_OK) {
+  if (parse_span(cell, r->opt.decimal_comma, &v, &why) != VL_OK) {
     int hint = first_row && !strcmp(why, "not a number");
     vl_error_set(err, "%s:%zu: column '%s' (field %zu): %s (got '%s')%s%s%s", r->src, r->line_no,
                  col->name, f + 1, why, shown,
@@ -385,7 +410,8 @@ static vl_status read_cell(const csv_reader *r, size_t f, int first_row, double 
 }
 
 /* A data row (split into cells) appended to out; the columns absent from
- * the file are NAN. */
+ * the file are NAN. A bad cell leaves out as it was: VL_EINPUT, err says
+ * why. */
 static vl_status read_data_row(csv_reader *r, int first_row, vl_error *err) {
   vl_csv *out = r->out;
   vl_status st;
@@ -397,34 +423,74 @@ static vl_status read_data_row(csv_reader *r, int first_row, vl_error *err) {
   for (size_t c = 0; c < r->n_cols; c++)
     row[c] = NAN;
   for (size_t f = 0; f < r->n_fields; f++)
-    if ((st = read_cell(r, f, first_row, &row[r->map[f]], err)) != VL_OK) return st;
+    if (r->map[f] != IGNORED && (st = read_cell(r, f, first_row, &row[r->map[f]], err)) != VL_OK)
+      return st;
   out->lines[out->n_rows++] = r->line_no;
   return VL_OK;
 }
 
-vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
-                           const vl_csv_column *cols, size_t n_cols, vl_csv *out, vl_error *err) {
+/* The sentence for a row with the wrong number of fields. */
+static void ragged_row(const csv_reader *r, size_t count, vl_problems *pr) {
+  char d = r->opt.delimiter;
+  vl_problems_add(pr, r->line_no, "%s:%zu: expected %zu %s-separated fields like the header, "
+                  "found %zu%s",
+                  r->src, r->line_no, r->n_fields, d == ',' ? "comma" : d == ';' ? "semicolon" : "tab",
+                  count,
+                  d == ',' && count > r->n_fields
+                      ? " (numbers with a decimal comma need ';' or a tab between the fields)"
+                      : "");
+}
+
+/* The options in force: the caller's, the dialect detected when it gives
+ * no delimiter. */
+static vl_status settle_options(csv_reader *r, const char *text, size_t len,
+                                const vl_csv_options *opts, vl_error *err) {
+  vl_csv_options o = {0};
+  if (opts) o = *opts;
+  if (o.delimiter == 0) {
+    vl_dialect d;
+    vl_status st = vl_import_detect_dialect(text, len, r->src, &d, err);
+    if (st != VL_OK) return st;
+    o.delimiter = d.delimiter;
+    o.decimal_comma = d.decimal_comma;
+  } else if (o.delimiter != ',' && o.delimiter != ';' && o.delimiter != '\t') {
+    vl_error_set(err, "%s: the delimiter must be ',', ';' or a tab (a bug in the caller)", r->src);
+    return VL_EINTERNAL;
+  }
+  if (o.delimiter == ',') o.decimal_comma = 0;
+  r->opt = o;
+  r->out->delimiter = o.delimiter;
+  r->out->decimal_comma = o.decimal_comma;
+  return VL_OK;
+}
+
+vl_status vl_csv_read_text_opts(const char *text, size_t len, const char *source,
+                                const vl_csv_column *cols, size_t n_cols,
+                                const vl_csv_options *opts, vl_csv *out, vl_error *err) {
   vl_status st = VL_OK;
   size_t header_line = 0, last_line = 0;
   enum { HEADER, UNITS, DATA } stage = HEADER;
   csv_reader r = {.src = source ? source : "<text>", .cols = cols, .n_cols = n_cols, .out = out};
+  vl_problems pr;
+  vl_problems_init(&pr);
 
   memset(out, 0, sizeof *out);
   if (!cols || n_cols == 0 || (!text && len > 0)) {
     vl_error_set(err, "%s: no columns requested (a bug in the caller)", r.src);
     return VL_EINTERNAL;
   }
+  if (!text) text = "";
   expected_header(cols, n_cols, r.hdr, sizeof r.hdr);
   out->source = strdup(r.src);
   out->n_cols = n_cols;
   out->present = calloc(n_cols, sizeof *out->present);
-  r.cells = malloc((n_cols + 1) * sizeof *r.cells);
-  r.map = malloc((n_cols + 1) * sizeof *r.map);
-  if (!out->source || !out->present || !r.cells || !r.map) {
+  if (!out->source || !out->present) {
     st = VL_ENOMEM;
     vl_error_set(err, "%s: out of memory", r.src);
     goto cleanup;
   }
+  if ((st = vl_import_refuse_spreadsheet(text, len, r.src, err)) != VL_OK) goto cleanup;
+  if ((st = settle_options(&r, text, len, opts, err)) != VL_OK) goto cleanup;
 
   size_t pos = 0;
   if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) pos = 3;
@@ -450,12 +516,11 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
       stage = UNITS;
       continue;
     }
-    size_t count = split(line, r.cells, r.n_fields);
+    size_t count = split(line, r.opt.delimiter, r.cells, r.tp, r.tn, r.n_fields);
     if (count != r.n_fields) {
-      vl_error_set(err, "%s:%zu: expected %zu comma-separated fields like the header, found %zu",
-                   r.src, r.line_no, r.n_fields, count);
-      st = VL_EINPUT;
-      goto cleanup;
+      ragged_row(&r, count, &pr);
+      stage = DATA;
+      continue;
     }
     int first_row = stage == UNITS;
     if (stage == UNITS) {
@@ -467,12 +532,22 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
         continue;
       }
     }
-    if ((st = read_data_row(&r, first_row, err)) != VL_OK) goto cleanup;
+    vl_error one;
+    if ((st = read_data_row(&r, first_row, &one)) == VL_EINPUT) {
+      vl_problems_add(&pr, r.line_no, "%s", one.msg);
+      st = VL_OK;
+    } else if (st != VL_OK) {
+      vl_error_set(err, "%s", one.msg);
+      goto cleanup;
+    }
   }
 
   if (stage == HEADER) {
     vl_error_set(err, "%s:%zu: empty file (expected the header '%s' and data rows)", r.src,
                  r.line_no ? r.line_no : 1, r.hdr);
+    st = VL_EINPUT;
+  } else if (pr.total > 0) {
+    vl_problems_finish(&pr, r.src, err);
     st = VL_EINPUT;
   } else if (out->n_rows == 0) {
     vl_error_set(err, "%s:%zu: no data rows after the header on line %zu", r.src, last_line,
@@ -482,54 +557,73 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
 
 cleanup:
   free(r.cells);
+  free(r.tp);
+  free(r.tn);
   free(r.map);
   if (st != VL_OK) vl_csv_free(out);
   return st;
 }
 
-vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols, vl_csv *out,
-                           vl_error *err) {
+vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
+                           const vl_csv_column *cols, size_t n_cols, vl_csv *out, vl_error *err) {
+  return vl_csv_read_text_opts(text, len, source, cols, n_cols, NULL, out, err);
+}
+
+/* The whole file at path in a malloc'd buffer (*buf, *len; not
+ * NUL-terminated). VL_EIO, VL_EINPUT (too large), VL_ENOMEM. */
+static vl_status read_whole(const char *path, char **buf, size_t *len, vl_error *err) {
   vl_status st = VL_OK;
-  char *buf = NULL;
-  size_t len = 0, cap = 0;
-  memset(out, 0, sizeof *out);
+  size_t cap = 0;
+  *buf = NULL;
+  *len = 0;
   FILE *f = fopen(path, "rb");
   if (!f) {
     vl_error_set(err, "%s: cannot open: %s", path, strerror(errno));
     return VL_EIO;
   }
   for (;;) {
-    if (len == cap) {
+    if (*len == cap) {
       if (cap >= CSV_MAX_BYTES) {
         vl_error_set(err, "%s: larger than %zu MiB: not a material table", path,
                      CSV_MAX_BYTES >> 20);
         st = VL_EINPUT;
-        goto cleanup;
+        break;
       }
       size_t ncap = cap ? 2 * cap : 65536;
-      char *nb = realloc(buf, ncap);
+      char *nb = realloc(*buf, ncap);
       if (!nb) {
         vl_error_set(err, "%s: out of memory", path);
         st = VL_ENOMEM;
-        goto cleanup;
+        break;
       }
-      buf = nb;
+      *buf = nb;
       cap = ncap;
     }
-    size_t got = fread(buf + len, 1, cap - len, f);
-    len += got;
+    size_t got = fread(*buf + *len, 1, cap - *len, f);
+    *len += got;
     if (got == 0) break;
   }
-  if (ferror(f)) {
+  if (st == VL_OK && ferror(f)) {
     vl_error_set(err, "%s: cannot read: %s", path, strerror(errno));
     st = VL_EIO;
-    goto cleanup;
   }
-  st = vl_csv_read_text(buf, len, path, cols, n_cols, out, err);
-
-cleanup:
-  free(buf);
   fclose(f);
+  if (st != VL_OK) {
+    free(*buf);
+    *buf = NULL;
+    *len = 0;
+  }
+  return st;
+}
+
+vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols, vl_csv *out,
+                           vl_error *err) {
+  char *buf = NULL;
+  size_t len = 0;
+  memset(out, 0, sizeof *out);
+  vl_status st = read_whole(path, &buf, &len, err);
+  if (st == VL_OK) st = vl_csv_read_text(buf, len, path, cols, n_cols, out, err);
+  free(buf);
   return st;
 }
 
@@ -556,35 +650,513 @@ vl_status vl_csv_read_prony(const char *path, vl_prony *prony, vl_error *err) {
   return VL_OK;
 }
 
-vl_status vl_csv_read_psd(const char *path, vl_psd *psd, vl_error *err) {
-  static const vl_csv_column cols[] = {
-      {.name = "q_per_m", .units = "1/m|m^-1", .sign = VL_CSV_POSITIVE, .increasing = 1},
-      {.name = "C_m4", .units = "m^4|m4", .sign = VL_CSV_POSITIVE},
-  };
-  vl_csv csv;
-  memset(psd, 0, sizeof *psd);
-  vl_status st = vl_csv_read_file(path, cols, 2, &csv, err);
-  if (st != VL_OK) return st;
-  if (csv.n_rows < 2) {
-    vl_error_set(err, "%s:%zu: a tabulated PSD needs at least 2 points (found %zu)", path,
-                 csv.lines[csv.n_rows - 1], csv.n_rows);
-    vl_csv_free(&csv);
+/* ---- tabulated PSD files ------------------------------------------------- */
+
+const char *vl_psd_file_kind_name(vl_psd_file_kind kind) {
+  return kind == VL_PSD_FILE_1D ? "1d" : "2d";
+}
+
+vl_status vl_psd_file_kind_parse(const char *text, vl_psd_file_kind *kind) {
+  if (text && (!strcmp(text, "2d") || !strcmp(text, "2D"))) {
+    *kind = VL_PSD_FILE_2D;
+    return VL_OK;
+  }
+  if (text && (!strcmp(text, "1d") || !strcmp(text, "1D"))) {
+    *kind = VL_PSD_FILE_1D;
+    return VL_OK;
+  }
+  return VL_EINPUT;
+}
+
+/* What a PSD column's name says. */
+typedef enum { P_NONE, P_Q, P_C, P_C1D, P_C2D } psd_role;
+
+/* Names compared in lower case without blanks, '_', '-' and '.'. */
+static const struct {
+  const char *name;
+  psd_role r;
+} psd_names[] = {
+    {"q", P_Q},          {"wavevector", P_Q},  {"wavenumber", P_Q},  {"k", P_Q},
+    {"c", P_C},          {"c(q)", P_C},        {"psd", P_C},         {"powerspectraldensity", P_C},
+    {"powerspectrum", P_C}, {"c2d", P_C2D},    {"c2", P_C2D},        {"c2(q)", P_C2D},
+    {"psd2d", P_C2D},    {"c2d(q)", P_C2D},    {"c1d", P_C1D},       {"c1", P_C1D},
+    {"c1(q)", P_C1D},    {"psd1d", P_C1D},     {"c1d(q)", P_C1D},
+};
+
+static void psd_normalise(const char *s, size_t n, char *out, size_t cap) {
+  size_t k = 0;
+  for (size_t i = 0; i < n && k + 1 < cap; i++) {
+    char c = s[i];
+    if (c == ' ' || c == '\t' || c == '_' || c == '-' || c == '.') continue;
+    if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
+    out[k++] = c;
+  }
+  out[k] = '\0';
+}
+
+static psd_role psd_name_role(span name) {
+  char b[64];
+  if (name.n >= sizeof b) return P_NONE;
+  psd_normalise(name.p, name.n, b, sizeof b);
+  for (size_t i = 0; i < sizeof psd_names / sizeof *psd_names; i++)
+    if (!strcmp(b, psd_names[i].name)) return psd_names[i].r;
+  return P_NONE;
+}
+
+/* Length units of q and C, in m. "µ" is the UTF-8 micro sign. */
+static const struct {
+  const char *name;
+  double m;
+} psd_lengths[] = {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"\xC2\xB5m", 1e-6},
+                   {"\xCE\xBCm", 1e-6}, {"micron", 1e-6}, {"nm", 1e-9}};
+
+/* The length unit spelt by s[0..n) exactly, or 0. */
+static double psd_length(const char *s, size_t n) {
+  for (size_t i = 0; i < sizeof psd_lengths / sizeof *psd_lengths; i++)
+    if (strlen(psd_lengths[i].name) == n && !memcmp(s, psd_lengths[i].name, n))
+      return psd_lengths[i].m;
+  return 0.0;
+}
+
+/* A unit of q: 1/L, L^-1, L-1, per L, /L (L a length); *factor = the SI
+ * value of one unit (1/m per unit). */
+static int q_unit(span u, double *factor) {
+  char b[32];
+  if (u.n >= sizeof b) return 0;
+  size_t k = 0;
+  for (size_t i = 0; i < u.n; i++)
+    if (u.p[i] != ' ' && u.p[i] != '_') b[k++] = u.p[i];
+  b[k] = '\0';
+  const char *len = NULL;
+  size_t ln = 0;
+  if (!strncmp(b, "1/", 2)) len = b + 2, ln = k - 2;
+  else if (!strncmp(b, "per", 3)) len = b + 3, ln = k - 3;
+  else if (b[0] == '/') len = b + 1, ln = k - 1;
+  else if (k > 3 && !strcmp(b + k - 3, "^-1")) len = b, ln = k - 3;
+  else if (k > 2 && !strcmp(b + k - 2, "-1")) len = b, ln = k - 2;
+  double m = len ? psd_length(len, ln) : 0.0;
+  if (!(m > 0.0)) return 0;
+  *factor = 1.0 / m;
+  return 1;
+}
+
+/* A unit of C: L^4 / L4 (2-D) or L^3 / L3 (1-D); *factor = m^p per unit,
+ * *power = p. */
+static int c_unit(span u, double *factor, int *power) {
+  char b[32];
+  if (u.n >= sizeof b || u.n < 2) return 0;
+  size_t k = 0;
+  for (size_t i = 0; i < u.n; i++)
+    if (u.p[i] != ' ') b[k++] = u.p[i];
+  b[k] = '\0';
+  char p = b[k - 1];
+  if (p != '3' && p != '4') return 0;
+  size_t ln = k - 1 - (k >= 2 && b[k - 2] == '^');
+  double m = psd_length(b, ln);
+  if (!(m > 0.0)) return 0;
+  *power = p - '0';
+  *factor = pow(m, *power);
+  return 1;
+}
+
+/* One PSD column as found in the header: name and unit read apart. */
+typedef struct {
+  psd_role r;
+  size_t field;
+  char text[CELL_TEXT_MAX]; /* the header cell */
+  int has_unit;
+  double factor; /* SI per file unit */
+  int power;     /* C: 3 or 4 from the unit */
+  char unit[CELL_TEXT_MAX];
+} psd_col;
+
+/* Reads "q [1/um]", "C (m^4)", "q_per_m", "C_m4": the role of the name and,
+ * when given, the unit. 0 when the cell names no PSD column. */
+static int psd_header_cell(span cell, psd_col *c) {
+  span t = unquote(cell);
+  memset(c, 0, sizeof *c);
+  if (t.n >= CELL_TEXT_MAX) return 0;
+  memcpy(c->text, t.p, t.n);
+  c->text[t.n] = '\0';
+  if ((c->r = psd_name_role(t)) != P_NONE) return 1;
+  char close = t.n ? t.p[t.n - 1] : 0, open = close == ']' ? '[' : close == ')' ? '(' : 0;
+  for (size_t i = t.n; open && i-- > 1;) {
+    if (t.p[i] != open) continue;
+    span name = trim((span){t.p, i}), unit = trim((span){t.p + i + 1, t.n - i - 2});
+    if ((c->r = psd_name_role(name)) == P_NONE) return 0;
+    c->has_unit = 1;
+    memcpy(c->unit, unit.p, unit.n);
+    c->unit[unit.n] = '\0';
+    return 1;
+  }
+  for (size_t i = t.n; i-- > 1;) { /* "q_per_m", "C_m4": a unit after a '_' */
+    if (t.p[i] != '_') continue;
+    span name = {t.p, i}, unit = {t.p + i + 1, t.n - i - 1};
+    psd_role r = psd_name_role(name);
+    double f;
+    int pw;
+    if (r == P_NONE || !(r == P_Q ? q_unit(unit, &f) : c_unit(unit, &f, &pw))) continue;
+    c->r = r;
+    c->has_unit = 1;
+    memcpy(c->unit, unit.p, unit.n);
+    c->unit[unit.n] = '\0';
+    return 1;
+  }
+  return 0;
+}
+
+/* The unit text u of column c: sets factor and power, 0 if not a unit of
+ * its column. */
+static int psd_unit_of(psd_col *c, const char *u) {
+  span s = trim((span){u, strlen(u)});
+  return c->r == P_Q ? q_unit(s, &c->factor) : c_unit(s, &c->factor, &c->power);
+}
+
+/* The layout of a PSD file: which fields hold q and C, in which units. */
+typedef struct {
+  const char *src;
+  vl_dialect d;
+  psd_col q, c;
+  size_t header_line;
+  int has_units_row;
+  char units_row[2][CELL_TEXT_MAX];
+} psd_layout;
+
+/* Finds the q and C columns in the header line (other columns ignored),
+ * then reads the optional units row; every unit settled or an error. */
+static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error *err) {
+  size_t pos = 0, line_no = 0;
+  span line, cells[MAX_FIELDS + 1];
+  const char *tp[MAX_FIELDS + 1];
+  size_t tn[MAX_FIELDS + 1];
+  if (!next_meaningful(text, len, &pos, &line_no, &line)) return VL_OK; /* the reader says so */
+  pl->header_line = line_no;
+  size_t count = split(line, pl->d.delimiter, cells, tp, tn, MAX_FIELDS + 1);
+  psd_col col;
+  for (size_t f = 0; f < count && f < MAX_FIELDS; f++) {
+    if (!psd_header_cell(cells[f], &col)) continue;
+    psd_col *slot = col.r == P_Q ? &pl->q : &pl->c;
+    if (slot->text[0]) {
+      vl_error_set(err, "%s:%zu: header field %zu: a second %s column ('%s', after '%s')",
+                   pl->src, line_no, f + 1, col.r == P_Q ? "q" : "C", col.text, slot->text);
+      return VL_EINPUT;
+    }
+    *slot = col;
+    slot->field = f;
+  }
+  if (!pl->q.text[0] || !pl->c.text[0]) {
+    vl_error_set(err,
+                 "%s:%zu: the header lacks the %s column: a PSD file has a wavevector column "
+                 "'q' and a spectrum column 'C' with their units, e.g. 'q [1/m],C [m^4]' or "
+                 "'q_per_m,C_m4'",
+                 pl->src, line_no, !pl->q.text[0] ? "wavevector (q)" : "spectrum (C)");
     return VL_EINPUT;
   }
-  double *q = malloc(csv.n_rows * sizeof *q), *C = malloc(csv.n_rows * sizeof *C);
+  psd_col *pc[2] = {&pl->q, &pl->c};
+  for (int i = 0; i < 2; i++) {
+    if (pc[i]->has_unit && !psd_unit_of(pc[i], pc[i]->unit)) {
+      vl_error_set(err,
+                   "%s:%zu: header field %zu: '%s' in '%s' is not a unit of %s (expected %s)",
+                   pl->src, line_no, pc[i]->field + 1, pc[i]->unit, pc[i]->text,
+                   i ? "a spectrum" : "a wavevector",
+                   i ? "m^4, um^4, nm^4 (2-D) or m^3, um^3, nm^3 (1-D)" : "1/m, 1/um or 1/nm");
+      return VL_EINPUT;
+    }
+  }
+  /* the units row: the row after the header, when its q or C cell is a unit */
+  if (next_meaningful(text, len, &pos, &line_no, &line) &&
+      split(line, pl->d.delimiter, cells, tp, tn, MAX_FIELDS + 1) == count) {
+    double v;
+    const char *why;
+    int is_units = 0;
+    for (int i = 0; i < 2; i++) {
+      span u = unquote(cells[pc[i]->field]);
+      psd_col probe = *pc[i];
+      char ut[CELL_TEXT_MAX];
+      snprintf(ut, sizeof ut, "%.*s", (int)(u.n < sizeof ut ? u.n : sizeof ut - 1), u.p);
+      if (parse_span(u, pl->d.decimal_comma, &v, &why) != VL_OK && psd_unit_of(&probe, ut))
+        is_units = 1;
+      snprintf(pl->units_row[i], sizeof pl->units_row[i], "%s", ut);
+    }
+    for (int i = 0; is_units && i < 2; i++) {
+      psd_col probe = *pc[i];
+      if (!psd_unit_of(&probe, pl->units_row[i])) {
+        vl_error_set(err, "%s:%zu: column '%s' (field %zu): '%s' is not a unit of %s", pl->src,
+                     line_no, pc[i]->text, pc[i]->field + 1, pl->units_row[i],
+                     i ? "a spectrum (m^4, um^4, nm^4; 1-D: m^3 ...)" : "a wavevector (1/m, 1/um, "
+                                                                        "1/nm)");
+        return VL_EINPUT;
+      }
+      if (pc[i]->has_unit && (probe.factor != pc[i]->factor || probe.power != pc[i]->power)) {
+        vl_error_set(err, "%s:%zu: column '%s' (field %zu): mixed units: the header says %s but "
+                     "the units row says %s",
+                     pl->src, line_no, pc[i]->text, pc[i]->field + 1, pc[i]->unit,
+                     pl->units_row[i]);
+        return VL_EINPUT;
+      }
+      *pc[i] = probe;
+      pc[i]->has_unit = 1;
+    }
+    pl->has_units_row = is_units;
+  }
+  for (int i = 0; i < 2; i++) {
+    if (!pc[i]->has_unit) {
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %zu): no unit for the %s: write it in the header, "
+                   "e.g. '%s', or give a units row after it",
+                   pl->src, pl->header_line, pc[i]->text, pc[i]->field + 1,
+                   i ? "spectrum" : "wavevector", i ? "C [m^4]" : "q [1/m]");
+      return VL_EINPUT;
+    }
+  }
+  return VL_OK;
+}
+
+/* 1-D or 2-D: what the column says (its name or the power of its unit),
+ * which must agree with what the caller expects. */
+static vl_status psd_dimension(const psd_layout *pl, vl_psd_file_kind kind, vl_error *err) {
+  int says_1d = pl->c.power == 3 || pl->c.r == P_C1D;
+  int says_2d = pl->c.power == 4 || pl->c.r == P_C2D;
+  if (says_1d && says_2d) {
+    vl_error_set(err, "%s:%zu: column '%s' (field %zu): the name and the unit disagree on a 1-D "
+                 "(m^3) or 2-D (m^4) spectrum",
+                 pl->src, pl->header_line, pl->c.text, pl->c.field + 1);
+    return VL_EINPUT;
+  }
+  if (kind == VL_PSD_FILE_2D && says_1d) {
+    vl_error_set(err,
+                 "%s:%zu: column '%s' (field %zu): a 1-D (profile) spectrum C1(q) in m^3, but "
+                 "a surface needs the isotropic 2-D C(q) in m^4: give the PSD kind 1d "
+                 "(--psd-kind 1d) to convert it",
+                 pl->src, pl->header_line, pl->c.text, pl->c.field + 1);
+    return VL_EINPUT;
+  }
+  if (kind == VL_PSD_FILE_1D && says_2d) {
+    vl_error_set(err,
+                 "%s:%zu: column '%s' (field %zu): the PSD kind 1d was given but the column "
+                 "holds a 2-D spectrum (m^4); a 1-D one is in m^3",
+                 pl->src, pl->header_line, pl->c.text, pl->c.field + 1);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
+/* Appends one sentence (a line) to rep->notes. */
+static void psd_note(vl_psd_read_report *rep, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+static void psd_note(vl_psd_read_report *rep, const char *fmt, ...) {
+  size_t len = strlen(rep->notes);
+  if (len + 2 >= sizeof rep->notes) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(rep->notes + len, sizeof rep->notes - len - 1, fmt, ap);
+  va_end(ap);
+  len = strlen(rep->notes);
+  rep->notes[len] = '\n';
+  rep->notes[len + 1] = '\0';
+}
+
+typedef struct {
+  double q, c;
+  size_t line;
+} psd_point;
+
+static int cmp_psd_point(const void *pa, const void *pb) {
+  const psd_point *a = pa, *b = pb;
+  if (a->q != b->q) return a->q < b->q ? -1 : 1;
+  return a->line < b->line ? -1 : a->line > b->line;
+}
+
+/* Sorts the points by q (noted when the file was not in order: reversed
+ * files are common, wavelength-ordered exports) and merges repeated q
+ * (within 1e-9 relative) into one point with their mean C. Returns the
+ * points kept. */
+static size_t psd_order(psd_point *p, size_t n, vl_psd_read_report *rep) {
+  int increasing = 1, decreasing = 1;
+  for (size_t k = 1; k < n; k++) {
+    if (p[k].q < p[k - 1].q) increasing = 0;
+    if (p[k].q > p[k - 1].q) decreasing = 0;
+  }
+  if (!increasing) {
+    rep->reordered = 1;
+    psd_note(rep, "the rows were not in increasing q (%s): sorted",
+             decreasing ? "they decrease" : "mixed order");
+  }
+  qsort(p, n, sizeof *p, cmp_psd_point);
+  size_t out = 0, first_merge = 0;
+  for (size_t k = 0; k < n;) {
+    size_t j = k;
+    double sum = 0.0;
+    while (j < n && fabs(p[j].q - p[k].q) <= 1e-9 * p[k].q)
+      sum += p[j++].c;
+    if (j - k > 1 && rep->n_merged == 0) first_merge = p[k + 1].line;
+    rep->n_merged += j - k - 1;
+    p[out] = p[k];
+    p[out].c = sum / (double)(j - k);
+    out++;
+    k = j;
+  }
+  if (rep->n_merged)
+    psd_note(rep,
+             "%zu row%s repeated a q already given (the first on line %zu): merged, C averaged "
+             "(%zu points kept)",
+             rep->n_merged, rep->n_merged == 1 ? "" : "s", first_merge, out);
+  return out;
+}
+
+/* h_rms and rms slope of a tabulated spectrum that no measured surface
+ * has: the sentence names which and the likely unit mistake. */
+static vl_status psd_plausible(const char *src, const vl_psd *psd, vl_psd_read_report *rep,
+                               vl_error *err) {
+  rep->hrms_m = vl_psd_hrms(psd);
+  rep->rms_slope = vl_psd_rms_slope(psd);
+  double cmin = INFINITY, cmax = 0.0;
+  for (size_t k = 0; k < psd->n; k++)
+    cmin = fmin(cmin, psd->C[k]), cmax = fmax(cmax, psd->C[k]);
+  char where[160];
+  snprintf(where, sizeof where, "q from %.4g to %.4g 1/m, C from %.4g to %.4g m^4", psd->q[0], psd->q[psd->n - 1], cmin, cmax);
+  if (!(rep->hrms_m >= VL_PSD_HRMS_MIN_M && rep->hrms_m <= VL_PSD_HRMS_MAX_M)) {
+    vl_error_set(err,
+                 "%s: implausible h_rms %.3g m (a measured surface has %g to %g m): a unit "
+                 "mistake in q or C (1/um or 1/nm read as 1/m? um^4 read as m^4?); as read, %s",
+                 src, rep->hrms_m, VL_PSD_HRMS_MIN_M, VL_PSD_HRMS_MAX_M, where);
+    return VL_EINPUT;
+  }
+  if (!(rep->rms_slope <= VL_PSD_SLOPE_MAX)) {
+    vl_error_set(err,
+                 "%s: implausible rms slope %.3g (above %g: surfaces steeper than ~85 degrees "
+                 "on average): a unit mistake in q or C, or a spectrum that does not fall fast "
+                 "enough at large q; as read, %s",
+                 src, rep->rms_slope, VL_PSD_SLOPE_MAX, where);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
+/* The 2-D spectrum from the 1-D one in p[0..*n) (inverse Abel transform,
+ * abel.h); points where it is not positive are dropped. */
+static vl_status psd_from_profile(psd_point *p, size_t *n, const char *src,
+                                  vl_psd_read_report *rep, vl_error *err) {
+  double *q = malloc(*n * sizeof *q), *c1 = malloc(*n * sizeof *c1), *c2 = malloc(*n * sizeof *c2);
+  double tail = 0.0;
+  vl_status st = VL_ENOMEM;
+  if (q && c1 && c2) {
+    for (size_t k = 0; k < *n; k++)
+      q[k] = p[k].q, c1[k] = p[k].c;
+    st = vl_abel_profile_to_surface(*n, q, c1, NULL, c2, &tail);
+  }
+  if (st == VL_OK) {
+    size_t kept = 0;
+    for (size_t k = 0; k < *n; k++) {
+      if (!(c2[k] > 0.0 && isfinite(c2[k]))) {
+        rep->n_dropped++;
+        continue;
+      }
+      p[kept] = p[k];
+      p[kept++].c = c2[k];
+    }
+    *n = kept;
+    rep->converted_1d = 1;
+    psd_note(rep,
+             "1-D (profile) spectrum converted to the isotropic 2-D one by the inverse Abel "
+             "transform (C1 taken two-sided, h_rms^2 = integral of C1 over all q; tail slope "
+             "%.3g beyond the last point%s)",
+             tail, rep->n_dropped ? "; points where C came out <= 0 dropped" : "");
+  } else {
+    vl_error_set(err, "%s: out of memory", src);
+  }
+  free(q);
+  free(c1);
+  free(c2);
+  return st;
+}
+
+vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
+                               vl_psd_file_kind kind, vl_psd *psd, vl_psd_read_report *report,
+                               vl_error *err) {
+  vl_psd_read_report local;
+  vl_psd_read_report *rep = report ? report : &local;
+  psd_layout pl = {.src = source ? source : "<text>"};
+  vl_csv csv;
+  psd_point *pts = NULL;
+  memset(psd, 0, sizeof *psd);
+  memset(rep, 0, sizeof *rep);
+  memset(&csv, 0, sizeof csv);
+  if (!text) text = "";
+  vl_status st = vl_import_refuse_spreadsheet(text, len, pl.src, err);
+  if (st == VL_OK) st = vl_import_detect_dialect(text, len, pl.src, &pl.d, err);
+  if (st == VL_OK) st = psd_scan(text, len, &pl, err);
+  if (st == VL_OK && pl.q.text[0]) st = psd_dimension(&pl, kind, err);
+  if (st != VL_OK) goto cleanup;
+  vl_csv_column cols[2] = {
+      {.name = pl.q.text, .units = pl.has_units_row ? pl.units_row[0] : "1/m", .sign = VL_CSV_POSITIVE},
+      {.name = pl.c.text, .units = pl.has_units_row ? pl.units_row[1] : "m^4", .sign = VL_CSV_POSITIVE},
+  };
+  vl_csv_options copt = {.ignore_unknown = 1, .delimiter = pl.d.delimiter,
+                         .decimal_comma = pl.d.decimal_comma};
+  if (!pl.q.text[0]) cols[0].name = "q_per_m", cols[1].name = "C_m4"; /* empty file */
+  if ((st = vl_csv_read_text_opts(text, len, pl.src, cols, 2, &copt, &csv, err)) != VL_OK)
+    goto cleanup;
+  rep->n_rows = csv.n_rows;
+  if (!(pts = malloc(csv.n_rows * sizeof *pts))) {
+    vl_error_set(err, "%s: out of memory", pl.src);
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  for (size_t k = 0; k < csv.n_rows; k++)
+    pts[k] = (psd_point){vl_csv_value(&csv, k, 0) * pl.q.factor,
+                         vl_csv_value(&csv, k, 1) * pl.c.factor, csv.lines[k]};
+  if (pl.d.delimiter != ',' || pl.d.decimal_comma)
+    psd_note(rep, "read as %s-separated%s", vl_dialect_delimiter_name(pl.d.delimiter),
+             pl.d.decimal_comma ? " with decimal commas" : "");
+  if (csv.n_ignored)
+    psd_note(rep, "ignored %zu column%s: %s", csv.n_ignored, csv.n_ignored == 1 ? "" : "s",
+             csv.ignored);
+  if (pl.q.factor != 1.0 || pl.c.factor != 1.0)
+    psd_note(rep, "units converted to SI: q x %.6g (from %s), C x %.6g (from %s)", pl.q.factor,
+             pl.has_units_row ? pl.units_row[0] : pl.q.unit, pl.c.factor,
+             pl.has_units_row ? pl.units_row[1] : pl.c.unit);
+  size_t n = psd_order(pts, csv.n_rows, rep);
+  if (st == VL_OK && kind == VL_PSD_FILE_1D && n >= 2)
+    st = psd_from_profile(pts, &n, pl.src, rep, err);
+  if (st != VL_OK) goto cleanup;
+  if (n < 2) {
+    vl_error_set(err, "%s:%zu: a tabulated PSD needs at least 2 points of distinct q (found %zu)",
+                 pl.src, csv.lines[csv.n_rows - 1], n);
+    st = VL_EINPUT;
+    goto cleanup;
+  }
+  double *q = (double *)malloc(n * sizeof *q), *C = (double *)malloc(n * sizeof *C);
   if (!q || !C) {
-    vl_error_set(err, "%s: out of memory", path);
+    vl_error_set(err, "%s: out of memory", pl.src);
     st = VL_ENOMEM;
   } else {
-    for (size_t k = 0; k < csv.n_rows; k++) {
-      q[k] = vl_csv_value(&csv, k, 0);
-      C[k] = vl_csv_value(&csv, k, 1);
-    }
-    st = vl_psd_init_tabulated(psd, csv.n_rows, q, C, err);
-    if (st != VL_OK) vl_error_prefix(err, "%s", path);
+    for (size_t k = 0; k < n; k++)
+      q[k] = pts[k].q, C[k] = pts[k].c;
+    st = vl_psd_init_tabulated(psd, n, q, C, err);
+    if (st != VL_OK) vl_error_prefix(err, "%s", pl.src);
   }
   free(q);
   free(C);
+  if (st == VL_OK && (st = psd_plausible(pl.src, psd, rep, err)) != VL_OK) vl_psd_free(psd);
+
+cleanup:
+  free(pts);
   vl_csv_free(&csv);
   return st;
+}
+
+vl_status vl_csv_read_psd_file(const char *path, vl_psd_file_kind kind, vl_psd *psd,
+                               vl_psd_read_report *report, vl_error *err) {
+  char *buf = NULL;
+  size_t len = 0;
+  memset(psd, 0, sizeof *psd);
+  vl_status st = read_whole(path, &buf, &len, err);
+  if (st == VL_OK) st = vl_csv_read_psd_text(buf, len, path, kind, psd, report, err);
+  free(buf);
+  return st;
+}
+
+vl_status vl_csv_read_psd(const char *path, vl_psd *psd, vl_error *err) {
+  return vl_csv_read_psd_file(path, VL_PSD_FILE_2D, psd, NULL, err);
 }

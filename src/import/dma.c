@@ -9,6 +9,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,70 +18,176 @@
 #include "tts.h"
 
 #include "edit_distance.h"
+#include "import_text.h"
 
 #define TWO_PI 6.283185307179586476925287
-#define MAX_FIELDS 16
+#define MAX_FIELDS 64
 #define CELL_MAX 128
 #define DEFAULT_TREF_C 20.0
-/* E', E'' and tan delta all given: tan delta must match E''/E' this well
- * (exports round each column to 4-6 digits on its own). */
+/* E', E'' and tan delta (or |E*|) all given: the redundant column must
+ * match this well (exports round each column to 4-6 digits on its own). */
 #define TAN_CONSISTENCY 0.02
 /* A neighbouring pair whose shift points the wrong way by more than this
  * (decades) is not scatter: colder must mean stiffer. */
 #define WRONG_WAY_TOL 0.1
+/* Plausible values (SI, after unit conversion): a rubber's storage and
+ * complex moduli lie between a soft gel's and a glass's; E'' may be a
+ * thousandth of E' (tan delta 1e-3) in the rubbery plateau of a soft
+ * compound, so its floor is lower. Outside: a unit mistake, which the
+ * message names. */
+#define MODULUS_MIN_PA 1e4
+#define LOSS_MIN_PA 1e1
+#define MODULUS_MAX_PA 1e12
+#define TEMP_MIN_C (-150.0)
+#define TEMP_MAX_C 400.0
 
-typedef enum { R_FREQ, R_STORAGE, R_LOSS, R_TAN, R_J1, R_J2, R_TEMP, R_SET, R_COUNT } role;
+typedef enum { R_FREQ, R_STORAGE, R_LOSS, R_ABS, R_TAN, R_J1, R_J2, R_TEMP, R_SET, R_COUNT } role;
 
 typedef enum { U_FREQ, U_MODULUS, U_COMPLIANCE, U_TEMP, U_NONE } unit_family;
+
+/* What a modulus column's name says it holds. */
+typedef enum { K_GENERIC, K_TENSILE, K_SHEAR } modulus_kind;
 
 static const struct {
   const char *what; /* for messages */
   unit_family family;
-  const char *aliases[10]; /* display spellings; one-letter ones match exactly */
 } roles[R_COUNT] = {
-    [R_FREQ] = {"frequency", U_FREQ, {"f", "w", "freq", "frequency", "omega", "angular frequency"}},
-    [R_STORAGE] = {"storage modulus E'",
-                   U_MODULUS,
-                   {"E'", "E_stor", "E_storage", "storage", "storage modulus", "E1", "E_prime"}},
-    [R_LOSS] = {"loss modulus E''",
-                U_MODULUS,
-                {"E''", "E\"", "E_loss", "loss", "loss modulus", "E2"}},
-    [R_TAN] = {"tan delta",
-               U_NONE,
-               {"tan delta", "tan_del", "tand", "tan(delta)", "loss factor", "tan \xCE\xB4",
-                "tan(\xCE\xB4)"}},
-    [R_J1] = {"storage compliance J'",
-              U_COMPLIANCE,
-              {"J'", "J_stor", "J_storage", "storage compliance", "J1"}},
-    [R_J2] = {"loss compliance J''",
-              U_COMPLIANCE,
-              {"J''", "J\"", "J_loss", "loss compliance", "J2"}},
-    [R_TEMP] = {"temperature", U_TEMP, {"T", "temp", "temperature"}},
-    [R_SET] = {"set", U_NONE, {"set", "isotherm"}},
+    [R_FREQ] = {"frequency", U_FREQ},
+    [R_STORAGE] = {"storage modulus", U_MODULUS},
+    [R_LOSS] = {"loss modulus", U_MODULUS},
+    [R_ABS] = {"complex modulus |E*|", U_MODULUS},
+    [R_TAN] = {"tan delta", U_NONE},
+    [R_J1] = {"storage compliance J'", U_COMPLIANCE},
+    [R_J2] = {"loss compliance J''", U_COMPLIANCE},
+    [R_TEMP] = {"temperature", U_TEMP},
+    [R_SET] = {"set", U_NONE},
 };
 
+/* Column names, compared without regard to case, blanks, '_', '-' and
+ * '.' (one-letter names exactly); 'δ' reads as "delta" and 'ω' as
+ * "omega". */
+static const struct {
+  const char *alias;
+  role r;
+  modulus_kind k;
+} aliases[] = {
+    {"f", R_FREQ, K_GENERIC},
+    {"w", R_FREQ, K_GENERIC},
+    {"freq", R_FREQ, K_GENERIC},
+    {"frequency", R_FREQ, K_GENERIC},
+    {"omega", R_FREQ, K_GENERIC},
+    {"angular frequency", R_FREQ, K_GENERIC},
+    {"ang freq", R_FREQ, K_GENERIC},
+    {"E'", R_STORAGE, K_TENSILE},
+    {"E_stor", R_STORAGE, K_TENSILE},
+    {"E_storage", R_STORAGE, K_TENSILE},
+    {"E1", R_STORAGE, K_TENSILE},
+    {"E_prime", R_STORAGE, K_TENSILE},
+    {"tensile storage modulus", R_STORAGE, K_TENSILE},
+    {"storage modulus E'", R_STORAGE, K_TENSILE},
+    {"storage", R_STORAGE, K_GENERIC},
+    {"storage modulus", R_STORAGE, K_GENERIC},
+    {"G'", R_STORAGE, K_SHEAR},
+    {"G_stor", R_STORAGE, K_SHEAR},
+    {"G_storage", R_STORAGE, K_SHEAR},
+    {"G1", R_STORAGE, K_SHEAR},
+    {"G_prime", R_STORAGE, K_SHEAR},
+    {"shear storage modulus", R_STORAGE, K_SHEAR},
+    {"storage shear modulus", R_STORAGE, K_SHEAR},
+    {"storage modulus G'", R_STORAGE, K_SHEAR},
+    {"E''", R_LOSS, K_TENSILE},
+    {"E\"", R_LOSS, K_TENSILE},
+    {"E_loss", R_LOSS, K_TENSILE},
+    {"E2", R_LOSS, K_TENSILE},
+    {"E_double_prime", R_LOSS, K_TENSILE},
+    {"tensile loss modulus", R_LOSS, K_TENSILE},
+    {"loss modulus E''", R_LOSS, K_TENSILE},
+    {"loss", R_LOSS, K_GENERIC},
+    {"loss modulus", R_LOSS, K_GENERIC},
+    {"G''", R_LOSS, K_SHEAR},
+    {"G\"", R_LOSS, K_SHEAR},
+    {"G_loss", R_LOSS, K_SHEAR},
+    {"G2", R_LOSS, K_SHEAR},
+    {"G_double_prime", R_LOSS, K_SHEAR},
+    {"shear loss modulus", R_LOSS, K_SHEAR},
+    {"loss shear modulus", R_LOSS, K_SHEAR},
+    {"loss modulus G''", R_LOSS, K_SHEAR},
+    {"|E*|", R_ABS, K_TENSILE},
+    {"E*", R_ABS, K_TENSILE},
+    {"|E|", R_ABS, K_TENSILE},
+    {"E_abs", R_ABS, K_TENSILE},
+    {"E_star", R_ABS, K_TENSILE},
+    {"E_complex", R_ABS, K_TENSILE},
+    {"complex modulus", R_ABS, K_GENERIC},
+    {"|G*|", R_ABS, K_SHEAR},
+    {"G*", R_ABS, K_SHEAR},
+    {"|G|", R_ABS, K_SHEAR},
+    {"G_abs", R_ABS, K_SHEAR},
+    {"G_star", R_ABS, K_SHEAR},
+    {"G_complex", R_ABS, K_SHEAR},
+    {"complex shear modulus", R_ABS, K_SHEAR},
+    {"tan delta", R_TAN, K_GENERIC},
+    {"tan_del", R_TAN, K_GENERIC},
+    {"tand", R_TAN, K_GENERIC},
+    {"tan(delta)", R_TAN, K_GENERIC},
+    {"loss factor", R_TAN, K_GENERIC},
+    {"loss tangent", R_TAN, K_GENERIC},
+    {"J'", R_J1, K_GENERIC},
+    {"J_stor", R_J1, K_GENERIC},
+    {"J_storage", R_J1, K_GENERIC},
+    {"storage compliance", R_J1, K_GENERIC},
+    {"J1", R_J1, K_GENERIC},
+    {"J''", R_J2, K_GENERIC},
+    {"J\"", R_J2, K_GENERIC},
+    {"J_loss", R_J2, K_GENERIC},
+    {"loss compliance", R_J2, K_GENERIC},
+    {"J2", R_J2, K_GENERIC},
+    {"T", R_TEMP, K_GENERIC},
+    {"temp", R_TEMP, K_GENERIC},
+    {"temperature", R_TEMP, K_GENERIC},
+    {"set", R_SET, K_GENERIC},
+    {"isotherm", R_SET, K_GENERIC},
+};
+#define N_ALIASES (sizeof aliases / sizeof *aliases)
+
 typedef struct {
-  const char *name;
-  double factor; /* SI value = factor * file value (+ offset for temperatures) */
+  const char *name; /* as printed; matched without regard to case and blanks */
+  double factor;    /* SI value = factor * file value (+ offset for temperatures) */
   double offset;
+  int primary;     /* listed in messages */
+  int omega_only;  /* "1/s": an angular frequency only under an omega name */
 } unit_def;
 
-static const unit_def freq_units[] = {{"Hz", TWO_PI, 0.0}, {"rad/s", 1.0, 0.0}, {NULL, 0, 0}};
+static const unit_def freq_units[] = {{"Hz", TWO_PI, 0.0, 1, 0},      {"rad/s", 1.0, 0.0, 1, 0},
+                                      {"rad s^-1", 1.0, 0.0, 0, 0},   {"rad.s-1", 1.0, 0.0, 0, 0},
+                                      {"rad*s^-1", 1.0, 0.0, 0, 0},   {"rad/sec", 1.0, 0.0, 0, 0},
+                                      {"1/s", 1.0, 0.0, 0, 1},        {"s^-1", 1.0, 0.0, 0, 1},
+                                      {"s-1", 1.0, 0.0, 0, 1},        {NULL, 0, 0, 0, 0}};
 static const unit_def modulus_units[] = {
-    {"Pa", 1.0, 0.0}, {"kPa", 1e3, 0.0}, {"MPa", 1e6, 0.0}, {"GPa", 1e9, 0.0}, {NULL, 0, 0}};
+    {"Pa", 1.0, 0.0, 1, 0},       {"kPa", 1e3, 0.0, 1, 0},       {"MPa", 1e6, 0.0, 1, 0},
+    {"GPa", 1e9, 0.0, 1, 0},      {"N/m^2", 1.0, 0.0, 0, 0},     {"N/m2", 1.0, 0.0, 0, 0},
+    {"N/mm^2", 1e6, 0.0, 0, 0},   {"N/mm2", 1e6, 0.0, 0, 0},     {"dyn/cm^2", 0.1, 0.0, 0, 0},
+    {"dyn/cm2", 0.1, 0.0, 0, 0},  {NULL, 0, 0, 0, 0}};
 static const unit_def compliance_units[] = {
-    {"1/Pa", 1.0, 0.0},    {"1/kPa", 1e-3, 0.0},  {"1/MPa", 1e-6, 0.0},
-    {"1/GPa", 1e-9, 0.0},  {"Pa^-1", 1.0, 0.0},   {"kPa^-1", 1e-3, 0.0},
-    {"MPa^-1", 1e-6, 0.0}, {"GPa^-1", 1e-9, 0.0}, {NULL, 0, 0}};
-static const unit_def temp_units[] = {{"C", 1.0, 0.0},
+    {"1/Pa", 1.0, 0.0, 1, 0},    {"1/kPa", 1e-3, 0.0, 1, 0},  {"1/MPa", 1e-6, 0.0, 1, 0},
+    {"1/GPa", 1e-9, 0.0, 1, 0},  {"Pa^-1", 1.0, 0.0, 0, 0},   {"kPa^-1", 1e-3, 0.0, 0, 0},
+    {"MPa^-1", 1e-6, 0.0, 0, 0}, {"GPa^-1", 1e-9, 0.0, 0, 0}, {NULL, 0, 0, 0, 0}};
+static const unit_def temp_units[] = {{"C", 1.0, 0.0, 1, 0},
                                       {"\xC2\xB0"
                                        "C",
-                                       1.0, 0.0},
-                                      {"degC", 1.0, 0.0},
-                                      {"K", 1.0, -273.15},
-                                      {NULL, 0, 0}};
+                                       1.0, 0.0, 0, 0},
+                                      {"\xC2\xBA"
+                                       "C",
+                                       1.0, 0.0, 0, 0},
+                                      {"\xE2\x84\x83", 1.0, 0.0, 0, 0},
+                                      {"degC", 1.0, 0.0, 0, 0},
+                                      {"deg C", 1.0, 0.0, 0, 0},
+                                      {"celsius", 1.0, 0.0, 0, 0},
+                                      {"K", 1.0, -273.15, 1, 0},
+                                      {"kelvin", 1.0, -273.15, 0, 0},
+                                      {NULL, 0, 0, 0, 0}};
 static const unit_def none_units[] = {
-    {"-", 1.0, 0.0}, {"1", 1.0, 0.0}, {"", 1.0, 0.0}, {NULL, 0, 0}};
+    {"-", 1.0, 0.0, 1, 0}, {"1", 1.0, 0.0, 1, 0}, {"", 1.0, 0.0, 1, 0}, {NULL, 0, 0, 0, 0}};
 
 static const unit_def *family_units(unit_family f) {
   switch (f) {
@@ -92,12 +199,13 @@ static const unit_def *family_units(unit_family f) {
   }
 }
 
-/* "Hz|rad/s" for the CSV reader and for messages ("Hz or rad/s"). */
+/* "Hz|rad/s" for the CSV reader and for messages ("Hz, rad/s"): the
+ * primary spellings. */
 static void family_list(unit_family f, const char *sep, char *buf, size_t size) {
   size_t k = 0;
   buf[0] = '\0';
   for (const unit_def *u = family_units(f); u->name && k < size; u++) {
-    if (!strcmp(sep, "|") || u->name[0]) {
+    if (u->primary && (!strcmp(sep, "|") || u->name[0])) {
       int w = snprintf(buf + k, size - k, "%s%s", k ? sep : "", u->name);
       if (w < 0) break;
       k += (size_t)w;
@@ -105,9 +213,24 @@ static void family_list(unit_family f, const char *sep, char *buf, size_t size) 
   }
 }
 
+/* Unit text compared without blanks and, but for one exception, case:
+ * "mpa" is MPa (a millipascal modulus is no rubber's). */
+static int unit_eq(const char *a, const char *b) {
+  for (;;) {
+    while (*a == ' ') a++;
+    while (*b == ' ') b++;
+    char x = *a, y = *b;
+    if (x >= 'A' && x <= 'Z') x = (char)(x - 'A' + 'a');
+    if (y >= 'A' && y <= 'Z') y = (char)(y - 'A' + 'a');
+    if (x != y) return 0;
+    if (!x) return 1;
+    a++, b++;
+  }
+}
+
 static const unit_def *find_unit(unit_family f, const char *s) {
   for (const unit_def *u = family_units(f); u->name; u++)
-    if (!strcmp(u->name, s)) return u;
+    if (unit_eq(u->name, s)) return u;
   return NULL;
 }
 
@@ -120,8 +243,18 @@ const char *vl_dma_kind_name(vl_dma_kind kind) {
   return "?";
 }
 
+const char *vl_dma_moduli_name(vl_dma_moduli moduli) {
+  switch (moduli) {
+  case VL_DMA_MODULI_AUTO: return "auto";
+  case VL_DMA_MODULI_TENSILE: return "tensile";
+  case VL_DMA_MODULI_SHEAR: return "shear";
+  }
+  return "?";
+}
+
 vl_dma_options vl_dma_options_default(void) {
-  vl_dma_options o = {NULL, NULL, NULL, NAN, 0.0, VL_PRONY_WEIGHTS_RELATIVE, 0.5};
+  vl_dma_options o = {NULL, NULL, NULL, NAN, 0.0, VL_PRONY_WEIGHTS_RELATIVE, 0.5,
+                      VL_DMA_MODULI_AUTO};
   return o;
 }
 
@@ -141,6 +274,20 @@ void vl_measured_free(vl_measured *m) {
   free(m->iso_log10_a_t);
   free(m->iso_points);
   memset(m, 0, sizeof *m);
+}
+
+/* Appends one sentence (a line) to m->notes; silently cut when full. */
+static void note(vl_measured *m, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void note(vl_measured *m, const char *fmt, ...) {
+  size_t len = strlen(m->notes);
+  if (len + 2 >= sizeof m->notes) return;
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(m->notes + len, sizeof m->notes - len - 1, fmt, ap);
+  va_end(ap);
+  len = strlen(m->notes);
+  m->notes[len] = '\n';
+  m->notes[len + 1] = '\0';
 }
 
 /* ---- header recognition ----------------------------------------------- */
@@ -165,13 +312,23 @@ static int cell_text(const char *p, size_t n, char *out, size_t cap) {
   return 1;
 }
 
-/* Lower case without blanks, '_' and '-': "E_Stor" and "e stor" compare
- * equal to "estor". */
+/* Lower case without blanks, '_', '-' and '.', 'δ' as "delta" and 'ω' as
+ * "omega": "E_Stor" and "e stor" compare equal to "estor", "tan δ" to
+ * "tandelta". */
 static void normalise(const char *s, char *out, size_t cap) {
   size_t k = 0;
   for (; *s && k + 1 < cap; s++) {
     char c = *s;
-    if (c == ' ' || c == '\t' || c == '_' || c == '-') continue;
+    const char *word = NULL;
+    if (s[0] == '\xCE' && s[1] == '\xB4') word = "delta";
+    if (s[0] == '\xCF' && s[1] == '\x89') word = "omega";
+    if (word) {
+      for (; *word && k + 1 < cap; word++)
+        out[k++] = *word;
+      s++;
+      continue;
+    }
+    if (c == ' ' || c == '\t' || c == '_' || c == '-' || c == '.') continue;
     if (c >= 'A' && c <= 'Z') c = (char)(c - 'A' + 'a');
     out[k++] = c;
   }
@@ -186,11 +343,14 @@ static int alias_match(const char *alias, const char *name) {
   return a[0] && !strcmp(a, b);
 }
 
-/* Role of a header name (R_COUNT if none). */
-static role name_role(const char *name) {
-  for (int r = 0; r < R_COUNT; r++)
-    for (int k = 0; k < 10 && roles[r].aliases[k]; k++)
-      if (alias_match(roles[r].aliases[k], name)) return (role)r;
+/* Role (R_COUNT if none) and modulus kind of a header name. */
+static role name_role(const char *name, modulus_kind *k) {
+  for (size_t i = 0; i < N_ALIASES; i++) {
+    if (alias_match(aliases[i].alias, name)) {
+      *k = aliases[i].k;
+      return aliases[i].r;
+    }
+  }
   return R_COUNT;
 }
 
@@ -201,20 +361,19 @@ static const char *suggest(const char *name) {
   const char *best = NULL;
   size_t len = strlen(b), limit = len / 2 < 1 ? 1 : len / 2 > 2 ? 2 : len / 2;
   size_t best_d = limit + 1;
-  for (int r = 0; r < R_COUNT; r++) {
-    for (int k = 0; k < 10 && roles[r].aliases[k]; k++) {
-      char a[CELL_MAX];
-      normalise(roles[r].aliases[k], a, sizeof a);
-      if (strlen(a) < 3) continue;
-      size_t d = vl_edit_distance(a, strlen(a), b, strlen(b), false);
-      if (d < best_d) best_d = d, best = roles[r].aliases[k];
-    }
+  for (size_t i = 0; i < N_ALIASES; i++) {
+    char a[CELL_MAX];
+    normalise(aliases[i].alias, a, sizeof a);
+    if (strlen(a) < 3) continue;
+    size_t d = vl_edit_distance(a, strlen(a), b, strlen(b), false);
+    if (d < best_d) best_d = d, best = aliases[i].alias;
   }
   return best;
 }
 
 typedef struct {
-  role r;
+  role r;              /* R_COUNT: an ignored column */
+  modulus_kind k;      /* what a modulus column's name says */
   char text[CELL_MAX]; /* the cell as the CSV reader will match it */
   char inline_unit[CELL_MAX];
   int has_inline_unit;
@@ -222,26 +381,52 @@ typedef struct {
   int has_row_unit;
 } field;
 
-/* Splits "E' [MPa]" / "f (Hz)" into name and unit when the whole text is
- * not itself a known name. */
+/* Splits "E' [MPa]" / "f (Hz)" / "G_storage_pa" / "temperature_C" into a
+ * known name and its unit when the whole text is not itself a known name;
+ * R_COUNT when no reading names a known column. */
 static role parse_header_cell(field *f) {
-  role r = name_role(f->text);
+  role r = name_role(f->text, &f->k);
   if (r != R_COUNT) return r;
   size_t n = strlen(f->text);
-  if (n < 3) return R_COUNT;
-  char close = f->text[n - 1], open = close == ']' ? '[' : close == ')' ? '(' : 0;
-  if (!open) return R_COUNT;
-  const char *o = strrchr(f->text, open);
-  if (!o || o == f->text) return R_COUNT;
   char name[CELL_MAX], unit[CELL_MAX];
-  if (!cell_text(f->text, (size_t)(o - f->text), name, sizeof name) ||
-      !cell_text(o + 1, (size_t)(f->text + n - 1 - (o + 1)), unit, sizeof unit))
-    return R_COUNT;
-  r = name_role(name);
-  if (r == R_COUNT) return R_COUNT;
-  snprintf(f->inline_unit, sizeof f->inline_unit, "%s", unit);
-  f->has_inline_unit = 1;
-  return r;
+  char close = n ? f->text[n - 1] : 0, open = close == ']' ? '[' : close == ')' ? '(' : 0;
+  const char *o = open ? strrchr(f->text, open) : NULL;
+  if (o && o != f->text && cell_text(f->text, (size_t)(o - f->text), name, sizeof name) &&
+      cell_text(o + 1, (size_t)(f->text + n - 1 - (o + 1)), unit, sizeof unit)) {
+    r = name_role(name, &f->k);
+    if (r == R_COUNT) return R_COUNT;
+    snprintf(f->inline_unit, sizeof f->inline_unit, "%s", unit);
+    f->has_inline_unit = 1;
+    return r;
+  }
+  /* a unit after the last '_' or blank: only when it is one of the unit
+   * spellings of that column, so "E_stor" is not read as E with unit stor */
+  for (size_t i = n; i-- > 1;) {
+    if (f->text[i] != '_' && f->text[i] != ' ') continue;
+    if (!cell_text(f->text, i, name, sizeof name) ||
+        !cell_text(f->text + i + 1, n - i - 1, unit, sizeof unit))
+      continue;
+    modulus_kind k;
+    r = name_role(name, &k);
+    if (r == R_COUNT || !unit[0]) continue;
+    const unit_def *u = find_unit(roles[r].family, unit);
+    if (!u || roles[r].family == U_NONE) continue;
+    f->k = k;
+    snprintf(f->inline_unit, sizeof f->inline_unit, "%s", unit);
+    f->has_inline_unit = 1;
+    return r;
+  }
+  return R_COUNT;
+}
+
+/* Is the frequency column named as an angular frequency (so "1/s" is
+ * rad/s)? */
+static int omega_name(const field *f) {
+  char norm[CELL_MAX];
+  normalise(f->text, norm, sizeof norm);
+  return (f->text[0] == 'w' && (f->text[1] == '\0' || f->text[1] == ' ' || f->text[1] == '[' ||
+                                f->text[1] == '(' || f->text[1] == '_')) ||
+         !strncmp(norm, "omega", 5) || !strncmp(norm, "angular", 7) || !strncmp(norm, "ang", 3);
 }
 
 /* Iterates over the meaningful lines of text (skipping blank and '#'
@@ -269,39 +454,61 @@ static int next_line(const char *text, size_t len, size_t *pos, size_t *line_no,
   return 0;
 }
 
-static size_t split_cells(const char *p, size_t n, const char **cell, size_t *cell_n, size_t cap) {
-  size_t count = 0;
-  const char *start = p, *end = p + n;
-  for (const char *c = p;; c++) {
-    if (c == end || *c == ',') {
-      if (count < cap) cell[count] = start, cell_n[count] = (size_t)(c - start);
-      count++;
-      if (c == end) break;
-      start = c + 1;
-    }
-  }
-  return count;
-}
-
-static int is_number(const char *s) {
-  double v;
-  return vl_csv_parse_double(s, &v, NULL) == VL_OK;
-}
-
 /* ---- the import ------------------------------------------------------- */
 
 typedef struct {
   const char *src;
+  vl_dialect dialect;
   field fields[MAX_FIELDS];
   size_t n_fields;
   size_t header_line, units_line;
   int col_of_role[R_COUNT]; /* requested column index, or -1 */
   int field_of_role[R_COUNT];
   const unit_def *unit[R_COUNT];
+  int shear;          /* the moduli are shear moduli G (converted to E) */
+  double shear_factor; /* E / G = 2 (1 + nu) */
+  char ignored[512];  /* "'run', 'force'": the columns not used */
+  size_t n_ignored;
 } layout;
 
+static int is_number(const layout *lay, const char *s) {
+  double v;
+  const char *why;
+  return vl_import_parse_number(s, strlen(s), lay->dialect.decimal_comma, &v, &why) == VL_OK;
+}
+
+/* A header field no known column takes: refused when its name is a likely
+ * misspelling of one (or time-domain data), else listed as ignored. */
+static vl_status unknown_field(layout *lay, size_t k, size_t line_no, vl_error *err) {
+  field *f = &lay->fields[k];
+  char norm[CELL_MAX];
+  normalise(f->text, norm, sizeof norm);
+  if (!strcmp(f->text, "t") || !strcmp(norm, "time") || !strncmp(norm, "erelax", 6)) {
+    vl_error_set(err,
+                 "%s:%zu: header field %zu: '%.40s' looks like time-domain (relaxation) data; "
+                 "only frequency sweeps (f, E', E'' or tan delta, or J', J'') can be imported",
+                 lay->src, line_no, k + 1, f->text);
+    return VL_EINPUT;
+  }
+  const char *s = suggest(f->text);
+  if (s) {
+    vl_error_set(err,
+                 "%s:%zu: header field %zu: unknown column '%.40s' (did you mean '%s'? known: "
+                 "frequency f, E' or G' (storage), E'' or G'' (loss), |E*| or |G*|, tan delta, "
+                 "J', J'', T, set; see compound add --help)",
+                 lay->src, line_no, k + 1, f->text, s);
+    return VL_EINPUT;
+  }
+  f->r = R_COUNT;
+  size_t len = strlen(lay->ignored);
+  snprintf(lay->ignored + len, sizeof lay->ignored - len, "%s'%.40s'", len ? ", " : "", f->text);
+  lay->n_ignored++;
+  return VL_OK;
+}
+
 /* The role of every header field (lay->fields[0..count), their text already
- * read): each a known column name, none twice. Sets lay->n_fields. */
+ * read): a known column name, none twice, or an ignored column. Sets
+ * lay->n_fields. */
 static vl_status header_roles(layout *lay, size_t count, size_t line_no, vl_error *err) {
   for (size_t k = 0; k < count; k++) {
     field *f = &lay->fields[k];
@@ -311,25 +518,10 @@ static vl_status header_roles(layout *lay, size_t count, size_t line_no, vl_erro
       return VL_EINPUT;
     }
     role r = parse_header_cell(f);
-    char norm[CELL_MAX];
-    normalise(f->text, norm, sizeof norm);
-    if (r == R_COUNT &&
-        (!strcmp(f->text, "t") || !strcmp(norm, "time") || !strncmp(norm, "erelax", 6))) {
-      vl_error_set(err,
-                   "%s:%zu: header field %zu: '%.40s' looks like time-domain (relaxation) data; "
-                   "only frequency sweeps (f, E', E'' or tan delta, or J', J'') can be imported",
-                   lay->src, line_no, k + 1, f->text);
-      return VL_EINPUT;
-    }
     if (r == R_COUNT) {
-      const char *s = suggest(f->text);
-      vl_error_set(err,
-                   "%s:%zu: header field %zu: unknown column '%.40s'%s%s%s (known: frequency f, "
-                   "E_stor, E_loss, tan delta, J_stor, J_loss, T, set; see compound add "
-                   "--help)",
-                   lay->src, line_no, k + 1, f->text, s ? " (did you mean '" : "", s ? s : "",
-                   s ? "'?)" : "");
-      return VL_EINPUT;
+      vl_status st = unknown_field(lay, k, line_no, err);
+      if (st != VL_OK) return st;
+      continue;
     }
     if (lay->field_of_role[r] >= 0) {
       vl_error_set(err,
@@ -346,16 +538,49 @@ static vl_status header_roles(layout *lay, size_t count, size_t line_no, vl_erro
   return VL_OK;
 }
 
-/* The columns a DMA file needs together: a frequency, and E' with E'' or
- * tan delta, or J' with J''. */
-static vl_status check_roles(const layout *lay, size_t line_no, vl_error *err) {
-  const int *fr = lay->field_of_role;
-  if (fr[R_FREQ] < 0) {
-    vl_error_set(err, "%s:%zu: the header lacks a frequency column (f, freq or omega)", lay->src,
-                 line_no);
+/* Tensile or shear: what the names say (generic names follow the named
+ * ones, else the option, else tensile), refused when they disagree with
+ * each other or with the option. */
+static vl_status modulus_kind_of(layout *lay, const vl_dma_options *o, size_t line_no,
+                                 vl_error *err) {
+  int first[3] = {-1, -1, -1};
+  const role mods[3] = {R_STORAGE, R_LOSS, R_ABS};
+  for (int i = 0; i < 3; i++) {
+    int f = lay->field_of_role[mods[i]];
+    if (f >= 0 && first[lay->fields[f].k] < 0) first[lay->fields[f].k] = f;
+  }
+  if (first[K_TENSILE] >= 0 && first[K_SHEAR] >= 0) {
+    vl_error_set(err,
+                 "%s:%zu: the header mixes tensile and shear moduli ('%s' and '%s'): give E', "
+                 "E'' or G', G''",
+                 lay->src, line_no, lay->fields[first[K_TENSILE]].text,
+                 lay->fields[first[K_SHEAR]].text);
     return VL_EINPUT;
   }
-  int moduli = fr[R_STORAGE] >= 0 || fr[R_LOSS] >= 0 || fr[R_TAN] >= 0;
+  int named = first[K_SHEAR] >= 0 ? K_SHEAR : first[K_TENSILE] >= 0 ? K_TENSILE : K_GENERIC;
+  if (o->moduli != VL_DMA_MODULI_AUTO && named != K_GENERIC &&
+      (named == K_SHEAR) != (o->moduli == VL_DMA_MODULI_SHEAR)) {
+    vl_error_set(err, "%s:%zu: column '%s' holds %s moduli but the options say %s", lay->src,
+                 line_no, lay->fields[first[named]].text, named == K_SHEAR ? "shear" : "tensile",
+                 vl_dma_moduli_name(o->moduli));
+    return VL_EINPUT;
+  }
+  lay->shear = named == K_SHEAR || (named == K_GENERIC && o->moduli == VL_DMA_MODULI_SHEAR);
+  lay->shear_factor = 2.0 * (1.0 + o->nu);
+  return VL_OK;
+}
+
+/* The columns a DMA file needs together: a frequency, and E' with E'' or
+ * tan delta, or E'' or |E*| with tan delta, or J' with J''. */
+static vl_status check_roles(const layout *lay, size_t line_no, vl_error *err) {
+  const int *fr = lay->field_of_role;
+  const char *ign = lay->n_ignored ? "; columns not recognised: " : "";
+  if (fr[R_FREQ] < 0) {
+    vl_error_set(err, "%s:%zu: the header lacks a frequency column (f, freq or omega)%s%s",
+                 lay->src, line_no, ign, lay->ignored);
+    return VL_EINPUT;
+  }
+  int moduli = fr[R_STORAGE] >= 0 || fr[R_LOSS] >= 0 || fr[R_TAN] >= 0 || fr[R_ABS] >= 0;
   int compl = fr[R_J1] >= 0 || fr[R_J2] >= 0;
   if (moduli && compl ) {
     vl_error_set(err,
@@ -369,12 +594,18 @@ static vl_status check_roles(const layout *lay, size_t line_no, vl_error *err) {
                  line_no, fr[R_J1] < 0 ? "storage compliance J'" : "loss compliance J''");
     return VL_EINPUT;
   }
-  if (!compl &&(fr[R_STORAGE] < 0 || (fr[R_LOSS] < 0 && fr[R_TAN] < 0))) {
+  int tan = fr[R_TAN] >= 0;
+  int pair = (fr[R_STORAGE] >= 0 && (fr[R_LOSS] >= 0 || tan)) ||
+             (tan && (fr[R_LOSS] >= 0 || fr[R_ABS] >= 0));
+  if (!compl &&!pair) {
     vl_error_set(err,
-                 "%s:%zu: the header lacks the %s column (need E' with E'' or tan delta, or J' "
-                 "with J'')",
+                 "%s:%zu: the header lacks the %s column (need E' with E'' or tan delta, |E*| or "
+                 "E'' with tan delta, or J' with J''; G for shear moduli)%s%s",
                  lay->src, line_no,
-                 fr[R_STORAGE] < 0 ? "storage modulus E' (E_stor)" : "loss modulus E'' (E_loss)");
+                 fr[R_STORAGE] < 0 && !tan ? "storage modulus E' (E_stor, G')"
+                 : !tan                    ? "loss modulus E'' (E_loss, G'') or tan delta"
+                                           : "storage modulus E' (E_stor, G')",
+                 ign, lay->ignored);
     return VL_EINPUT;
   }
   return VL_OK;
@@ -382,25 +613,28 @@ static vl_status check_roles(const layout *lay, size_t line_no, vl_error *err) {
 
 /* The line after the header (p, n; line line_no) is the units row when one
  * of its cells is not a number but spells its column's unit (the CSV reader
- * applies the same rule); then every cell must, and the fields get their
- * row_unit. Otherwise it is data and lay is left as it is. */
+ * applies the same rule); then every cell of a known column must, and the
+ * fields get their row_unit. Otherwise it is data and lay is left as it
+ * is. */
 static vl_status scan_units_row(layout *lay, const char *p, size_t n, size_t line_no,
                                 vl_error *err) {
   const char *cell[MAX_FIELDS + 1];
   size_t cell_n[MAX_FIELDS + 1];
-  size_t count = split_cells(p, n, cell, cell_n, MAX_FIELDS + 1);
+  size_t count = vl_import_split(p, n, lay->dialect.delimiter, cell, cell_n, MAX_FIELDS + 1);
   if (count != lay->n_fields) return VL_OK;
   char u[MAX_FIELDS][CELL_MAX];
   int is_units = 0;
   for (size_t k = 0; k < count; k++) {
     if (!cell_text(cell[k], cell_n[k], u[k], CELL_MAX)) u[k][0] = '\x01', u[k][1] = '\0';
+    if (lay->fields[k].r == R_COUNT) continue;
     unit_family fam = roles[lay->fields[k].r].family;
-    if (!is_number(u[k]) && find_unit(fam, u[k])) is_units = 1;
+    if (!is_number(lay, u[k]) && find_unit(fam, u[k])) is_units = 1;
   }
   if (!is_units) return VL_OK;
   lay->units_line = line_no;
   for (size_t k = 0; k < count; k++) {
     field *f = &lay->fields[k];
+    if (f->r == R_COUNT) continue;
     unit_family fam = roles[f->r].family;
     if (!find_unit(fam, u[k])) {
       char list[128];
@@ -420,7 +654,8 @@ static vl_status scan_units_row(layout *lay, const char *p, size_t n, size_t lin
 }
 
 /* Reads the header and the optional units row; fills lay. */
-static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error *err) {
+static vl_status scan_header(const char *text, size_t len, layout *lay, const vl_dma_options *o,
+                             vl_error *err) {
   size_t pos = 0, line_no = 0, n;
   const char *p;
   const char *cell[MAX_FIELDS + 1];
@@ -435,7 +670,7 @@ static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error
     return VL_EINPUT;
   }
   lay->header_line = line_no;
-  size_t count = split_cells(p, n, cell, cell_n, MAX_FIELDS + 1);
+  size_t count = vl_import_split(p, n, lay->dialect.delimiter, cell, cell_n, MAX_FIELDS + 1);
   if (count > MAX_FIELDS) {
     vl_error_set(err, "%s:%zu: the header has %zu columns; a DMA file has at most %d", lay->src,
                  line_no, count, MAX_FIELDS);
@@ -450,7 +685,7 @@ static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error
                    line_no, k + 1);
       return VL_EINPUT;
     }
-    if (!is_number(f->text)) all_numbers = 0;
+    if (!is_number(lay, f->text)) all_numbers = 0;
   }
   if (all_numbers) {
     vl_error_set(err,
@@ -461,6 +696,7 @@ static vl_status scan_header(const char *text, size_t len, layout *lay, vl_error
   }
   vl_status st = header_roles(lay, count, line_no, err);
   if (st == VL_OK) st = check_roles(lay, line_no, err);
+  if (st == VL_OK) st = modulus_kind_of(lay, o, line_no, err);
   if (st == VL_OK && next_line(text, len, &pos, &line_no, &p, &n))
     st = scan_units_row(lay, p, n, line_no, err);
   return st;
@@ -473,6 +709,7 @@ static vl_status resolve_units(layout *lay, const vl_dma_options *o, vl_error *e
   int family_field[U_NONE + 1] = {0};
   for (size_t k = 0; k < lay->n_fields; k++) {
     field *f = &lay->fields[k];
+    if (f->r == R_COUNT) continue;
     unit_family fam = roles[f->r].family;
     const unit_def *from_header = NULL, *from_row = NULL, *from_opt = NULL;
     const char *opt_name = NULL, *opt_text = NULL;
@@ -524,6 +761,13 @@ static vl_status resolve_units(layout *lay, const vl_dma_options *o, vl_error *e
                    "one of %s after the header, write it as '%s [unit]', or give the %s option)",
                    lay->src, lay->header_line, f->text, k + 1, roles[f->r].what, list, f->text,
                    opt_name ? opt_name : "unit");
+      return VL_EINPUT;
+    }
+    if (u && u->omega_only && !omega_name(f)) {
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %zu): '%s' is ambiguous for a frequency (Hz or "
+                   "rad/s?): write Hz or rad/s, or name the column omega",
+                   lay->src, lay->header_line, f->text, k + 1, u->name);
       return VL_EINPUT;
     }
     if (!u) u = &none_units[0];
@@ -740,10 +984,22 @@ cleanup:
   return st;
 }
 
-/* E' must not fall with frequency within an isotherm (beyond scatter). */
+/* The field that gave E' (for messages): E', else J', |E*| or E''. */
+static int storage_field(const layout *lay) {
+  const role order[4] = {R_STORAGE, R_J1, R_ABS, R_LOSS};
+  for (int i = 0; i < 4; i++)
+    if (lay->field_of_role[order[i]] >= 0) return lay->field_of_role[order[i]];
+  return 0;
+}
+
+/* E' must not fall with frequency within an isotherm (beyond scatter);
+ * every point where it does is reported. */
 static vl_status check_increasing(const vl_measured *m, const order_key *ord, const layout *lay,
                                   vl_error *err) {
   size_t best = 0;
+  vl_problems pr;
+  vl_problems_init(&pr);
+  int fld = storage_field(lay), compl = m->kind == VL_DMA_COMPLIANCE;
   for (size_t i = 0; i < m->n; i++) {
     size_t k = ord[i].idx;
     if (i == 0 || ord[i].iso != ord[i - 1].iso) {
@@ -751,22 +1007,23 @@ static vl_status check_increasing(const vl_measured *m, const order_key *ord, co
       continue;
     }
     if (m->storage_pa[k] < (1.0 - VL_DMA_DECREASE_TOL) * m->storage_pa[best]) {
-      int compl = m->kind == VL_DMA_COMPLIANCE;
-      int fld = lay->field_of_role[compl ? R_J1 : R_STORAGE];
-      vl_error_set(err,
-                   "%s:%zu: column '%s' (field %d): the storage modulus%s decreases with "
-                   "frequency (%.4g Pa at %.4g rad/s, %.0f %% below %.4g Pa at %.4g rad/s on "
-                   "line %zu%s): a linear viscoelastic solid's E' never decreases with frequency",
-                   m->source, m->line[k], lay->fields[fld].text, fld + 1,
-                   compl ? " E' = J'/(J'^2 + J''^2)" : "", m->storage_pa[k], m->omega_rad_s[k],
-                   100.0 * (1.0 - m->storage_pa[k] / m->storage_pa[best]), m->storage_pa[best],
-                   m->omega_rad_s[best], m->line[best],
-                   m->has_temperature ? ", same isotherm" : "");
-      return VL_EINPUT;
+      vl_problems_add(&pr, m->line[k],
+                      "%s:%zu: column '%s' (field %d): the storage modulus%s decreases with "
+                      "frequency (%.4g Pa at %.4g rad/s, %.0f %% below %.4g Pa at %.4g rad/s on "
+                      "line %zu%s): a linear viscoelastic solid's E' never decreases with "
+                      "frequency",
+                      m->source, m->line[k], lay->fields[fld].text, fld + 1,
+                      compl ? " E' = J'/(J'^2 + J''^2)" : "", m->storage_pa[k], m->omega_rad_s[k],
+                      100.0 * (1.0 - m->storage_pa[k] / m->storage_pa[best]), m->storage_pa[best],
+                      m->omega_rad_s[best], m->line[best],
+                      m->has_temperature ? ", same isotherm" : "");
+      continue;
     }
     if (m->storage_pa[k] > m->storage_pa[best]) best = k;
   }
-  return VL_OK;
+  if (pr.total == 0) return VL_OK;
+  vl_problems_finish(&pr, m->source, err);
+  return VL_EINPUT;
 }
 
 /* superpose with nothing to shift: a master curve (no temperature column),
@@ -946,15 +1203,19 @@ cleanup:
 }
 
 /* The column list for the CSV reader, one column per role present in role
- * order, named as in this file, with the units of its family (unit_lists
- * holds their text); lay->col_of_role gets their indices. Returns their
- * count. */
+ * order, named as in this file, with the unit its units row spelt (or the
+ * units of its family: then the file has no units row and the spelling
+ * never matters); unit_lists holds their text and lay->col_of_role gets
+ * their indices. Returns their count. */
 static size_t csv_columns(layout *lay, vl_csv_column *cols, char (*unit_lists)[160]) {
   size_t nc = 0;
   for (int r = 0; r < R_COUNT; r++) {
     int f = lay->field_of_role[r];
     if (f < 0) continue;
-    family_list(roles[r].family, "|", unit_lists[r], sizeof unit_lists[r]);
+    if (lay->fields[f].has_row_unit)
+      snprintf(unit_lists[r], sizeof unit_lists[r], "%s", lay->fields[f].row_unit);
+    else
+      family_list(roles[r].family, "|", unit_lists[r], sizeof unit_lists[r]);
     cols[nc] = (vl_csv_column){.name = lay->fields[f].text,
                                .units = unit_lists[r],
                                .sign = (r == R_TEMP || r == R_SET) ? VL_CSV_ANY : VL_CSV_POSITIVE};
@@ -963,11 +1224,36 @@ static size_t csv_columns(layout *lay, vl_csv_column *cols, char (*unit_lists)[1
   return nc;
 }
 
+/* Value of role r in row k of csv, in SI units (moduli as tensile: shear
+ * ones times 2 (1 + nu)). */
+static double si_value(const vl_csv *csv, size_t k, const layout *lay, role r) {
+  double v = vl_csv_value(csv, k, (size_t)lay->col_of_role[r]) * lay->unit[r]->factor;
+  if (roles[r].family == U_MODULUS && lay->shear) v *= lay->shear_factor;
+  return v;
+}
+
+/* A redundant column (tan delta or |E*|) that disagrees with the pair the
+ * moduli came from: one problem naming the line. */
+static void check_redundant(const vl_measured *m, size_t k, const layout *lay, role r,
+                            double given, double derived, vl_problems *pr) {
+  if (fabs(given - derived) <= TAN_CONSISTENCY * derived) return;
+  int f = lay->field_of_role[r];
+  const char *what = r == R_TAN ? "tan delta" : r == R_ABS ? "|E*|" : "E''";
+  const char *from = r == R_TAN   ? "E''/E'"
+                     : r == R_ABS ? "sqrt(E'^2 + E''^2)"
+                                  : "|E*| tan delta / sqrt(1 + tan delta^2)";
+  vl_problems_add(pr, m->line[k],
+                  "%s:%zu: column '%s' (field %d): %s %.6g differs from %s = %.6g by more than "
+                  "%.0f %% (are the columns mixed up?)",
+                  lay->src, m->line[k], lay->fields[f].text, f + 1, what, given, from, derived,
+                  100.0 * TAN_CONSISTENCY);
+}
+
 /* E' and E'' (and J', J'' for compliances) of point k from row k of csv in
- * SI units: from J' and J'', or E' with E'' and/or tan delta, which must
- * then agree. */
-static vl_status point_moduli(vl_measured *m, size_t k, const vl_csv *csv, const layout *lay,
-                              vl_error *err) {
+ * SI units: from J' and J'', or E' with E'' or tan delta, or |E*| or E''
+ * with tan delta; a redundant column must agree (problems in pr). */
+static void point_moduli(vl_measured *m, size_t k, const vl_csv *csv, const layout *lay,
+                         vl_problems *pr) {
   const int *cr = lay->col_of_role;
   if (m->kind == VL_DMA_COMPLIANCE) {
     double j1 = vl_csv_value(csv, k, (size_t)cr[R_J1]) * lay->unit[R_J1]->factor;
@@ -977,60 +1263,96 @@ static vl_status point_moduli(vl_measured *m, size_t k, const vl_csv *csv, const
     m->j2_per_pa[k] = j2;
     m->storage_pa[k] = j1 / mag2;
     m->loss_pa[k] = j2 / mag2;
-    return VL_OK;
+    return;
   }
-  double e1 = vl_csv_value(csv, k, (size_t)cr[R_STORAGE]) * lay->unit[R_STORAGE]->factor;
+  double td = cr[R_TAN] >= 0 ? vl_csv_value(csv, k, (size_t)cr[R_TAN]) : NAN;
+  double e1, e2;
+  int from_abs = 0;
+  if (cr[R_STORAGE] >= 0) {
+    e1 = si_value(csv, k, lay, R_STORAGE);
+    e2 = cr[R_LOSS] >= 0 ? si_value(csv, k, lay, R_LOSS) : td * e1;
+    if (cr[R_LOSS] >= 0 && cr[R_TAN] >= 0) check_redundant(m, k, lay, R_TAN, td, e2 / e1, pr);
+  } else if (cr[R_ABS] >= 0) { /* with tan delta: |E*| (cos d, sin d) */
+    double a = si_value(csv, k, lay, R_ABS);
+    e1 = a / sqrt(1.0 + td * td);
+    e2 = e1 * td;
+    from_abs = 1;
+    if (cr[R_LOSS] >= 0) check_redundant(m, k, lay, R_LOSS, si_value(csv, k, lay, R_LOSS), e2, pr);
+  } else { /* E'' with tan delta */
+    e2 = si_value(csv, k, lay, R_LOSS);
+    e1 = e2 / td;
+  }
+  if (cr[R_ABS] >= 0 && !from_abs)
+    check_redundant(m, k, lay, R_ABS, si_value(csv, k, lay, R_ABS), hypot(e1, e2), pr);
   m->storage_pa[k] = e1;
-  if (cr[R_LOSS] < 0) {
-    m->loss_pa[k] = vl_csv_value(csv, k, (size_t)cr[R_TAN]) * e1;
-    return VL_OK;
-  }
-  m->loss_pa[k] = vl_csv_value(csv, k, (size_t)cr[R_LOSS]) * lay->unit[R_LOSS]->factor;
-  if (cr[R_TAN] >= 0) {
-    double td = vl_csv_value(csv, k, (size_t)cr[R_TAN]), ratio = m->loss_pa[k] / e1;
-    if (fabs(td - ratio) > TAN_CONSISTENCY * ratio) {
-      vl_error_set(err,
-                   "%s:%zu: column '%s' (field %d): tan delta %.6g differs from E''/E' = "
-                   "%.6g by more than %.0f %% (are the columns mixed up?)",
-                   lay->src, m->line[k], lay->fields[lay->field_of_role[R_TAN]].text,
-                   lay->field_of_role[R_TAN] + 1, td, ratio, 100.0 * TAN_CONSISTENCY);
-      return VL_EINPUT;
-    }
-  }
-  return VL_OK;
+  m->loss_pa[k] = e2;
+}
+
+/* A modulus of point k outside [lo, hi] Pa: one problem naming the likely
+ * unit mistake ("MPa numbers under a Pa header?"). */
+static void check_modulus(const vl_measured *m, size_t k, const layout *lay, const char *what,
+                          double v, double lo, double hi, vl_problems *pr) {
+  if (v >= lo && v <= hi) return;
+  int f = m->kind == VL_DMA_COMPLIANCE ? lay->field_of_role[R_J1] : storage_field(lay);
+  if (!strcmp(what, "E''") && lay->field_of_role[R_LOSS] >= 0) f = lay->field_of_role[R_LOSS];
+  const unit_def *u = lay->unit[lay->fields[f].r];
+  char hint[160] = "a unit mistake?";
+  if (m->kind != VL_DMA_COMPLIANCE && v < lo && u->factor < 1e9)
+    snprintf(hint, sizeof hint, "MPa or GPa numbers under the unit %s?", u->name);
+  if (m->kind != VL_DMA_COMPLIANCE && v > hi && u->factor > 1.0)
+    snprintf(hint, sizeof hint, "Pa numbers under the unit %s?", u->name);
+  vl_problems_add(pr, m->line[k],
+                  "%s:%zu: column '%s' (field %d): %s = %.4g Pa%s lies outside the %g to %g Pa "
+                  "a rubber's can have: %s",
+                  lay->src, m->line[k], lay->fields[f].text, f + 1, what, v,
+                  lay->shear ? " (2 (1 + nu) times the shear modulus)" : "", lo, hi, hint);
 }
 
 /* Point k of m from row k of csv, in SI units: line, frequency, moduli,
  * temperature (tref_c, or 0 if NAN, without a temperature column) and set
- * value (when set is not NULL). */
-static vl_status convert_point(vl_measured *m, size_t k, const vl_csv *csv, const layout *lay,
-                               double tref_c, double *set, vl_error *err) {
+ * value (when set is not NULL); implausible values go to pr. */
+static void convert_point(vl_measured *m, size_t k, const vl_csv *csv, const layout *lay,
+                          double tref_c, double *set, vl_problems *pr) {
   const int *cr = lay->col_of_role;
+  size_t before = pr->total;
   m->line[k] = csv->lines[k];
   m->omega_rad_s[k] = vl_csv_value(csv, k, (size_t)cr[R_FREQ]) * lay->unit[R_FREQ]->factor;
-  vl_status st = point_moduli(m, k, csv, lay, err);
-  if (st != VL_OK) return st;
+  point_moduli(m, k, csv, lay, pr);
   if (!(isfinite(m->omega_rad_s[k]) && isfinite(m->storage_pa[k]) && isfinite(m->loss_pa[k]) &&
         m->storage_pa[k] > 0.0 && m->loss_pa[k] > 0.0 && m->omega_rad_s[k] > 0.0)) {
-    vl_error_set(err, "%s:%zu: a value is out of range after conversion to SI units", lay->src,
-                 m->line[k]);
-    return VL_EINPUT;
+    vl_problems_add(pr, m->line[k], "%s:%zu: a value is out of range after conversion to SI units",
+                    lay->src, m->line[k]);
+    return;
+  }
+  if (pr->total == before) {
+    check_modulus(m, k, lay, "E'", m->storage_pa[k], MODULUS_MIN_PA, MODULUS_MAX_PA, pr);
+    if (pr->total == before)
+      check_modulus(m, k, lay, "E''", m->loss_pa[k], LOSS_MIN_PA, MODULUS_MAX_PA, pr);
   }
   if (!m->has_temperature) {
     m->temperature_c[k] = isnan(tref_c) ? 0.0 : tref_c;
-    return VL_OK;
+    return;
   }
   double raw = vl_csv_value(csv, k, (size_t)cr[R_TEMP]);
   double t = raw + lay->unit[R_TEMP]->offset;
+  int tf = lay->field_of_role[R_TEMP], kelvin = lay->unit[R_TEMP]->offset != 0.0;
   if (!(t > -273.15)) {
-    vl_error_set(err, "%s:%zu: column '%s' (field %d): %.6g %s is not above absolute zero",
-                 lay->src, m->line[k], lay->fields[lay->field_of_role[R_TEMP]].text,
-                 lay->field_of_role[R_TEMP] + 1, raw, lay->unit[R_TEMP]->name);
-    return VL_EINPUT;
+    vl_problems_add(pr, m->line[k], "%s:%zu: column '%s' (field %d): %.6g %s is not above "
+                    "absolute zero%s",
+                    lay->src, m->line[k], lay->fields[tf].text, tf + 1, raw,
+                    lay->unit[R_TEMP]->name, kelvin ? " (Celsius numbers under a K unit?)" : "");
+  } else if (t < TEMP_MIN_C || t > TEMP_MAX_C) {
+    vl_problems_add(pr, m->line[k],
+                    "%s:%zu: column '%s' (field %d): %.6g %s = %.4g C lies outside the %g to %g C "
+                    "of a DMA measurement: %s",
+                    lay->src, m->line[k], lay->fields[tf].text, tf + 1, raw,
+                    lay->unit[R_TEMP]->name, t, TEMP_MIN_C, TEMP_MAX_C,
+                    kelvin ? "Celsius numbers under a K unit?"
+                           : t > TEMP_MAX_C ? "kelvin numbers under a C unit (give K)?"
+                                            : "a unit mistake?");
   }
   m->temperature_c[k] = t;
   if (set) set[k] = vl_csv_value(csv, k, (size_t)cr[R_SET]);
-  return VL_OK;
 }
 
 /* The one isotherm of a file without temperatures (a master curve). */
@@ -1081,18 +1403,118 @@ static vl_status fit_master_curve(vl_measured *m, const vl_dma_options *o, vl_er
   return st;
 }
 
+/* The notes of a successful read: the dialect, the ignored columns, the
+ * shear conversion. */
+static void read_notes(vl_measured *m, const layout *lay, const vl_dma_options *o) {
+  m->delimiter = lay->dialect.delimiter;
+  m->decimal_comma = lay->dialect.decimal_comma;
+  m->n_ignored = lay->n_ignored;
+  m->shear = lay->shear;
+  if (lay->dialect.delimiter != ',' || lay->dialect.decimal_comma)
+    note(m, "read as %s-separated%s", vl_dialect_delimiter_name(lay->dialect.delimiter),
+         lay->dialect.decimal_comma ? " with decimal commas" : "");
+  if (lay->n_ignored)
+    note(m, "ignored %zu column%s not used for the fit: %s", lay->n_ignored,
+         lay->n_ignored == 1 ? "" : "s", lay->ignored);
+  if (lay->shear) {
+    char cols[3 * (CELL_MAX + 4)] = "";
+    const role mods[3] = {R_STORAGE, R_LOSS, R_ABS};
+    for (int i = 0; i < 3; i++) {
+      int f = lay->field_of_role[mods[i]];
+      size_t len = strlen(cols);
+      if (f >= 0)
+        snprintf(cols + len, sizeof cols - len, "%s'%s'", len ? ", " : "", lay->fields[f].text);
+    }
+    note(m,
+         "shear moduli (%s) converted to tensile ones: E = 2 (1 + nu) G = %.6g G with Poisson "
+         "ratio nu = %.6g (the --nu given, else 0.5)",
+         cols, lay->shear_factor, o->nu);
+  } else if (lay->field_of_role[R_STORAGE] >= 0 &&
+             lay->fields[lay->field_of_role[R_STORAGE]].k == K_GENERIC) {
+    note(m, "'%s' read as the tensile storage modulus E' (if the data are shear moduli G', say "
+            "so: they are converted with E = 2 (1 + nu) G)",
+         lay->fields[lay->field_of_role[R_STORAGE]].text);
+  }
+}
+
+/* Reads the numbers of text (dialect in lay) into m's points in SI units,
+ * *set (the set column, or NULL) allocated for the caller. Every
+ * implausible point is reported at once. */
+static vl_status read_points(const char *text, size_t len, layout *lay, const vl_dma_options *o,
+                             vl_measured *m, double **set, vl_error *err) {
+  vl_csv csv;
+  vl_csv_column cols[R_COUNT];
+  char unit_lists[R_COUNT][160];
+  vl_csv_options copt = {.ignore_unknown = 1,
+                         .delimiter = lay->dialect.delimiter,
+                         .decimal_comma = lay->dialect.decimal_comma};
+  size_t nc = csv_columns(lay, cols, unit_lists);
+  vl_status st = vl_csv_read_text_opts(text, len, lay->src, cols, nc, &copt, &csv, err);
+  if (st != VL_OK) return st;
+  const int *cr = lay->col_of_role;
+  if (csv.n_rows > VL_DMA_MAX_POINTS) {
+    vl_error_set(err, "%s:%zu: more than %d data points: thin the data first", lay->src,
+                 csv.lines[VL_DMA_MAX_POINTS], VL_DMA_MAX_POINTS);
+    st = VL_EINPUT;
+    goto cleanup;
+  }
+  m->n = csv.n_rows;
+  m->kind = cr[R_J1] >= 0                        ? VL_DMA_COMPLIANCE
+            : cr[R_STORAGE] >= 0 && cr[R_LOSS] >= 0 ? VL_DMA_STORAGE_LOSS
+                                                    : VL_DMA_STORAGE_TAN_DELTA;
+  m->has_temperature = cr[R_TEMP] >= 0;
+  if ((st = alloc_arrays(m, m->n, m->kind == VL_DMA_COMPLIANCE)) != VL_OK) {
+    vl_error_set(err, "%s: out of memory", lay->src);
+    goto cleanup;
+  }
+  if (cr[R_SET] >= 0 && cr[R_TEMP] >= 0 && !(*set = malloc(m->n * sizeof **set))) {
+    vl_error_set(err, "%s: out of memory", lay->src);
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  vl_problems pr;
+  vl_problems_init(&pr);
+  for (size_t k = 0; k < m->n; k++)
+    convert_point(m, k, &csv, lay, o->tref_c, *set, &pr);
+  if (pr.total > 0) {
+    vl_problems_finish(&pr, lay->src, err);
+    st = VL_EINPUT;
+  }
+
+cleanup:
+  vl_csv_free(&csv);
+  return st;
+}
+
+/* The warnings of a finished import: large WLF residual, large fit error. */
+static void fit_warnings(vl_measured *m) {
+  if (m->n_isotherms >= 3 && m->wlf_rms > VL_DMA_WARN_WLF_RMS) {
+    note(m,
+         "warning: the WLF equation misses the shifts by %.2f decades rms (above %.2g): the "
+         "isotherms do not follow one WLF law (not thermorheologically simple, or a shift is "
+         "wrong); the master curve uses the shifts themselves",
+         m->wlf_rms, VL_DMA_WARN_WLF_RMS);
+    m->n_warnings++;
+  }
+  if (m->fit.rms_rel_storage > VL_DMA_WARN_FIT_RMS || m->fit.rms_rel_loss > VL_DMA_WARN_FIT_RMS) {
+    note(m,
+         "warning: the Prony series misses the master curve by %.1f %% rms in E' and %.1f %% "
+         "in E'' (above %.0f %%): the data are represented only roughly (E'' inconsistent with "
+         "E', isotherms that do not superpose, or outliers)",
+         100.0 * m->fit.rms_rel_storage, 100.0 * m->fit.rms_rel_loss,
+         100.0 * VL_DMA_WARN_FIT_RMS);
+    m->n_warnings++;
+  }
+}
+
 vl_status vl_measured_read_text(const char *text, size_t len, const char *source,
                                 const vl_dma_options *opts, vl_measured *out, vl_error *err) {
   vl_status st = VL_OK;
   vl_dma_options o = opts ? *opts : vl_dma_options_default();
   layout lay;
-  vl_csv csv;
-  vl_csv_column cols[R_COUNT];
-  char unit_lists[R_COUNT][160];
   order_key *ord = NULL;
   double *set = NULL;
   memset(out, 0, sizeof *out);
-  memset(&csv, 0, sizeof csv);
   memset(&lay, 0, sizeof lay);
   out->wlf_c1 = out->wlf_c2_k = out->wlf_rms = NAN;
   out->tref_c = NAN;
@@ -1107,35 +1529,15 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
     st = VL_EINTERNAL;
     goto cleanup;
   }
-  if ((st = scan_header(text ? text : "", len, &lay, err)) != VL_OK) goto cleanup;
+  if (!text) text = "";
+  if ((st = vl_import_refuse_spreadsheet(text, len, lay.src, err)) != VL_OK) goto cleanup;
+  if ((st = vl_import_detect_dialect(text, len, lay.src, &lay.dialect, err)) != VL_OK)
+    goto cleanup;
+  if ((st = scan_header(text, len, &lay, &o, err)) != VL_OK) goto cleanup;
   if ((st = resolve_units(&lay, &o, err)) != VL_OK) goto cleanup;
-  size_t nc = csv_columns(&lay, cols, unit_lists);
-  if ((st = vl_csv_read_text(text, len, lay.src, cols, nc, &csv, err)) != VL_OK) goto cleanup;
-  if (csv.n_rows > VL_DMA_MAX_POINTS) {
-    vl_error_set(err, "%s:%zu: more than %d data points: thin the data first", lay.src,
-                 csv.lines[VL_DMA_MAX_POINTS], VL_DMA_MAX_POINTS);
-    st = VL_EINPUT;
-    goto cleanup;
-  }
-
-  int *cr = lay.col_of_role;
   vl_measured *m = out;
-  m->n = csv.n_rows;
-  m->kind = cr[R_J1] >= 0     ? VL_DMA_COMPLIANCE
-            : cr[R_LOSS] >= 0 ? VL_DMA_STORAGE_LOSS
-                              : VL_DMA_STORAGE_TAN_DELTA;
-  m->has_temperature = cr[R_TEMP] >= 0;
-  if ((st = alloc_arrays(m, m->n, m->kind == VL_DMA_COMPLIANCE)) != VL_OK) {
-    vl_error_set(err, "%s: out of memory", lay.src);
-    goto cleanup;
-  }
-  if (cr[R_SET] >= 0 && cr[R_TEMP] >= 0 && !(set = malloc(m->n * sizeof *set))) {
-    vl_error_set(err, "%s: out of memory", lay.src);
-    st = VL_ENOMEM;
-    goto cleanup;
-  }
-  for (size_t k = 0; k < m->n; k++)
-    if ((st = convert_point(m, k, &csv, &lay, o.tref_c, set, err)) != VL_OK) goto cleanup;
+  if ((st = read_points(text, len, &lay, &o, m, &set, err)) != VL_OK) goto cleanup;
+  read_notes(m, &lay, &o);
 
   if (m->has_temperature)
     st = group_isotherms(m, set, &lay, err);
@@ -1159,18 +1561,18 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
   } else if (m->n_isotherms == 1) {
     m->iso_log10_a_t[0] = 0.0;
   }
-  st = fit_master_curve(m, &o, err);
+  if ((st = fit_master_curve(m, &o, err)) == VL_OK) fit_warnings(m);
 
 cleanup:
-  vl_csv_free(&csv);
   free(ord);
   free(set);
   if (st != VL_OK) {
     vl_measured_free(out);
-    /* messages quote header cells and go to a terminal: no control bytes */
+    /* messages quote header cells and go to a terminal: no control bytes
+     * (but the line breaks between the sentences of a problem list) */
     if (err)
       for (char *c = err->msg; *c; c++)
-        if ((unsigned char)*c < 0x20 || *c == 0x7f) *c = '?';
+        if (((unsigned char)*c < 0x20 && *c != '\n') || *c == 0x7f) *c = '?';
   }
   return st;
 }

@@ -18,6 +18,8 @@
 #include "viscolube/csv.h"
 #include "viscolube/roughness.h"
 
+#include "abel.h"
+
 #define PI 3.14159265358979323846
 #define TWO_PI 6.283185307179586476925287
 /* Longest field read as a number, and the excerpt quoted in a message. */
@@ -1178,5 +1180,33 @@ cleanup:
   bins_free(&b);
   vl_psd_free(&tab);
   if (st != VL_OK) vl_topography_spectrum_free(out);
+  return st;
+}
+
+/* ---- the transform for other readers (abel.h) ---------------------------- */
+
+vl_status vl_abel_profile_to_surface(size_t n, const double *q, const double *c1,
+                                     const size_t *weight, double *c2, double *tail_out) {
+  vl_status st = VL_OK;
+  double *mono = malloc(n * sizeof *mono);
+  size_t *ones = weight ? NULL : malloc(n * sizeof *ones);
+  if (!mono || (!weight && !ones)) {
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  for (size_t k = 0; ones && k < n; k++)
+    ones[k] = 1;
+  if (!non_increasing(c1, weight ? weight : ones, n, mono)) {
+    st = VL_ENOMEM;
+    goto cleanup;
+  }
+  double tail = tail_slope(q, mono, n);
+  for (size_t j = 0; j < n; j++)
+    c2[j] = inverse_abel(q, mono, n, tail, j);
+  if (tail_out) *tail_out = tail;
+
+cleanup:
+  free(mono);
+  free(ones);
   return st;
 }
