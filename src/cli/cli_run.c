@@ -452,9 +452,11 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   }
   st = check_names(&scene, &err);
   if (st != VL_OK) goto fail;
-  st = check_outputs(&scene, out_dir, &err);
-  if (st != VL_OK) goto fail;
+  /* the database first: a command that cannot open it leaves no folder
+   * behind; then --out, still before anything is computed */
   st = vl_db_open(g->db_path, &db, &err);
+  if (st != VL_OK) goto fail;
+  st = check_outputs(&scene, out_dir, &err);
   if (st != VL_OK) goto fail;
   vl_json w, *jw = json ? &w : NULL;
   vl_json_init(&w, stdout, 10);
