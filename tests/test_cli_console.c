@@ -57,7 +57,8 @@ static size_t lines_starting(const char *s, const char *prefix) {
 
 static size_t count_lines(const char *s) {
   size_t n = 0;
-  for (; s && *s; s++) n += *s == '\n';
+  for (; s && *s; s++)
+    n += *s == '\n';
   return n;
 }
 
@@ -205,8 +206,8 @@ static void test_names_refused(void **state) {
   static const char *const bad[] = {".", "..", "a/b", "../x", "a\\\\b", "''"};
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
     const char *needle = i < 2 ? "folder" : i < 5 ? "path separator" : "empty";
-    vl_test_expect_fail(2, needle, NULL, "compound add %s --prony %s --e-inf 36e6 --nu 0.5",
-                        bad[i], prony);
+    vl_test_expect_fail(2, needle, NULL, "compound add %s --prony %s --e-inf 36e6 --nu 0.5", bad[i],
+                        prony);
     vl_test_expect_fail(2, needle, NULL, "surface add %s --psd %s", bad[i], psd);
     vl_test_expect_fail(2, needle, NULL, "fluid add %s --viscosity 0.1", bad[i]);
   }
@@ -226,8 +227,7 @@ static void test_names_refused(void **state) {
   /* a multi-fluid scene writes DIR/<fluid>/: '..' is refused, nothing
    * written (not even DIR) */
   const char *scene = rough_scene("dots.ini", "1e-6", "model-1e-4, ..");
-  vl_test_expect_fail(2, "[materials] fluid", "folder", "run %s --out %s/dots", scene,
-                      vl_test_dir);
+  vl_test_expect_fail(2, "[materials] fluid", "folder", "run %s --out %s/dots", scene, vl_test_dir);
   snprintf(path, sizeof path, "%s/dots", vl_test_dir);
   assert_false(exists(path));
 }

@@ -103,8 +103,8 @@ static void run_consumer(const char *exe, const char *label) {
     text = vl_test_read_file(out);
     char want[1400];
     snprintf(want, sizeof want, "%s/%s/libviscolube.so.", prefix, env("VL_INSTALL_LIBDIR"));
-    if (!text || !strstr(text, want)) fail_msg("%s consumer: not linked to %s: %s", label, want,
-                                               text ? text : "");
+    if (!text || !strstr(text, want))
+      fail_msg("%s consumer: not linked to %s: %s", label, want, text ? text : "");
     free(text);
   }
 }

@@ -116,8 +116,8 @@ static void test_flow_factors_persson_emt(void **state) {
   const char *csv = vl_test_scratch("ff.csv", NULL);
   /* from below the percolation point (x_p = 6.30e-4, docs/FLOW_FACTORS.md)
    * to the Tripp regime */
-  char *out = run_ok("surface flow-factors paper-0.5um --u-range 1e-5,30 --points 120 --out %s",
-                     csv);
+  char *out =
+      run_ok("surface flow-factors paper-0.5um --u-range 1e-5,30 --points 120 --out %s", csv);
   assert_non_null(strstr(out, "surface paper-0.5um, model persson-emt: h_rms 5e-07 m, film "
                               "cut-off 1e-09 m, percolation at u/h_rms = 0.00063"));
   assert_non_null(strstr(out, " u_over_hrms contact_fraction        phi_p        phi_s"));
@@ -219,8 +219,8 @@ static void test_flow_factors_other_models(void **state) {
 
 static void test_flow_factors_plot(void **state) {
   (void)state;
-  char *out = run_ok("surface flow-factors paper-0.5um --points 40 --out %s/fig.csv --plot",
-                     vl_test_dir);
+  char *out =
+      run_ok("surface flow-factors paper-0.5um --points 40 --out %s/fig.csv --plot", vl_test_dir);
   assert_non_null(strstr(out, "fig.png and "));
   free(out);
   const char *ext[2] = {"png", "svg"};
@@ -273,7 +273,8 @@ static void test_flow_factors_refusals(void **state) {
   vl_test_expect_fail(2, "missing NAME", NULL, "surface flow-factors --points 5");
   vl_test_expect_fail(2, "unknown verb 'flow-factors'", NULL, "compound flow-factors x");
   /* an unknown surface, with the closest names */
-  vl_test_expect_fail(3, "no surface named 'paper-0.5'", "did you mean", "surface flow-factors "
+  vl_test_expect_fail(3, "no surface named 'paper-0.5'", "did you mean",
+                      "surface flow-factors "
                       "paper-0.5");
   /* an unwritable CSV: nothing on stdout */
   vl_test_expect_fail(6, "nodir/ff.csv", NULL, "%s --out %s/nodir/ff.csv", ff, vl_test_dir);

@@ -219,8 +219,8 @@ static int cli(const limits *lim, const char *db, char **err_text, ...) {
 /* A clear sentence for a failed write: says what failed and that nothing
  * was changed. */
 static void assert_clear_write_error(const char *err, const char *what) {
-  if (!err || !strstr(err, what) || !strstr(err, "nothing was changed") || strchr(err, '\n') !=
-      strrchr(err, '\n'))
+  if (!err || !strstr(err, what) || !strstr(err, "nothing was changed") ||
+      strchr(err, '\n') != strrchr(err, '\n'))
     fail_msg("unclear message (wanted '%s' and 'nothing was changed', one line): %s", what,
              err ? err : "(none)");
 }
@@ -274,8 +274,8 @@ static int limit_sweep(const char *label, char *const args[]) {
       break;
     }
     failed++;
-    if (rc != EXIT_EIO) fail_msg("%s, limit +%d pages: exit %d, not the I/O status: %s", label, k,
-                                 rc, err);
+    if (rc != EXIT_EIO)
+      fail_msg("%s, limit +%d pages: exit %d, not the I/O status: %s", label, k, rc, err);
     assert_clear_write_error(err, "full");
     if (!vl_test_same_bytes(db, &before))
       fail_msg("%s, limit +%d pages: the database file changed", label, k);
@@ -340,16 +340,16 @@ static void test_file_size_limit_compound(void **state) {
   vl_test_snapshot before = vl_test_take(db);
   limits lim = {(long long)before.n, 0};
   char *err = NULL;
-  int rc = cli(&lim, db, &err, "compound", "add", "big", "--prony", prony, "--e-inf", "1e9",
-               "--nu", "0.5", NULL);
+  int rc = cli(&lim, db, &err, "compound", "add", "big", "--prony", prony, "--e-inf", "1e9", "--nu",
+               "0.5", NULL);
   assert_int_equal(rc, EXIT_EIO);
   assert_clear_write_error(err, "full");
   free(err);
   assert_true(vl_test_same_bytes(db, &before));
   assert_int_not_equal(journal_state(db), 2);
   /* without the limit the same command works */
-  assert_int_equal(cli(NULL, db, NULL, "compound", "add", "big", "--prony", prony, "--e-inf",
-                       "1e9", "--nu", "0.5", NULL),
+  assert_int_equal(cli(NULL, db, NULL, "compound", "add", "big", "--prony", prony, "--e-inf", "1e9",
+                       "--nu", "0.5", NULL),
                    0);
   free(before.bytes);
 }
@@ -499,9 +499,10 @@ static void test_readonly_file_with_hot_journal(void **state) {
   if (pid == 0) {
     sqlite3 *h;
     if (sqlite3_open(db, &h) != SQLITE_OK) _exit(1);
-    sqlite3_exec(h, "PRAGMA cache_size = 2; BEGIN; UPDATE surface SET description = "
-                    "printf('%.*c', 3000, 'x'); UPDATE fluid SET description = "
-                    "printf('%.*c', 3000, 'y');",
+    sqlite3_exec(h,
+                 "PRAGMA cache_size = 2; BEGIN; UPDATE surface SET description = "
+                 "printf('%.*c', 3000, 'x'); UPDATE fluid SET description = "
+                 "printf('%.*c', 3000, 'y');",
                  NULL, NULL, NULL);
     _exit(0); /* no COMMIT, no close: as a kill would leave it */
   }
@@ -515,8 +516,7 @@ static void test_readonly_file_with_hot_journal(void **state) {
   printf("read-only file with a hot journal: fluid list: exit %d, message: %s", rc,
          err ? err : "(none)\n");
   assert_int_equal(rc, EXIT_EDB);
-  if (!strstr(err, "interrupted") || !strstr(err, "writable"))
-    fail_msg("unclear message: %s", err);
+  if (!strstr(err, "interrupted") || !strstr(err, "writable")) fail_msg("unclear message: %s", err);
   free(err);
   assert_int_equal(journal_state(db), 2); /* still there: nothing lost */
   /* writable again: the next run rolls the journal back, content as before */

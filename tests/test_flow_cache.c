@@ -44,8 +44,7 @@ static vl_psd get_psd(vl_db *db, const char *name) {
   return psd;
 }
 
-static vl_emt_table *lookup(vl_db *db, const char *name, const vl_psd *psd, double cut,
-                            bool *hit) {
+static vl_emt_table *lookup(vl_db *db, const char *name, const vl_psd *psd, double cut, bool *hit) {
   vl_emt_table *t = NULL;
   vl_error err;
   if (vl_db_flow_table(db, name, psd, cut, 0, &t, hit, &err) != VL_OK)

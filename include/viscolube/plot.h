@@ -30,8 +30,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "viscolube/results.h"
 #include "viscolube/output.h"
+#include "viscolube/results.h"
 #include "viscolube/scene.h"
 #include "viscolube/status.h"
 
@@ -172,8 +172,8 @@ vl_status vl_plot_shifts(const char *stem, size_t n, const double *t_c, const do
 
 /* A flow-factor table of one surface (flow_factors.h) against x = u/h_rms. */
 typedef struct {
-  size_t n;         /* rows, >= 2 */
-  const double *x;  /* u/h_rms, positive and finite */
+  size_t n;                                              /* rows, >= 2 */
+  const double *x;                                       /* u/h_rms, positive and finite */
   const double *phi_p, *phi_s, *phi_fp, *phi_fs, *phi_f; /* a non-finite value is a gap */
   const double *area_ratio; /* A/A0 of the contact law at x; NULL = not drawn */
   double x_percolation;     /* where pressure flow stops; NAN = not marked */

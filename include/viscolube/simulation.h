@@ -46,10 +46,10 @@ bool vl_simulation_wants_fields(const vl_simulation *sim, size_t i);
 
 vl_contact *vl_simulation_contact(vl_simulation *sim);
 const vl_scene *vl_simulation_scene(const vl_simulation *sim);
-double vl_simulation_eta(const vl_simulation *sim);      /* Pa s, 0 if no fluid named; with
-                                                          * [effects] temperature and fluid on:
-                                                          * at the scene's temperature */
-double vl_simulation_tau(const vl_simulation *sim);      /* s, one-term compounds, else 0 */
+double vl_simulation_eta(const vl_simulation *sim);             /* Pa s, 0 if no fluid named; with
+                                                                 * [effects] temperature and fluid on:
+                                                                 * at the scene's temperature */
+double vl_simulation_tau(const vl_simulation *sim);             /* s, one-term compounds, else 0 */
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim); /* at the scene's temperature */
 /* [effects] temperature = on: the scene's temperature_c (C) and the WLF
  * shift factor a_T its compound's times were multiplied by (1 in an

@@ -13,16 +13,16 @@ typedef void (*vl_sweep_callback)(void *user, size_t index, size_t total, const 
                                   const vl_contact *contact);
 
 typedef struct {
-  int max_subdivisions;  /* a failed step is split in 2, 4, ... up to 2^this */
+  int max_subdivisions; /* a failed step is split in 2, 4, ... up to 2^this */
 } vl_sweep_options;
 
 typedef struct {
   size_t converged, failed;
-  long newton_iterations;  /* all solves, including sub-steps */
-  size_t substeps;         /* extra solves inserted by step control */
-  size_t fresh_starts;     /* points retried from the Hertz guess after continuation failed */
-  size_t starts_below;     /* points retried from a fresh start at a lower speed */
-  size_t starts_above;     /* points retried from a fresh start at a higher speed */
+  long newton_iterations; /* all solves, including sub-steps */
+  size_t substeps;        /* extra solves inserted by step control */
+  size_t fresh_starts;    /* points retried from the Hertz guess after continuation failed */
+  size_t starts_below;    /* points retried from a fresh start at a lower speed */
+  size_t starts_above;    /* points retried from a fresh start at a higher speed */
   double seconds;
 } vl_sweep_stats;
 

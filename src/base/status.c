@@ -22,10 +22,12 @@ void vl_error_prefix(vl_error *err, const char *fmt, ...) {
   va_end(ap);
   memcpy(old, err->msg, sizeof old);
   /* prefix + ": " + old, truncated to the buffer */
-  size_t lp = strnlen(prefix, sizeof prefix), lo = strnlen(old, sizeof old), cap = sizeof err->msg - 1;
+  size_t lp = strnlen(prefix, sizeof prefix), lo = strnlen(old, sizeof old),
+         cap = sizeof err->msg - 1;
   size_t k = lp < cap ? lp : cap;
   memcpy(err->msg, prefix, k);
-  for (const char *sep = ": "; *sep && k < cap; sep++) err->msg[k++] = *sep;
+  for (const char *sep = ": "; *sep && k < cap; sep++)
+    err->msg[k++] = *sep;
   size_t rest = lo < cap - k ? lo : cap - k;
   memcpy(err->msg + k, old, rest);
   err->msg[k + rest] = '\0';

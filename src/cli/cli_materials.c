@@ -807,8 +807,9 @@ static void surface_line(FILE *out, const vl_db_surface *s) {
 }
 
 static int surface_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--self-affine", NULL, NULL},  {"--hurst", "H", NULL}, {"--q0", "PER_M", NULL},
-                   {"--q1", "PER_M", NULL},        {"--hrms", "M", NULL},  {"--psd", "FILE", NULL},
+  option opts[] = {{"--self-affine", NULL, NULL},   {"--hurst", "H", NULL},
+                   {"--q0", "PER_M", NULL},         {"--q1", "PER_M", NULL},
+                   {"--hrms", "M", NULL},           {"--psd", "FILE", NULL},
                    {"--description", "TEXT", NULL}, {"--topography", "FILE", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
@@ -919,8 +920,9 @@ static void fluid_text(FILE *out, const vl_db_fluid *f) {
     double lo = NAN, hi = NAN;
     if (vl_fluid_viscosity(l, f->viscosity_pa_s, f->tref_c, l->tmin_c, &lo, NULL) == VL_OK &&
         vl_fluid_viscosity(l, f->viscosity_pa_s, f->tref_c, l->tmax_c, &hi, NULL) == VL_OK)
-      fprintf(out, "                (through the viscosity above; %.4g Pa s at %.6g C, "
-                   "%.4g Pa s at %.6g C)\n",
+      fprintf(out,
+              "                (through the viscosity above; %.4g Pa s at %.6g C, "
+              "%.4g Pa s at %.6g C)\n",
               lo, l->tmin_c, hi, l->tmax_c);
   } else {
     fprintf(out, "  law           none (known at %.6g C only)\n", f->tref_c);
@@ -933,9 +935,12 @@ static void fluid_line(FILE *out, const vl_db_fluid *f) {
 }
 
 static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--viscosity", "PA_S", NULL},   {"--tref", "C", NULL},
-                   {"--vogel-b", "K", NULL},          {"--vogel-c", "K", NULL},
-                   {"--law-range", "TMIN_C,TMAX_C", NULL}, {"--description", "TEXT", NULL}};
+  option opts[] = {{"--viscosity", "PA_S", NULL},
+                   {"--tref", "C", NULL},
+                   {"--vogel-b", "K", NULL},
+                   {"--vogel-c", "K", NULL},
+                   {"--law-range", "TMIN_C,TMAX_C", NULL},
+                   {"--description", "TEXT", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -1157,8 +1162,7 @@ static int plot_compound(const context *cx, vl_db *db, const vl_db_compound *c,
   int shifts = fit->has_fit && fit->n_shifts >= 2;
   if (n + n_fit == 0) {
     st = VL_EINPUT;
-    vl_error_set(&err, "option --plot: compound '%s' is elastic and has no measured data",
-                 c->name);
+    vl_error_set(&err, "option --plot: compound '%s' is elastic and has no measured data", c->name);
   } else if (vl_cli_make_dirs(dir) != 0) {
     st = VL_EIO;
     vl_error_set(&err, "%s: cannot create directory: %s", dir, strerror(errno));
@@ -1255,17 +1259,18 @@ static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **
 
 /* `surface flow-factors NAME ...`: parsed here, computed in cli_surface.c. */
 static int do_flow_factors(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--model", "MODEL", NULL},      {"--u-range", "MIN,MAX", NULL},
-                   {"--points", "N", NULL},         {"--film-cutoff", "M", NULL},
-                   {"--out", "FILE", NULL},         {"--json", NULL, NULL},
+  option opts[] = {{"--model", "MODEL", NULL}, {"--u-range", "MIN,MAX", NULL},
+                   {"--points", "N", NULL},    {"--film-cutoff", "M", NULL},
+                   {"--out", "FILE", NULL},    {"--json", NULL, NULL},
                    {"--plot", NULL, NULL}};
   const char *pos[1], *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, 7, pos, 1, &n_pos)) >= 0) return rc;
   if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
-  vl_cli_flow_factor_args a = {opts[0].value, opts[1].value, opts[2].value, opts[3].value,
-                               opts[4].value, opts[5].value != NULL, opts[6].value != NULL};
+  vl_cli_flow_factor_args a = {opts[0].value,        opts[1].value, opts[2].value,
+                               opts[3].value,        opts[4].value, opts[5].value != NULL,
+                               opts[6].value != NULL};
   return vl_cli_surface_flow_factors(g, name, &a);
 }
 

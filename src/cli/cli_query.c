@@ -20,14 +20,15 @@ typedef struct {
   double film_cutoff_m; /* --film-cutoff; 0: the default */
   int json;
   int plot;
-  int quiet; /* --quiet (or the global one): no warnings, no progress */
+  int quiet;            /* --quiet (or the global one): no warnings, no progress */
   int have_temperature; /* --temperature: compound (WLF) and fluid (its law) at temperature_c */
   double temperature_c;
 } conditions;
 
 /* The strict decimal syntax of every numeric option and CSV cell
  * (vl_csv_parse_double): no hex floats, NaN, Inf or trailing units. */
-static int parse_number(const char *cmd, const char *opt, const char *v, double *out, int positive) {
+static int parse_number(const char *cmd, const char *opt, const char *v, double *out,
+                        int positive) {
   double d = 0.0;
   if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || (positive ? d <= 0.0 : d < 0.0)) {
     fprintf(stderr, "viscolube %s: option %s needs a %s number (got '%s')\n", cmd, opt,
@@ -61,18 +62,24 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
       fprintf(stderr, "viscolube %s: option %s needs a value\n", cmd, o);
       return -1;
     }
-    if (!strcmp(o, "--surface")) c->surface = v;
-    else if (!strcmp(o, "--fluid")) c->fluid = v;
-    else c->flow_factors = v;
+    if (!strcmp(o, "--surface"))
+      c->surface = v;
+    else if (!strcmp(o, "--fluid"))
+      c->fluid = v;
+    else
+      c->flow_factors = v;
     (*i)++;
     return 1;
   }
   if (!strcmp(o, "--load") || !strcmp(o, "--radius") || !strcmp(o, "--sigma-s") ||
       !strcmp(o, "--grid")) {
     if (!parse_number(cmd, o, v, &d, strcmp(o, "--sigma-s") != 0)) return -1;
-    if (!strcmp(o, "--load")) c->load = d;
-    else if (!strcmp(o, "--radius")) c->radius = d;
-    else if (!strcmp(o, "--sigma-s")) c->sigma_s = d;
+    if (!strcmp(o, "--load"))
+      c->load = d;
+    else if (!strcmp(o, "--radius"))
+      c->radius = d;
+    else if (!strcmp(o, "--sigma-s"))
+      c->sigma_s = d;
     else {
       if (d < VL_GRID_MIN || d > VL_GRID_GRADED_MAX || d != floor(d)) {
         fprintf(stderr, "viscolube %s: option --grid needs a whole number in [%d, %d]\n", cmd,
@@ -116,8 +123,8 @@ static vl_status fluid_eta(vl_db *db, const conditions *c, double *eta, vl_error
   if (!c->have_temperature) return vl_db_fluid_get(db, c->fluid, eta, err);
   vl_db_fluid f;
   vl_status st = vl_db_fluid_info(db, c->fluid, &f, err);
-  if (st == VL_OK) st = vl_fluid_viscosity(&f.law, f.viscosity_pa_s, f.tref_c, c->temperature_c,
-                                           eta, err);
+  if (st == VL_OK)
+    st = vl_fluid_viscosity(&f.law, f.viscosity_pa_s, f.tref_c, c->temperature_c, eta, err);
   if (st == VL_EINPUT)
     vl_error_prefix(err, "--temperature %g: fluid '%s'", c->temperature_c, c->fluid);
   return st;
@@ -143,8 +150,8 @@ static const char *model_of(const conditions *c, double *film_cutoff_m) {
   vl_flow_factor_kind k = VL_SCENE_ROUGH_FLOW_FACTORS;
   if (c->flow_factors) vl_flow_factors_parse(c->flow_factors, &k, NULL);
   *film_cutoff_m = k != VL_FLOW_FACTORS_PERSSON_EMT ? 0.0
-                   : c->film_cutoff_m > 0.0        ? c->film_cutoff_m
-                                                   : VL_FILM_CUTOFF_DEFAULT_M;
+                   : c->film_cutoff_m > 0.0         ? c->film_cutoff_m
+                                                    : VL_FILM_CUTOFF_DEFAULT_M;
   return vl_flow_factors_name(k);
 }
 
@@ -276,9 +283,8 @@ static int friction_args(int argc, char **argv, conditions *c, const char **comp
  * fails, continuation from the boundary regime (v0 eta = 1e-12 Pa m), 4
  * points a decade. *sim is the simulation of the last attempt (the caller
  * frees it); stats->converged + failed counts the points solved. */
-static vl_status solve_point(vl_scene *sc, vl_db *db, double speed, double eta,
-                             vl_simulation **sim, vl_point *pt, vl_sweep_stats *stats,
-                             vl_error *err) {
+static vl_status solve_point(vl_scene *sc, vl_db *db, double speed, double eta, vl_simulation **sim,
+                             vl_point *pt, vl_sweep_stats *stats, vl_error *err) {
   vl_status st = VL_OK;
   for (int attempt = 0; st == VL_OK && attempt < 2; attempt++) {
     sc->to = speed * eta;
@@ -308,8 +314,8 @@ static vl_status solve_point(vl_scene *sc, vl_db *db, double speed, double eta,
 
 /* The point as JSON; with --temperature the temperature, shift and
  * viscosity come first in the same object. */
-static void friction_json(const conditions *c, vl_simulation *sim, double eta,
-                          const vl_point *pt, const vl_curve_meta *meta) {
+static void friction_json(const conditions *c, vl_simulation *sim, double eta, const vl_point *pt,
+                          const vl_curve_meta *meta) {
   vl_json w;
   vl_json_init(&w, stdout, 10);
   vl_json_object_begin(&w, VL_JSON_INLINE);
@@ -348,14 +354,14 @@ static void friction_text(const conditions *c, const char *compound, double spee
   printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
          "regime: %s\n  Q = %.3g; %ld Newton iterations, residual %.2g (%zu continuation "
          "points)\n",
-         pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0,
-         100.0 * (1.0 - pt->fluid_load_fraction), vl_regime_name(pt->regime), pt->Q,
-         pt->iterations, pt->residual, stats->converged + stats->failed);
+         pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
+         vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual,
+         stats->converged + stats->failed);
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN,
-                  .quiet = g->quiet};
+  conditions c = {
+      .load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN, .quiet = g->quiet};
   const char *compound = NULL;
   double speed = 0.0;
   int rc = friction_args(argc, argv, &c, &compound, &speed);
@@ -380,13 +386,17 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
   }
   vl_curve_meta meta = {eta, 0.0, vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
   meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
-  if (c.json) friction_json(&c, sim, eta, &pt, &meta);
-  else if (pt.converged) friction_text(&c, compound, speed, sim, eta, &pt, &stats);
+  if (c.json)
+    friction_json(&c, sim, eta, &pt, &meta);
+  else if (pt.converged)
+    friction_text(&c, compound, speed, sim, eta, &pt, &stats);
   fflush(stdout);
   if (!c.json && !c.quiet) vl_cli_print_warnings(stderr, NULL, 1, &pt);
   if (!pt.converged) {
-    fprintf(stderr, "viscolube friction: the solve did not converge at v0 = %g m/s "
-                    "(%ld iterations, residual %.3g)\n", speed, pt.iterations, pt.residual);
+    fprintf(stderr,
+            "viscolube friction: the solve did not converge at v0 = %g m/s "
+            "(%ld iterations, residual %.3g)\n",
+            speed, pt.iterations, pt.residual);
     rc = vl_status_exit_code(VL_ENOCONV);
   }
 done:
@@ -513,7 +523,8 @@ static vl_status compare_prepare(vl_db *db, const compare_args *a, compare_curve
     vl_prony probe;
     st = vl_db_compound_get(db, a->names[k], &probe, err);
   }
-  for (size_t k = 0; st == VL_OK && k < a->nc; k++) st = compound_at(db, &a->c, a->names[k], err);
+  for (size_t k = 0; st == VL_OK && k < a->nc; k++)
+    st = compound_at(db, &a->c, a->names[k], err);
   if (st == VL_OK && a->c.have_temperature) st = fluid_eta(db, &a->c, &cv->eta, err);
   if (st == VL_OK) st = vl_cli_check_out_dir("--out", a->out_dir, err);
   for (size_t k = 0; st == VL_OK && k < a->nc; k++) {
@@ -607,14 +618,17 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
     printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.temperature_c,
            cv->eta);
   printf("%12s", "v0_eta_pa_m");
-  for (size_t k = 0; k < a->nc; k++) printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
+  for (size_t k = 0; k < a->nc; k++)
+    printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
   printf("\n");
   for (size_t i = 0; i < cv->n; i++) {
     printf("%12.4g", cv->pts[i].v0_m_s * cv->eta);
     for (size_t k = 0; k < a->nc; k++) {
       const vl_point *p = &cv->pts[k * cv->n + i];
-      if (p->converged) printf(" %14.5g %14.4g", p->mu, p->u_min_m / cv->hrms[k]);
-      else printf(" %14s %14s", "-", "-");
+      if (p->converged)
+        printf(" %14.5g %14.4g", p->mu, p->u_min_m / cv->hrms[k]);
+      else
+        printf(" %14s %14s", "-", "-");
     }
     printf("\n");
   }
@@ -632,7 +646,8 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
   }
   vl_json_key(&w, "v0_eta_pa_m");
   vl_json_array_begin(&w, VL_JSON_INLINE);
-  for (size_t i = 0; i < cv->n; i++) vl_json_number_digits(&w, cv->pts[i].v0_m_s * cv->eta, 6);
+  for (size_t i = 0; i < cv->n; i++)
+    vl_json_number_digits(&w, cv->pts[i].v0_m_s * cv->eta, 6);
   vl_json_end(&w);
   for (size_t k = 0; k < a->nc; k++) {
     vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0};
@@ -648,8 +663,8 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
 static vl_status compare_plots(const compare_args *a, const compare_curves *cv, vl_error *err) {
   vl_plot_curve curves[MAX_COMPOUNDS];
   for (size_t k = 0; k < a->nc; k++)
-    curves[k] = (vl_plot_curve){a->names[k], cv->n, cv->pts + k * cv->n,
-                                {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
+    curves[k] = (vl_plot_curve){
+        a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.mark_half_load = true;
@@ -678,9 +693,12 @@ static void compare_report(const compare_args *a, const compare_curves *cv) {
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  compare_args a = {.c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN,
-                          .quiet = g->quiet},
-                    .from = 1e-12, .to = 0.1, .points = 45, .out_dir = "out/compare"};
+  compare_args a = {
+      .c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN, .quiet = g->quiet},
+      .from = 1e-12,
+      .to = 0.1,
+      .points = 45,
+      .out_dir = "out/compare"};
   int rc = compare_parse(argc, argv, &a);
   if (rc < 0) rc = compare_check(&a);
   if (rc >= 0) return rc;
@@ -700,11 +718,14 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   snprintf(path, sizeof path, "%s/compare.csv", a.out_dir);
   if (st == VL_OK) st = write_compare_csv(path, &a, &cv, &err);
   if (st != VL_OK) goto done;
-  if (a.c.json) compare_json(&a, &cv);
-  else compare_table(&a, &cv);
+  if (a.c.json)
+    compare_json(&a, &cv);
+  else
+    compare_table(&a, &cv);
   if (a.c.plot && (st = compare_plots(&a, &cv, &err)) != VL_OK) goto done;
-  if (!a.c.json) printf("wrote %s and %s/<compound>/curve.csv%s\n", path, a.out_dir,
-                        a.c.plot ? " and compare-mu/compare-umin figures" : "");
+  if (!a.c.json)
+    printf("wrote %s and %s/<compound>/curve.csv%s\n", path, a.out_dir,
+           a.c.plot ? " and compare-mu/compare-umin figures" : "");
   compare_report(&a, &cv);
   if (cv.failed) rc = vl_status_exit_code(VL_ENOCONV);
 done:

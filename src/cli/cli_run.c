@@ -75,13 +75,13 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
   vl_contact_fields(contact, f);
   char path[4200];
   snprintf(path, sizeof path, "%s/fields/%03zu.csv", ctx->out_dir, i);
-  if (vl_write_fields_csv(path, f, vl_contact_a0(contact), &ctx->err) != VL_OK)
-    ctx->io_failed = 1;
+  if (vl_write_fields_csv(path, f, vl_contact_a0(contact), &ctx->err) != VL_OK) ctx->io_failed = 1;
 }
 
 /* Sets aside the fields of the fields_at speeds for the figures. */
 static vl_status keep_fields(run_ctx *ctx, size_t n, size_t grid, vl_error *err) {
-  for (size_t i = 0; i < n; i++) ctx->n_kept += vl_simulation_wants_fields(ctx->sim, i);
+  for (size_t i = 0; i < n; i++)
+    ctx->n_kept += vl_simulation_wants_fields(ctx->sim, i);
   if (!ctx->n_kept) return VL_OK;
   ctx->kept_index = calloc(ctx->n_kept, sizeof *ctx->kept_index);
   ctx->kept = calloc(ctx->n_kept, sizeof *ctx->kept);
@@ -94,8 +94,8 @@ static vl_status keep_fields(run_ctx *ctx, size_t n, size_t grid, vl_error *err)
     if (!vl_simulation_wants_fields(ctx->sim, i)) continue;
     double *b = ctx->kept_buf + 7 * grid * k;
     ctx->kept_index[k] = i;
-    ctx->kept[k] = (vl_fields){0,           b,           b + grid,     b + 2 * grid,
-                               b + 3 * grid, b + 4 * grid, b + 5 * grid, b + 6 * grid};
+    ctx->kept[k] = (vl_fields){
+        0, b, b + grid, b + 2 * grid, b + 3 * grid, b + 4 * grid, b + 5 * grid, b + 6 * grid};
     k++;
   }
   return VL_OK;
@@ -159,13 +159,14 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
     static const struct {
       vl_plot_field field;
       const char *name;
-    } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"}, {VL_PLOT_FIELD_PF, "fields-pf"},
+    } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"},
+                {VL_PLOT_FIELD_PF, "fields-pf"},
                 {VL_PLOT_FIELD_U, "fields-u"}};
     for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
       if (figs[k].field == VL_PLOT_FIELD_PF && !scene->effects.fluid) continue;
       snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
-      st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, &opt,
-                          NULL, err);
+      st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, &opt, NULL,
+                          err);
       if (st != VL_OK) goto done;
       if (len < list_size)
         len += (size_t)snprintf(list + len, list_size - len, ", %s", figs[k].name);
@@ -203,12 +204,12 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
     const vl_point *p = &pts[i];
     double q = sweep_value(scene->quantity, p, meta);
     if (p->converged)
-      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld\n",
-             p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0,
-             p->mu_Sf + 0.0, p->u_min_m, vl_regime_name(p->regime), "yes", p->iterations);
+      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld\n", p->v0_m_s,
+             q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m,
+             vl_regime_name(p->regime), "yes", p->iterations);
     else
-      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld\n", p->v0_m_s, q, "-",
-             "-", "-", "-", "-", "-", "-", "NO", p->iterations);
+      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld\n", p->v0_m_s, q, "-", "-",
+             "-", "-", "-", "-", "-", "NO", p->iterations);
   }
   printf("%zu converged, %zu failed, %ld Newton iterations, %.3f s (%.1f ms per point)\n",
          stats->converged, stats->failed, stats->newton_iterations, stats->seconds,
@@ -243,8 +244,9 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
     st = VL_ENOMEM;
     goto done;
   }
-  ctx.fields = (vl_fields){grid,           buf,           buf + grid,     buf + 2 * grid,
-                           buf + 3 * grid, buf + 4 * grid, buf + 5 * grid, buf + 6 * grid};
+  ctx.fields = (vl_fields){
+      grid,           buf,           buf + grid, buf + 2 * grid, buf + 3 * grid, buf + 4 * grid,
+      buf + 5 * grid, buf + 6 * grid};
   ctx.sim = sim;
   ctx.out_dir = out_dir;
   if (plot && (st = keep_fields(&ctx, n, grid, err)) != VL_OK) goto done;
@@ -324,8 +326,8 @@ static vl_status plot_all_fluids(const vl_scene *scene, const char *out_dir,
     vl_plot_format_value(eta, sizeof eta, curves[k].meta.eta_pa_s);
     /* the viscosity first: a long fluid name is what gets cut in the legend */
     snprintf(labels[k], sizeof labels[k], "η = %s Pa s (%s)", eta, scene->fluids[k]);
-    pc[k] = (vl_plot_curve){labels[k], curves[k].n, curves[k].pts, curves[k].meta,
-                            curves[k].h_rms_m};
+    pc[k] =
+        (vl_plot_curve){labels[k], curves[k].n, curves[k].pts, curves[k].meta, curves[k].h_rms_m};
     if (!(curves[k].meta.tau_s > 0 && curves[k].meta.a0_m > 0)) deborah = false;
   }
   vl_plot_options opt;
@@ -374,8 +376,10 @@ static vl_status check_outputs(const vl_scene *scene, const char *out_dir, vl_er
   char dir[4200], fields[4300];
   vl_status st = vl_cli_check_out_dir("--out", out_dir, err);
   for (size_t k = 0; st == VL_OK && k < (scene->n_fluids > 1 ? scene->n_fluids : 1); k++) {
-    if (scene->n_fluids > 1) snprintf(dir, sizeof dir, "%s/%s", out_dir, scene->fluids[k]);
-    else snprintf(dir, sizeof dir, "%s", out_dir);
+    if (scene->n_fluids > 1)
+      snprintf(dir, sizeof dir, "%s/%s", out_dir, scene->fluids[k]);
+    else
+      snprintf(dir, sizeof dir, "%s", out_dir);
     if (scene->n_fluids > 1) st = vl_cli_check_out_dir("--out", dir, err);
     snprintf(fields, sizeof fields, "%s/fields", dir);
     if (st == VL_OK && scene->n_fields_at) st = vl_cli_check_out_dir("--out", fields, err);
@@ -472,8 +476,8 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
       one.n_fluids = 1;
       char dir[4200];
       snprintf(dir, sizeof dir, "%s/%s", out_dir, one.fluid);
-      st = run_one(scene_path, &one, db, dir, jw, one.fluid, plot, quiet,
-                   plot ? &curves[k] : NULL, &failed, &err);
+      st = run_one(scene_path, &one, db, dir, jw, one.fluid, plot, quiet, plot ? &curves[k] : NULL,
+                   &failed, &err);
       if (st != VL_OK) goto fail;
     }
     if (jw) {
@@ -491,7 +495,8 @@ fail:
   fprintf(stderr, "viscolube run: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
   rc = vl_status_exit_code(st);
 done:
-  for (size_t k = 0; k < VL_FLUIDS_MAX; k++) free(curves[k].pts);
+  for (size_t k = 0; k < VL_FLUIDS_MAX; k++)
+    free(curves[k].pts);
   vl_db_close(db);
   return rc;
 }

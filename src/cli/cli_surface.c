@@ -101,8 +101,8 @@ typedef struct {
   size_t n;
   double *col[N_COLS]; /* col[k][i]: column k of row i (one allocation, col[0]) */
   double hrms_m;
-  double x_perc;   /* NAN: the model has none */
-  int from_cache;  /* persson-emt: the table was read from the database */
+  double x_perc;  /* NAN: the model has none */
+  int from_cache; /* persson-emt: the table was read from the database */
 } ff_table;
 
 /* The rows of r for the surface whose spectrum is psd: Persson's table for
@@ -126,13 +126,13 @@ static vl_status ff_compute(vl_db *db, const char *name, const vl_psd *psd, cons
     t->col[k] = t->col[0] + k * r->n;
   t->from_cache = cached;
   t->hrms_m = et ? vl_emt_table_hrms(et) : vl_psd_hrms(psd);
-  t->x_perc = et                                          ? vl_emt_table_percolation(et)
+  t->x_perc = et                                       ? vl_emt_table_percolation(et)
               : r->kind == VL_FLOW_FACTORS_PATIR_CHENG ? PATIR_CHENG_PERCOLATION
-                                                          : NAN;
+                                                       : NAN;
   for (size_t i = 0; i < r->n; i++) {
     /* log spaced, both ends exact */
-    double x = i + 1 == r->n ? r->x_hi
-                             : r->x_lo * pow(r->x_hi / r->x_lo, (double)i / (double)(r->n - 1));
+    double x =
+        i + 1 == r->n ? r->x_hi : r->x_lo * pow(r->x_hi / r->x_lo, (double)i / (double)(r->n - 1));
     double u = x * t->hrms_m;
     vl_flow_factor_values v;
     if (et)
@@ -189,16 +189,16 @@ static vl_status ff_write_csv(const char *path, const char *name, const ff_reque
   return vl_atomic_file_commit(&af, err);
 }
 
-static vl_status ff_plot(const char *stem, const char *name, const ff_request *r,
-                         const ff_table *t, vl_error *err) {
+static vl_status ff_plot(const char *stem, const char *name, const ff_request *r, const ff_table *t,
+                         vl_error *err) {
   char title[160];
   snprintf(title, sizeof title, "Flow factors: %s (%s)", name, vl_flow_factors_name(r->kind));
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.title = title;
-  vl_plot_flow_factor_data d = {t->n,        t->col[C_X],  t->col[C_P],  t->col[C_S],
-                                t->col[C_FP], t->col[C_FS], t->col[C_F],  t->col[C_AREA],
-                                t->x_perc};
+  vl_plot_flow_factor_data d = {t->n,        t->col[C_X],    t->col[C_P],
+                                t->col[C_S], t->col[C_FP],   t->col[C_FS],
+                                t->col[C_F], t->col[C_AREA], t->x_perc};
   return vl_plot_flow_factors(stem, &d, &opt, NULL, err);
 }
 
@@ -226,8 +226,8 @@ static void ff_print_json(const char *name, const ff_request *r, const ff_table 
 }
 
 static void ff_print_text(const char *name, const ff_request *r, const ff_table *t) {
-  printf("flow factors of surface %s, model %s: h_rms %.6g m", name,
-         vl_flow_factors_name(r->kind), t->hrms_m);
+  printf("flow factors of surface %s, model %s: h_rms %.6g m", name, vl_flow_factors_name(r->kind),
+         t->hrms_m);
   if (r->kind == VL_FLOW_FACTORS_PERSSON_EMT)
     printf(", film cut-off %.6g m, percolation at u/h_rms = %.6g (table %s)\n", r->cutoff_m,
            t->x_perc, t->from_cache ? "from the database cache" : "built");
@@ -315,8 +315,8 @@ static void topo_description(char *buf, size_t size, const char *user, const cha
 }
 
 /* What was measured and what the spectrum keeps of it. */
-static void topo_report(const vl_topography *t, const vl_topography_spectrum *sp,
-                        const vl_psd *psd, const char *description) {
+static void topo_report(const vl_topography *t, const vl_topography_spectrum *sp, const vl_psd *psd,
+                        const char *description) {
   if (t->kind == VL_TOPOGRAPHY_MAP)
     printf("  measured      height map, %zu x %zu px over %.4g x %.4g m (pixel %.4g x %.4g m%s)\n",
            t->nx, t->ny, (double)t->nx * t->dx_m, (double)t->ny * t->dy_m, t->dx_m, t->dy_m,
@@ -370,8 +370,8 @@ int vl_cli_surface_add_topography(const vl_cli_globals *g, const char *name, con
     rc = failf(verb, st, "%s", err.msg[0] ? err.msg : vl_status_name(st));
     goto cleanup;
   }
-  printf("added surface '%s' to %s: tabulated, %zu points, from the %s %s\n", name,
-         vl_db_path(db), sp.n, vl_topography_kind_name(t.kind), path);
+  printf("added surface '%s' to %s: tabulated, %zu points, from the %s %s\n", name, vl_db_path(db),
+         sp.n, vl_topography_kind_name(t.kind), path);
   topo_report(&t, &sp, &psd, desc);
   rc = 0;
 cleanup:

@@ -30,14 +30,14 @@ int vl_cli_make_dirs(const char *path) {
 #define KINDS_MAX 32
 
 typedef struct {
-  char key[VL_WARN_MAX];        /* the text with '#' for each number */
-  char first[VL_WARN_MAX];      /* the text as the first point gave it */
+  char key[VL_WARN_MAX];   /* the text with '#' for each number */
+  char first[VL_WARN_MAX]; /* the text as the first point gave it */
   size_t n_slots;
   double lo[SLOTS_MAX], hi[SLOTS_MAX];
-  char literal[SLOTS_MAX][32];  /* a number as written, shown when constant */
+  char literal[SLOTS_MAX][32]; /* a number as written, shown when constant */
   size_t count, first_point;
-  double v_lo, v_hi;            /* the speeds of the points, m/s */
-  unsigned char *points;        /* n flags */
+  double v_lo, v_hi;     /* the speeds of the points, m/s */
+  unsigned char *points; /* n flags */
 } warn_kind;
 
 /* A number starts a token unless it continues a word (lambda0, a0). */
@@ -81,7 +81,8 @@ static void point_runs(const unsigned char *flags, size_t n, char *buf, size_t c
   for (size_t i = 0; i < n && len < cap; i++) {
     if (!flags[i]) continue;
     size_t j = i;
-    while (j + 1 < n && flags[j + 1]) j++;
+    while (j + 1 < n && flags[j + 1])
+      j++;
     if (runs == 6) {
       snprintf(buf + len, cap - len, ", ...");
       return;
@@ -131,8 +132,8 @@ static int warn_add(warn_kind *kinds, size_t *n_kinds, size_t n, size_t i, const
     unsigned char *flags = calloc(n, 1);
     if (!flags) return 0;
     k = &kinds[(*n_kinds)++];
-    *k = (warn_kind){.n_slots = n_num, .first_point = i, .points = flags,
-                     .v_lo = p->v0_m_s, .v_hi = p->v0_m_s};
+    *k = (warn_kind){
+        .n_slots = n_num, .first_point = i, .points = flags, .v_lo = p->v0_m_s, .v_hi = p->v0_m_s};
     snprintf(k->key, sizeof k->key, "%s", key);
     snprintf(k->first, sizeof k->first, "%s", w);
     for (size_t s = 0; s < n_num; s++) {
@@ -158,9 +159,11 @@ size_t vl_cli_print_warnings(FILE *out, const char *label, size_t n, const vl_po
     char copy[VL_WARN_MAX], *save = NULL;
     snprintf(copy, sizeof copy, "%s", pts[i].warnings);
     for (char *t = strtok_r(copy, ";", &save); t; t = strtok_r(NULL, ";", &save)) {
-      while (*t == ' ') t++;
+      while (*t == ' ')
+        t++;
       size_t len = strlen(t);
-      while (len && t[len - 1] == ' ') t[--len] = '\0';
+      while (len && t[len - 1] == ' ')
+        t[--len] = '\0';
       if (len && !warn_add(kinds, &n_kinds, n, i, &pts[i], t)) dropped++;
     }
   }
@@ -175,20 +178,24 @@ size_t vl_cli_print_warnings(FILE *out, const char *label, size_t n, const vl_po
     }
     point_runs(k->points, n, runs, sizeof runs);
     fprintf(out, " \u2014 point%s %s of %zu", k->count > 1 ? "s" : "", runs, n);
-    if (k->v_lo == k->v_hi) fprintf(out, " (v0 = %.3g m/s)\n", k->v_lo);
-    else fprintf(out, " (v0 = %.3g..%.3g m/s)\n", k->v_lo, k->v_hi);
+    if (k->v_lo == k->v_hi)
+      fprintf(out, " (v0 = %.3g m/s)\n", k->v_lo);
+    else
+      fprintf(out, " (v0 = %.3g..%.3g m/s)\n", k->v_lo, k->v_hi);
   }
   if (dropped)
     fprintf(out, "warning: %s%s%zu further warnings of other kinds (see the warnings column)\n",
             label ? label : "", label ? ": " : "", dropped);
-  for (size_t j = 0; j < n_kinds; j++) free(kinds[j].points);
+  for (size_t j = 0; j < n_kinds; j++)
+    free(kinds[j].points);
   return n_kinds;
 }
 
 size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size_t n,
                              const vl_point *pts, const char *where) {
   size_t failed = 0, shown = 0;
-  for (size_t i = 0; i < n; i++) failed += !pts[i].converged;
+  for (size_t i = 0; i < n; i++)
+    failed += !pts[i].converged;
   if (!failed) return 0;
   fprintf(out, "viscolube %s: %s%s%zu of %zu points did not converge (exit status %d)%s%s\n", cmd,
           label ? label : "", label ? ": " : "", failed, n, vl_status_exit_code(VL_ENOCONV),

@@ -23,8 +23,10 @@ vl_status vl_db_check_name(const char *name, vl_error *err) {
    * multi-fluid run's DIR/<fluid>/): "." and ".." would be the folder
    * itself or its parent */
   if (!strcmp(name, ".") || !strcmp(name, "..")) {
-    vl_error_set(err, "name '%s' is refused: it names a folder ('.' or '..'), and material names "
-                 "become folder names", name);
+    vl_error_set(err,
+                 "name '%s' is refused: it names a folder ('.' or '..'), and material names "
+                 "become folder names",
+                 name);
     return VL_EINPUT;
   }
   if (name[0] == '-') {
@@ -36,8 +38,10 @@ vl_status vl_db_check_name(const char *name, vl_error *err) {
     int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
              c == '.' || c == '_' || c == '+' || c == '-';
     if (!ok && (c == '/' || c == '\\')) {
-      vl_error_set(err, "name '%s': character %zu is a path separator ('%c'); material names "
-                   "become folder names and must not contain '/' or '\\'", name, i + 1, c);
+      vl_error_set(err,
+                   "name '%s': character %zu is a path separator ('%c'); material names "
+                   "become folder names and must not contain '/' or '\\'",
+                   name, i + 1, c);
       return VL_EINPUT;
     }
     if (!ok) {

@@ -237,8 +237,9 @@ static vl_status solve_failed(vl_contact *c, double v0_m_s, const solve_scales *
   bool smooth_wet = c->wet && !c->rough;
   bool closed = smooth_wet && (flag == KIN_REPTD_SYSFUNC_ERR || flag == KIN_FIRST_SYSFUNC_ERR);
   char *flag_name = KINGetReturnFlagName(flag); /* malloc'd by SUNDIALS */
-  vl_error_set(err, "no convergence at v0 = %g m/s: KINSOL flag %d (%s), %ld iterations, "
-                    "residual %.3g%s",
+  vl_error_set(err,
+               "no convergence at v0 = %g m/s: KINSOL flag %d (%s), %ld iterations, "
+               "residual %.3g%s",
                v0_m_s, flag, flag_name ? flag_name : "?", nni, fnorm,
                closed ? " (Newton steps kept closing the film: the grid is probably too coarse "
                         "for the inlet and outlet zones of this soft EHL film; refine it or "
@@ -327,8 +328,10 @@ vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa
   memset(pt, 0, sizeof *pt);
   pt->v0_m_s = v0_m_s;
   if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s)) || !(max_ratio > 1.0)) {
-    vl_error_set(err, "viscosity continuation needs a wet contact, eta > 0 and max_ratio > 1 "
-                      "(got eta %g Pa s, max_ratio %g)", eta_pa_s, max_ratio);
+    vl_error_set(err,
+                 "viscosity continuation needs a wet contact, eta > 0 and max_ratio > 1 "
+                 "(got eta %g Pa s, max_ratio %g)",
+                 eta_pa_s, max_ratio);
     return VL_EINPUT;
   }
   double eta = c->cfg.eta_pa_s, lstep = log(max_ratio);

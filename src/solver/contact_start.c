@@ -34,7 +34,9 @@ void vl_contact_reset(vl_contact *c) {
       y[i] = u / c->uscale + hertz_gap(x);
     }
   }
-  if (c->nc) for (size_t i = 0; i < c->nf; i++) y[c->of + i] = 0.0;
+  if (c->nc)
+    for (size_t i = 0; i < c->nf; i++)
+      y[c->of + i] = 0.0;
   c->kappa = 1.0;
   c->v_state = 0.0;
   /* h0 that best satisfies the gap equation inside the contact */
@@ -68,7 +70,10 @@ static double rigid_outlet(double X_in, double X_max) {
   if (!(G(hi) < 0.0)) return X_max;
   for (int it = 0; it < 100; it++) {
     double mid = 0.5 * (lo + hi);
-    if (G(mid) > 0.0) lo = mid; else hi = mid;
+    if (G(mid) > 0.0)
+      lo = mid;
+    else
+      hi = mid;
   }
 #undef G
   return 0.5 * (lo + hi);
@@ -115,13 +120,16 @@ static void wet_smooth_guess(vl_contact *c, double v0) {
     sum += p;
   }
   double scale = sum > 0.0 ? (0.5 * M_PI) / (sum * c->dxi) : 0.0, fmx = 0.0;
-  for (size_t i = 0; i < n; i++) fmx = fmax(fmx, c->F[i] *= scale);
+  for (size_t i = 0; i < n; i++)
+    fmx = fmax(fmx, c->F[i] *= scale);
   c->kappa = fmx > 0.0 ? fmx : 1.0;
-  for (size_t i = 0; i < n; i++) y[c->of + i] = c->F[i] / c->kappa;
+  for (size_t i = 0; i < n; i++)
+    y[c->of + i] = c->F[i] / c->kappa;
   y[c->ih] = 0.0;
   vl_contact_eval_state(c, y);
   double umin = INFINITY;
-  for (size_t i = 0; i < n; i++) umin = fmin(umin, c->U[i]);
+  for (size_t i = 0; i < n; i++)
+    umin = fmin(umin, c->U[i]);
   y[c->ih] = h / c->uscale - umin;
 }
 
@@ -146,7 +154,8 @@ void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni) {
       size_t n = c->n, m = cc->n;
       double *y = N_VGetArrayPointer(c->y), fmx = 0.0, umin_c = INFINITY, umin = INFINITY;
       vl_contact_eval_state(cc, N_VGetArrayPointer(cc->y));
-      for (size_t k = 0; k < m; k++) umin_c = fmin(umin_c, cc->U[k]);
+      for (size_t k = 0; k < m; k++)
+        umin_c = fmin(umin_c, cc->U[k]);
       for (size_t i = 0; i < n; i++) {
         double t = (c->xi[i] - cc->xi[0]) / cc->dxi, f;
         if (t <= 0.0) {
@@ -162,10 +171,12 @@ void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni) {
         fmx = fmax(fmx, f);
       }
       c->kappa = fmx > 0.0 ? fmx : 1.0;
-      for (size_t i = 0; i < n; i++) y[c->of + i] = c->F[i] / c->kappa;
+      for (size_t i = 0; i < n; i++)
+        y[c->of + i] = c->F[i] / c->kappa;
       y[c->ih] = 0.0;
       vl_contact_eval_state(c, y);
-      for (size_t i = 0; i < n; i++) umin = fmin(umin, c->U[i]);
+      for (size_t i = 0; i < n; i++)
+        umin = fmin(umin, c->U[i]);
       y[c->ih] = umin_c - umin;
       return;
     }
@@ -186,7 +197,8 @@ void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni) {
 void vl_contact_predict_state(vl_contact *c, double v0) {
   if (!c->rough || !(c->v_state > 0.0)) return;
   double *y = N_VGetArrayPointer(c->y), grow = v0 / c->v_state;
-  for (size_t i = 0; i < c->nf; i++) y[c->of + i] *= grow;
+  for (size_t i = 0; i < c->nf; i++)
+    y[c->of + i] *= grow;
 }
 
 /* The dry contact of a rough film on the same grid, created when first
@@ -227,8 +239,10 @@ bool vl_contact_rough_wet_dry_start(vl_contact *c, double v0, long *nni) {
    * approach carry over; no fluid pressure yet */
   double *y = N_VGetArrayPointer(c->y);
   const double *yd = N_VGetArrayPointer(d->y);
-  for (size_t i = 0; i < c->n; i++) y[i] = yd[i];
-  for (size_t i = 0; i < c->nf; i++) y[c->of + i] = 0.0;
+  for (size_t i = 0; i < c->n; i++)
+    y[i] = yd[i];
+  for (size_t i = 0; i < c->nf; i++)
+    y[c->of + i] = 0.0;
   y[c->ih] = yd[d->ih];
   c->kappa = 1.0;
   c->v_state = 0.0; /* no converged wet state: the fluid scales start from estimates */
@@ -299,7 +313,8 @@ bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni) {
     fmx = fmax(fmx, c->F[i]);
   }
   c->kappa = fmx > 0.0 ? fmx : 1.0;
-  for (size_t i = 0; i < c->n; i++) y[c->of + i] = c->F[i] / c->kappa;
+  for (size_t i = 0; i < c->n; i++)
+    y[c->of + i] = c->F[i] / c->kappa;
   /* the rigid approach that best satisfies the gap equation inside the
    * relaxed Hertz width, as vl_contact_reset takes it */
   y[c->ih] = 0.0;

@@ -54,9 +54,8 @@ static vl_status ramp(vl_contact *c, double from, double to, int max_depth, vl_p
  * contact is closer to the dry one; above, the film has lifted off (the
  * fresh starts of vl_contact_solve find both). On failure the contact
  * holds the Hertz guess. */
-static vl_status reach_from(vl_contact *c, double v, double sign, const double *decades,
-                            size_t nd, int max_depth, vl_point *pt, vl_sweep_stats *st,
-                            vl_error *err) {
+static vl_status reach_from(vl_contact *c, double v, double sign, const double *decades, size_t nd,
+                            int max_depth, vl_point *pt, vl_sweep_stats *st, vl_error *err) {
   vl_status s = VL_ENOCONV;
   for (size_t k = 0; k < nd; k++) {
     double start = v * pow(10.0, sign * decades[k]);
@@ -125,7 +124,8 @@ vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_s
   memset(&st, 0, sizeof st);
   for (size_t i = 0; i < n; i++) {
     if (!(v0_m_s[i] > 0.0 && isfinite(v0_m_s[i]))) {
-      vl_error_set(err, "sweep speed %zu must be positive and finite (got %g m/s)", i + 1, v0_m_s[i]);
+      vl_error_set(err, "sweep speed %zu must be positive and finite (got %g m/s)", i + 1,
+                   v0_m_s[i]);
       return VL_EINPUT;
     }
   }

@@ -680,9 +680,8 @@ static FILE *plplot_stream(const vl_atomic_file *af) {
 /* Draws one figure into path with the PLplot device dev, through a
  * temporary renamed into place once PLplot has reported no error and the
  * file ends as a complete PNG (png) or SVG does. */
-static vl_status draw_file(const char *path, const char *dev, bool png,
-                           const vl_plot_options *opt, draw_fn draw, const void *ctx, fig *f,
-                           vl_error *err) {
+static vl_status draw_file(const char *path, const char *dev, bool png, const vl_plot_options *opt,
+                           draw_fn draw, const void *ctx, fig *f, vl_error *err) {
   vl_atomic_file af;
   if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
   FILE *fp = plplot_stream(&af);
@@ -752,8 +751,8 @@ static vl_status render(const char *stem, const vl_plot_options *opt_in, draw_fn
     char path[4200];
     snprintf(path, sizeof path, "%s.%s", stem, formats[k].ext);
     fig f = {0};
-    vl_status st = draw_file(path, formats[k].dev, formats[k].flag == VL_PLOT_PNG, &opt, draw,
-                             ctx, &f, err);
+    vl_status st =
+        draw_file(path, formats[k].dev, formats[k].flag == VL_PLOT_PNG, &opt, draw, ctx, &f, err);
     if (st != VL_OK) return st;
     r.series = f.series;
     r.failed_markers = f.failed;
@@ -1612,8 +1611,8 @@ static void factor_y_axis(fig *f, const vl_plot_flow_factor_data *d, size_t k,
 /* A panel of k series against the shared log x axis, with the percolation
  * line. */
 static void draw_factor_panel(fig *f, const vl_plot_flow_factor_data *d, size_t k,
-                              const factor_series *s, const char *ytitle, bool x_labels,
-                              double *wx, double *wy) {
+                              const factor_series *s, const char *ytitle, bool x_labels, double *wx,
+                              double *wy) {
   factor_y_axis(f, d, k, s);
   draw_axes(f, "#<0x11>u#<0x01>/#<0x11>h#<0x01>#drms#u", ytitle, x_labels);
   use_data_area(f);
@@ -1678,8 +1677,7 @@ static void draw_flow_factors(fig *f, const void *vctx) {
 
 vl_status vl_plot_flow_factors(const char *stem, const vl_plot_flow_factor_data *d,
                                const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
-  if (!d || d->n < 2 || !d->x || !d->phi_p || !d->phi_s || !d->phi_fp || !d->phi_fs ||
-      !d->phi_f) {
+  if (!d || d->n < 2 || !d->x || !d->phi_p || !d->phi_s || !d->phi_fp || !d->phi_fs || !d->phi_f) {
     vl_error_set(err, "plot: no flow factors (at least 2 rows of x and the five factors)");
     return VL_EINPUT;
   }

@@ -14,8 +14,8 @@
 
 #include "viscolube/csv.h"
 
-static const char *const names[] = {"A",      "tau_s",   "q_per_m",   "C_m4",     "f_hz",
-                                    "T_C",    "E1_pa",   "E2_pa",     "tan_delta", "x"};
+static const char *const names[] = {"A",   "tau_s", "q_per_m", "C_m4",      "f_hz",
+                                    "T_C", "E1_pa", "E2_pa",   "tan_delta", "x"};
 static const char *const units[] = {"1|-", "s", "1/m|m^-1", "m^4|m4", "Hz", "C|degC", "Pa", NULL};
 #define N_NAMES (sizeof names / sizeof *names)
 #define N_UNITS (sizeof units / sizeof *units)

@@ -32,8 +32,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
 
   vl_measured m;
   vl_error err = {{0}};
-  vl_status st =
-      vl_measured_read_text((const char *)data + 1, size - 1, "fuzz.csv", &o, &m, &err);
+  vl_status st = vl_measured_read_text((const char *)data + 1, size - 1, "fuzz.csv", &o, &m, &err);
   if (st != VL_OK) {
     FUZZ_CHECK(st == VL_EINPUT || st == VL_ENOCONV, "status %d: %s", (int)st, err.msg);
     FUZZ_CHECK(!strncmp(err.msg, "fuzz.csv", 8), "message does not name the file: %s", err.msg);
