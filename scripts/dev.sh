@@ -3,7 +3,8 @@
 #   scripts/dev.sh run    install what is missing, build, run the main job
 #   scripts/dev.sh test   install what is missing, build, run all tests, then
 #                         rebuild and rerun them under ASan + UBSan, then
-#                         fuzz every reader (scripts/fuzz.sh, 20 s a target)
+#                         fuzz every reader (scripts/fuzz.sh, 20 s a target);
+#                         first of all, the format check (scripts/format.sh --check)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -35,6 +36,8 @@ case "${1:-}" in
   test)
     # ctest runs tests in parallel on the cores: one BLAS thread per test
     export OPENBLAS_NUM_THREADS=1
+    # the sources in the style of .clang-format (scripts/format.sh reformats)
+    scripts/format.sh --check
     build build
     ctest --test-dir build --output-on-failure -j "$jobs"
     build build-asan -DVL_SANITIZE=ON
