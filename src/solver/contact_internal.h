@@ -213,7 +213,8 @@ bool vl_contact_rough_wet_dry_start(vl_contact *c, double v0, long *nni);
  * (separation and fluid pressure interpolated from a uniform grid over the
  * same domain; c->coarse, created on first use): the limit of a film that
  * has lifted the solid off the asperities. Adds the smooth solve's Newton
- * iterations to *nni; false, with c unchanged, when it fails. */
+ * iterations to *nni; false, with c unchanged, when it fails or the smooth
+ * film's estimate (vl_contact_film_estimate) is thinner than h_rms. */
 bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni);
 
 /* contact_report.c */

@@ -288,9 +288,8 @@ static double interpolate(const double *f, size_t m, double x0, double dx, doubl
 /* Why the smooth film: in the hydrodynamic regime the film has lifted the
  * solid off the asperities (u >> h_rms: the flow factors are 1, the
  * asperity pressure vanishes), so the rough solution is the smooth one,
- * which its own fresh starts find (coarse grids, Martin's rigid film,
- * continuation in viscosity). Neither Hertz nor the dry contact (a closed
- * film) is near it. On fig05 with a self-affine surface of h_rms 30 nm,
+ * which its own fresh starts find (coarse grids, Martin's rigid film).
+ * Neither Hertz nor the dry contact (a closed film) is near it. On fig05 with a self-affine surface of h_rms 30 nm,
  * the rough film from this start converged at 15.8 to 400 m/s where
  * continuation from the mixed regime failed: there u_min jumps from
  * 8e-11 m to 1.6e-7 m (a fold of the Stribeck curve: the mixed and the
@@ -300,6 +299,10 @@ bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni) {
   if (!s) return false;
   vl_point sp;
   s->v_state = 0.0; /* its own fresh start */
+  /* without its continuation in viscosity: the films that need it are thin,
+   * where the rough film is not the smooth one anyway, and on a fine grid it
+   * cost a hard-case corner that failed at 1e-12 m/s 100 s */
+  s->no_fallback = true;
   vl_status st = vl_contact_solve(s, v0, &sp, NULL);
   *nni += sp.iterations;
   if (st != VL_OK) return false;
