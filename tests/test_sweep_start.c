@@ -57,8 +57,7 @@ static vl_contact *fig05_contact(double hrms_m, vl_psd *psd, vl_persson **tab) {
 
 /* Sweeps v[0..n-1] on a new contact; fails the test unless every point
  * converges. */
-static void sweep_all(double hrms_m, size_t n, const double *v, vl_point *pt,
-                      vl_sweep_stats *st) {
+static void sweep_all(double hrms_m, size_t n, const double *v, vl_point *pt, vl_sweep_stats *st) {
   vl_psd psd;
   vl_persson *tab;
   vl_contact *c = fig05_contact(hrms_m, &psd, &tab);
@@ -94,8 +93,8 @@ static void agree(double hrms_m, size_t first, size_t n, const double *v, const 
   }
   print_message("h_rms %g m, start %g m/s: %zu points, %zu starts below, %zu above, %ld Newton "
                 "iterations, %.1f s; mu within %.1e, u_min within %.1e of the sweep from %g m/s\n",
-                hrms_m, v[first], n - first, st.starts_below, st.starts_above,
-                st.newton_iterations, st.seconds, dmu, du, v[0]);
+                hrms_m, v[first], n - first, st.starts_below, st.starts_above, st.newton_iterations,
+                st.seconds, dmu, du, v[0]);
 }
 
 /* h_rms 0.1 um, two points a decade from 1e-8 m/s (1e-12 Pa m, boundary)
@@ -105,7 +104,8 @@ static void test_start_mid_curve(void **state) {
   (void)state;
   enum { N = 23 };
   double v[N];
-  for (int i = 0; i < N; i++) v[i] = 1e-8 * pow(10.0, 0.5 * i);
+  for (int i = 0; i < N; i++)
+    v[i] = 1e-8 * pow(10.0, 0.5 * i);
   vl_point ref[N];
   vl_sweep_stats st;
   sweep_all(1e-7, N, v, ref, &st);
@@ -121,7 +121,8 @@ static void test_start_above_fold(void **state) {
   (void)state;
   enum { N = 22 };
   double v[N];
-  for (int i = 0; i < 19; i++) v[i] = 1e-8 * pow(10.0, 0.5 * i);
+  for (int i = 0; i < 19; i++)
+    v[i] = 1e-8 * pow(10.0, 0.5 * i);
   v[19] = 15.8;
   v[20] = 31.6;
   v[21] = 100.0;

@@ -289,11 +289,10 @@ static double interpolate(const double *f, size_t m, double x0, double dx, doubl
  * solid off the asperities (u >> h_rms: the flow factors are 1, the
  * asperity pressure vanishes), so the rough solution is the smooth one,
  * which its own fresh starts find (coarse grids, Martin's rigid film).
- * Neither Hertz nor the dry contact (a closed film) is near it. On fig05 with a self-affine surface of h_rms 30 nm,
- * the rough film from this start converged at 15.8 to 400 m/s where
- * continuation from the mixed regime failed: there u_min jumps from
- * 8e-11 m to 1.6e-7 m (a fold of the Stribeck curve: the mixed and the
- * lifted branches coexist near 10-16 m/s). */
+ * Neither Hertz nor the dry contact (a closed film) is near it. On fig05 with a self-affine surface
+ * of h_rms 30 nm, the rough film from this start converged at 15.8 to 400 m/s where continuation
+ * from the mixed regime failed: there u_min jumps from 8e-11 m to 1.6e-7 m (a fold of the Stribeck
+ * curve: the mixed and the lifted branches coexist near 10-16 m/s). */
 bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni) {
   vl_contact *s = film_helper(c);
   if (!s) return false;
