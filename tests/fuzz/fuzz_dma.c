@@ -36,17 +36,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (st != VL_OK) {
     FUZZ_CHECK(st == VL_EINPUT || st == VL_ENOCONV, "status %d: %s", (int)st, err.msg);
     FUZZ_CHECK(!strncmp(err.msg, "fuzz.csv", 8), "message does not name the file: %s", err.msg);
-    /* a message may list several offending lines, one per line, each
-     * naming the file; no other control byte */
-    for (const char *c = err.msg; *c; c++) {
-      if (*c == '\n') {
-        FUZZ_CHECK(!strncmp(c + 1, "fuzz.csv", 8) || !strncmp(c + 1, "  ", 2),
-                   "a continued line names neither the file nor continues: %s", err.msg);
-        continue;
-      }
-      FUZZ_CHECK((unsigned char)*c >= 0x20 && *c != 0x7f, "control byte 0x%02x in message: %s",
-                 (unsigned)(unsigned char)*c, err.msg);
-    }
+    FUZZ_CHECK(vl_fuzz_message_clean(err.msg, "fuzz.csv"), "control byte in message: %s", err.msg);
     FUZZ_CHECK(m.n == 0 && !m.omega_rad_s && !m.storage_pa && !m.source,
                "a refused file left data behind");
     vl_measured_free(&m); /* documented as safe */
