@@ -467,7 +467,11 @@ static void test_readonly_directory(void **state) {
   limits lim = {-1, 1};
   /* root ignores permission bits: the commands run as nobody, from a copy
    * of the program nobody can reach; skipped only when even that fails */
-  if (geteuid() == 0 && !cli_for_nobody()) skip();
+  if (geteuid() == 0 && !cli_for_nobody()) {
+    printf("read-only folder: skipped, user nobody cannot run even a copy of the program "
+           "in a fresh /tmp folder (root ignores permission bits, so the case needs nobody)\n");
+    skip();
+  }
   vl_test_snapshot before = vl_test_take(path);
   char *err = NULL;
   int rc = cli(&lim, path, &err, "fluid", "show", "water", NULL);
