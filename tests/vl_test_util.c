@@ -7,6 +7,8 @@
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
+#include <sqlite3.h>
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -309,4 +311,12 @@ void vl_test_fig05_config(vl_contact_config *cfg, const vl_persson *tab, double 
   cfg->grid = grid;
   cfg->x_min_a0 = x_min_a0;
   cfg->x_max_a0 = 1.6;
+}
+
+void vl_test_sql(const char *path, const char *sql) {
+  sqlite3 *h = NULL;
+  char *msg = NULL;
+  assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
+  if (sqlite3_exec(h, sql, NULL, NULL, &msg) != SQLITE_OK) fail_msg("%s: %s", sql, msg);
+  sqlite3_close(h);
 }
