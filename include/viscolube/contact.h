@@ -92,6 +92,13 @@ typedef enum {
  * less: uniform). */
 #define VL_GRID_GROWTH_MAX 2.0
 
+/* Largest uniform grid under an explicit cell layout
+ * (vl_contact_config.cell_spans): its Toeplitz coefficients and their
+ * prefix sums take 32 bytes per cell (64 MB at the limit), and a
+ * viscoelastic kernel is refilled at every speed at about 2e7 coefficients
+ * per second and Prony term. */
+#define VL_CONTACT_MAX_GRID_LAYOUT 2097152
+
 /* Where a graded grid (vl_contact_config.grid_growth) starts to coarsen: the
  * relaxed Hertz contact ends at x = -a0, and rough or viscoelastic pressure
  * tails reach a little beyond. */
@@ -152,6 +159,16 @@ typedef struct {
    * costs tens of cells instead of hundreds. The last cell may end up to
    * one uniform cell beyond x_min_a0. */
   double grid_growth;
+  /* An explicit cell layout (NULL: the uniform or graded grid above): cell
+   * k is cell_spans[k] consecutive cells of the uniform grid of `grid` cells
+   * on the domain, odd (so that its node is a uniform node and its influence
+   * coefficients exact sums of the uniform ones), summing to `grid`; n_cells
+   * of them, at most VL_CONTACT_MAX_CELLS, on any contact. Copied by
+   * vl_contact_create. The automatic numerics (numerics.h) lay cells out
+   * this way: fine where the solution changes fast (the edges of the
+   * contact, a film's outlet constriction), coarse elsewhere. */
+  const size_t *cell_spans;
+  size_t n_cells;
   double x_min_a0, x_max_a0; /* domain in units of a0 (the relaxed Hertz half-width, however
                               * stiff the solid): smooth wet contacts need an inlet of tens
                               * of vl_contact_inlet_length_m beyond the contact */

@@ -8,6 +8,7 @@
 #include <stddef.h>
 
 #include "viscolube/contact.h"
+#include "viscolube/numerics.h"
 #include "viscolube/flow_factors.h"
 #include "viscolube/status.h"
 
@@ -70,6 +71,12 @@ typedef struct {
   double tolerance;
   vl_linear_solver linear_solver;
   size_t persson_table;
+  /* Automatic numerics (numerics.h: domain and cells per run of points, an
+   * error estimate on every point, refinement to target_error): on unless
+   * the scene sets grid, grid_growth or domain_a0 (then the grid, growth
+   * and domain are the scene's, and each point still gets its estimate). */
+  bool auto_numerics;
+  double target_error; /* relative, of mu; VL_TARGET_ERROR_DEFAULT */
 } vl_scene;
 
 /* The defaults of every optional key (README.md), with no materials named:

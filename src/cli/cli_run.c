@@ -68,10 +68,10 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
   if (!vl_simulation_wants_fields(ctx->sim, i) || !pt->converged || ctx->io_failed) return;
   vl_fields *f = &ctx->fields;
   for (size_t k = 0; k < ctx->n_kept; k++)
-    if (ctx->kept_index[k] == i) {
-      f = &ctx->kept[k];
-      f->n = vl_contact_grid(contact);
-    }
+    if (ctx->kept_index[k] == i) f = &ctx->kept[k];
+  /* automatic numerics lay out each run of points anew: as many values as
+   * this point's contact has cells (the buffers hold the most a contact can) */
+  f->n = vl_contact_grid(contact);
   vl_contact_fields(contact, f);
   char path[4200];
   snprintf(path, sizeof path, "%s/fields/%03zu.csv", ctx->out_dir, i);
@@ -229,7 +229,7 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
   run_ctx ctx = {0};
   vl_status st = vl_simulation_create(scene, db, &sim, err);
   if (st != VL_OK) goto done;
-  size_t n = vl_simulation_points(sim), grid = vl_contact_grid(vl_simulation_contact(sim));
+  size_t n = vl_simulation_points(sim), grid = VL_CONTACT_MAX_CELLS;
   char fields_dir[4200];
   snprintf(fields_dir, sizeof fields_dir, "%s/fields", out_dir);
   if (vl_cli_make_dirs(out_dir) != 0 || (scene->n_fields_at && vl_cli_make_dirs(fields_dir) != 0)) {
@@ -253,12 +253,19 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
   ctx.tty = isatty(STDERR_FILENO);
   ctx.quiet = quiet;
   const vl_contact *contact = vl_simulation_contact(sim);
-  if (!json)
-    printf("scene %s%s%s%s%s: %zu points, grid %zu on [%g, %g] a0, a0 = %.4g m, p0 = %.4g Pa\n",
-           scene_path, scene->title[0] ? " - " : "", scene->title,
-           scene->effects.fluid ? ", fluid " : "", scene->effects.fluid ? scene->fluid : "", n,
-           grid, scene->domain_min_a0, scene->domain_max_a0, vl_contact_a0(contact),
+  if (!json) {
+    char numerics[160];
+    if (scene->auto_numerics)
+      snprintf(numerics, sizeof numerics, "automatic numerics (target error %g %%)",
+               100.0 * scene->target_error);
+    else
+      snprintf(numerics, sizeof numerics, "grid %zu on [%g, %g] a0", scene->grid,
+               scene->domain_min_a0, scene->domain_max_a0);
+    printf("scene %s%s%s%s%s: %zu points, %s, a0 = %.4g m, p0 = %.4g Pa\n", scene_path,
+           scene->title[0] ? " - " : "", scene->title, scene->effects.fluid ? ", fluid " : "",
+           scene->effects.fluid ? scene->fluid : "", n, numerics, vl_contact_a0(contact),
            vl_contact_p0(contact));
+  }
   vl_curve_meta meta = {vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(contact),
                         NULL, 0.0};
   meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);

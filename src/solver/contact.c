@@ -81,6 +81,15 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
   return VL_OK;
 }
 
+size_t vl_contact_merge_cells(const size_t *span, size_t n, size_t *out) {
+  size_t m = 0, k = 0;
+  for (; k + 3 <= n; k += 3) /* odd + odd + odd: odd, its node a uniform node */
+    out[m++] = span[k] + span[k + 1] + span[k + 2];
+  for (; k < n; k++) /* one or two cells left, kept */
+    out[m++] = span[k];
+  return m;
+}
+
 /* The helper contacts of a smooth film's fresh starts: a half-size grid,
  * or on the coarsest level of a viscoelastic film the dry contact
  * (contact_start.c). */
@@ -88,8 +97,17 @@ static vl_status create_helpers(vl_contact *c, vl_error *err) {
   if (c->nc != 0) return VL_OK;
   if (c->n >= 2 * VL_COARSE_MIN) {
     vl_contact_config coarse = c->cfg;
-    coarse.grid = c->n / 2;
-    return vl_contact_create(&coarse, &c->coarse, err);
+    if (!c->cfg.cell_spans) {
+      coarse.grid = c->n / 2;
+      return vl_contact_create(&coarse, &c->coarse, err);
+    }
+    size_t *spans = malloc(c->n * sizeof *spans);
+    if (!spans) return vl_contact_nomem(c, err);
+    coarse.n_cells = vl_contact_merge_cells(c->span, c->n, spans);
+    coarse.cell_spans = spans;
+    vl_status st = vl_contact_create(&coarse, &c->coarse, err);
+    free(spans);
+    return st;
   }
   if (c->cfg.rubber.n_terms > 0) {
     vl_contact_config dry = c->cfg;
@@ -145,6 +163,7 @@ fail: /* each step has said why in err */
 void vl_contact_free(vl_contact *c) {
   if (!c) return;
   vl_contact_free(c->coarse);
+  vl_contact_free(c->estimator);
   vl_contact_free(c->dry);
   vl_flattening_free(c->flattening);
   if (c->kmem) KINFree(&c->kmem);

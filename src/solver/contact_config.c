@@ -51,12 +51,44 @@ static vl_status check_geometry(const vl_contact_config *cfg, vl_error *err) {
   return VL_OK;
 }
 
+static vl_status check_domain(const vl_contact_config *cfg, vl_error *err);
+
+/* An explicit cell layout: odd spans that sum to the uniform grid. */
+static vl_status check_layout(const vl_contact_config *cfg, vl_error *err) {
+  if (cfg->n_cells < VL_CONTACT_MIN_GRID || cfg->n_cells > VL_CONTACT_MAX_CELLS ||
+      cfg->grid > VL_CONTACT_MAX_GRID_LAYOUT) {
+    vl_error_set(err, "cell layout: %zu cells on a grid of %zu (at most %d cells on %d)",
+                 cfg->n_cells, cfg->grid, VL_CONTACT_MAX_CELLS, VL_CONTACT_MAX_GRID_LAYOUT);
+    return VL_EINPUT;
+  }
+  size_t sum = 0;
+  for (size_t k = 0; k < cfg->n_cells; k++) {
+    if (cfg->cell_spans[k] % 2 == 0) {
+      vl_error_set(err, "cell layout: cell %zu spans %zu uniform cells (must be odd)", k,
+                   cfg->cell_spans[k]);
+      return VL_EINPUT;
+    }
+    sum += cfg->cell_spans[k];
+  }
+  if (sum != cfg->grid) {
+    vl_error_set(err, "cell layout: the cells span %zu uniform cells, not the grid's %zu", sum,
+                 cfg->grid);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
 /* Grid size and growth, and the domain. */
 static vl_status check_grid(const vl_contact_config *cfg, vl_error *err) {
   if (cfg->grid_growth != cfg->grid_growth || cfg->grid_growth > VL_GRID_GROWTH_MAX) {
     vl_error_set(err, "grid_growth must be <= %g (1 or less: uniform grid; got %g)",
                  VL_GRID_GROWTH_MAX, cfg->grid_growth);
     return VL_EINPUT;
+  }
+  if (cfg->cell_spans) {
+    vl_status st = check_layout(cfg, err);
+    if (st != VL_OK) return st;
+    return check_domain(cfg, err);
   }
   size_t max_grid = cfg->grid_growth > 1.0 ? VL_CONTACT_MAX_GRID_GRADED : VL_CONTACT_MAX_CELLS;
   if (cfg->grid < VL_CONTACT_MIN_GRID || cfg->grid > max_grid) {
@@ -73,6 +105,11 @@ static vl_status check_grid(const vl_contact_config *cfg, vl_error *err) {
                  cfg->grid_growth);
     return VL_EINPUT;
   }
+  return check_domain(cfg, err);
+}
+
+/* The domain: around the axis. */
+static vl_status check_domain(const vl_contact_config *cfg, vl_error *err) {
   if (!(cfg->x_max_a0 > cfg->x_min_a0)) {
     vl_error_set(err, "domain_a0: the end must exceed the start (got %g, %g)", cfg->x_min_a0,
                  cfg->x_max_a0);

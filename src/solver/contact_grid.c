@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Cells of the grid (vl_contact_config.grid_growth): nv uniform cells on
  * [x_min, x_max]; upstream of -VL_GRADE_START_A0 they are merged, from the
@@ -72,9 +73,15 @@ static void place_cells(vl_contact *c) {
 
 vl_status vl_contact_grid_init(vl_contact *c, vl_error *err) {
   const vl_contact_config *cfg = &c->cfg;
-  c->span = malloc((cfg->grid + 1) * sizeof *c->span);
+  size_t room = cfg->cell_spans ? cfg->n_cells : cfg->grid + 1;
+  c->span = malloc(room * sizeof *c->span);
   if (!c->span) return vl_contact_nomem(c, err);
-  c->n = grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, c->span, &c->nv);
+  if (cfg->cell_spans) { /* checked: odd spans summing to the grid */
+    memcpy(c->span, cfg->cell_spans, cfg->n_cells * sizeof *c->span);
+    c->n = cfg->n_cells, c->nv = cfg->grid;
+  } else {
+    c->n = grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, c->span, &c->nv);
+  }
   if (c->n == cfg->grid && c->nv == cfg->grid) { /* nothing merged: the uniform grid */
     free(c->span);
     c->span = NULL;

@@ -31,6 +31,7 @@
 #include <sundials/sundials_matrix.h>
 
 #include "viscolube/contact.h"
+#include "viscolube/sweep.h"
 
 #include "contact_test.h"
 #include "kernel.h"
@@ -99,6 +100,8 @@ struct vl_contact {
   bool no_fallback;          /* inside the viscosity-continuation fallback of a fresh start */
   vl_contact *dry;           /* smooth wet viscoelastic, coarsest level: the dry contact on the same
                               * grid, whose solution starts the wet one (NULL otherwise) */
+  vl_contact *estimator;     /* the same contact on cells three times as wide (error estimate;
+                              * created on first use, contact_estimate.c) */
   vl_contact_timing timing;  /* cost counters (vl_contact_timing_get) */
   SUNContext ctx;
   N_Vector y, y_saved, y_outer, ones, fwork;
@@ -121,6 +124,21 @@ static inline vl_status vl_contact_nomem(const vl_contact *c, vl_error *err) {
   vl_error_set(err, "out of memory for a %zu-node contact solver", c->cfg.grid);
   return VL_ENOMEM;
 }
+
+/* sweep.c */
+
+/* Solves point v from the state of c converged at last_ok (0: none) by
+ * every path of sweep.h in turn (continuation, a fresh start, starts below
+ * and above); counts into *st. On VL_ENOCONV c holds the Hertz guess. */
+vl_status vl_sweep_solve_point(vl_contact *c, double last_ok, double v, int max_depth,
+                               vl_point *pt, vl_sweep_stats *st, vl_error *err);
+
+/* contact.c */
+
+/* The cells of a layout three times coarser: spans span[0..n-1] merged in
+ * threes (the one or two left at the end kept) into out (room for n).
+ * Returns the number of cells. */
+size_t vl_contact_merge_cells(const size_t *span, size_t n, size_t *out);
 
 /* contact_config.c */
 

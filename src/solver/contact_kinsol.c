@@ -255,6 +255,7 @@ static vl_status solve_failed(vl_contact *c, double v0_m_s, const solve_scales *
     vl_contact_reynolds_weights(c);
   }
   memset(pt, 0, sizeof *pt);
+  pt->error_estimate = NAN;
   pt->v0_m_s = v0_m_s;
   pt->converged = false;
   pt->iterations = nni;
@@ -265,6 +266,7 @@ static vl_status solve_failed(vl_contact *c, double v0_m_s, const solve_scales *
 
 vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
   memset(pt, 0, sizeof *pt);
+  pt->error_estimate = NAN;
   pt->v0_m_s = v0_m_s;
   if (!(v0_m_s >= 0.0 && isfinite(v0_m_s)) || (c->wet && !(v0_m_s > 0.0))) {
     vl_error_set(err, "speed must be finite and %s 0 (got %g m/s)", c->wet ? ">" : ">=", v0_m_s);
@@ -337,6 +339,7 @@ double vl_contact_viscosity(const vl_contact *c) { return c->cfg.eta_pa_s; }
 vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa_s,
                                      double max_ratio, vl_point *pt, vl_error *err) {
   memset(pt, 0, sizeof *pt);
+  pt->error_estimate = NAN;
   pt->v0_m_s = v0_m_s;
   if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s)) || !(max_ratio > 1.0)) {
     vl_error_set(err,

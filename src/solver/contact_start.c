@@ -9,6 +9,25 @@
 
 #include <math.h>
 
+
+/* Linear interpolation at x of the node values f[0..m-1] at the increasing
+ * positions xs (any cells: uniform, graded or laid out); the end values
+ * beyond the ends. */
+static double interpolate(const double *f, const double *xs, size_t m, double x) {
+  if (x <= xs[0]) return f[0];
+  if (x >= xs[m - 1]) return f[m - 1];
+  size_t lo = 0, hi = m - 1; /* xs[lo] < x < xs[hi] */
+  while (hi - lo > 1) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (xs[mid] <= x)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  double w = (x - xs[lo]) / (xs[hi] - xs[lo]);
+  return (1.0 - w) * f[lo] + w * f[hi];
+}
+
 /* Hertz gap outside a contact of half-width 1 (units a0^2/R, x in a0). */
 static double hertz_gap(double xi) {
   double ax = fabs(xi);
@@ -94,7 +113,7 @@ static void wet_smooth_guess(vl_contact *c, double v0) {
   double h = vl_contact_film_estimate(&c->cfg, v0);
   bool rigid = h <= 4.894 * eta * um * R / fN * (1.0 + 1e-12);
   double b = sqrt(2.0 * R * h) / c->a0; /* in a0 */
-  double X_in = c->xi[0] / b - 0.5 * c->dxi / b, X_max = c->xi[n - 1] / b + 0.5 * c->dxi / b;
+  double X_in = (c->xi[0] - 0.5 * c->wc[0]) / b, X_max = (c->xi[n - 1] + 0.5 * c->wc[n - 1]) / b;
   double Xc = rigid ? rigid_outlet(X_in, X_max) : 0.0, Hc = 1.0 + Xc * Xc;
   double a2 = rigid_i2(X_in), a3 = rigid_i3(X_in), sum = 0.0;
   /* a viscoelastic solid: the dry contact at this speed (same grid), the
@@ -117,9 +136,9 @@ static void wet_smooth_guess(vl_contact *c, double v0) {
       p = fabs(x) < 1.0 ? sqrt(1.0 - x * x) : 0.0;
     }
     c->F[i] = p;
-    sum += p;
+    sum += p * c->wc[i];
   }
-  double scale = sum > 0.0 ? (0.5 * M_PI) / (sum * c->dxi) : 0.0, fmx = 0.0;
+  double scale = sum > 0.0 ? (0.5 * M_PI) / sum : 0.0, fmx = 0.0;
   for (size_t i = 0; i < n; i++)
     fmx = fmax(fmx, c->F[i] *= scale);
   c->kappa = fmx > 0.0 ? fmx : 1.0;
@@ -157,15 +176,13 @@ void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni) {
       for (size_t k = 0; k < m; k++)
         umin_c = fmin(umin_c, cc->U[k]);
       for (size_t i = 0; i < n; i++) {
-        double t = (c->xi[i] - cc->xi[0]) / cc->dxi, f;
-        if (t <= 0.0) {
-          f = cc->F[0] * fmax(0.0, 1.0 + 2.0 * t);
-        } else if (t >= (double)(m - 1)) {
-          f = cc->F[m - 1] * fmax(0.0, 1.0 - 2.0 * (t - (double)(m - 1)));
+        double x = c->xi[i], f;
+        if (x <= cc->xi[0]) {
+          f = cc->F[0] * fmax(0.0, 1.0 - (cc->xi[0] - x) / (0.5 * cc->wc[0]));
+        } else if (x >= cc->xi[m - 1]) {
+          f = cc->F[m - 1] * fmax(0.0, 1.0 - (x - cc->xi[m - 1]) / (0.5 * cc->wc[m - 1]));
         } else {
-          size_t k = (size_t)t;
-          double w = t - (double)k;
-          f = (1.0 - w) * cc->F[k] + w * cc->F[k + 1];
+          f = interpolate(cc->F, cc->xi, m, x);
         }
         c->F[i] = f;
         fmx = fmax(fmx, f);
@@ -274,17 +291,6 @@ static vl_contact *film_helper(vl_contact *c) {
   return c->coarse;
 }
 
-/* Linear interpolation of the node values f[0..m-1] of the uniform grid
- * with first node x0 and spacing dx at x (the end values beyond). */
-static double interpolate(const double *f, size_t m, double x0, double dx, double x) {
-  double t = (x - x0) / dx;
-  if (t <= 0.0) return f[0];
-  if (t >= (double)(m - 1)) return f[m - 1];
-  size_t k = (size_t)t;
-  double w = t - (double)k;
-  return (1.0 - w) * f[k] + w * f[k + 1];
-}
-
 /* Why the smooth film: in the hydrodynamic regime the film has lifted the
  * solid off the asperities (u >> h_rms: the flow factors are 1, the
  * asperity pressure vanishes), so the rough solution is the smooth one,
@@ -310,8 +316,8 @@ bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni) {
    * that the two contacts share) at the rough contact's nodes */
   double *y = N_VGetArrayPointer(c->y), fmx = 0.0;
   for (size_t i = 0; i < c->n; i++) {
-    y[i] = interpolate(s->U, s->n, s->xi[0], s->dxi, c->xi[i]);
-    c->F[i] = interpolate(s->F, s->n, s->xi[0], s->dxi, c->xi[i]);
+    y[i] = interpolate(s->U, s->xi, s->n, c->xi[i]);
+    c->F[i] = interpolate(s->F, s->xi, s->n, c->xi[i]);
     fmx = fmax(fmx, c->F[i]);
   }
   c->kappa = fmx > 0.0 ? fmx : 1.0;

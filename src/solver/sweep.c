@@ -77,7 +77,7 @@ static vl_status reach_from(vl_contact *c, double v, double sign, const double *
 /* Solves point v from the state converged at last_ok (0: none), by every
  * path in turn (sweep.h). On VL_ENOCONV the contact holds the Hertz guess
  * and pt the failure at v itself. */
-static vl_status solve_point(vl_contact *c, double last_ok, double v, int max_depth, vl_point *pt,
+vl_status vl_sweep_solve_point(vl_contact *c, double last_ok, double v, int max_depth, vl_point *pt,
                              vl_sweep_stats *st, vl_error *err) {
   /* far enough below to reach the boundary regime from the mixed one; close
    * above, since a fold of the curve (a film lifting off) is narrow */
@@ -134,7 +134,7 @@ vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_s
   double last_ok = 0.0;
   for (size_t i = 0; i < n; i++) {
     vl_error e;
-    vl_status s = solve_point(c, last_ok, v0_m_s[i], opt->max_subdivisions, &out[i], &st, &e);
+    vl_status s = vl_sweep_solve_point(c, last_ok, v0_m_s[i], opt->max_subdivisions, &out[i], &st, &e);
     if (s == VL_OK) {
       st.converged++;
       last_ok = v0_m_s[i];

@@ -48,6 +48,7 @@ typedef enum {
   K_DOMAIN,
   K_TOLERANCE,
   K_LINEAR_SOLVER,
+  K_TARGET_ERROR,
   K_PERSSON_TABLE,
   K_COUNT
 } key_id;
@@ -83,6 +84,7 @@ static const struct {
     [K_DOMAIN] = {"numerics", "domain_a0", false},
     [K_TOLERANCE] = {"numerics", "tolerance", false},
     [K_LINEAR_SOLVER] = {"numerics", "linear_solver", false},
+    [K_TARGET_ERROR] = {"numerics", "target_error", false},
     [K_PERSSON_TABLE] = {"numerics", "persson_table", false},
 };
 
@@ -420,6 +422,11 @@ static int numerics_key(parse_state *ps, key_id id, const char *section, const c
     if (!parse_double(value, &sc->tolerance) || !(sc->tolerance > 0.0 && sc->tolerance < 1.0))
       return fail(ps, section, key, "expected a number in (0, 1), got '%s'", value);
     return 1;
+  case K_TARGET_ERROR:
+    if (!parse_double(value, &sc->target_error) ||
+        !(sc->target_error >= 1e-6 && sc->target_error <= 0.5))
+      return fail(ps, section, key, "expected a relative error in [1e-6, 0.5], got '%s'", value);
+    return 1;
   case K_LINEAR_SOLVER:
     if (!strcmp(value, "lapack"))
       sc->linear_solver = VL_LINSOL_LAPACK;
@@ -542,6 +549,8 @@ void vl_scene_defaults(vl_scene *sc) {
   numerics_from(sc, &cfg);
   sc->linear_solver = cfg.linear_solver;
   sc->persson_table = 0;
+  sc->auto_numerics = true;
+  sc->target_error = VL_TARGET_ERROR_DEFAULT;
 }
 
 void vl_scene_default_numerics(vl_scene *sc) {
@@ -587,6 +596,8 @@ static vl_status scene_check(parse_state *ps) {
   if (!ps->key_line[K_GRID]) sc->grid = d.grid;
   if (!ps->key_line[K_GRID_GROWTH]) sc->grid_growth = d.grid_growth;
   if (!ps->key_line[K_TOLERANCE]) sc->tolerance = d.tolerance;
+  /* a scene that lays out its own cells or domain keeps them */
+  sc->auto_numerics = !ps->key_line[K_GRID] && !ps->key_line[K_GRID_GROWTH] && !ps->key_line[K_DOMAIN];
   if (!(sc->grid_growth > 1.0) && sc->grid > VL_GRID_UNIFORM_MAX)
     return check_fail(ps, K_GRID,
                       "a uniform grid takes at most %d cells (its dense matrices grow "

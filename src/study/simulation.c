@@ -1,5 +1,6 @@
 /* Scene -> solver (simulation.h). */
 #include "viscolube/simulation.h"
+#include "viscolube/numerics.h"
 #include "viscolube/persson.h"
 
 #include "flow_factors_emt.h"
@@ -317,7 +318,8 @@ static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err) {
   run_ctx r = {sim, out, cb, user};
-  return vl_sweep_run(sim->contact, sim->n, sim->v0, NULL, out, check_point, &r, stats, err);
+  vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  return vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
 }
 
 const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cutoff_m) {

@@ -1,0 +1,106 @@
+/* viscolube: automatic numerics. The domain and the cells of a contact
+ * chosen from the physics of the operating point, and the layout refined
+ * until an error estimate meets a target.
+ *
+ * A lubricated line contact has three lengths (docs/NUMERICS.md section 11):
+ *   a     the contact half-width (the relaxed Hertz a0 for an elastic solid;
+ *         narrower on a stiffer, faster viscoelastic one),
+ *   L_h   the hydrodynamic inlet length sqrt(2 R h), h the film: the
+ *         pressure of a rigid cylinder spreads over a few L_h, its inlet
+ *         feeds from tens of L_h (Martin's film with the inlet at -X L_h is
+ *         short by about 2.4/X^2: 0.07 % at 60 L_h),
+ *   s     the width of the edge zones of a soft film: outside a Hertzian
+ *         contact the gap opens like delta (4 sqrt 2/3) ((x - a)/a)^(3/2),
+ *         delta = a^2/R, so it reaches the film h within
+ *         s = a (3 h/(4 sqrt 2 delta))^(2/3) of the edge (a/700 for the
+ *         soft EHL film at eta v0 = 1e-6 Pa m). The inlet meniscus and the
+ *         outlet constriction live there.
+ * The layout puts cells of s/32 at both edges of the contact, grows them by
+ * at most 10 % a cell to the background width max(a/60, L_h/80) inside the
+ * contact, and further upstream to inlet cells of a twentieth of the inlet;
+ * the domain runs from a + 60 L_h (at least 2 a0 beyond the contact)
+ * upstream to max(a + 0.6 a0, 2 L_h) downstream. Rough films keep at least
+ * the validated rough inlet (VL_WET_ROUGH_DOMAIN_MIN_A0). */
+#ifndef VISCOLUBE_NUMERICS_H
+#define VISCOLUBE_NUMERICS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "viscolube/contact.h"
+#include "viscolube/results.h"
+#include "viscolube/status.h"
+#include "viscolube/sweep.h"
+
+/* Default relative error of mu a point should meet (scene key
+ * [numerics] target_error). */
+#define VL_TARGET_ERROR_DEFAULT 0.01
+
+/* Most cells an automatic layout may take (a dense solve of n cells costs
+ * n^3/3 flops per Newton step: 1500 cells about 0.1 s). */
+#define VL_AUTO_MAX_CELLS 1500
+
+/* Refinements (every width halved) a point may take to meet its target. */
+#define VL_AUTO_MAX_REFINEMENTS 2
+
+/* What the planner knows of the point. */
+typedef struct {
+  double film_m;       /* minimum film estimate (m); 0: vl_contact_film_estimate's */
+  double half_width_m; /* contact half-width (m); 0: the relaxed Hertz a0 */
+  double resolution;   /* 1 = the standard layout; 0.5 = every width halved, ... */
+  double inlet_scale;  /* 1 (or 0) = the standard inlet; 2 = twice as long, ... */
+} vl_plan_input;
+
+/* A planned layout: the configuration to give vl_contact_create (a copy of
+ * the base with the domain, grid and cell_spans set; cell_spans points
+ * into this struct, so keep it alive while the configuration is used). */
+typedef struct {
+  vl_contact_config cfg;
+  size_t *spans; /* owned */
+  double fine_a0, background_a0, inlet_a0; /* cell widths of the layout (a0) */
+  double edge_zone_a0, inlet_length_a0;    /* s and L_h (a0) */
+  int capped; /* the base grid hit VL_CONTACT_MAX_GRID_LAYOUT or the cells
+               * VL_AUTO_MAX_CELLS: the finest cells are wider than planned */
+} vl_plan;
+
+/* Plans the numerics of the wet contact base (materials, geometry, fluid set;
+ * its numerics ignored, except the tolerance and solver) at speed v0.
+ * VL_EINPUT when base is not wet, VL_ENOMEM. Free with vl_plan_free. */
+vl_status vl_plan_wet(const vl_contact_config *base, double v0, const vl_plan_input *in,
+                      vl_plan *out, vl_error *err);
+void vl_plan_free(vl_plan *p);
+
+/* Relative error estimate of mu at a converged point pt of contact c: the
+ * point solved again on cells three times as wide (every three cells of c
+ * merged; a uniform or graded grid: a third of its cells), by continuation
+ * from that coarse contact's own previous solution, and
+ * |mu - mu_coarse| / (2 |mu|): the error of a first-order method whose
+ * error falls by three (a second-order one's falls by nine: then an
+ * overestimate by four). Sets pt->error_estimate (NAN when the coarse
+ * solve fails: the caller reports "no estimate"). */
+void vl_contact_estimate_error(vl_contact *c, vl_point *pt);
+
+/* Options of an automatic sweep. */
+typedef struct {
+  double target_error; /* relative error of mu to meet (<= 0: VL_TARGET_ERROR_DEFAULT) */
+  int max_refinements; /* per point (< 0: VL_AUTO_MAX_REFINEMENTS) */
+  bool keep_numerics;  /* base's numerics throughout (a scene's own [numerics]): every
+                        * point still gets its estimate, none is refined */
+} vl_auto_options;
+
+/* A Stribeck sweep (as vl_sweep_run, every path of it) whose numerics are
+ * chosen per run of points: a smooth film gets the planned layout
+ * (vl_plan_wet) for its film, re-planned when the film it expects has
+ * changed by more than 1.5x since the last plan; any other contact keeps
+ * base's numerics. Every converged point gets an error estimate
+ * (vl_contact_estimate_error); above the target the numerics are refined
+ * (every width halved; a uniform or graded grid: twice the cells) and the
+ * point solved again, up to max_refinements times, and a pressure that
+ * reaches the domain's end doubles the inlet. A point still above its
+ * target carries the warning "error estimate X % above the target Y %".
+ * The callback receives the contact that solved the point. */
+vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options *opt, size_t n,
+                            const double *v0_m_s, vl_point *out, vl_sweep_callback cb, void *user,
+                            vl_sweep_stats *stats, vl_error *err);
+
+#endif

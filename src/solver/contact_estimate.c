@@ -1,0 +1,43 @@
+/* The error estimate of a point (numerics.h): the same point on cells
+ * three times as wide. */
+#include "viscolube/numerics.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "contact_internal.h"
+
+/* The companion contact of c on cells three times as wide, created on first
+ * use (NULL when it cannot be made: too few cells). */
+static vl_contact *estimator(vl_contact *c) {
+  if (c->estimator || c->n < 3 * VL_CONTACT_MIN_GRID) return c->estimator;
+  vl_contact_config cfg = c->cfg;
+  size_t *spans = NULL;
+  if (c->cfg.cell_spans) {
+    spans = malloc(c->n * sizeof *spans);
+    if (!spans) return NULL;
+    cfg.n_cells = vl_contact_merge_cells(c->span, c->n, spans);
+    cfg.cell_spans = spans;
+  } else {
+    cfg.grid = c->cfg.grid / 3;
+  }
+  if (vl_contact_create(&cfg, &c->estimator, NULL) != VL_OK) c->estimator = NULL;
+  free(spans);
+  return c->estimator;
+}
+
+void vl_contact_estimate_error(vl_contact *c, vl_point *pt) {
+  pt->error_estimate = NAN;
+  if (!pt->converged) return;
+  vl_contact *e = estimator(c);
+  if (!e) return;
+  if (e->wet && e->cfg.eta_pa_s != c->cfg.eta_pa_s)
+    vl_contact_set_viscosity(e, c->cfg.eta_pa_s, NULL);
+  vl_point ep;
+  if (vl_contact_solve(e, pt->v0_m_s, &ep, NULL) != VL_OK) {
+    vl_contact_reset(e); /* continuation lost: a fresh start */
+    if (vl_contact_solve(e, pt->v0_m_s, &ep, NULL) != VL_OK) return;
+  }
+  double scale = fabs(pt->mu) > 0.0 ? fabs(pt->mu) : 1.0;
+  pt->error_estimate = 0.5 * fabs(pt->mu - ep.mu) / scale;
+}

@@ -1,0 +1,149 @@
+/* The automatic sweep (numerics.h): numerics per run of points, an error
+ * estimate on every point, refinement until it meets the target. */
+#include "viscolube/numerics.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "contact_internal.h"
+
+/* A smooth film re-planned when the film expected at the next speed is
+ * this many times thicker or thinner than the one the layout was made for
+ * (the edge zones scale as h^(2/3): 1.3x). */
+#define REPLAN_FILM_RATIO 1.5
+/* The film's growth with speed used to predict the next one (soft EHL
+ * h ~ (eta v0)^0.6-0.7, a rigid film ~ eta v0). */
+#define FILM_SPEED_EXPONENT 0.7
+
+typedef struct {
+  vl_contact_config base;
+  bool layout; /* smooth film: planned cells */
+  vl_contact *c;
+  vl_plan plan;
+  double plan_film;   /* the film the layout was planned for (m) */
+  double resolution;  /* vl_plan_input.resolution, or the grid's divisor */
+  double inlet_scale; /* vl_plan_input.inlet_scale, or the inlet's factor */
+  double last_ok;     /* speed of c's converged state (0: none) */
+} auto_state;
+
+/* A new contact for speed v (prev: the last converged point, or NULL). */
+static vl_status rebuild(auto_state *a, double v, const vl_point *prev, vl_error *err) {
+  vl_contact *c = NULL;
+  vl_status st;
+  if (a->layout) {
+    vl_plan_input in = {0.0, 0.0, a->resolution, a->inlet_scale};
+    if (prev) in.film_m = prev->u_min_m * pow(v / prev->v0_m_s, FILM_SPEED_EXPONENT);
+    vl_plan plan;
+    st = vl_plan_wet(&a->base, v, &in, &plan, err);
+    if (st != VL_OK) return st;
+    st = vl_contact_create(&plan.cfg, &c, err);
+    if (st != VL_OK) {
+      vl_plan_free(&plan);
+      return st;
+    }
+    vl_plan_free(&a->plan);
+    a->plan = plan;
+    a->plan_film = in.film_m > 0.0 ? in.film_m : vl_contact_film_estimate(&a->base, v);
+  } else {
+    vl_contact_config cfg = a->base;
+    cfg.grid = (size_t)round((double)cfg.grid / a->resolution);
+    if (cfg.x_min_a0 < 0.0) cfg.x_min_a0 *= a->inlet_scale;
+    st = vl_contact_create(&cfg, &c, err);
+    if (st != VL_OK) return st;
+  }
+  vl_contact_free(a->c);
+  a->c = c;
+  a->last_ok = 0.0;
+  return VL_OK;
+}
+
+/* Whether a smooth film's layout no longer fits the film expected at v. */
+static bool needs_plan(const auto_state *a, double v, const vl_point *prev) {
+  if (!a->c) return true;
+  if (!a->layout || !prev) return false;
+  double h = prev->u_min_m * pow(v / prev->v0_m_s, FILM_SPEED_EXPONENT);
+  double r = h / a->plan_film;
+  return r > REPLAN_FILM_RATIO || r < 1.0 / REPLAN_FILM_RATIO;
+}
+
+static void append_warning(vl_point *pt, const char *w) {
+  size_t len = strlen(pt->warnings);
+  snprintf(pt->warnings + len, sizeof pt->warnings - len, "%s%s", len ? ";" : "", w);
+}
+
+/* One point: solved, estimated, refined while above the target. */
+static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v,
+                            const vl_point *prev, vl_point *pt, vl_sweep_stats *st,
+                            vl_error *err) {
+  vl_status s = VL_OK;
+  if (needs_plan(a, v, prev) && (s = rebuild(a, v, prev, err)) != VL_OK) return s;
+  for (int k = 0;; k++) {
+    s = vl_sweep_solve_point(a->c, a->last_ok, v, 6, pt, st, err);
+    if (s != VL_OK) {
+      a->last_ok = 0.0;
+      return s;
+    }
+    a->last_ok = v;
+    vl_contact_estimate_error(a->c, pt);
+    bool edge = !o->keep_numerics && strstr(pt->warnings, "domain edge") != NULL;
+    bool coarse = pt->error_estimate > o->target_error;
+    if ((!edge && !coarse) || k >= o->max_refinements) break;
+    if (edge) a->inlet_scale *= 2.0;
+    if (coarse) a->resolution *= 0.5;
+    if ((s = rebuild(a, v, pt, err)) != VL_OK) return s;
+  }
+  if (pt->error_estimate > o->target_error) {
+    char w[120];
+    snprintf(w, sizeof w, "error estimate %.2g %% above the target %.2g %%",
+             100.0 * pt->error_estimate, 100.0 * o->target_error);
+    append_warning(pt, w);
+  }
+  return VL_OK;
+}
+
+vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options *opt, size_t n,
+                            const double *v0_m_s, vl_point *out, vl_sweep_callback cb, void *user,
+                            vl_sweep_stats *stats, vl_error *err) {
+  vl_auto_options o = {VL_TARGET_ERROR_DEFAULT, VL_AUTO_MAX_REFINEMENTS, false};
+  if (opt && opt->target_error > 0.0) o.target_error = opt->target_error;
+  if (opt && opt->max_refinements >= 0) o.max_refinements = opt->max_refinements;
+  if (opt && opt->keep_numerics) o.keep_numerics = true, o.max_refinements = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (!(v0_m_s[i] > 0.0 && isfinite(v0_m_s[i]))) {
+      vl_error_set(err, "sweep speed %zu must be positive and finite (got %g m/s)", i + 1,
+                   v0_m_s[i]);
+      return VL_EINPUT;
+    }
+  }
+  auto_state a = {.base = *base, .resolution = 1.0, .inlet_scale = 1.0};
+  a.layout = !o.keep_numerics && base->eta_pa_s > 0.0 && !base->roughness;
+  vl_sweep_stats st;
+  memset(&st, 0, sizeof st);
+  double t0 = vl_contact_now_s();
+  const vl_point *prev = NULL;
+  vl_status s = VL_OK;
+  for (size_t i = 0; i < n; i++) {
+    vl_error e;
+    s = auto_point(&a, &o, v0_m_s[i], prev, &out[i], &st, &e);
+    if (s == VL_ENOCONV) {
+      st.failed++;
+      prev = NULL;
+    } else if (s != VL_OK) {
+      if (err) *err = e;
+      break;
+    } else {
+      st.converged++;
+      prev = &out[i];
+    }
+    s = VL_OK;
+    out[i].v0_m_s = v0_m_s[i];
+    if (cb) cb(user, i, n, &out[i], a.c);
+  }
+  st.seconds = vl_contact_now_s() - t0;
+  if (stats) *stats = st;
+  vl_contact_free(a.c);
+  vl_plan_free(&a.plan);
+  return s;
+}
