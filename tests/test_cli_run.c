@@ -46,7 +46,7 @@ static const char *const COLUMNS[] = {
     "v0_m_s",    "v0_eta_pa_m", "deborah",  "mu",          "mu_Rc",           "mu_Rf",
     "mu_Sc",     "mu_Sf",       "u_min_m",  "u_central_m", "contact_width_m", "fluid_load_fraction",
     "regime",    "E_wH_pa",     "a_H_m",    "Q",           "x_centroid_m",    "load_error",
-    "converged", "iterations",  "residual", "eps_f_min",   "warnings"};
+    "converged", "iterations",  "residual", "eps_f_min",   "error_estimate",  "warnings"};
 #define NCOL (sizeof COLUMNS / sizeof COLUMNS[0])
 static const char *const FIELD_COLUMNS =
     "x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction,cell_width_m";
@@ -242,7 +242,9 @@ static void check_curve(const csv_table *t, size_t rows) {
     /* dry: no fluid at all */
     assert_true(num(t, r, "mu_Rf") == 0.0 && num(t, r, "mu_Sf") == 0.0);
     assert_true(num(t, r, "fluid_load_fraction") == 0.0);
-    assert_true(num(t, r, "eps_f_min") == 1.0);                 /* no viscous flattening */
+    assert_true(num(t, r, "eps_f_min") == 1.0); /* no viscous flattening */
+    /* every converged point carries its error estimate (relative, >= 0) */
+    assert_true(num(t, r, "error_estimate") >= 0.0 && num(t, r, "error_estimate") < 1.0);
     assert_string_equal(t->cell[r][col_of("v0_eta_pa_m")], ""); /* no fluid named */
     if (r) assert_true(num(t, r, "v0_m_s") > num(t, r - 1, "v0_m_s"));
   }

@@ -56,7 +56,7 @@ typedef struct {
  * into this struct, so keep it alive while the configuration is used). */
 typedef struct {
   vl_contact_config cfg;
-  size_t *spans; /* owned */
+  size_t *spans;                           /* owned */
   double fine_a0, background_a0, inlet_a0; /* cell widths of the layout (a0) */
   double edge_zone_a0, inlet_length_a0;    /* s and L_h (a0) */
   int capped; /* the base grid hit VL_CONTACT_MAX_GRID_LAYOUT or the cells
@@ -72,8 +72,8 @@ void vl_plan_free(vl_plan *p);
 
 /* Relative error estimate of mu at a converged point pt of contact c: the
  * point solved again on cells three times as wide (every three cells of c
- * merged; a uniform or graded grid: a third of its cells), by continuation
- * from that coarse contact's own previous solution, and
+ * merged; a uniform or graded grid: a third of its cells), started from
+ * the point's own solution interpolated onto those cells, and
  * |mu - mu_coarse| / (2 |mu|): the error of a first-order method whose
  * error falls by three (a second-order one's falls by nine: then an
  * overestimate by four). Sets pt->error_estimate (NAN when the coarse
@@ -95,8 +95,9 @@ typedef struct {
  * base's numerics. Every converged point gets an error estimate
  * (vl_contact_estimate_error); above the target the numerics are refined
  * (every width halved; a uniform or graded grid: twice the cells) and the
- * point solved again, up to max_refinements times, and a pressure that
- * reaches the domain's end doubles the inlet. A point still above its
+ * point solved again (from the coarser solution), up to max_refinements
+ * times and as long as the cells stay within VL_AUTO_MAX_CELLS, and a
+ * pressure that reaches the domain's end doubles the inlet (up to 8x). A point still above its
  * target carries the warning "error estimate X % above the target Y %".
  * The callback receives the contact that solved the point. */
 vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options *opt, size_t n,

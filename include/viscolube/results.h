@@ -28,10 +28,10 @@ typedef struct {
   double Q;                    /* rolling number (wet rough only; else 0) */
   double peak_pressure_pa, x_peak_m;
   double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
-  double x_min_film_m;        /* where u is smallest (EHL constriction: outlet side, x > 0) */
-  int regime;                 /* vl_regime */
-  double eps_f_min;           /* smallest epsilon_f(u) over the grid (viscous flattening);
-                               * 1 when the effect is off */
+  double x_min_film_m; /* where u is smallest (EHL constriction: outlet side, x > 0) */
+  int regime;          /* vl_regime */
+  double eps_f_min;    /* smallest epsilon_f(u) over the grid (viscous flattening);
+                        * 1 when the effect is off */
   /* relative error of mu estimated from a coarser solve (numerics.h:
    * vl_contact_estimate_error); NAN when none was made or it failed */
   double error_estimate;

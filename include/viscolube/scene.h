@@ -8,8 +8,8 @@
 #include <stddef.h>
 
 #include "viscolube/contact.h"
-#include "viscolube/numerics.h"
 #include "viscolube/flow_factors.h"
+#include "viscolube/numerics.h"
 #include "viscolube/status.h"
 
 #define VL_NAME_MAX 128

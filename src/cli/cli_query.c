@@ -187,7 +187,7 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
     sc->effects.film_cutoff_m = c->film_cutoff_m;
   }
   vl_scene_default_numerics(sc);
-  if (c->grid) sc->grid = c->grid; /* 0: the default */
+  if (c->grid) sc->grid = c->grid, sc->auto_numerics = false; /* 0: automatic */
   sc->quantity = VL_SWEEP_V0_ETA;
   if (c->have_temperature) {
     sc->effects.temperature = true;
@@ -357,6 +357,11 @@ static void friction_text(const conditions *c, const char *compound, double spee
          pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
          vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual,
          stats->converged + stats->failed);
+  if (isfinite(pt->error_estimate))
+    printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)\n",
+           100.0 * pt->error_estimate);
+  else
+    printf("  error estimate of mu: none (the point on coarser cells did not converge)\n");
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {

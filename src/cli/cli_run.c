@@ -197,19 +197,22 @@ typedef struct {
 /* The table of a curve: one row per point, then the solver's statistics. */
 static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
                         const vl_curve_meta *meta, const vl_sweep_stats *stats) {
-  printf("%11s %11s %10s %10s %10s %10s %10s %10s %12s %4s %4s\n", "v0_m_s",
+  printf("%11s %11s %10s %10s %10s %10s %10s %10s %12s %4s %4s %8s\n", "v0_m_s",
          vl_sweep_quantity_name(scene->quantity), "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf",
-         "u_min_m", "regime", "conv", "iter");
+         "u_min_m", "regime", "conv", "iter", "err_est");
   for (size_t i = 0; i < n; i++) {
     const vl_point *p = &pts[i];
     double q = sweep_value(scene->quantity, p, meta);
+    char est[16] = "-"; /* no estimate: the coarse solve failed */
+    if (p->converged && isfinite(p->error_estimate))
+      snprintf(est, sizeof est, "%.2g%%", 100.0 * p->error_estimate);
     if (p->converged)
-      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld\n", p->v0_m_s,
-             q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m,
-             vl_regime_name(p->regime), "yes", p->iterations);
+      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld %8s\n",
+             p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0,
+             p->u_min_m, vl_regime_name(p->regime), "yes", p->iterations, est);
     else
-      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld\n", p->v0_m_s, q, "-", "-",
-             "-", "-", "-", "-", "-", "NO", p->iterations);
+      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld %8s\n", p->v0_m_s, q, "-",
+             "-", "-", "-", "-", "-", "-", "NO", p->iterations, "-");
   }
   printf("%zu converged, %zu failed, %ld Newton iterations, %.3f s (%.1f ms per point)\n",
          stats->converged, stats->failed, stats->newton_iterations, stats->seconds,

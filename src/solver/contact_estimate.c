@@ -7,6 +7,8 @@
 
 #include "contact_internal.h"
 
+#define MU_FLOOR 1e-9
+
 /* The companion contact of c on cells three times as wide, created on first
  * use (NULL when it cannot be made: too few cells). */
 static vl_contact *estimator(vl_contact *c) {
@@ -34,10 +36,15 @@ void vl_contact_estimate_error(vl_contact *c, vl_point *pt) {
   if (e->wet && e->cfg.eta_pa_s != c->cfg.eta_pa_s)
     vl_contact_set_viscosity(e, c->cfg.eta_pa_s, NULL);
   vl_point ep;
+  /* from the point itself: on its branch (the coarse contact's own previous
+   * state may lie decades of speed away, across a transition) */
+  vl_contact_start_from(e, c, pt->v0_m_s);
   if (vl_contact_solve(e, pt->v0_m_s, &ep, NULL) != VL_OK) {
     vl_contact_reset(e); /* continuation lost: a fresh start */
     if (vl_contact_solve(e, pt->v0_m_s, &ep, NULL) != VL_OK) return;
   }
-  double scale = fabs(pt->mu) > 0.0 ? fabs(pt->mu) : 1.0;
+  /* relative to mu, but a friction below MU_FLOOR is zero for every
+   * purpose (an elastic contact's mu is round-off: 1e-17) */
+  double scale = fmax(fabs(pt->mu), MU_FLOOR);
   pt->error_estimate = 0.5 * fabs(pt->mu - ep.mu) / scale;
 }

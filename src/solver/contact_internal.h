@@ -130,8 +130,8 @@ static inline vl_status vl_contact_nomem(const vl_contact *c, vl_error *err) {
 /* Solves point v from the state of c converged at last_ok (0: none) by
  * every path of sweep.h in turn (continuation, a fresh start, starts below
  * and above); counts into *st. On VL_ENOCONV c holds the Hertz guess. */
-vl_status vl_sweep_solve_point(vl_contact *c, double last_ok, double v, int max_depth,
-                               vl_point *pt, vl_sweep_stats *st, vl_error *err);
+vl_status vl_sweep_solve_point(vl_contact *c, double last_ok, double v, int max_depth, vl_point *pt,
+                               vl_sweep_stats *st, vl_error *err);
 
 /* contact.c */
 
@@ -234,6 +234,13 @@ bool vl_contact_rough_wet_dry_start(vl_contact *c, double v0, long *nni);
  * iterations to *nni; false, with c unchanged, when it fails or the smooth
  * film's estimate (vl_contact_film_estimate) is thinner than h_rms. */
 bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni);
+
+/* Starts dst from src's converged state at speed v0 (the same contact on
+ * other cells: the unknowns interpolated between the nodes, the rigid
+ * approach and the fluid scales copied), as a continuation from v0. False,
+ * with dst unchanged, when src holds no converged state, the two differ in
+ * roughness or fluid, or a rough dst reaches beyond src's domain. */
+bool vl_contact_start_from(vl_contact *dst, const vl_contact *src, double v0);
 
 /* contact_report.c */
 

@@ -9,7 +9,6 @@
 
 #include <math.h>
 
-
 /* Linear interpolation at x of the node values f[0..m-1] at the increasing
  * positions xs (any cells: uniform, graded or laid out); the end values
  * beyond the ends. */
@@ -337,5 +336,28 @@ bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni) {
   }
   y[c->ih] = cnt ? sum / (double)cnt : 0.0;
   c->v_state = 0.0;
+  return true;
+}
+
+bool vl_contact_start_from(vl_contact *dst, const vl_contact *src, double v0) {
+  if (dst->rough != src->rough || dst->wet != src->wet || !(src->v_state > 0.0)) return false;
+  if (dst->rough &&
+      (dst->cfg.x_min_a0 < src->cfg.x_min_a0 || dst->cfg.x_max_a0 > src->cfg.x_max_a0))
+    return false; /* separations beyond src's domain are not its end values */
+  const double *ys = N_VGetArrayPointer(src->y);
+  double *y = N_VGetArrayPointer(dst->y);
+  vl_contact_set_speed(dst, v0);
+  for (size_t i = 0; i < dst->nc; i++)
+    y[i] = interpolate(ys, src->xi, src->n, dst->xi[i]);
+  for (size_t i = 0; i < dst->nf; i++)
+    y[dst->of + i] = interpolate(ys + src->of, src->xi, src->n, dst->xi[i]);
+  y[dst->ih] = ys[src->ih];
+  dst->kappa = src->kappa, dst->lambda = src->lambda, dst->rscale = src->rscale;
+  dst->u_ref = src->u_ref;
+  dst->v_state = v0;
+  if (dst->wet) {
+    vl_contact_eval_state(dst, y);
+    vl_contact_reynolds_weights(dst);
+  }
   return true;
 }

@@ -17,10 +17,10 @@
 
 /* The planner's lengths, all in a0. */
 typedef struct {
-  double a;       /* contact half-width */
-  double lh;      /* hydrodynamic inlet length sqrt(2 R h) */
-  double s;       /* edge-zone width of a soft film (INFINITY: not soft) */
-  double core;    /* upstream end of the zone of background cells */
+  double a;    /* contact half-width */
+  double lh;   /* hydrodynamic inlet length sqrt(2 R h) */
+  double s;    /* edge-zone width of a soft film (INFINITY: not soft) */
+  double core; /* upstream end of the zone of background cells */
   double x_lo, x_hi;
   double fine, back, inlet; /* cell widths: edges, background, far inlet */
 } lengths;

@@ -78,7 +78,7 @@ static vl_status reach_from(vl_contact *c, double v, double sign, const double *
  * path in turn (sweep.h). On VL_ENOCONV the contact holds the Hertz guess
  * and pt the failure at v itself. */
 vl_status vl_sweep_solve_point(vl_contact *c, double last_ok, double v, int max_depth, vl_point *pt,
-                             vl_sweep_stats *st, vl_error *err) {
+                               vl_sweep_stats *st, vl_error *err) {
   /* far enough below to reach the boundary regime from the mixed one; close
    * above, since a fold of the curve (a film lifting off) is narrow */
   static const double below[] = {1.0, 2.0, 4.0, 8.0, 12.0}, above[] = {0.5, 1.0, 2.0};
@@ -134,7 +134,8 @@ vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_s
   double last_ok = 0.0;
   for (size_t i = 0; i < n; i++) {
     vl_error e;
-    vl_status s = vl_sweep_solve_point(c, last_ok, v0_m_s[i], opt->max_subdivisions, &out[i], &st, &e);
+    vl_status s =
+        vl_sweep_solve_point(c, last_ok, v0_m_s[i], opt->max_subdivisions, &out[i], &st, &e);
     if (s == VL_OK) {
       st.converged++;
       last_ok = v0_m_s[i];

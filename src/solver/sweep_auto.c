@@ -53,10 +53,20 @@ static vl_status rebuild(auto_state *a, double v, const vl_point *prev, vl_error
     st = vl_contact_create(&cfg, &c, err);
     if (st != VL_OK) return st;
   }
+  /* continued from the old contact's converged state where it has one
+   * (the same branch, without a fresh start), else a fresh start */
+  if (!(a->c && a->last_ok > 0.0 && vl_contact_start_from(c, a->c, a->last_ok))) a->last_ok = 0.0;
   vl_contact_free(a->c);
   a->c = c;
-  a->last_ok = 0.0;
   return VL_OK;
+}
+
+/* Whether another refinement stays within the cost bound: a planned layout
+ * that was not capped, or a grid whose doubled cells stay within
+ * VL_AUTO_MAX_CELLS. */
+static bool can_refine(const auto_state *a) {
+  if (a->layout) return !a->plan.capped;
+  return 2 * vl_contact_grid(a->c) <= VL_AUTO_MAX_CELLS;
 }
 
 /* Whether a smooth film's layout no longer fits the film expected at v. */
@@ -74,9 +84,8 @@ static void append_warning(vl_point *pt, const char *w) {
 }
 
 /* One point: solved, estimated, refined while above the target. */
-static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v,
-                            const vl_point *prev, vl_point *pt, vl_sweep_stats *st,
-                            vl_error *err) {
+static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, const vl_point *prev,
+                            vl_point *pt, vl_sweep_stats *st, vl_error *err) {
   vl_status s = VL_OK;
   if (needs_plan(a, v, prev) && (s = rebuild(a, v, prev, err)) != VL_OK) return s;
   for (int k = 0;; k++) {
@@ -87,8 +96,8 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v,
     }
     a->last_ok = v;
     vl_contact_estimate_error(a->c, pt);
-    bool edge = !o->keep_numerics && strstr(pt->warnings, "domain edge") != NULL;
-    bool coarse = pt->error_estimate > o->target_error;
+    bool edge = !o->keep_numerics && a->inlet_scale < 8.0 && strstr(pt->warnings, "domain edge");
+    bool coarse = pt->error_estimate > o->target_error && can_refine(a);
     if ((!edge && !coarse) || k >= o->max_refinements) break;
     if (edge) a->inlet_scale *= 2.0;
     if (coarse) a->resolution *= 0.5;

@@ -597,7 +597,8 @@ static vl_status scene_check(parse_state *ps) {
   if (!ps->key_line[K_GRID_GROWTH]) sc->grid_growth = d.grid_growth;
   if (!ps->key_line[K_TOLERANCE]) sc->tolerance = d.tolerance;
   /* a scene that lays out its own cells or domain keeps them */
-  sc->auto_numerics = !ps->key_line[K_GRID] && !ps->key_line[K_GRID_GROWTH] && !ps->key_line[K_DOMAIN];
+  sc->auto_numerics =
+      !ps->key_line[K_GRID] && !ps->key_line[K_GRID_GROWTH] && !ps->key_line[K_DOMAIN];
   if (!(sc->grid_growth > 1.0) && sc->grid > VL_GRID_UNIFORM_MAX)
     return check_fail(ps, K_GRID,
                       "a uniform grid takes at most %d cells (its dense matrices grow "
