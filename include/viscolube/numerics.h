@@ -96,8 +96,10 @@ typedef struct {
  * (vl_contact_estimate_error); above the target the numerics are refined
  * (every width halved; a uniform or graded grid: twice the cells) and the
  * point solved again (from the coarser solution), up to max_refinements
- * times and as long as the cells stay within VL_AUTO_MAX_CELLS, and a
- * pressure that reaches the domain's end doubles the inlet (up to 8x). A point still above its
+ * times and as long as the cells stay within VL_AUTO_MAX_CELLS (and made
+ * coarser again once a point's estimate is below a tenth of the target),
+ * and a pressure that reaches the domain's ends doubles the inlet (up to
+ * 8x) and moves the outlet by sqrt(2). A point still above its
  * target carries the warning "error estimate X % above the target Y %".
  * The callback receives the contact that solved the point. */
 vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options *opt, size_t n,

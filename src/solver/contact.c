@@ -97,7 +97,8 @@ static vl_status create_helpers(vl_contact *c, vl_error *err) {
   if (c->nc != 0) return VL_OK;
   if (c->n >= 2 * VL_COARSE_MIN) {
     vl_contact_config coarse = c->cfg;
-    if (!c->cfg.cell_spans) {
+    if (!c->span) { /* uniform (a layout of single cells included) */
+      coarse.cell_spans = NULL;
       coarse.grid = c->n / 2;
       return vl_contact_create(&coarse, &c->coarse, err);
     }

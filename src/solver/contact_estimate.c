@@ -15,11 +15,19 @@ static vl_contact *estimator(vl_contact *c) {
   if (c->estimator || c->n < 3 * VL_CONTACT_MIN_GRID) return c->estimator;
   vl_contact_config cfg = c->cfg;
   size_t *spans = NULL;
-  if (c->cfg.cell_spans) {
+  cfg.cell_spans = NULL;
+  if (c->cfg.cell_spans && c->span) {
     spans = malloc(c->n * sizeof *spans);
     if (!spans) return NULL;
     cfg.n_cells = vl_contact_merge_cells(c->span, c->n, spans);
     cfg.cell_spans = spans;
+  } else if (c->span) {
+    /* a graded inlet: also half as long, since mu converges like 1/X in the
+     * inlet length X (docs/NUMERICS.md section 10): the change then holds
+     * the truncation error of the inlet as well */
+    double dx = (c->cfg.x_max_a0 - c->cfg.x_min_a0) / (double)c->cfg.grid;
+    cfg.x_min_a0 = 0.5 * c->cfg.x_min_a0;
+    cfg.grid = (size_t)round((cfg.x_max_a0 - cfg.x_min_a0) / (3.0 * dx));
   } else {
     cfg.grid = c->cfg.grid / 3;
   }

@@ -49,7 +49,10 @@ static vl_status rebuild(auto_state *a, double v, const vl_point *prev, vl_error
   } else {
     vl_contact_config cfg = a->base;
     cfg.grid = (size_t)round((double)cfg.grid / a->resolution);
-    if (cfg.x_min_a0 < 0.0) cfg.x_min_a0 *= a->inlet_scale;
+    /* a pressure at the domain's ends: both ends moved out (the asperity
+     * contact of a very rough surface reaches past 1.6 a0 downstream) */
+    cfg.x_min_a0 *= a->inlet_scale;
+    cfg.x_max_a0 *= sqrt(a->inlet_scale);
     st = vl_contact_create(&cfg, &c, err);
     if (st != VL_OK) return st;
   }
@@ -78,6 +81,11 @@ static bool needs_plan(const auto_state *a, double v, const vl_point *prev) {
   return r > REPLAN_FILM_RATIO || r < 1.0 / REPLAN_FILM_RATIO;
 }
 
+/* A run refined for a hard point goes back to coarser cells once its
+ * points are this far below the target (each refinement costs about 8x per
+ * Newton step on dense matrices). */
+#define COARSEN_BELOW 0.1
+
 static void append_warning(vl_point *pt, const char *w) {
   size_t len = strlen(pt->warnings);
   snprintf(pt->warnings + len, sizeof pt->warnings - len, "%s%s", len ? ";" : "", w);
@@ -87,7 +95,10 @@ static void append_warning(vl_point *pt, const char *w) {
 static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, const vl_point *prev,
                             vl_point *pt, vl_sweep_stats *st, vl_error *err) {
   vl_status s = VL_OK;
-  if (needs_plan(a, v, prev) && (s = rebuild(a, v, prev, err)) != VL_OK) return s;
+  bool coarsen =
+      a->resolution < 1.0 && prev && prev->error_estimate < COARSEN_BELOW * o->target_error;
+  if (coarsen) a->resolution *= 2.0;
+  if ((coarsen || needs_plan(a, v, prev)) && (s = rebuild(a, v, prev, err)) != VL_OK) return s;
   for (int k = 0;; k++) {
     s = vl_sweep_solve_point(a->c, a->last_ok, v, 6, pt, st, err);
     if (s != VL_OK) {
