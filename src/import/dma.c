@@ -1097,17 +1097,46 @@ static vl_status reference_isotherm(const vl_measured *m, double *tref_c, size_t
   return VL_OK;
 }
 
+/* Notes on the pairs that had to be bridged (tts.h): their shift rests on
+ * the curves' trends, not on common points. */
+static void bridge_notes(vl_measured *m, const vl_tts_pair_info *info) {
+  for (size_t g = 0; g + 1 < m->n_isotherms; g++) {
+    const vl_tts_pair_info *p = &info[g];
+    if (!p->bridged) continue;
+    m->n_extrapolated++;
+    if (p->at_limit) {
+      note(m,
+           "warning: the isotherms at %.4g and %.4g C lie too far apart to join (their windows "
+           "are at least %.2f decades apart after the %.2f-decade shift found): that shift is "
+           "a lower bound and the master curve beyond it is unreliable; measure isotherms "
+           "closer in temperature or over a wider frequency range",
+           m->iso_temperature_c[g], m->iso_temperature_c[g + 1], -p->overlap_decades,
+           fabs(p->shift));
+      m->n_warnings++;
+    } else {
+      note(m,
+           "the isotherms at %.4g and %.4g C %s %.2f decades after their shift of %.2f decades: "
+           "too little to compare point by point, so the shift joins the two curves' trends "
+           "(a cubic in log frequency across the junction%s)",
+           m->iso_temperature_c[g], m->iso_temperature_c[g + 1],
+           p->overlap_decades >= 0.0 ? "overlap by" : "leave a gap of", fabs(p->overlap_decades),
+           fabs(p->shift), p->loss_used ? ", E' and E''" : ", E' alone");
+    }
+  }
+}
+
 /* lat[g] = log10 a_T of isotherm g relative to isotherm ref, by
- * vl_tts_chain over the points in the order ord (isotherm, frequency). A
- * warmer isotherm that shifts the wrong way is refused. */
-static vl_status chain_shifts(const vl_measured *m, const order_key *ord, size_t ref, double *lat,
+ * vl_tts_chain_info over the points in the order ord (isotherm,
+ * frequency). A warmer isotherm that shifts the wrong way is refused. */
+static vl_status chain_shifts(vl_measured *m, const order_key *ord, size_t ref, double *lat,
                               vl_error *err) {
   size_t ni = m->n_isotherms;
   vl_status st = VL_OK;
   vl_tts_isotherm *iso = calloc(ni, sizeof *iso);
+  vl_tts_pair_info *info = calloc(ni, sizeof *info);
   double *lw = malloc(m->n * sizeof *lw), *l1 = malloc(m->n * sizeof *l1);
   double *l2 = malloc(m->n * sizeof *l2);
-  if (!iso || !lw || !l1 || !l2) {
+  if (!iso || !info || !lw || !l1 || !l2) {
     vl_error_set(err, "%s: out of memory shifting isotherms", m->source);
     st = VL_ENOMEM;
     goto cleanup;
@@ -1122,7 +1151,7 @@ static vl_status chain_shifts(const vl_measured *m, const order_key *ord, size_t
     iso[g] = (vl_tts_isotherm){m->iso_temperature_c[g], m->iso_points[g], lw + i, l1 + i, l2 + i};
     i += m->iso_points[g];
   }
-  if ((st = vl_tts_chain(ni, iso, ref, lat, NULL, err)) != VL_OK) {
+  if ((st = vl_tts_chain_info(ni, iso, ref, lat, info, err)) != VL_OK) {
     vl_error_prefix(err, "%s", m->source);
     goto cleanup;
   }
@@ -1138,9 +1167,11 @@ static vl_status chain_shifts(const vl_measured *m, const order_key *ord, size_t
       goto cleanup;
     }
   }
+  bridge_notes(m, info);
 
 cleanup:
   free(iso);
+  free(info);
   free(lw);
   free(l1);
   free(l2);
