@@ -40,6 +40,7 @@
 #define MODULUS_MAX_PA 1e12
 #define TEMP_MIN_C (-150.0)
 #define TEMP_MAX_C 400.0
+#define KELVIN_LIKE_MIN_C 200.0
 
 typedef enum { R_FREQ, R_STORAGE, R_LOSS, R_ABS, R_TAN, R_J1, R_J2, R_TEMP, R_SET, R_COUNT } role;
 
@@ -1468,6 +1469,28 @@ static void read_notes(vl_measured *m, const layout *lay, const vl_dma_options *
   }
 }
 
+/* Every temperature between KELVIN_LIKE_MIN_C and TEMP_MAX_C under a
+ * Celsius unit from the file: room-temperature kelvin numbers under a C
+ * header (293 K read as 293 C) fall there, and a rubber's DMA does not
+ * (it degrades). Refused unless the options confirm Celsius. */
+static vl_status kelvin_as_celsius(const vl_measured *m, const layout *lay,
+                                   const vl_dma_options *o, vl_error *err) {
+  if (!m->has_temperature || lay->unit[R_TEMP]->offset != 0.0 || o->temp_unit) return VL_OK;
+  double tmin = INFINITY;
+  size_t first = 0;
+  for (size_t k = 0; k < m->n; k++)
+    if (m->temperature_c[k] < tmin) tmin = m->temperature_c[k], first = k;
+  if (!(tmin >= KELVIN_LIKE_MIN_C)) return VL_OK;
+  int tf = lay->field_of_role[R_TEMP];
+  vl_error_set(err,
+               "%s:%zu: column '%s' (field %d): every temperature lies between %g and %g C "
+               "(%.6g C here), where no rubber is measured: kelvin numbers under a C unit? Give "
+               "the unit K, or confirm Celsius with the temperature unit option (--temp-unit C)",
+               lay->src, m->line[first], lay->fields[tf].text, tf + 1, KELVIN_LIKE_MIN_C,
+               TEMP_MAX_C, tmin);
+  return VL_EINPUT;
+}
+
 /* Reads the numbers of text (dialect in lay) into m's points in SI units,
  * *set (the set column, or NULL) allocated for the caller. Every
  * implausible point is reported at once. */
@@ -1510,6 +1533,8 @@ static vl_status read_points(const char *text, size_t len, layout *lay, const vl
   if (pr.total > 0) {
     vl_problems_finish(&pr, lay->src, err);
     st = VL_EINPUT;
+  } else {
+    st = kelvin_as_celsius(m, lay, o, err);
   }
 
 cleanup:
