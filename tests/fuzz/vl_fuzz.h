@@ -27,17 +27,31 @@ _Noreturn void vl_fuzz_fail(const char *file, int line, const char *fmt, ...)
   } while (0)
 
 /* The contract of a reader refusing the file at path (status st, message
- * msg): VL_EINPUT, a message that starts with the path and holds no control
- * byte. A macro so that a failure names the caller's line; the caller
- * includes <string.h> and the viscolube header defining VL_EINPUT. */
+ * msg): VL_EINPUT, a message whose every line starts with the path (a
+ * reader lists every offending line of a file, one per line) and holds no
+ * other control byte. A macro so that a failure names the caller's line;
+ * the caller includes <string.h> and the viscolube header defining
+ * VL_EINPUT. */
 #define FUZZ_CHECK_REFUSED(st, path, msg)                                                          \
   do {                                                                                             \
     FUZZ_CHECK((st) == VL_EINPUT, "status %d for a bad file: %s", (int)(st), (msg));               \
-    FUZZ_CHECK(!strncmp((msg), (path), strlen(path)), "message does not name the file: %s",        \
+    FUZZ_CHECK_LINES((path), (msg));                                                               \
+  } while (0)
+
+/* Every line of msg starts with name and holds no control byte but the
+ * line breaks. */
+#define FUZZ_CHECK_LINES(name, msg)                                                                \
+  do {                                                                                             \
+    FUZZ_CHECK(!strncmp((msg), (name), strlen(name)), "message does not name the file: %s",        \
                (msg));                                                                             \
-    for (const char *fuzz_c_ = (msg); *fuzz_c_; fuzz_c_++)                                         \
-      FUZZ_CHECK((unsigned char)*fuzz_c_ >= 0x20 && *fuzz_c_ != 0x7f,                              \
-                 "control byte in message: %s", (msg));                                            \
+    for (const char *fuzz_c_ = (msg); *fuzz_c_; fuzz_c_++) {                                       \
+      if (*fuzz_c_ == '\n')                                                                        \
+        FUZZ_CHECK(!strncmp(fuzz_c_ + 1, (name), strlen(name)),                                    \
+                   "a line of the message does not name the file: %s", (msg));                     \
+      else                                                                                         \
+        FUZZ_CHECK((unsigned char)*fuzz_c_ >= 0x20 && *fuzz_c_ != 0x7f,                            \
+                   "control byte in message: %s", (msg));                                          \
+    }                                                                                              \
   } while (0)
 
 /* A path naming a file whose content is exactly data[0..size): the readers
