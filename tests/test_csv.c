@@ -381,7 +381,8 @@ int main(void) {
       cmocka_unit_test(test_sign_and_order),    cmocka_unit_test(test_bad_structure),
       cmocka_unit_test(test_units_row),         cmocka_unit_test(test_parse_double),
       cmocka_unit_test(test_read_file_errors),  cmocka_unit_test(test_prony_reader),
-      cmocka_unit_test(test_psd_reader),        cmocka_unit_test(test_dialects),        cmocka_unit_test(test_mutations),
+      cmocka_unit_test(test_psd_reader),        cmocka_unit_test(test_dialects),
+      cmocka_unit_test(test_mutations),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -133,7 +133,10 @@ static char *layout_text(const data_set *d, int lay) {
   case L_MARCUS:
     add(&t, "run,freq_hz,temperature_C,G_storage_pa,G_loss_pa,G_abs_pa,tan_delta,force_dyn_N\n");
     break;
-  case L_SEMICOLON: add(&t, "# exported by an instrument\nf [Hz];T [\xC2\xB0" "C];G' [MPa];G'' [MPa]\n"); break;
+  case L_SEMICOLON:
+    add(&t, "# exported by an instrument\nf [Hz];T [\xC2\xB0"
+            "C];G' [MPa];G'' [MPa]\n");
+    break;
   case L_TAB: add(&t, "omega [rad/s]\tTemp (K)\t|G*| (kPa)\ttan \xCE\xB4\n"); break;
   case L_GENERIC:
     add(&t, "Frequency (Hz),Temperature (C),Storage modulus (Pa),Loss modulus (Pa)\n");
@@ -315,7 +318,8 @@ static void test_refusals(void **state) {
   free(many);
   /* plausibility: MPa numbers under Pa, Pa under MPa, K as C, C as K */
   const char *mpa = "f,E_stor,E_loss\nHz,Pa,Pa\n0.1,2.1,0.3\n1,2.5,0.4\n10,3,0.5\n100,4,1\n";
-  expect_refused(mpa, strlen(mpa), "mpa.csv", &o, "mpa.csv:3: column 'E_stor' (field 2): E' = 2.1 Pa",
+  expect_refused(mpa, strlen(mpa), "mpa.csv", &o,
+                 "mpa.csv:3: column 'E_stor' (field 2): E' = 2.1 Pa",
                  "MPa or GPa numbers under the unit Pa?");
   expect_refused(mpa, strlen(mpa), "mpa.csv", &o, "mpa.csv:6:", NULL);
   const char *pa = "f,E_stor,E_loss\nHz,MPa,MPa\n0.1,2.1e6,3e5\n1,2.5e6,4e5\n10,3e6,5e5\n";
@@ -558,7 +562,8 @@ static void test_psd_plausibility(void **state) {
   /* h_rms 25 mm */
   expect_psd_refused("q [1/m],C [m^4]\n1e2,1e-8\n1e4,1e-14\n", "implausible h_rms 0.0249", NULL);
   /* rms slope 11.9 */
-  expect_psd_refused("q [1/m],C [m^4]\n1e5,1e-20\n1e9,1e-30\n", "implausible rms slope", "above 10");
+  expect_psd_refused("q [1/m],C [m^4]\n1e5,1e-20\n1e9,1e-30\n", "implausible rms slope",
+                     "above 10");
   /* structure: no unit, a second q, missing C, every bad row at once */
   expect_psd_refused("q,C\n1e4,1e-20\n1e6,1e-26\n", "bad.csv:1: column 'q' (field 1): no unit",
                      "q [1/m]");

@@ -188,7 +188,8 @@ static void expected_units(const vl_csv_column *cols, const size_t *map, size_t 
   for (size_t f = 0; f < n_fields && k < size; f++) {
     const char *u = map[f] == IGNORED ? "" : cols[map[f]].units ? cols[map[f]].units : "";
     size_t n = strcspn(u, "|");
-    int w = snprintf(buf + k, size - k, "%s%.*s", f ? (delimiter == '\t' ? "\t" : delimiter == ';' ? ";" : ",") : "", (int)n, u);
+    const char *sep = !f ? "" : delimiter == '\t' ? "\t" : delimiter == ';' ? ";" : ",";
+    int w = snprintf(buf + k, size - k, "%s%.*s", sep, (int)n, u);
     if (w < 0) break;
     k += (size_t)w;
   }
@@ -432,10 +433,9 @@ static vl_status read_data_row(csv_reader *r, int first_row, vl_error *err) {
 /* The sentence for a row with the wrong number of fields. */
 static void ragged_row(const csv_reader *r, size_t count, vl_problems *pr) {
   char d = r->opt.delimiter;
-  vl_problems_add(pr, r->line_no, "%s:%zu: expected %zu %s-separated fields like the header, "
-                  "found %zu%s",
-                  r->src, r->line_no, r->n_fields, d == ',' ? "comma" : d == ';' ? "semicolon" : "tab",
-                  count,
+  vl_problems_add(pr, r->line_no,
+                  "%s:%zu: expected %zu %s-separated fields like the header, found %zu%s", r->src,
+                  r->line_no, r->n_fields, vl_dialect_delimiter_name(d), count,
                   d == ',' && count > r->n_fields
                       ? " (numbers with a decimal comma need ';' or a tab between the fields)"
                       : "");
@@ -1014,7 +1014,8 @@ static vl_status psd_plausible(const char *src, const vl_psd *psd, vl_psd_read_r
   for (size_t k = 0; k < psd->n; k++)
     cmin = fmin(cmin, psd->C[k]), cmax = fmax(cmax, psd->C[k]);
   char where[160];
-  snprintf(where, sizeof where, "q from %.4g to %.4g 1/m, C from %.4g to %.4g m^4", psd->q[0], psd->q[psd->n - 1], cmin, cmax);
+  snprintf(where, sizeof where, "q from %.4g to %.4g 1/m, C from %.4g to %.4g m^4", psd->q[0],
+           psd->q[psd->n - 1], cmin, cmax);
   if (!(rep->hrms_m >= VL_PSD_HRMS_MIN_M && rep->hrms_m <= VL_PSD_HRMS_MAX_M)) {
     vl_error_set(err,
                  "%s: implausible h_rms %.3g m (a measured surface has %g to %g m): a unit "
@@ -1088,9 +1089,12 @@ vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
   if (st == VL_OK) st = psd_scan(text, len, &pl, err);
   if (st == VL_OK && pl.q.text[0]) st = psd_dimension(&pl, kind, err);
   if (st != VL_OK) goto cleanup;
+  /* the units row as spelt (then the reader matches it), else any units */
   vl_csv_column cols[2] = {
-      {.name = pl.q.text, .units = pl.has_units_row ? pl.units_row[0] : "1/m", .sign = VL_CSV_POSITIVE},
-      {.name = pl.c.text, .units = pl.has_units_row ? pl.units_row[1] : "m^4", .sign = VL_CSV_POSITIVE},
+      {.name = pl.q.text, .units = pl.has_units_row ? pl.units_row[0] : "1/m",
+       .sign = VL_CSV_POSITIVE},
+      {.name = pl.c.text, .units = pl.has_units_row ? pl.units_row[1] : "m^4",
+       .sign = VL_CSV_POSITIVE},
   };
   vl_csv_options copt = {.ignore_unknown = 1, .delimiter = pl.d.delimiter,
                          .decimal_comma = pl.d.decimal_comma};

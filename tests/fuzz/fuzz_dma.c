@@ -8,9 +8,10 @@
  * neither (--moduli), and nu 0.5 or 0.3.
  * Properties: a refused file gets VL_EINPUT or VL_ENOCONV, an emptied
  * result and lines (one per offending line of the file) each starting with
- * the file name, without control characters; an accepted one has finite positive frequencies and moduli,
- * every point in an isotherm, isotherm temperatures increasing and a Prony
- * series that vl_prony_validate accepts. */
+ * the file name, without control characters; an accepted one has finite
+ * positive frequencies and moduli, every point in an isotherm, isotherm
+ * temperatures increasing and a Prony series that vl_prony_validate
+ * accepts. */
 #include "vl_fuzz.h"
 
 #include <math.h>
