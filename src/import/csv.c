@@ -62,6 +62,14 @@ static int next_meaningful(const char *text, size_t len, size_t *pos, size_t *li
   return 0;
 }
 
+/* Messages quote header cells and go to a terminal: no control bytes but
+ * the line breaks between the sentences of a problem list. */
+static void sanitise(vl_error *err) {
+  if (!err) return;
+  for (char *c = err->msg; *c; c++)
+    if (((unsigned char)*c < 0x20 && *c != '\n') || *c == 0x7f) *c = '?';
+}
+
 /* Header and units cells may be quoted by spreadsheet exports. */
 static span unquote(span s) {
   s = trim(s);
@@ -180,7 +188,7 @@ static int units_match(span cell, const char *units) {
 #define IGNORED ((size_t)-1)
 
 /* The units row the file would need, in the file's column order and with
- * its delimiter (ignored fields left empty). */
+ * its delimiter (a tab shown as <tab>; ignored fields left empty). */
 static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields,
                            char delimiter, char *buf, size_t size) {
   size_t k = 0;
@@ -188,7 +196,7 @@ static void expected_units(const vl_csv_column *cols, const size_t *map, size_t 
   for (size_t f = 0; f < n_fields && k < size; f++) {
     const char *u = map[f] == IGNORED ? "" : cols[map[f]].units ? cols[map[f]].units : "";
     size_t n = strcspn(u, "|");
-    const char *sep = !f ? "" : delimiter == '\t' ? "\t" : delimiter == ';' ? ";" : ",";
+    const char *sep = !f ? "" : delimiter == '\t' ? "<tab>" : delimiter == ';' ? ";" : ",";
     int w = snprintf(buf + k, size - k, "%s%.*s", sep, (int)n, u);
     if (w < 0) break;
     k += (size_t)w;
@@ -560,7 +568,10 @@ cleanup:
   free(r.tp);
   free(r.tn);
   free(r.map);
-  if (st != VL_OK) vl_csv_free(out);
+  if (st != VL_OK) {
+    vl_csv_free(out);
+    sanitise(err);
+  }
   return st;
 }
 
@@ -1147,6 +1158,7 @@ vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
 cleanup:
   free(pts);
   vl_csv_free(&csv);
+  if (st != VL_OK) sanitise(err);
   return st;
 }
 
