@@ -134,7 +134,7 @@ static void test_nonsuperposing_loss(void **state) {
  * isotherm sits 1e6 to 1e9 times above the loss peak): the chain bridges
  * them (vl_tts_chain_info) and finds the offset within 0.005 decade on
  * exact curves, in both directions; beyond a gap of a decade the pair is
- * flagged at_limit. Before bridging, the overlap constraint held such
+ * flagged (at_limit, or no_join when the best bridge still fits badly). Before bridging, the overlap constraint held such
  * shifts at a quarter-window overlap (2.25 decades here). */
 static void test_bridged_pairs(void **state) {
   (void)state;
@@ -153,10 +153,14 @@ static void test_bridged_pairs(void **state) {
       double d = lat[1] - lat[0];
       fprintf(stderr, "offset %.2f: shift %.4f, overlap %.3f, bridged %d, at limit %d\n",
               -steps[i], d, info.overlap_decades, info.bridged, info.at_limit);
-      assert_true(info.bridged);
-      assert_true(info.loss_used);
       assert_true(fabs(info.shift - d) < 1e-12);
-      assert_int_equal(info.at_limit, steps[i] > 3.0 + 1.0);
+      if (steps[i] > 3.0 + 1.0) { /* beyond a gap of a decade: flagged either way */
+        fprintf(stderr, "  no join %d\n", info.no_join);
+        assert_true((info.bridged && info.at_limit) || info.no_join);
+        continue;
+      }
+      assert_true(info.bridged && !info.at_limit && !info.no_join);
+      assert_true(info.loss_used);
       if (steps[i] < 4.0 && fabs(d + steps[i]) > 0.005)
         fail_msg("offset %.2f: shift %.4f", -steps[i], d);
     }

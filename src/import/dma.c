@@ -1103,6 +1103,16 @@ static vl_status reference_isotherm(const vl_measured *m, double *tref_c, size_t
 static void bridge_notes(vl_measured *m, const vl_tts_pair_info *info) {
   for (size_t g = 0; g + 1 < m->n_isotherms; g++) {
     const vl_tts_pair_info *p = &info[g];
+    if (p->no_join) {
+      note(m,
+           "warning: the isotherms at %.4g and %.4g C share too little of their windows to "
+           "compare (%.2f decades) and do not join into one smooth curve either: their shift "
+           "of %.2f decades is only a bound (is the material thermorheologically simple "
+           "there?)",
+           m->iso_temperature_c[g], m->iso_temperature_c[g + 1], p->overlap_decades,
+           fabs(p->shift));
+      m->n_warnings++;
+    }
     if (!p->bridged) continue;
     m->n_extrapolated++;
     if (p->at_limit) {

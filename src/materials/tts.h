@@ -72,6 +72,8 @@ typedef struct {
   int loss_used;          /* E'' took part (else E' alone) */
   int bridged;            /* the overlap was too thin to compare: joined by trends */
   int at_limit;           /* bridged, and the best shift is the largest gap tried */
+  int no_join;            /* bridging was needed but the curves do not join smoothly: the shift
+                             is the overlap-limited one, a bound */
 } vl_tts_pair_info;
 
 /* As vl_tts_chain, with each pair's info (n - 1 entries, may be NULL).
@@ -83,7 +85,11 @@ typedef struct {
  * from that overlap out to a gap of 1 decade between the windows. The
  * shift then rests on the curves' trends, not on common points: the caller
  * should say so (bridged), and more loudly when the best d is the largest
- * gap tried (at_limit: the isotherms are too far apart in temperature). */
+ * gap tried (at_limit: the isotherms are too far apart in temperature).
+ * When the joint fit is much worse than each curve's own (an F statistic
+ * above 10 for the cubic's extra parameters: the curves do not form one
+ * smooth curve, e.g. glassy E'' that does not superpose), the pair keeps
+ * the overlap-limited shift and no_join says so. */
 vl_status vl_tts_chain_info(size_t n, const vl_tts_isotherm *iso, size_t ref, double *log10_a_t,
                             vl_tts_pair_info *info, vl_error *err);
 
