@@ -134,8 +134,9 @@ static void test_nonsuperposing_loss(void **state) {
  * isotherm sits 1e6 to 1e9 times above the loss peak): the chain bridges
  * them (vl_tts_chain_info) and finds the offset within 0.005 decade on
  * exact curves, in both directions; beyond a gap of a decade the pair is
- * flagged (at_limit, or no_join when the best bridge still fits badly). Before bridging, the overlap constraint held such
- * shifts at a quarter-window overlap (2.25 decades here). */
+ * flagged (at_limit, or no_join when the best bridge still fits badly).
+ * Before bridging, the overlap constraint held such shifts at a
+ * quarter-window overlap (2.25 decades here). */
 static void test_bridged_pairs(void **state) {
   (void)state;
   unsigned seed = 5;
