@@ -72,12 +72,12 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "hunter.h"
 #include "contact_test.h"
+#include "hunter.h"
 #include "viscolube/contact.h"
 #include "viscolube/database.h"
-#include "viscolube/prony_fit.h"
 #include "viscolube/persson.h"
+#include "viscolube/prony_fit.h"
 #include "viscolube/scene.h"
 #include "viscolube/sweep.h"
 
@@ -170,7 +170,7 @@ typedef struct {
   size_t cells;    /* the solver's cells (vl_contact_grid: fewer when graded) */
   size_t unknowns; /* 2 cells + 1 (wet), cells + 1 (dry) */
   size_t n_table, points, failed, compared;
-  double res;      /* uniform cells per a0 near the contact */
+  double res; /* uniform cells per a0 near the contact */
   double inlet_a0, growth, tolerance;
   double per_decade; /* Prony terms per decade of the rubber's refit (0: as stored) */
   size_t prony_terms;
@@ -190,16 +190,16 @@ static size_t nrows;
 
 static void print_header(void) {
   printf("%-7s %-31s %-6s %5s %5s %7s %4s %6s %9s %9s %9s %9s %9s %9s %9s %9s %9s\n", "scene",
-         "setting", "linsol", "N", "cells", "tol", "fail", "iters", "err_mu", "at_v0eta",
-         "err_Rc", "err_Rf", "err_Sc", "err_Sf", "err_umin", "ms/point", "s/curve");
+         "setting", "linsol", "N", "cells", "tol", "fail", "iters", "err_mu", "at_v0eta", "err_Rc",
+         "err_Rf", "err_Sc", "err_Sf", "err_umin", "ms/point", "s/curve");
 }
 
 static void print_row(const row *r) {
   printf("%-7s %-31s %-6s %5zu %5zu %7.0e %4zu %6ld %9.2e %9.1e %9.2e %9.2e %9.2e %9.2e %9.2e "
          "%9.2f %9.3f\n",
-         r->scene, r->setting, r->linsol, r->grid, r->cells, r->tolerance, r->failed,
-         r->iterations, r->err_mu, r->worst_v0_eta, r->err_rc, r->err_rf, r->err_sc, r->err_sf,
-         r->err_umin, r->t_point_ms, r->t_curve_s);
+         r->scene, r->setting, r->linsol, r->grid, r->cells, r->tolerance, r->failed, r->iterations,
+         r->err_mu, r->worst_v0_eta, r->err_rc, r->err_rf, r->err_sc, r->err_sf, r->err_umin,
+         r->t_point_ms, r->t_curve_s);
   fflush(stdout);
 }
 
@@ -349,8 +349,8 @@ static int pareto_svg(const char *path, const char *title, const char *xlabel, s
               "stroke-width=\"0.6\"><title>%s</title></polygon>\n",
               x, y - 6, x + 6, y, x, y + 6, x - 6, y, fill, pt[i].label);
     if (front[i] || i == chosen || i == rec || i == shipped)
-      fprintf(f, "<text x=\"%g\" y=\"%g\" font-size=\"9\" fill=\"#444\">%s</text>\n", x + 7,
-              y - 4, pt[i].label);
+      fprintf(f, "<text x=\"%g\" y=\"%g\" font-size=\"9\" fill=\"#444\">%s</text>\n", x + 7, y - 4,
+              pt[i].label);
   }
   if (chosen < n && pt[chosen].t > 0 && pt[chosen].e > 0)
     fprintf(f,
@@ -370,14 +370,12 @@ static int pareto_svg(const char *path, const char *title, const char *xlabel, s
   double ly = T + 14, lx = W - R + 10;
   fprintf(f, "<text x=\"%g\" y=\"%g\">blue line and marks: Pareto front</text>\n", lx, ly);
   fprintf(f, "<text x=\"%g\" y=\"%g\">orange: dominated settings</text>\n", lx, ly += 18);
-  fprintf(f, "<text x=\"%g\" y=\"%g\">circles: graded inlet; diamonds: uniform grid</text>\n",
+  fprintf(f, "<text x=\"%g\" y=\"%g\">circles: graded inlet; diamonds: uniform grid</text>\n", lx,
+          ly += 18);
+  fprintf(f, "<text x=\"%g\" y=\"%g\">labels: r (cells/a0) or N / inlet (a0) / growth /</text>\n",
           lx, ly += 18);
-  fprintf(f,
-          "<text x=\"%g\" y=\"%g\">labels: r (cells/a0) or N / inlet (a0) / growth /</text>\n",
-          lx, ly += 18);
-  fprintf(f,
-          "<text x=\"%g\" y=\"%g\">tol [/ table | /p terms per decade]; hover: all</text>\n",
-          lx, ly += 16);
+  fprintf(f, "<text x=\"%g\" y=\"%g\">tol [/ table | /p terms per decade]; hover: all</text>\n", lx,
+          ly += 16);
   if (chosen_note)
     fprintf(f, "<text x=\"%g\" y=\"%g\" fill=\"#2ca02c\">green ring: %s</text>\n", lx, ly += 18,
             chosen_note);
@@ -387,8 +385,7 @@ static int pareto_svg(const char *path, const char *title, const char *xlabel, s
             "defaults</text>\n",
             lx, ly += 18);
   if (shipped < n)
-    fprintf(f,
-            "<text x=\"%g\" y=\"%g\" fill=\"#d62728\">red ring: the shipped defaults</text>\n",
+    fprintf(f, "<text x=\"%g\" y=\"%g\" fill=\"#d62728\">red ring: the shipped defaults</text>\n",
             lx, ly += 18);
   fprintf(f, "<text x=\"%g\" y=\"%g\">failed points: not drawn</text>\n", lx, ly += 18);
   fprintf(f, "</svg>\n");
@@ -632,14 +629,14 @@ static double sweep_v0_eta(const scene_ctx *s, size_t n, size_t i) {
 }
 
 typedef struct {
-  size_t grid;   /* uniform cells on the domain (vl_contact_config.grid) */
-  double res;    /* uniform cells per a0 it was derived from (0: given as N) */
+  size_t grid; /* uniform cells on the domain (vl_contact_config.grid) */
+  double res;  /* uniform cells per a0 it was derived from (0: given as N) */
   size_t n_table;
   double inlet_a0, growth, tol;
   vl_linear_solver ls;
-  size_t npts;         /* 0: the scene's */
-  size_t first, count; /* sub-range of the sweep that is run (count 0: all) */
-  int repeats;         /* 0: by the first repeat's time (3 under 0.7 s, 2 under 2.5 s, else 1) */
+  size_t npts;            /* 0: the scene's */
+  size_t first, count;    /* sub-range of the sweep that is run (count 0: all) */
+  int repeats;            /* 0: by the first repeat's time (3 under 0.7 s, 2 under 2.5 s, else 1) */
   const vl_prony *rubber; /* NULL: the compound as stored */
   double per_decade;      /* the refit's density (0: as stored) */
 } setting;
@@ -753,9 +750,8 @@ static void write_reference_csv(const char *dir, const scene_ctx *s, const row *
   fprintf(f,
           "# reference of %s: %s, r %g (N %zu, %zu cells), domain [-%g, %g] a0, growth %g, "
           "tol %g, Persson table %zu, %zu Prony terms\n",
-          s->name, s->file, r->res, r->grid, r->cells, r->inlet_a0, s->sc.domain_max_a0,
-          r->growth, r->tolerance, r->n_table,
-          r->prony_terms);
+          s->name, s->file, r->res, r->grid, r->cells, r->inlet_a0, s->sc.domain_max_a0, r->growth,
+          r->tolerance, r->n_table, r->prony_terms);
   fprintf(f, "v0_eta_pa_m,converged,mu,mu_Rc,mu_Rf,mu_Sc,mu_Sf,u_min_m,fluid_load_fraction\n");
   for (size_t i = 0; i < s->npts; i++) {
     const vl_point *p = &s->ref[i];
@@ -915,9 +911,9 @@ static const row *find_row(const char *scene, row_kind kind, double res, double 
                            double tol, double per_decade, size_t n_table) {
   for (size_t i = 0; i < nrows; i++) {
     const row *r = &rows[i];
-    if (strcmp(r->scene, scene) == 0 && r->kind == kind && same(r->res, res) &&
-        r->inlet_a0 == X && r->growth == g && r->tolerance == tol &&
-        r->per_decade == per_decade && r->n_table == n_table)
+    if (strcmp(r->scene, scene) == 0 && r->kind == kind && same(r->res, res) && r->inlet_a0 == X &&
+        r->growth == g && r->tolerance == tol && r->per_decade == per_decade &&
+        r->n_table == n_table)
       return r;
   }
   return NULL;
@@ -1395,8 +1391,7 @@ static const double KNOB_GROWTHS[] = {1.02, 1.05, 1.1, 1.2};
 
 /* The study row at (r, X, g, tol), else at tolerance 1e-9 (resolution,
  * inlet and growth were studied at the reference tolerance). */
-static const row *study_row_or_tight(const scene_ctx *s, double r, double X, double g,
-                                     double tol) {
+static const row *study_row_or_tight(const scene_ctx *s, double r, double X, double g, double tol) {
   const row *o = study_row(s, r, X, g, tol);
   return o ? o : study_row(s, r, X, g, 1e-9);
 }
@@ -1461,8 +1456,8 @@ static double common_cost(double r, double X, double g, double tol, double *wors
 
 static void defaults_csv_row(FILE *f, const char *what, const row *r) {
   if (f)
-    fprintf(f, "%s,%s,%s,%g,%zu,%g,%zu,%g,%g,%g,%.4e,%.3e,%.4e,%.4e,%.4f,%.3f,%d\n", what,
-            r->scene, r->setting, r->res, r->grid, r->growth, r->cells, r->inlet_a0, r->tolerance,
+    fprintf(f, "%s,%s,%s,%g,%zu,%g,%zu,%g,%g,%g,%.4e,%.3e,%.4e,%.4e,%.4f,%.3f,%d\n", what, r->scene,
+            r->setting, r->res, r->grid, r->growth, r->cells, r->inlet_a0, r->tolerance,
             r->per_decade, r->err_mu, r->worst_v0_eta, comp_err(r), r->err_umin, r->t_curve_s,
             r->t_point_ms, meets(r));
 }
@@ -1471,11 +1466,12 @@ static void defaults_csv_row(FILE *f, const char *what, const row *r) {
 static void readme_row(const scene_ctx *s, const row *r) {
   const row *ref = &rows[s->ref_row];
   bool rub = strcmp(s->name, "rubber") == 0;
-  printf("| %s (%zu points) | r %g, inlet %g a0, growth %g, tol %.0e%s | %s%s | %zu | %.2e | %.1e | "
-         "%.2e | %.2e | %.3f | %.1f |\n",
-         s->name, s->npts, ref->res, ref->inlet_a0, ref->growth, ref->tolerance,
-         rub ? ", 2/decade" : "", r->setting, r->failed ? " (FAILED POINTS)" : "", r->cells,
-         r->err_mu, r->worst_v0_eta, comp_err(r), r->err_umin, r->t_curve_s, r->t_point_ms);
+  printf(
+      "| %s (%zu points) | r %g, inlet %g a0, growth %g, tol %.0e%s | %s%s | %zu | %.2e | %.1e | "
+      "%.2e | %.2e | %.3f | %.1f |\n",
+      s->name, s->npts, ref->res, ref->inlet_a0, ref->growth, ref->tolerance,
+      rub ? ", 2/decade" : "", r->setting, r->failed ? " (FAILED POINTS)" : "", r->cells, r->err_mu,
+      r->worst_v0_eta, comp_err(r), r->err_umin, r->t_curve_s, r->t_point_ms);
 }
 
 static void readme_header(const char *what) {
@@ -1495,8 +1491,8 @@ static void bench_defaults(const char *dir) {
                      "prony_per_decade,err_mu,worst_v0_eta,err_component_max,err_u_min,"
                      "s_per_curve,ms_per_point,meets_bound\n");
   printf("%-7s %-26s %-31s %5s %9s %9s %9s %9s %9s %9s\n", "scene", "reference",
-         "cheapest within bound", "cells", "err_mu", "at_v0eta", "err_comp", "err_umin",
-         "s/curve", "ms/point");
+         "cheapest within bound", "cells", "err_mu", "at_v0eta", "err_comp", "err_umin", "s/curve",
+         "ms/point");
   size_t best_row[3] = {SIZE_MAX, SIZE_MAX, SIZE_MAX};
   int nscenes = 0;
   for (int k = 0; k < 3; k++) {
@@ -1523,9 +1519,9 @@ static void bench_defaults(const char *dir) {
       continue;
     }
     const row *r = &rows[b];
-    printf("%-7s %-26s %-31s %5zu %9.2e %9.1e %9.2e %9.2e %9.3f %9.2f\n", s->name, refs,
-           r->setting, r->cells, r->err_mu, r->worst_v0_eta, comp_err(r), r->err_umin,
-           r->t_curve_s, r->t_point_ms);
+    printf("%-7s %-26s %-31s %5zu %9.2e %9.1e %9.2e %9.2e %9.3f %9.2f\n", s->name, refs, r->setting,
+           r->cells, r->err_mu, r->worst_v0_eta, comp_err(r), r->err_umin, r->t_curve_s,
+           r->t_point_ms);
     defaults_csv_row(f, "scene-cheapest", r);
   }
   const scene_ctx *first = NULL;
@@ -1631,8 +1627,8 @@ static void bench_defaults(const char *dir) {
     printf("\n## recommended (the cheapest setting meeting %g %% in %s%s%s): r = %g uniform cells "
            "per a0, inlet %g a0, growth %g, tolerance %g, Prony terms per decade %g\n\n",
            100 * g_accuracy, "fig05", g_fig10.have_ref ? ", fig10" : "",
-           g_rubber.have_ref ? ", rubber" : "", g_rec.res, g_rec.inlet_a0, g_rec.growth,
-           g_rec.tol, g_rec.per_decade);
+           g_rubber.have_ref ? ", rubber" : "", g_rec.res, g_rec.inlet_a0, g_rec.growth, g_rec.tol,
+           g_rec.per_decade);
     readme_header("recommended setting");
     rec_total = 0, rec_err = 0;
     for (int k = 0; k < 3; k++) {
@@ -1652,8 +1648,8 @@ static void bench_defaults(const char *dir) {
   /* the shipped defaults of wet rough scenes (include/viscolube/scene.h) */
   printf("\n## shipped defaults of wet rough scenes (include/viscolube/scene.h): grid %d on "
          "[%g, %g] a0 (r = %g cells per a0), growth %g, tolerance %g; the stored Prony series\n\n",
-         VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0, VL_WET_DOMAIN_MAX_A0, SHIP_RES,
-         SHIP_GROWTH, SHIP_TOL);
+         VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0, VL_WET_DOMAIN_MAX_A0, SHIP_RES, SHIP_GROWTH,
+         SHIP_TOL);
   readme_header("shipped setting");
   size_t ship_row[3] = {SIZE_MAX, SIZE_MAX, SIZE_MAX};
   double ship_total = 0, ship_err = 0;

@@ -40,8 +40,8 @@ static vl_point *curve(const vl_scene *base, vl_db *db, vl_flow_factor_kind kind
   *meta = (vl_curve_meta){vl_simulation_eta(sim), 0.0, 0.0, NULL, 0.0};
   meta->flow_factors = vl_simulation_flow_factors(sim, &meta->film_cutoff_m);
   *hrms = vl_psd_hrms(vl_simulation_psd(sim));
-  printf("%-12s %zu of %zu points converged, %.2f s\n", vl_flow_factors_name(kind),
-         stats.converged, *n, stats.seconds);
+  printf("%-12s %zu of %zu points converged, %.2f s\n", vl_flow_factors_name(kind), stats.converged,
+         *n, stats.seconds);
   vl_simulation_free(sim);
   return pts;
 fail:
@@ -54,8 +54,10 @@ fail:
 int main(int argc, char **argv) {
   const char *case_path = VL_CASES_DIR "/fig15.ini", *stem = "flow-models";
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!strcmp(argv[i], "--case")) case_path = argv[i + 1];
-    else if (!strcmp(argv[i], "--out")) stem = argv[i + 1];
+    if (!strcmp(argv[i], "--case"))
+      case_path = argv[i + 1];
+    else if (!strcmp(argv[i], "--out"))
+      stem = argv[i + 1];
   }
   vl_error err;
   vl_scene sc;
@@ -97,8 +99,8 @@ int main(int argc, char **argv) {
     snprintf(title, sizeof title, "%s: flow-factor models", sc.title[0] ? sc.title : case_path);
     opt.title = title;
     snprintf(path, sizeof path, "%s-mu", stem);
-    if (vl_plot_compare(path, N_MODELS, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_MU, &opt, NULL,
-                        &err) != VL_OK ||
+    if (vl_plot_compare(path, N_MODELS, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_MU, &opt, NULL, &err) !=
+            VL_OK ||
         (snprintf(path, sizeof path, "%s-umin", stem),
          vl_plot_compare(path, N_MODELS, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_U_MIN, &opt, NULL,
                          &err)) != VL_OK) {
@@ -106,7 +108,8 @@ int main(int argc, char **argv) {
       rc = 1;
     }
   }
-  for (int k = 0; k < N_MODELS; k++) free(pts[k]);
+  for (int k = 0; k < N_MODELS; k++)
+    free(pts[k]);
   vl_db_close(db);
   return rc;
 }

@@ -57,30 +57,31 @@
 #define VISCOLUBE_H
 
 /* base: statuses and messages, JSON text, atomic files */
-#include "viscolube/status.h"
-#include "viscolube/json.h"
 #include "viscolube/atomic_file.h"
+#include "viscolube/json.h"
+#include "viscolube/status.h"
 
 /* materials: rubber rheology, surface roughness, fluids */
+#include "viscolube/fluid.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
-#include "viscolube/fluid.h"
 
 /* mechanics: Persson's contact law, flow factors, viscous flattening */
-#include "viscolube/persson.h"
-#include "viscolube/flow_factors.h"
 #include "viscolube/flattening.h"
+#include "viscolube/flow_factors.h"
+#include "viscolube/persson.h"
 
-/* import: measured data (CSV, DMA) and Prony fits */
+/* import: measured data (CSV, DMA), Prony fits, topography to PSD */
 #include "viscolube/csv.h"
 #include "viscolube/dma.h"
 #include "viscolube/prony_fit.h"
+#include "viscolube/topography.h"
 
 /* solver: one operating point, sweeps, results, model-validity checks */
-#include "viscolube/results.h"
-#include "viscolube/contact.h"
-#include "viscolube/sweep.h"
 #include "viscolube/assumptions.h"
+#include "viscolube/contact.h"
+#include "viscolube/results.h"
+#include "viscolube/sweep.h"
 
 /* database, scenes and simulations */
 #include "viscolube/database.h"

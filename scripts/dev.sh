@@ -3,21 +3,28 @@
 #   scripts/dev.sh run    install what is missing, build, run the main job
 #   scripts/dev.sh test   install what is missing, build, run all tests, then
 #                         rebuild and rerun them under ASan + UBSan, then
-#                         fuzz every reader (scripts/fuzz.sh, 20 s a target)
+#                         fuzz every reader (scripts/fuzz.sh, 20 s a target);
+#                         first of all, the format check (scripts/format.sh --check)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
 scripts/install-deps.sh
 
-build() { # dir, extra cmake args...
+configure() { # dir, extra cmake args...
   local dir=$1; shift
   cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVL_WERROR=ON "$@" >/dev/null
-  cmake --build "$dir" -j "$jobs"
+}
+
+build() { # dir, extra cmake args...: everything (library, program, tests, benchmarks)
+  configure "$@"
+  cmake --build "$1" -j "$jobs"
 }
 
 case "${1:-}" in
   run)
-    build build
+    # the program alone: the tests, fuzz targets and benchmarks wait for `test`
+    configure build
+    cmake --build build -j "$jobs" --target viscolube_cli
     # The main job on the embedded default database (created on first use):
     # filled against unfilled rubber in water (the seed's Figs. 15-17), with
     # the Stribeck curves side by side and figures in out/compare/.
@@ -29,6 +36,8 @@ case "${1:-}" in
   test)
     # ctest runs tests in parallel on the cores: one BLAS thread per test
     export OPENBLAS_NUM_THREADS=1
+    # the sources in the style of .clang-format (scripts/format.sh reformats)
+    scripts/format.sh --check
     build build
     ctest --test-dir build --output-on-failure -j "$jobs"
     build build-asan -DVL_SANITIZE=ON

@@ -83,8 +83,8 @@ static void test_friction_bad_input(void **state) {
       {"friction --compound model-rubber --surface paper-3um --fluid water", 2, "--speed"},
       {"friction --compound model-rubber --surface paper-3um --fluid water --speed -1", 2,
        "--speed"},
-      {"friction --compound model-rubber --surface paper-3um --fluid water --speed 1 --load 0",
-       2, "--load"},
+      {"friction --compound model-rubber --surface paper-3um --fluid water --speed 1 --load 0", 2,
+       "--load"},
       {"friction --compound model-rubber --surface paper-3um --fluid water --speed 1 --grid 3", 2,
        "--grid"},
       {"friction --compound model-rubber --surface paper-3um --fluid water --speed 1 --bogus", 2,
@@ -160,8 +160,8 @@ static void test_compare_filled_unfilled(void **state) {
   assert_true(above >= rows - 1);
   free(csv);
   /* figures, both formats */
-  const char *files[] = {"compare-mu.png", "compare-mu.svg", "compare-umin.png", "compare-umin.svg",
-                         "sbr-filled/curve.csv", "sbr-unfilled/curve.csv"};
+  const char *files[] = {"compare-mu.png",   "compare-mu.svg",       "compare-umin.png",
+                         "compare-umin.svg", "sbr-filled/curve.csv", "sbr-unfilled/curve.csv"};
   for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
     struct stat st;
     snprintf(path, sizeof path, "%s/%s", dir, files[i]);

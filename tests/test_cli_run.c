@@ -43,11 +43,10 @@ static double hertz_a(double e_pa) {
 
 /* The columns README and output.h document, in order. */
 static const char *const COLUMNS[] = {
-    "v0_m_s",   "v0_eta_pa_m",   "deborah",     "mu",        "mu_Rc",
-    "mu_Rf",    "mu_Sc",         "mu_Sf",       "u_min_m",   "u_central_m",
-    "contact_width_m", "fluid_load_fraction", "regime", "E_wH_pa", "a_H_m",
-    "Q",        "x_centroid_m",  "load_error",  "converged", "iterations",
-    "residual", "eps_f_min", "warnings"};
+    "v0_m_s",    "v0_eta_pa_m", "deborah",  "mu",          "mu_Rc",           "mu_Rf",
+    "mu_Sc",     "mu_Sf",       "u_min_m",  "u_central_m", "contact_width_m", "fluid_load_fraction",
+    "regime",    "E_wH_pa",     "a_H_m",    "Q",           "x_centroid_m",    "load_error",
+    "converged", "iterations",  "residual", "eps_f_min",   "warnings"};
 #define NCOL (sizeof COLUMNS / sizeof COLUMNS[0])
 static const char *const FIELD_COLUMNS =
     "x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction,cell_width_m";
@@ -96,8 +95,8 @@ static void no_bad_numbers(const char *what, const char *text) {
 /* A file read and cut into cells in place (text is no longer one string). */
 typedef struct {
   size_t rows, cols;
-  char *header;  /* the first line as written */
-  char ***cell;  /* cell[row][col], rows after the header */
+  char *header; /* the first line as written */
+  char ***cell; /* cell[row][col], rows after the header */
   char *text;
 } csv_table;
 
@@ -107,7 +106,8 @@ static csv_table csv_read(const char *path) {
   if (!t.text) fail_msg("%s was not written", path);
   no_bad_numbers(path, t.text); /* before the text is cut into cells */
   size_t nl = 0;
-  for (const char *p = t.text; *p; p++) nl += *p == '\n';
+  for (const char *p = t.text; *p; p++)
+    nl += *p == '\n';
   size_t len = strlen(t.text);
   if (len == 0 || t.text[len - 1] != '\n') fail_msg("%s does not end with a newline", path);
   t.cell = calloc(nl, sizeof *t.cell);
@@ -118,7 +118,8 @@ static csv_table csv_read(const char *path) {
     if (r == 0) {
       t.header = line;
       t.cols = 1;
-      for (const char *p = line; *p; p++) t.cols += *p == ',';
+      for (const char *p = line; *p; p++)
+        t.cols += *p == ',';
     } else {
       char **cells = calloc(t.cols, sizeof *cells);
       size_t c = 0;
@@ -139,7 +140,8 @@ static csv_table csv_read(const char *path) {
 }
 
 static void csv_free(csv_table *t) {
-  for (size_t r = 0; r < t->rows; r++) free(t->cell[r]);
+  for (size_t r = 0; r < t->rows; r++)
+    free(t->cell[r]);
   free(t->cell);
   free(t->text);
 }
@@ -189,7 +191,7 @@ static const char *scene_text(const char *materials, const char *contact, const 
 #define SMOOTH scene_text(RUBBER, CONTACT, SWEEP7, "viscoelastic = on", "grid = 128")
 /* The same on paper-3um, with the wider domain of the shipped rough cases. */
 #define ROUGH                                                                                      \
-  scene_text(RUBBER "\nsurface = paper-3um", CONTACT, SWEEP7, "roughness = on",                   \
+  scene_text(RUBBER "\nsurface = paper-3um", CONTACT, SWEEP7, "roughness = on",                    \
              "grid = 128\ndomain_a0 = -1.8, 1.8")
 
 /* Runs a scene that must succeed; returns the curve (caller frees). */
@@ -200,8 +202,10 @@ static csv_table run_scene(const char *name, const char *text, const char *out_n
   char *out = NULL, *err = NULL;
   int rc = vl_test_run(&out, &err, "run %s --out %s", scene, out_dir);
   if (rc != 0) fail_msg("run %s exited %d: %s", name, rc, err);
-  /* stderr is not a terminal here: no progress line, nothing at all */
-  assert_string_equal(err, "");
+  /* stderr is not a terminal here: no progress line, at most the
+   * model-validity warnings (one "warning: " line per kind) */
+  for (const char *l = err; *l; l = strchr(l, '\n') + 1)
+    if (strncmp(l, "warning: ", 9) != 0 || !strchr(l, '\n')) fail_msg("stderr: %s", err);
   assert_non_null(strstr(out, "wrote"));
   free(out), free(err);
   char path[1400];
@@ -223,8 +227,8 @@ static void check_curve(const csv_table *t, size_t rows) {
   for (size_t r = 0; r < t->rows; r++) {
     if (strcmp(t->cell[r][col_of("converged")], "1"))
       fail_msg("row %zu did not converge (warnings: %s)", r, t->cell[r][col_of("warnings")]);
-    double mu = num(t, r, "mu"), sum = num(t, r, "mu_Rc") + num(t, r, "mu_Rf") +
-                                            num(t, r, "mu_Sc") + num(t, r, "mu_Sf");
+    double mu = num(t, r, "mu"),
+           sum = num(t, r, "mu_Rc") + num(t, r, "mu_Rf") + num(t, r, "mu_Sc") + num(t, r, "mu_Sf");
     /* each cell has 10 significant digits: the sum agrees to ~1e-10 of the
      * largest term */
     if (fabs(mu - sum) > 1e-9 * fmax(fabs(mu), 1e-12))
@@ -238,7 +242,7 @@ static void check_curve(const csv_table *t, size_t rows) {
     /* dry: no fluid at all */
     assert_true(num(t, r, "mu_Rf") == 0.0 && num(t, r, "mu_Sf") == 0.0);
     assert_true(num(t, r, "fluid_load_fraction") == 0.0);
-    assert_true(num(t, r, "eps_f_min") == 1.0); /* no viscous flattening */
+    assert_true(num(t, r, "eps_f_min") == 1.0);                 /* no viscous flattening */
     assert_string_equal(t->cell[r][col_of("v0_eta_pa_m")], ""); /* no fluid named */
     if (r) assert_true(num(t, r, "v0_m_s") > num(t, r - 1, "v0_m_s"));
   }
@@ -249,7 +253,8 @@ static void check_curve(const csv_table *t, size_t rows) {
  * rows where fields are expected (of 0.5 and 1). */
 static void check_sweep_points(const csv_table *t, size_t *row_half, size_t *row_one) {
   double want[8];
-  for (int k = 0; k < 7; k++) want[k] = pow(10.0, -2.0 + 2.0 * k / 3.0);
+  for (int k = 0; k < 7; k++)
+    want[k] = pow(10.0, -2.0 + 2.0 * k / 3.0);
   want[7] = 0.5;
   for (int i = 0; i < 8; i++) /* sort */
     for (int j = i + 1; j < 8; j++)
@@ -263,9 +268,11 @@ static void check_sweep_points(const csv_table *t, size_t *row_half, size_t *row
   for (size_t r = 0; r < 8; r++) {
     double de = num(t, r, "deborah");
     /* 10 significant digits in the file, log spacing by pow: 1e-9 */
-    if (vl_test_rel(de, want[r]) > 1e-9) fail_msg("row %zu: deborah %.12g, want %.12g", r, de, want[r]);
+    if (vl_test_rel(de, want[r]) > 1e-9)
+      fail_msg("row %zu: deborah %.12g, want %.12g", r, de, want[r]);
     if (vl_test_rel(num(t, r, "v0_m_s"), want[r] * a0 / TAU_S) > 1e-9)
-      fail_msg("row %zu: v0 %.12g, want De a0/tau = %.12g", r, num(t, r, "v0_m_s"), want[r] * a0 / TAU_S);
+      fail_msg("row %zu: v0 %.12g, want De a0/tau = %.12g", r, num(t, r, "v0_m_s"),
+               want[r] * a0 / TAU_S);
     if (want[r] == 0.5) *row_half = r;
     if (fabs(want[r] - 1.0) < 1e-12) *row_one = r;
   }
@@ -384,7 +391,8 @@ static void test_rough_sweep(void **state) {
     assert_true(num(&rough, r, "u_min_m") > 0.0);
     assert_true(num(&rough, r, "u_central_m") >= num(&rough, r, "u_min_m"));
     if (de > 0.05 && de < 20) {
-      if (!(mu_rc > 0 && xc < 0)) fail_msg("rough De %g: mu_Rc = %g, x_centroid = %g", de, mu_rc, xc);
+      if (!(mu_rc > 0 && xc < 0))
+        fail_msg("rough De %g: mu_Rc = %g, x_centroid = %g", de, mu_rc, xc);
     }
     /* the same moment-arm identity: the rigid cylinder is still a parabola */
     if (fabs(mu_rc + xc / RADIUS_M) > 1e-9 * fmax(fabs(mu_rc), 1e-12))
@@ -397,7 +405,8 @@ static void test_rough_sweep(void **state) {
     peak_smooth = fmax(peak_smooth, num(&smooth, r, "mu_Rc"));
   }
   /* ... and lowers the peak of mu_Rc */
-  if (!(peak_rough < peak_smooth)) fail_msg("rough peak %g >= smooth peak %g", peak_rough, peak_smooth);
+  if (!(peak_rough < peak_smooth))
+    fail_msg("rough peak %g >= smooth peak %g", peak_rough, peak_smooth);
   char out_dir[1300];
   snprintf(out_dir, sizeof out_dir, "%s/rough", vl_test_dir);
   check_fields_set(out_dir, half, one);
@@ -420,8 +429,8 @@ static void test_json(void **state) {
   assert_int_equal(objects, t.rows);
   no_bad_numbers("JSON", out);
   for (size_t r = 0; r < t.rows; r++) {
-    const char *keys[] = {"v0_m_s", "deborah", "mu", "mu_Rc", "mu_Rf", "x_centroid_m",
-                          "contact_width_m", "eps_f_min"};
+    const char *keys[] = {"v0_m_s",       "deborah",         "mu",       "mu_Rc", "mu_Rf",
+                          "x_centroid_m", "contact_width_m", "eps_f_min"};
     for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
       if (json_get(out, keys[k], r) != num(&t, r, keys[k]))
         fail_msg("row %zu %s: JSON %.12g, CSV %.12g", r, keys[k], json_get(out, keys[k], r),

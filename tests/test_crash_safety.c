@@ -565,7 +565,10 @@ static void test_kill_compound_add(void **state) {
     sb_add(&csv, "%.6g,%.6g\n", 0.05 + 0.01 * i, 1e-9 * pow(10.0, 18.0 * i / 127.0));
   vl_test_write_file(prony, csv.s);
   free(csv.s);
-  campaign cp = {"compound add (128 terms)", before, work, 200,
+  campaign cp = {"compound add (128 terms)",
+                 before,
+                 work,
+                 200,
                  {"compound", "add", "crash-test", "--prony", prony, "--e-inf", "1e9", "--nu",
                   "0.5", "--description", "killed at random", NULL}};
   run_campaign(&cp);
@@ -579,7 +582,10 @@ static void test_kill_measured_add(void **state) {
   vl_db_close(db);
   char file[4200];
   snprintf(file, sizeof file, "%s", vl_test_source_path("materials/sbr-filled-synthetic.csv"));
-  campaign cp = {"compound add --measured (273 points)", before, work, 100,
+  campaign cp = {"compound add --measured (273 points)",
+                 before,
+                 work,
+                 100,
                  {"compound", "add", "crash-test", "--measured", file, NULL}};
   run_campaign(&cp);
 }
@@ -650,8 +656,7 @@ int main(void) {
   const char *seed = getenv("VL_CRASH_SEED");
   rng_state = seed ? strtoull(seed, NULL, 10) : (uint64_t)time(NULL) * 2654435761u + 1;
   if (rng_state == 0) rng_state = 1;
-  printf("crash safety: seed %llu (set VL_CRASH_SEED to repeat)\n",
-         (unsigned long long)rng_state);
+  printf("crash safety: seed %llu (set VL_CRASH_SEED to repeat)\n", (unsigned long long)rng_state);
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup_teardown(test_kill_compound_add, setup_disk, teardown),
       cmocka_unit_test_setup_teardown(test_kill_measured_add, setup_disk, teardown),

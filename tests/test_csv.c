@@ -299,8 +299,7 @@ static void test_dialects(void **state) {
     vl_csv_free(&csv);
   }
   expect_bad("A;tau_s\n9;0,25\n1.5;2\n", prony_cols, "in.csv:3:", "'A'", "thousands separator");
-  expect_bad("A;tau_s\n9;0,25\n1;2;3\n", prony_cols, "in.csv:3:", "semicolon-separated",
-             "found 3");
+  expect_bad("A;tau_s\n9;0,25\n1;2;3\n", prony_cols, "in.csv:3:", "semicolon-separated", "found 3");
   expect_bad("A,tau_s\n9,0,25\n", prony_cols, "in.csv:2:", "found 3", "decimal comma");
   expect_bad("A;x,tau_s\n9;1,0\n", prony_cols, "in.csv:1:", "cannot tell the delimiter", NULL);
   /* every bad row, in file order, in one message */
@@ -315,9 +314,8 @@ static void test_dialects(void **state) {
   /* ignored columns */
   vl_csv_options o = {.ignore_unknown = 1};
   const char *extra = "note,A,tau_s,T\n-,1,s,C\nfirst,9,0.1,x\n,2,1e-4,\n";
-  assert_int_equal(vl_csv_read_text_opts(extra, strlen(extra), "e.csv", prony_cols, 2, &o, &csv,
-                                         &err),
-                   VL_OK);
+  assert_int_equal(
+      vl_csv_read_text_opts(extra, strlen(extra), "e.csv", prony_cols, 2, &o, &csv, &err), VL_OK);
   assert_int_equal(csv.n_rows, 2);
   assert_int_equal(csv.n_ignored, 2);
   assert_string_equal(csv.ignored, "'note', 'T'");
@@ -326,9 +324,9 @@ static void test_dialects(void **state) {
   /* a given delimiter is used as given */
   vl_csv_options semi = {.delimiter = ';', .decimal_comma = 1};
   const char *given = "A;tau_s\n1;0,5\n";
-  assert_int_equal(vl_csv_read_text_opts(given, strlen(given), "s.csv", prony_cols, 2, &semi, &csv,
-                                         &err),
-                   VL_OK);
+  assert_int_equal(
+      vl_csv_read_text_opts(given, strlen(given), "s.csv", prony_cols, 2, &semi, &csv, &err),
+      VL_OK);
   assert_true(vl_csv_value(&csv, 0, 1) == 0.5);
   vl_csv_free(&csv);
 }

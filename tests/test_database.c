@@ -55,14 +55,6 @@ static vl_db *open_new(const char *path) {
 }
 
 /* Runs SQL on the file with a separate connection (as another program). */
-static void sql_exec(const char *path, const char *sql) {
-  sqlite3 *h = NULL;
-  assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
-  char *msg = NULL;
-  if (sqlite3_exec(h, sql, NULL, NULL, &msg) != SQLITE_OK) fail_msg("%s: %s", sql, msg);
-  sqlite3_close(h);
-}
-
 static double sql_num(const char *path, const char *sql) {
   sqlite3 *h = NULL;
   sqlite3_stmt *st = NULL;
@@ -290,10 +282,10 @@ static void test_compound_roundtrip(void **state) {
 
   /* measured points and shift factors belong to the compound */
   vl_db_close(db);
-  sql_exec(path, "INSERT INTO compound_measurement (compound_id, frequency_rad_s, "
-                 "temperature_c, storage_pa, loss_pa) SELECT id, 10, 20, 1e6, 1e5 FROM compound "
-                 "WHERE name = 'sbr-lab'; INSERT INTO compound_shift SELECT id, 30, -1.2 FROM "
-                 "compound WHERE name = 'sbr-lab';");
+  vl_test_sql(path, "INSERT INTO compound_measurement (compound_id, frequency_rad_s, "
+                    "temperature_c, storage_pa, loss_pa) SELECT id, 10, 20, 1e6, 1e5 FROM compound "
+                    "WHERE name = 'sbr-lab'; INSERT INTO compound_shift SELECT id, 30, -1.2 FROM "
+                    "compound WHERE name = 'sbr-lab';");
   db = open_new(path);
 
   /* a duplicate is refused and changes nothing */
@@ -508,10 +500,11 @@ static void test_rollback_mid_transaction(void **state) {
   (void)state;
   const char *path = db_path();
   vl_db_close(open_new(path));
-  sql_exec(path, "CREATE TRIGGER no_third_term BEFORE INSERT ON compound_prony WHEN NEW.idx = 3 "
-                 "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;"
-                 "CREATE TRIGGER no_second_point BEFORE INSERT ON surface_point WHEN NEW.idx = 2 "
-                 "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;");
+  vl_test_sql(path,
+              "CREATE TRIGGER no_third_term BEFORE INSERT ON compound_prony WHEN NEW.idx = 3 "
+              "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;"
+              "CREATE TRIGGER no_second_point BEFORE INSERT ON surface_point WHEN NEW.idx = 2 "
+              "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;");
   vl_test_snapshot s = vl_test_take(path);
   vl_db *db = open_new(path);
   vl_error err;
@@ -537,7 +530,7 @@ static void test_newer_schema_refused(void **state) {
   vl_db_close(open_new(path));
   char sql[64];
   snprintf(sql, sizeof sql, "PRAGMA user_version = %d", vl_db_schema_version() + 1);
-  sql_exec(path, sql);
+  vl_test_sql(path, sql);
   vl_test_snapshot s = vl_test_take(path);
   vl_db *db = (vl_db *)1;
   vl_error err;
@@ -570,7 +563,7 @@ static void test_foreign_and_corrupt_refused(void **state) {
 
   /* another program's SQLite file */
   path = db_path();
-  sql_exec(path, "CREATE TABLE notes (x TEXT); INSERT INTO notes VALUES ('keep me');");
+  vl_test_sql(path, "CREATE TABLE notes (x TEXT); INSERT INTO notes VALUES ('keep me');");
   s = vl_test_take(path);
   assert_int_equal(vl_db_open(path, &db, &err), VL_EDB);
   assert_non_null(strstr(err.msg, "not a viscolube database"));

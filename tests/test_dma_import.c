@@ -566,14 +566,6 @@ static double sql_num(const char *path, const char *sql) {
   return v;
 }
 
-static void sql_exec(const char *path, const char *sql) {
-  sqlite3 *h;
-  if (sqlite3_open(path, &h) != SQLITE_OK) fail_msg("open %s", path);
-  char *msg = NULL;
-  if (sqlite3_exec(h, sql, NULL, NULL, &msg) != SQLITE_OK) fail_msg("%s", msg);
-  sqlite3_close(h);
-}
-
 /* Points, shifts, terms and fit go in together, and a failure at the very
  * last insert (a trigger another program installed) rolls back all of it:
  * the file is byte-for-byte unchanged. Removing the compound removes its
@@ -597,8 +589,8 @@ static void test_store_one_transaction(void **state) {
   snprintf(meta.class_name, sizeof meta.class_name, "unfilled");
   snprintf(meta.source_file, sizeof meta.source_file, "test.csv");
 
-  sql_exec(path, "CREATE TRIGGER no_fit BEFORE INSERT ON compound_fit "
-                 "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;");
+  vl_test_sql(path, "CREATE TRIGGER no_fit BEFORE INSERT ON compound_fit "
+                    "BEGIN SELECT RAISE(ABORT, 'injected failure'); END;");
   vl_test_snapshot before = vl_test_take(path);
   if (vl_db_open(path, &db, &err) != VL_OK) fail_msg("%s", err.msg);
   assert_int_equal(vl_db_compound_add_measured(db, &meta, &m, &err), VL_EDB);
@@ -606,7 +598,7 @@ static void test_store_one_transaction(void **state) {
   vl_db_close(db);
   assert_true(vl_test_same_db(path, &before));
   free(before.bytes);
-  sql_exec(path, "DROP TRIGGER no_fit;");
+  vl_test_sql(path, "DROP TRIGGER no_fit;");
 
   if (vl_db_open(path, &db, &err) != VL_OK) fail_msg("%s", err.msg);
   assert_int_equal(vl_db_compound_add_measured(db, &meta, &m, &err), VL_OK);
@@ -661,9 +653,9 @@ static void test_migrate_from_schema_1(void **state) {
   char *seed = vl_test_read_file(vl_test_source_path("materials/seed_shipped.sql"));
   assert_non_null(schema);
   assert_non_null(seed);
-  sql_exec(path, schema);
-  sql_exec(path, seed);
-  sql_exec(path, "PRAGMA user_version = 1");
+  vl_test_sql(path, schema);
+  vl_test_sql(path, seed);
+  vl_test_sql(path, "PRAGMA user_version = 1");
   free(schema);
   free(seed);
   vl_db *db;
@@ -811,8 +803,8 @@ static void test_cli_bad_files(void **state) {
       {"nohdr.csv", "0.1,1,0.1\n", "", "nohdr.csv:1:", "missing header"},
       {"misspelt.csv", "f,E_sotr,E_loss\nHz,MPa,MPa\n0.1,1,0.1\n", "",
        "misspelt.csv:1:", "did you mean 'E_stor'"},
-      {"unknown.csv", "f,E_stor,strain\nHz,MPa,%\n0.1,1,2\n", "", "unknown.csv:1:",
-       "not recognised: 'strain'"},
+      {"unknown.csv", "f,E_stor,strain\nHz,MPa,%\n0.1,1,2\n", "",
+       "unknown.csv:1:", "not recognised: 'strain'"},
       {"lacks.csv", "f,E_stor\nHz,MPa\n0.1,1\n", "", "lacks.csv:1:", "E_loss"},
       {"nofreq.csv", "E_stor,E_loss\nMPa,MPa\n1,0.1\n", "", "nofreq.csv:1:", "frequency"},
       {"jonly.csv", "f,J_stor\nHz,1/MPa\n0.1,1\n", "", "jonly.csv:1:", "J''"},

@@ -84,7 +84,8 @@ static void test_fig03_peak_decreases_with_roughness(void **state) {
   printf("  Hunter's exact peak %.5f at %.3f\n", h.mu_R_over_a0, 1.349658);
   assert_true(vl_test_rel(peak[0], h.mu_R_over_a0) < 2e-3);
   /* docs/CASES.md fig03: monotone decrease with h_rms ... */
-  for (int k = 1; k < 6; k++) assert_true(peak[k] < peak[k - 1]);
+  for (int k = 1; k < 6; k++)
+    assert_true(peak[k] < peak[k - 1]);
   /* ... and 0.1 um within 3 % of the smooth peak (the bound) */
   assert_true(peak[1] / peak[0] > 0.97);
 }

@@ -108,8 +108,8 @@ static double qag_angular(eq31 e) {
   double edges[] = {0.0, 0.5 * M_PI, M_PI, 1.5 * M_PI, 2.0 * M_PI}, sum = 0.0;
   for (int k = 0; k < 4; k++) {
     double r, abserr;
-    int st = gsl_integration_qag(&fn, edges[k], edges[k + 1], 0.0, 1e-13, 2000,
-                                 GSL_INTEG_GAUSS61, ws, &r, &abserr);
+    int st = gsl_integration_qag(&fn, edges[k], edges[k + 1], 0.0, 1e-13, 2000, GSL_INTEG_GAUSS61,
+                                 ws, &r, &abserr);
     if (st) fail_msg("qag: %s", gsl_strerror(st));
     sum += r;
   }
@@ -138,7 +138,8 @@ static void test_angular_closed_form(void **state) {
       if (ts[i] > 0.0) {
         double h = 1e-5 * ts[i];
         double fd = (vl_flattening_angular(ts[i] + h, ds[j], NULL) -
-                     vl_flattening_angular(ts[i] - h, ds[j], NULL)) / (2 * h);
+                     vl_flattening_angular(ts[i] - h, ds[j], NULL)) /
+                    (2 * h);
         if (fabs(dA - fd) > 1e-7 * fmax(fabs(fd), 1e-3 / ts[i]))
           fail_msg("t %g delta %g: dA/dt %.12g, FD %.12g", ts[i], ds[j], dA, fd);
       }
@@ -272,8 +273,9 @@ static void test_derivative(void **state) {
     for (double uh = 1e-3; uh < 1.0; uh *= 1.37) {
       double u = uh * HRMS, h = 1e-4 * u, d;
       vl_flattening_eps_exact(f, u, &d);
-      double fd = (vl_flattening_eps_exact(f, u + h, NULL) - vl_flattening_eps_exact(f, u - h, NULL)) /
-                  (2 * h);
+      double fd =
+          (vl_flattening_eps_exact(f, u + h, NULL) - vl_flattening_eps_exact(f, u - h, NULL)) /
+          (2 * h);
       double err = fabs(d - fd) * u; /* in d epsilon / d ln u */
       worst = fmax(worst, err);
       if (err > 1e-6) fail_msg("resp %d u %g h: d eps/du %.10g, FD %.10g", r, uh, d, fd);
@@ -318,8 +320,8 @@ static table_err table_errors(vl_flattening_response r, size_t per_decade) {
           w.e = fmax(w.e, fabs(e - ex));
           w.d = fmax(w.d, fabs(d - dx) * u);
           double h = 1e-6 * u;
-          double fd = (vl_flattening_eps(f, u + h, NULL) - vl_flattening_eps(f, u - h, NULL)) /
-                      (2 * h);
+          double fd =
+              (vl_flattening_eps(f, u + h, NULL) - vl_flattening_eps(f, u - h, NULL)) / (2 * h);
           w.self = fmax(w.self, fabs(fd - d) * u);
         }
       }
@@ -420,8 +422,9 @@ static void test_limit_small_speed(void **state) {
   vl_error err;
   assert_int_equal(vl_flattening_set_speed(f, 1e-8, &err), VL_OK);
   double d2 = 1.0 - vl_flattening_eps_exact(f, u, NULL);
-  printf("  model rubber, u = 0.01 h_rms: 1 - eps = %.4g at 1e-7 m/s, %.4g at 1e-8 m/s (ratio %.6g)\n",
-         d1, d2, d1 / d2);
+  printf(
+      "  model rubber, u = 0.01 h_rms: 1 - eps = %.4g at 1e-7 m/s, %.4g at 1e-8 m/s (ratio %.6g)\n",
+      d1, d2, d1 / d2);
   assert_true(d1 > 1e-12 && fabs(d1 / d2 / 100.0 - 1.0) < 1e-3);
   /* and speed 0 itself: no flow, no flattening */
   assert_int_equal(vl_flattening_set_speed(f, 0.0, &err), VL_OK);
@@ -467,8 +470,10 @@ static double u90(const vl_flattening *f) {
   double lo = log(1e-5 * HRMS), hi = log(10.0 * HRMS);
   for (int i = 0; i < 80; i++) {
     double mid = 0.5 * (lo + hi);
-    if (vl_flattening_eps_exact(f, exp(mid), NULL) < 0.9) lo = mid;
-    else hi = mid;
+    if (vl_flattening_eps_exact(f, exp(mid), NULL) < 0.9)
+      lo = mid;
+    else
+      hi = mid;
   }
   return exp(0.5 * (lo + hi)) / HRMS;
 }
@@ -593,7 +598,8 @@ static void test_cli(void **state) {
   const char *dir = vl_test_scratch("out", NULL);
   int rc = vl_test_run(&out, &err,
                        "flattening --compound sbr-unfilled --surface paper-3um --fluid model-1e-2 "
-                       "--speeds 0.001,0.1 --hurst 0.8,0.4 --out %s", dir);
+                       "--speeds 0.001,0.1 --hurst 0.8,0.4 --out %s",
+                       dir);
   if (rc != 0) fail_msg("exit %d: %s", rc, err);
   assert_non_null(strstr(out, "u90/h"));
   free(out);
@@ -637,7 +643,8 @@ static void test_cli(void **state) {
   /* --json is one valid JSON value with a curve per (H, v0) */
   rc = vl_test_run(&out, &err,
                    "flattening --compound sbr-filled --surface paper-3um --fluid model-1e-2 "
-                   "--speeds 0.01 --out %s --json", dir);
+                   "--speeds 0.01 --out %s --json",
+                   dir);
   assert_int_equal(rc, 0);
   assert_true(vl_test_json_valid(out));
   assert_non_null(strstr(out, "\"epsilon_f\": ["));
@@ -671,8 +678,9 @@ static void test_cli_bad_input(void **state) {
   vl_test_expect_fail(3, "nope", NULL, "flattening --compound nope %s", base);
   vl_test_expect_fail(3, "nope", NULL,
                       "flattening --compound sbr-filled --surface nope --fluid water --speeds 1");
-  vl_test_expect_fail(3, "nope", NULL,
-                      "flattening --compound sbr-filled --surface paper-3um --fluid nope --speeds 1");
+  vl_test_expect_fail(
+      3, "nope", NULL,
+      "flattening --compound sbr-filled --surface paper-3um --fluid nope --speeds 1");
   vl_test_expect_fail(2, "--speeds", NULL,
                       "flattening --compound sbr-filled --surface paper-3um --fluid water");
   vl_test_expect_fail(2, "--speeds", "-1",
@@ -681,8 +689,8 @@ static void test_cli_bad_input(void **state) {
   vl_test_expect_fail(2, "--hurst", NULL, "flattening --compound sbr-filled %s --hurst 1.5", base);
   vl_test_expect_fail(2, "--response", "complex",
                       "flattening --compound sbr-filled %s --response phase", base);
-  vl_test_expect_fail(2, "--u-range", NULL,
-                      "flattening --compound sbr-filled %s --u-range 1,0.1", base);
+  vl_test_expect_fail(2, "--u-range", NULL, "flattening --compound sbr-filled %s --u-range 1,0.1",
+                      base);
   vl_test_expect_fail(2, "--bogus", NULL, "flattening --compound sbr-filled %s --bogus 1", base);
   vl_test_expect_fail(6, "absent.ini", NULL, "flattening --case %s/absent.ini", vl_test_dir);
   assert_int_equal(vl_test_run(&out, NULL, "flattening --help"), 0);

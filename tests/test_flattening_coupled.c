@@ -30,8 +30,8 @@
 
 #include "contact_test.h"
 #include "viscolube/contact.h"
-#include "viscolube/persson.h"
 #include "viscolube/flattening.h"
+#include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 
 /* The paper surface's spectrum (seed: H = 0.8, q0 = 2e5, q1 = 7.8e9 1/m). */
@@ -242,7 +242,8 @@ static void test_scaled_psd(void **state) {
   for (size_t k = 0; k < sizeof targets / sizeof *targets; k++) {
     /* the loaded node (pc above 1 % of the peak) whose eps is nearest the target */
     double pmax = 0.0;
-    for (size_t i = 0; i < n; i++) pmax = fmax(pmax, f.p_c_pa[i]);
+    for (size_t i = 0; i < n; i++)
+      pmax = fmax(pmax, f.p_c_pa[i]);
     size_t best = SIZE_MAX;
     double best_d = INFINITY;
     for (size_t i = 0; i < n; i++) {
@@ -331,26 +332,43 @@ static void test_thick_film_identical(void **state) {
     assert_true(a->converged && b->converged);
     assert_true(a->eps_f_min > 1.0 - 1e-12 && b->eps_f_min == 1.0);
     assert_int_equal(a->iterations, b->iterations);
-    const double pa[] = {a->mu, a->mu_Rc, a->mu_Rf, a->mu_Sc, a->mu_Sf, a->u_min_m,
-                         a->u_central_m, a->x_centroid_m, a->contact_width_m,
-                         a->fluid_load_fraction, a->peak_pressure_pa};
-    const double pb[] = {b->mu, b->mu_Rc, b->mu_Rf, b->mu_Sc, b->mu_Sf, b->u_min_m,
-                         b->u_central_m, b->x_centroid_m, b->contact_width_m,
-                         b->fluid_load_fraction, b->peak_pressure_pa};
+    const double pa[] = {a->mu,
+                         a->mu_Rc,
+                         a->mu_Rf,
+                         a->mu_Sc,
+                         a->mu_Sf,
+                         a->u_min_m,
+                         a->u_central_m,
+                         a->x_centroid_m,
+                         a->contact_width_m,
+                         a->fluid_load_fraction,
+                         a->peak_pressure_pa};
+    const double pb[] = {b->mu,
+                         b->mu_Rc,
+                         b->mu_Rf,
+                         b->mu_Sc,
+                         b->mu_Sf,
+                         b->u_min_m,
+                         b->u_central_m,
+                         b->x_centroid_m,
+                         b->contact_width_m,
+                         b->fluid_load_fraction,
+                         b->peak_pressure_pa};
     for (size_t k = 0; k < sizeof pa / sizeof *pa; k++)
       worst = fmax(worst, fabs(pa[k] - pb[k]) / fmax(fabs(pb[k]), 1e-300));
   }
   /* fields of the last point: pressures relative to the peak, u to u_min */
   double pk = 0.0, worst_f = 0.0;
-  for (size_t i = 0; i < n; i++) pk = fmax(pk, fld[0][2 * n + i] + fld[0][n + i]);
+  for (size_t i = 0; i < n; i++)
+    pk = fmax(pk, fld[0][2 * n + i] + fld[0][n + i]);
   for (size_t i = 0; i < n; i++) {
-    worst_f = fmax(worst_f, fabs(fld[1][n + i] - fld[0][n + i]) / pk);         /* p_f */
-    worst_f = fmax(worst_f, fabs(fld[1][2 * n + i] - fld[0][2 * n + i]) / pk); /* p_c */
+    worst_f = fmax(worst_f, fabs(fld[1][n + i] - fld[0][n + i]) / pk);          /* p_f */
+    worst_f = fmax(worst_f, fabs(fld[1][2 * n + i] - fld[0][2 * n + i]) / pk);  /* p_c */
     worst_f = fmax(worst_f, vl_test_rel(fld[1][3 * n + i], fld[0][3 * n + i])); /* u */
     worst_f = fmax(worst_f, fabs(fld[1][4 * n + i] - fld[0][4 * n + i]));       /* A/A0 */
   }
-  print_message("eps_f_min %.17g; on vs off: points %.2e, fields %.2e\n", pt[1][2].eps_f_min,
-                worst, worst_f);
+  print_message("eps_f_min %.17g; on vs off: points %.2e, fields %.2e\n", pt[1][2].eps_f_min, worst,
+                worst_f);
   assert_true(worst < 1e-12 && worst_f < 1e-12);
   free(fld[0]);
   free(fld[1]);
@@ -455,10 +473,11 @@ static void test_cli_scene(void **state) {
   (void)state;
   char *text = vl_test_read_file(vl_test_source_path("cases/fig05.ini"));
   assert_non_null(text);
-  const char *edits[][2] = {{"viscous_flattening = off", "viscous_flattening = on"},
-                            {"grid = 2928", "grid = 488"},
-                            {"points = 61", "points = 13"},
-                            {"fields_at = 1e-7, 1e-6, 3e-6, 1e-5, 1e-3, 1e-1, 1", "fields_at = 3e-3"}};
+  const char *edits[][2] = {
+      {"viscous_flattening = off", "viscous_flattening = on"},
+      {"grid = 2928", "grid = 488"},
+      {"points = 61", "points = 13"},
+      {"fields_at = 1e-7, 1e-6, 3e-6, 1e-5, 1e-3, 1e-1, 1", "fields_at = 3e-3"}};
   for (size_t k = 0; k < sizeof edits / sizeof *edits; k++) {
     char *t = replace(text, edits[k][0], edits[k][1]);
     free(text);

@@ -44,8 +44,7 @@ static vl_psd get_psd(vl_db *db, const char *name) {
   return psd;
 }
 
-static vl_emt_table *lookup(vl_db *db, const char *name, const vl_psd *psd, double cut,
-                            bool *hit) {
+static vl_emt_table *lookup(vl_db *db, const char *name, const vl_psd *psd, double cut, bool *hit) {
   vl_emt_table *t = NULL;
   vl_error err;
   if (vl_db_flow_table(db, name, psd, cut, 0, &t, hit, &err) != VL_OK)
@@ -94,14 +93,6 @@ static int stored(const char *path, const char *name) {
   sqlite3_finalize(st);
   sqlite3_close(h);
   return n;
-}
-
-static void sql_exec(const char *path, const char *sql) {
-  sqlite3 *h = NULL;
-  char *msg = NULL;
-  assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
-  if (sqlite3_exec(h, sql, NULL, NULL, &msg) != SQLITE_OK) fail_msg("%s: %s", sql, msg);
-  sqlite3_close(h);
 }
 
 static void test_cached_equals_fresh(void **state) {
@@ -153,7 +144,7 @@ static void test_damaged_rows_rebuilt(void **state) {
       "(SELECT id FROM surface WHERE name = 'paper-1um')",
   };
   for (size_t k = 0; k < sizeof damage / sizeof *damage; k++) {
-    sql_exec(vl_test_db, damage[k]);
+    vl_test_sql(vl_test_db, damage[k]);
     hit = true;
     vl_emt_table *t = lookup(db, "paper-1um", &psd, CUT, &hit);
     if (hit) fail_msg("damage %zu: the row was used", k);
@@ -188,7 +179,7 @@ static void test_remove_and_edit(void **state) {
   assert_int_equal(stored(vl_test_db, NULL), 2);
   assert_int_equal(vl_db_surface_remove(db, "tab", &err), VL_OK);
   assert_int_equal(stored(vl_test_db, NULL), 1);
-  sql_exec(vl_test_db, "UPDATE surface SET hurst = 0.7 WHERE name = 'paper-1um'");
+  vl_test_sql(vl_test_db, "UPDATE surface SET hurst = 0.7 WHERE name = 'paper-1um'");
   assert_int_equal(stored(vl_test_db, NULL), 0);
   vl_psd_free(&tab);
   vl_psd_free(&p1);

@@ -122,7 +122,7 @@ static void test_two_phase_closed_forms(void **state) {
   assert_int_equal(vl_emt_medium(1, &g, &m, 0.6, 0.5, &p, NULL), VL_OK);
   assert_true(p.phi_p == 0.0 && p.phi_fp == 0.0 && p.phi_s == p.x);
   assert_true(vl_test_rel(p.phi_fs, 3 * 0.4 * 0.4) < 1e-14); /* 3u sum m/g */
-  assert_true(vl_test_rel(p.phi_f, 0.4 * 0.4) < 1e-14);       /* u sum m/g */
+  assert_true(vl_test_rel(p.phi_f, 0.4 * 0.4) < 1e-14);      /* u sum m/g */
   /* a cut-off above the open gaps makes them boundary contact: no fluid
    * shear at all (phi_f and phi_fs) */
   assert_int_equal(vl_emt_medium(1, &g, &m, 0.6, 2.0, &p, NULL), VL_OK);
@@ -231,8 +231,8 @@ static const double seed_rows[6][7] = {
 static void check_row(const double *r, double area, const vl_flow_factor_values *v) {
   print_message("x %-4g A %.4e (%.4e)  phi_p %.4f (%.4f)  phi_s %.4f (%.4f)  phi_fp %.4f (%.4f)"
                 "  phi_fs %.4g (%.4g)  phi_f %.4g (%.4g)\n",
-                r[0], area, r[1], v->phi_p, r[2], v->phi_s, r[3], v->phi_fp, r[4], v->phi_fs,
-                r[5], v->phi_f, r[6]);
+                r[0], area, r[1], v->phi_p, r[2], v->phi_s, r[3], v->phi_fp, r[4], v->phi_fs, r[5],
+                v->phi_f, r[6]);
   if (area >= 0.0) assert_true(vl_test_rel(area, r[1]) < 1e-3);
   assert_true(fabs(v->phi_p - r[2]) <= 1e-3);
   assert_true(fabs(v->phi_s - r[3]) <= 1e-3);
@@ -283,8 +283,7 @@ static void test_table_follows_model(void **state) {
     vl_emt_point p = point(&g_psd, CUT, x);
     vl_flow_factor_values v = eval_x(g_table, x, NULL);
     double e[5] = {fabs(v.phi_p - p.phi_p), fabs(v.phi_s - p.phi_s), fabs(v.phi_fp - p.phi_fp),
-                   fabs(v.phi_fs - p.phi_fs) / (p.phi_f + p.phi_fs),
-                   vl_test_rel(v.phi_f, p.phi_f)};
+                   fabs(v.phi_fs - p.phi_fs) / (p.phi_f + p.phi_fs), vl_test_rel(v.phi_f, p.phi_f)};
     for (int i = 0; i < 5; i++)
       worst[i] = fmax(worst[i], e[i]);
   }

@@ -15,9 +15,9 @@
 #include <string.h>
 
 #include "contact_test.h"
+#include "kernel.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
-#include "kernel.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
@@ -79,8 +79,10 @@ static void test_cells_tile_the_domain(void **state) {
        * to the next odd multiple (1 -> 3), or the last run's remainder */
       assert_true(w >= wr - 1e-12);
       double step = fmax(growth[g] * wr * 1.5, 3.0 * wr); /* a run's largest next size */
-      if (i > 1) assert_true(w <= step + 1e-12);
-      else assert_true(w <= 2.0 * step + dx + 1e-12); /* the last run takes the rest */
+      if (i > 1)
+        assert_true(w <= step + 1e-12);
+      else
+        assert_true(w <= 2.0 * step + dx + 1e-12); /* the last run takes the rest */
       xr = x, wr = w;
     }
     vl_contact_cell(c, 0, &x, &w);
@@ -138,7 +140,8 @@ static void test_graded_converges_to_uniform(void **state) {
   (void)state;
   enum { NP = 13 };
   double v0[NP];
-  for (int i = 0; i < NP; i++) v0[i] = 1e-8 * pow(10.0, (double)i);
+  for (int i = 0; i < NP; i++)
+    v0[i] = 1e-8 * pow(10.0, (double)i);
   double growth[] = {1.0, 1.2, 1.1, 1.05};
   vl_point pts[4][NP];
   double err[4] = {0, 0, 0, 0};
@@ -178,7 +181,8 @@ static void test_inlet_tail_is_one_over_x(void **state) {
   double X[3] = {24.0, 48.0, 96.0}, mu[3];
   enum { NP = 9 };
   double v0[NP];
-  for (int i = 0; i < NP; i++) v0[i] = 1.0 * pow(10.0, (double)i / 2.0); /* 1e-4 ... 1 Pa m */
+  for (int i = 0; i < NP; i++)
+    v0[i] = 1.0 * pow(10.0, (double)i / 2.0); /* 1e-4 ... 1 Pa m */
   for (int k = 0; k < 3; k++) {
     size_t grid = (size_t)lround((X[k] + 1.6) * 30.0);
     vl_contact_config cfg = fig05(grid, -X[k], 1.05);

@@ -141,7 +141,10 @@ static char *layout_text(const data_set *d, int lay) {
   case L_GENERIC:
     add(&t, "Frequency (Hz),Temperature (C),Storage modulus (Pa),Loss modulus (Pa)\n");
     break;
-  default: add(&t, "f,T,G1,G2\nHz,\xC2\xB0" "C,N/mm^2,N/mm^2\n"); break;
+  default:
+    add(&t, "f,T,G1,G2\nHz,\xC2\xB0"
+            "C,N/mm^2,N/mm^2\n");
+    break;
   }
   for (int i = 0; i < N_T * N_F; i++) {
     double f = d->f_hz[i], tc = d->t_c[i], e1 = d->e1[i], e2 = d->e2[i];
@@ -211,8 +214,8 @@ static void test_shear_layouts(void **state) {
     if (lay == L_GENERIC) ol.moduli = VL_DMA_MODULI_SHEAR;
     vl_measured m = import_ok(txt, "layout.csv", &ol);
     assert_true(m.shear);
-    if (!strstr(m.notes, expect[lay])) fail_msg("layout %d: notes lack '%s':\n%s", lay,
-                                                 expect[lay], m.notes);
+    if (!strstr(m.notes, expect[lay]))
+      fail_msg("layout %d: notes lack '%s':\n%s", lay, expect[lay], m.notes);
     assert_non_null(strstr(m.notes, "shear moduli"));
     assert_int_equal(m.n, ref.n);
     assert_int_equal(m.n_isotherms, 3);
@@ -250,8 +253,8 @@ static void test_shear_layouts(void **state) {
 
 /* ---- refusals ----------------------------------------------------------- */
 
-static void expect_refused(const char *txt, size_t len, const char *source,
-                           const vl_dma_options *o, const char *n1, const char *n2) {
+static void expect_refused(const char *txt, size_t len, const char *source, const vl_dma_options *o,
+                           const char *n1, const char *n2) {
   vl_measured m;
   vl_error err = {{0}};
   vl_status st = vl_measured_read_text(txt, len, source, o, &m, &err);
@@ -349,8 +352,7 @@ static void test_refusals(void **state) {
   ot.moduli = VL_DMA_MODULI_TENSILE;
   expect_refused(g, strlen(g), "g.csv", &ot, "holds shear moduli", "tensile");
   const char *typo = "f,G_storgae,G_loss\nHz,MPa,MPa\n1,2,0.2\n";
-  expect_refused(typo, strlen(typo), "typo.csv", &o, "unknown column 'G_storgae'",
-                 "did you mean");
+  expect_refused(typo, strlen(typo), "typo.csv", &o, "unknown column 'G_storgae'", "did you mean");
   /* a redundant column that disagrees; a frequency in 1/s that is not omega */
   const char *abs = "f,G',G'',|G*|\nHz,MPa,MPa,MPa\n1,2,0.2,3\n10,3,0.3,3.015\n";
   expect_refused(abs, strlen(abs), "abs.csv", &o, "abs.csv:3: column '|G*|' (field 4)",
@@ -401,16 +403,14 @@ static void test_refusals_leave_database(void **state) {
   expect_cli_refusal("mix.csv", "f,E_stor,G_loss\nHz,MPa,MPa\n1,2,0.2\n", add, "mixes tensile");
   /* PSD files */
   const char *sadd = "surface add s --psd %s";
-  expect_cli_refusal("p1d.csv", "q [1/m],C1D [m^3]\n1e4,1e-16\n1e6,1e-22\n", sadd,
-                     "--psd-kind 1d");
+  expect_cli_refusal("p1d.csv", "q [1/m],C1D [m^3]\n1e4,1e-16\n1e6,1e-22\n", sadd, "--psd-kind 1d");
   expect_cli_refusal("ptiny.csv", "q [1/m],C [m^4]\n1e4,1e-30\n1e6,1e-36\n", sadd,
                      "implausible h_rms");
   expect_cli_refusal("psteep.csv", "q [1/m],C [m^4]\n1e5,1e-20\n1e9,1e-30\n", sadd,
                      "implausible rms slope");
   expect_cli_refusal("pnounit.csv", "q,C\n1e4,1e-20\n1e6,1e-26\n", sadd, "no unit");
   expect_cli_refusal("psheet.xls", "q [1/m],C [m^4]\n", sadd, "spreadsheet");
-  expect_cli_refusal("pmany.csv", "q [1/m],C [m^4]\n1e4,x\n1e5,y\n1e6,z\n", sadd,
-                     "pmany.csv:4:");
+  expect_cli_refusal("pmany.csv", "q [1/m],C [m^4]\n1e4,x\n1e5,y\n1e6,z\n", sadd, "pmany.csv:4:");
 }
 
 /* ---- PSD files ------------------------------------------------------------ */
@@ -441,15 +441,14 @@ static void test_psd_layouts(void **state) {
   assert_string_equal(rep.notes, "");
   free(ref.s);
   enum { P_BRACKET, P_UM, P_NM, P_SEMI, P_TAB_EXTRA, P_REVERSED, P_DUPS, P_UNITS_ROW, P_COUNT };
-  static const char *note[P_COUNT] = {
-      [P_BRACKET] = "",
-      [P_UM] = "q x 1e+06 (from 1/um), C x 1e-24 (from um^4)",
-      [P_NM] = "q x 1e+09 (from 1/nm)",
-      [P_SEMI] = "semicolon-separated with decimal commas",
-      [P_TAB_EXTRA] = "ignored 1 column: 'C_std'",
-      [P_REVERSED] = "not in increasing q (they decrease): sorted",
-      [P_DUPS] = "3 rows repeated a q already given",
-      [P_UNITS_ROW] = ""};
+  static const char *note[P_COUNT] = {[P_BRACKET] = "",
+                                      [P_UM] = "q x 1e+06 (from 1/um), C x 1e-24 (from um^4)",
+                                      [P_NM] = "q x 1e+09 (from 1/nm)",
+                                      [P_SEMI] = "semicolon-separated with decimal commas",
+                                      [P_TAB_EXTRA] = "ignored 1 column: 'C_std'",
+                                      [P_REVERSED] = "not in increasing q (they decrease): sorted",
+                                      [P_DUPS] = "3 rows repeated a q already given",
+                                      [P_UNITS_ROW] = ""};
   for (int lay = 0; lay < P_COUNT; lay++) {
     text t = {0};
     switch (lay) {
@@ -479,8 +478,8 @@ static void test_psd_layouts(void **state) {
       }
     }
     vl_psd p = psd_ok(t.s, VL_PSD_FILE_2D, &rep);
-    if (!strstr(rep.notes, note[lay])) fail_msg("PSD layout %d: notes lack '%s':\n%s", lay,
-                                                 note[lay], rep.notes);
+    if (!strstr(rep.notes, note[lay]))
+      fail_msg("PSD layout %d: notes lack '%s':\n%s", lay, note[lay], rep.notes);
     assert_int_equal(p.n, 7);
     for (size_t k = 0; k < 7; k++)
       if (vl_test_rel(p.q[k], r.q[k]) > 1e-14 || vl_test_rel(p.C[k], r.C[k]) > 1e-14)
@@ -610,8 +609,8 @@ static char *isotherms(const hn_model *m, double t_lo, double t_hi, double dt, d
 static void master_error(const vl_measured *r, const hn_model *m, double *e1, double *e2) {
   double s1 = 0.0, s2 = 0.0;
   for (int k = 0; k <= 200; k++) {
-    double w = r->fit.omega_min_rad_s * pow(r->fit.omega_max_rad_s / r->fit.omega_min_rad_s,
-                                            k / 200.0);
+    double w =
+        r->fit.omega_min_rad_s * pow(r->fit.omega_max_rad_s / r->fit.omega_min_rad_s, k / 200.0);
     double complex a = vl_prony_modulus(&r->prony, w), b = hn(m, w);
     s1 += pow(creal(a) / creal(b) - 1.0, 2.0);
     s2 += pow(cimag(a) / cimag(b) - 1.0, 2.0);
@@ -632,8 +631,10 @@ static void test_glassy_isotherms(void **state) {
   (void)state;
   const struct {
     double t_lo, t_hi, dt, a, b;
-  } sets[] = {{0.0, 80.0, 10.0, 0.60, 0.35},  {-20.0, 80.0, 5.0, 0.60, 0.35},
-              {0.0, 80.0, 10.0, 0.40, 0.60},  {-20.0, 80.0, 5.0, 0.80, 0.50},
+  } sets[] = {{0.0, 80.0, 10.0, 0.60, 0.35},
+              {-20.0, 80.0, 5.0, 0.60, 0.35},
+              {0.0, 80.0, 10.0, 0.40, 0.60},
+              {-20.0, 80.0, 5.0, 0.80, 0.50},
               {-10.0, 100.0, 5.0, 0.70, 0.30}};
   vl_dma_options o = vl_dma_options_default();
   o.tref_c = 20.0;
@@ -641,25 +642,25 @@ static void test_glassy_isotherms(void **state) {
     hn_model m = rubber;
     m.a = sets[i].a, m.b = sets[i].b;
     for (int level = 0; level < 2; level++) {
-    double noise = level ? 0.01 : 0.005;
-    char *txt = isotherms(&m, sets[i].t_lo, sets[i].t_hi, sets[i].dt, noise, NULL);
-    vl_measured r = import_ok(txt, "glassy.csv", &o);
-    double worst = 0.0, e1, e2;
-    for (size_t g = 0; g < r.n_isotherms; g++)
-      worst = fmax(worst, fabs(r.iso_log10_a_t[g] - wlf(&m, r.iso_temperature_c[g])));
-    master_error(&r, &m, &e1, &e2);
-    fprintf(stderr,
-            "HN a %.2f b %.2f, %g..%g C every %g K, noise %.1f %%: worst shift %.3f decades, "
-            "master curve E' %.2f %% E'' %.2f %% rms; %zu pairs bridged, %zu warnings\n",
-            m.a, m.b, sets[i].t_lo, sets[i].t_hi, sets[i].dt, 100.0 * noise, worst, 100.0 * e1,
-            100.0 * e2, r.n_extrapolated, r.n_warnings);
-    assert_true(worst < (level ? 0.1 : 0.05));
-    assert_true(e1 < 0.03 && e2 < 0.03);
-    assert_true(r.n_extrapolated >= 1);
-    assert_int_equal(r.n_warnings, 0);
-    assert_non_null(strstr(r.notes, "too little to compare point by point"));
-    vl_measured_free(&r);
-    free(txt);
+      double noise = level ? 0.01 : 0.005;
+      char *txt = isotherms(&m, sets[i].t_lo, sets[i].t_hi, sets[i].dt, noise, NULL);
+      vl_measured r = import_ok(txt, "glassy.csv", &o);
+      double worst = 0.0, e1, e2;
+      for (size_t g = 0; g < r.n_isotherms; g++)
+        worst = fmax(worst, fabs(r.iso_log10_a_t[g] - wlf(&m, r.iso_temperature_c[g])));
+      master_error(&r, &m, &e1, &e2);
+      fprintf(stderr,
+              "HN a %.2f b %.2f, %g..%g C every %g K, noise %.1f %%: worst shift %.3f decades, "
+              "master curve E' %.2f %% E'' %.2f %% rms; %zu pairs bridged, %zu warnings\n",
+              m.a, m.b, sets[i].t_lo, sets[i].t_hi, sets[i].dt, 100.0 * noise, worst, 100.0 * e1,
+              100.0 * e2, r.n_extrapolated, r.n_warnings);
+      assert_true(worst < (level ? 0.1 : 0.05));
+      assert_true(e1 < 0.03 && e2 < 0.03);
+      assert_true(r.n_extrapolated >= 1);
+      assert_int_equal(r.n_warnings, 0);
+      assert_non_null(strstr(r.notes, "too little to compare point by point"));
+      vl_measured_free(&r);
+      free(txt);
     }
   }
 }
@@ -718,8 +719,10 @@ static void test_real_exports(void **state) {
   if (access(dir, R_OK) != 0)
     snprintf(dir, sizeof dir, "%s/../../shared/data/real", vl_test_source_path("."));
   if (access(dir, R_OK) != 0) {
-    fprintf(stderr, "SKIPPED: no ../shared/data/real beside %s: the real shear exports are not "
-            "tested\n", vl_test_source_path("."));
+    fprintf(stderr,
+            "SKIPPED: no ../shared/data/real beside %s: the real shear exports are not "
+            "tested\n",
+            vl_test_source_path("."));
     skip();
   }
   for (size_t i = 0; i < 2; i++) {

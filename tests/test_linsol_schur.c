@@ -9,14 +9,14 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <nvector/nvector_serial.h>
 #include <stdlib.h>
 #include <string.h>
-#include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "linsol_schur.h"
 #include "contact_test.h"
+#include "linsol_schur.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"
@@ -60,7 +60,8 @@ static void build(double *J, int n, kind k, unsigned seed) {
     for (int q = -2; q <= 1; q++)
       if (i + q >= 0 && i + q < n) E(n + i, i + q) = db * (uniform(&seed) - 0.5);
   }
-  for (int j = 0; j < 2 * n; j++) E(2 * n, j) = 0.01 * (1.0 + uniform(&seed));
+  for (int j = 0; j < 2 * n; j++)
+    E(2 * n, j) = 0.01 * (1.0 + uniform(&seed));
   if (k == NEGATIVE_PIVOT) E(n + n / 2, n + n / 2) = -E(n + n / 2, n + n / 2);
   if (k == OFF_TRIDIAGONAL) E(n + 3, n + 9) = 0.5;
 #undef E
@@ -77,7 +78,8 @@ static double compare(int n, kind k, long *fallbacks) {
   build(SUNDenseMatrix_Data(A), n, k, 12345u + (unsigned)n);
   unsigned seed = 99;
   double *bd = N_VGetArrayPointer(b);
-  for (int i = 0; i < N; i++) bd[i] = uniform(&seed) - 0.5;
+  for (int i = 0; i < N; i++)
+    bd[i] = uniform(&seed) - 0.5;
   /* reference: LAPACK on copies */
   double *Ac = malloc((size_t)N * (size_t)N * sizeof *Ac), *xr = malloc((size_t)N * sizeof *xr);
   int *piv = malloc((size_t)N * sizeof *piv);
@@ -161,7 +163,8 @@ static void test_fig05_same_as_lapack(void **state) {
   tab = vl_test_paper_surface(3e-6, &psd);
   enum { NP = 13 };
   double v0[NP];
-  for (int i = 0; i < NP; i++) v0[i] = 1e-8 * pow(10.0, (double)i); /* v0 eta 1e-12 ... 1 Pa m */
+  for (int i = 0; i < NP; i++)
+    v0[i] = 1e-8 * pow(10.0, (double)i); /* v0 eta 1e-12 ... 1 Pa m */
   vl_point pts[2][NP];
   long fallbacks = -1;
   for (int k = 0; k < 2; k++) {

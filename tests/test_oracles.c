@@ -60,7 +60,8 @@ static double memory_kernel_brute(double y, double De) {
   if (sstar > 0.0 && sstar < 60.0) {
     assert_int_equal(gsl_integration_qags(&f, 0.0, sstar, 1e-14, 1e-12, 2000, ws, &r, &e), 0);
     total += r;
-    assert_int_equal(gsl_integration_qags(&f, sstar, sstar + 1.0, 1e-14, 1e-12, 2000, ws, &r, &e), 0);
+    assert_int_equal(gsl_integration_qags(&f, sstar, sstar + 1.0, 1e-14, 1e-12, 2000, ws, &r, &e),
+                     0);
     total += r;
     assert_int_equal(gsl_integration_qagiu(&f, sstar + 1.0, 1e-14, 1e-12, 2000, ws, &r, &e), 0);
     total += r;
@@ -75,10 +76,10 @@ static double memory_kernel_brute(double y, double De) {
 
 typedef struct {
   const vl_oracle_hunter_profile *pr;
-  double c, h;   /* contact centre and half width */
-  double x;      /* field point */
+  double c, h; /* contact centre and half width */
+  double x;    /* field point */
   double A, De;
-  int moment;    /* 0: pressure, 1: pressure * x, 2: displacement kernel */
+  int moment; /* 0: pressure, 1: pressure * x, 2: displacement kernel */
 } disp_params;
 
 /* Integrand in theta, x' = c - h cos(theta) (theta = 0 at the inlet edge);
@@ -190,7 +191,8 @@ static void test_hunter_low_speed_slope(void **state) {
       assert_int_equal(vl_oracle_hunter_solve(de, ratios[i], &s), 0);
       assert_true(s.converged);
       err[k] = s.mu_R_over_a0 / (A / (1.0 + A) * de) - 1.0;
-      printf("  Einf/E0 %6.2f De %6.0e: mu R/a0 = %.10e, relative deviation from slope %+.3e (%.3f De)\n",
+      printf("  Einf/E0 %6.2f De %6.0e: mu R/a0 = %.10e, relative deviation from slope %+.3e (%.3f "
+             "De)\n",
              ratios[i], de, s.mu_R_over_a0, err[k], err[k] / de);
       assert_true(err[k] < 0.0);
       assert_true(fabs(err[k]) <= 1.05 * de);
@@ -215,8 +217,8 @@ static void test_hunter_elastic_limits(void **state) {
     vl_oracle_hunter_solution s;
     const double lo = 1e-4;
     assert_int_equal(vl_oracle_hunter_solve(lo, r, &s), 0);
-    printf("  Einf/E0 %6.2f De 1e-4: half width %.8f centre %+.3e p_max %.8f\n", r, s.half_width_over_a0,
-           s.centre_over_a0, s.p_max_over_p0);
+    printf("  Einf/E0 %6.2f De 1e-4: half width %.8f centre %+.3e p_max %.8f\n", r,
+           s.half_width_over_a0, s.centre_over_a0, s.p_max_over_p0);
     assert_true(fabs(s.half_width_over_a0 - 1.0) < lo);
     assert_true(fabs(s.centre_over_a0) < lo);
     assert_true(fabs(s.p_max_over_p0 - 1.0) < lo);
@@ -224,13 +226,15 @@ static void test_hunter_elastic_limits(void **state) {
      * centre shift d to ~sqrt(d) there). */
     for (int k = -8; k <= 8; k++) {
       const double x = 0.1 * k;
-      assert_true(fabs(vl_oracle_hunter_pressure(&s, x) - vl_oracle_hertz_pressure(1.0, x)) < 10 * lo);
+      assert_true(fabs(vl_oracle_hunter_pressure(&s, x) - vl_oracle_hertz_pressure(1.0, x)) <
+                  10 * lo);
     }
 
     const double hi = 1e4;
     assert_int_equal(vl_oracle_hunter_solve(hi, r, &s), 0);
     const double scale = A / (1.0 + A) * (log(2.0 * hi) - M_EULER + 0.25) / (2.0 * hi);
-    printf("  Einf/E0 %6.2f De 1e4: half width %.8f (glassy %.8f) centre %+.3e mu R/a0 %.3e (log(De)/De scale %.3e)\n",
+    printf("  Einf/E0 %6.2f De 1e4: half width %.8f (glassy %.8f) centre %+.3e mu R/a0 %.3e "
+           "(log(De)/De scale %.3e)\n",
            r, s.half_width_over_a0, 1.0 / sqrt(r), s.centre_over_a0, s.mu_R_over_a0, scale);
     assert_true(fabs(s.half_width_over_a0 * sqrt(r) - 1.0) < 2.0 * scale);
     assert_true(fabs(s.centre_over_a0) < 2.0 * scale);
@@ -257,8 +261,8 @@ static double find_peak(double (*f)(double, void *), double ratio, double guess,
   assert_int_equal(gsl_min_fminimizer_set(m, &F, log(guess), log(0.2), log(20.0)), 0);
   for (int it = 0; it < 100; it++) {
     assert_int_equal(gsl_min_fminimizer_iterate(m), 0);
-    if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m), 1e-7, 0.0) ==
-        GSL_SUCCESS)
+    if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m), 1e-7,
+                              0.0) == GSL_SUCCESS)
       break;
   }
   double x = exp(gsl_min_fminimizer_x_minimum(m));
@@ -283,12 +287,13 @@ static void test_hunter_peak(void **state) {
   assert_true(mu_p < mu_h);
   vl_oracle_hunter_solution s;
   assert_int_equal(vl_oracle_hunter_solve(de_h, 10.0, &s), 0);
-  printf("  at the peak: c1 %.6f c2 %.6f centre %.6f half width %.6f p_max %.6f at x %.6f\n", s.c1_over_a0,
-         s.c2_over_a0, s.centre_over_a0, s.half_width_over_a0, s.p_max_over_p0, s.x_pmax_over_a0);
+  printf("  at the peak: c1 %.6f c2 %.6f centre %.6f half width %.6f p_max %.6f at x %.6f\n",
+         s.c1_over_a0, s.c2_over_a0, s.centre_over_a0, s.half_width_over_a0, s.p_max_over_p0,
+         s.x_pmax_over_a0);
   assert_true(s.centre_over_a0 < -0.5 * s.half_width_over_a0);
 
-  printf("  Einf/E0 = 10 table:\n  %8s %14s %14s %12s %12s %10s\n", "De", "Hunter", "Persson-lin", "centre",
-         "half width", "t/solve");
+  printf("  Einf/E0 = 10 table:\n  %8s %14s %14s %12s %12s %10s\n", "De", "Hunter", "Persson-lin",
+         "centre", "half width", "t/solve");
   const double des[] = {0.01, 0.1, 1.0, 10.0, 100.0};
   for (size_t i = 0; i < 5; i++) {
     clock_t t0 = clock();
@@ -317,8 +322,8 @@ static void test_small_loss_agreement(void **state) {
         at[k] = de;
       }
     }
-    printf("  Einf/E0 = %.2f: max |Hunter/Persson - 1| over De 1e-2..1e2 = %.3e (at De = %.3g)\n", ratios[k],
-           worst[k], at[k]);
+    printf("  Einf/E0 = %.2f: max |Hunter/Persson - 1| over De 1e-2..1e2 = %.3e (at De = %.3g)\n",
+           ratios[k], worst[k], at[k]);
     assert_true(worst[k] < ratios[k] - 1.0);
   }
   const double scaling = worst[0] / worst[1];
@@ -371,9 +376,11 @@ static void check_consistency(double de, double ratio) {
   }
   double pmin = INFINITY;
   for (int i = 1; i < 2000; i++)
-    pmin = fmin(pmin, vl_oracle_hunter_profile_pressure(pr, s.centre_over_a0 - h * cos(M_PI * i / 2000.0)));
+    pmin = fmin(
+        pmin, vl_oracle_hunter_profile_pressure(pr, s.centre_over_a0 - h * cos(M_PI * i / 2000.0)));
 
-  printf("  De %5.3g Einf/E0 %5.1f: mu R/a0 %.8f, load err %.1e, mu err %.1e, gap spread in contact %.1e a0^2/R,"
+  printf("  De %5.3g Einf/E0 %5.1f: mu R/a0 %.8f, load err %.1e, mu err %.1e, gap spread in "
+         "contact %.1e a0^2/R,"
          " min gap/d^1.5 outside %.3f, min p %.1e, solve %.1e s\n",
          de, ratio, s.mu_R_over_a0, e_load, e_mu, vmax - vmin, open_min, pmin, tsolve);
   assert_true(e_load < 1e-11);
@@ -395,7 +402,7 @@ static void test_hunter_gap_consistency(void **state) {
   check_consistency(0.3, 100.0);  /* sharp inlet boundary layer */
   check_consistency(0.01, 100.0); /* thin layer, ~1000 Bessel terms */
   check_consistency(1.0, 1.05);
-  check_consistency(100.0, 2.0);  /* near glassy */
+  check_consistency(100.0, 2.0); /* near glassy */
 }
 
 /* A control for the consistency check: a wrong memory condition (the exact
@@ -426,9 +433,9 @@ static void test_hunter_sign_and_api(void **state) {
   vl_oracle_hunter_solution s;
   assert_int_equal(vl_oracle_hunter_solve(1.0, 10.0, &s), 0);
   assert_true(s.converged);
-  assert_true(s.centre_over_a0 < 0.0);         /* contact on the inlet side */
-  assert_true(s.x_pmax_over_a0 < 0.0);         /* pressure peak at the inlet */
-  assert_true(s.mu_R_over_a0 > 0.0);           /* resists the motion */
+  assert_true(s.centre_over_a0 < 0.0); /* contact on the inlet side */
+  assert_true(s.x_pmax_over_a0 < 0.0); /* pressure peak at the inlet */
+  assert_true(s.mu_R_over_a0 > 0.0);   /* resists the motion */
   assert_true(s.c1_over_a0 < s.c2_over_a0);
   assert_true(vl_oracle_hunter_pressure(&s, s.c1_over_a0 - 0.01) == 0.0);
   assert_true(vl_oracle_hunter_pressure(&s, s.c2_over_a0 + 0.01) == 0.0);

@@ -117,14 +117,6 @@ static int stored_tables(const char *path, const char *name) {
   return n;
 }
 
-static void sql_exec(const char *path, const char *sql) {
-  sqlite3 *h = NULL;
-  char *msg = NULL;
-  assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
-  if (sqlite3_exec(h, sql, NULL, NULL, &msg) != SQLITE_OK) fail_msg("%s: %s", sql, msg);
-  sqlite3_close(h);
-}
-
 /* Replaces the stored blob of (surface, n_table) by data (len bytes). */
 static void put_blob(const char *path, const char *name, size_t n_table, const void *data,
                      size_t len) {
@@ -373,7 +365,7 @@ static void test_damaged_rows_rebuilt(void **state) {
       break;
     case 3:
       what = "another format in the row (an older program's table)";
-      sql_exec(vl_test_db, "UPDATE surface_persson SET format = format + 1");
+      vl_test_sql(vl_test_db, "UPDATE surface_persson SET format = format + 1");
       break;
     case 4:
       what = "another surface's table";
@@ -391,8 +383,8 @@ static void test_damaged_rows_rebuilt(void **state) {
     vl_persson_free(t);
   }
   /* a row under the wrong size is not used for that size */
-  sql_exec(vl_test_db, "UPDATE surface_persson SET n_table = 300 WHERE n_table = 256 AND "
-                       "surface_id = (SELECT id FROM surface WHERE name = 'tab')");
+  vl_test_sql(vl_test_db, "UPDATE surface_persson SET n_table = 300 WHERE n_table = 256 AND "
+                          "surface_id = (SELECT id FROM surface WHERE name = 'tab')");
   t = lookup(db, "tab", &psd, 300, &hit);
   assert_false(hit);
   assert_int_equal(vl_persson_size(t), 300);
@@ -434,11 +426,11 @@ static void test_remove_and_edit(void **state) {
 
   /* edited in place by hand (not something the program does): dropped */
   assert_int_equal(stored_tables(vl_test_db, "tab"), 1);
-  sql_exec(vl_test_db, "UPDATE surface_point SET c_m4 = 2.0 * c_m4 WHERE idx = 3 AND "
-                       "surface_id = (SELECT id FROM surface WHERE name = 'tab')");
+  vl_test_sql(vl_test_db, "UPDATE surface_point SET c_m4 = 2.0 * c_m4 WHERE idx = 3 AND "
+                          "surface_id = (SELECT id FROM surface WHERE name = 'tab')");
   assert_int_equal(stored_tables(vl_test_db, "tab"), 0);
   assert_int_equal(stored_tables(vl_test_db, "paper-1um"), 1);
-  sql_exec(vl_test_db, "UPDATE surface SET hurst = 0.7 WHERE name = 'paper-1um'");
+  vl_test_sql(vl_test_db, "UPDATE surface SET hurst = 0.7 WHERE name = 'paper-1um'");
   assert_int_equal(stored_tables(vl_test_db, NULL), 0);
   /* and even a stale row that escaped the triggers is not used: the
    * fingerprint (tested in test_damaged_rows_rebuilt) */

@@ -84,8 +84,10 @@ static void parse_fails(const char *text, int line, const char *needle1, const c
   vl_status st = vl_scene_parse(text, "t.ini", &g_scene, &err);
   if (st != VL_EINPUT) fail_msg("status %d (want VL_EINPUT) for:\n%s", st, text);
   char want[64];
-  if (line > 0) snprintf(want, sizeof want, "t.ini:%d: ", line);
-  else snprintf(want, sizeof want, "t.ini: ");
+  if (line > 0)
+    snprintf(want, sizeof want, "t.ini:%d: ", line);
+  else
+    snprintf(want, sizeof want, "t.ini: ");
   if (strncmp(err.msg, want, strlen(want)))
     fail_msg("message '%s' does not start with '%s' for:\n%s", err.msg, want, text);
   if (needle1 && !strstr(err.msg, needle1)) fail_msg("message '%s' lacks '%s'", err.msg, needle1);
@@ -248,20 +250,26 @@ static void test_elastic_modulus(void **state) {
                 "viscoelastic = off"));
   parse_ok(text);
   assert_int_equal(g_scene.elastic, VL_ELASTIC_RELAXED);
-  parse_ok(edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = glassy"));
+  parse_ok(
+      edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = glassy"));
   assert_int_equal(g_scene.elastic, VL_ELASTIC_GLASSY);
-  parse_ok(edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = 2.5e7"));
+  parse_ok(
+      edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = 2.5e7"));
   assert_int_equal(g_scene.elastic, VL_ELASTIC_GIVEN);
   assert_true(g_scene.elastic_modulus_pa == 2.5e7);
-  parse_ok(edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = relaxed"));
+  parse_ok(
+      edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = relaxed"));
   assert_int_equal(g_scene.elastic, VL_ELASTIC_RELAXED);
-  parse_fails(edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = soft"),
-              6, "[materials] elastic_modulus", "'soft'");
-  parse_fails(edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = -1e6"),
-              6, "[materials] elastic_modulus", "'-1e6'");
+  parse_fails(
+      edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = soft"), 6,
+      "[materials] elastic_modulus", "'soft'");
+  parse_fails(
+      edit(text, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = -1e6"), 6,
+      "[materials] elastic_modulus", "'-1e6'");
   /* a modulus for a viscoelastic rubber would be silently ignored: refused */
-  parse_fails(edit(BASE, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = glassy"),
-              6, "[materials] elastic_modulus", "viscoelastic = off");
+  parse_fails(
+      edit(BASE, "compound = model-rubber", "compound = model-rubber\nelastic_modulus = glassy"), 6,
+      "[materials] elastic_modulus", "viscoelastic = off");
 }
 
 /* sigma_s_pa is the solid_shear effect's parameter: without the effect the
@@ -282,7 +290,8 @@ static void test_sweep_edges(void **state) {
   parse_ok(edit(BASE, "points = 7", "points = 7\nfields_at = 1e-2, 1e2"));
   assert_int_equal(g_scene.n_fields_at, 2);
   char list[512] = "points = 7\nfields_at = 1";
-  for (int i = 1; i < VL_FIELDS_AT_MAX; i++) strcat(list, ",1");
+  for (int i = 1; i < VL_FIELDS_AT_MAX; i++)
+    strcat(list, ",1");
   parse_ok(edit(BASE, "points = 7", list)); /* 32 values: the maximum */
   assert_int_equal(g_scene.n_fields_at, VL_FIELDS_AT_MAX);
   parse_ok(edit(BASE, "points = 7", "points = 1"));
@@ -328,7 +337,8 @@ static void test_shipped_cases(void **state) {
   assert_true(n >= 6);
   /* one in detail: the smooth Hunter case */
   vl_error err = {{0}};
-  assert_int_equal(vl_scene_load(vl_test_source_path("cases/fig03-smooth.ini"), &g_scene, &err), VL_OK);
+  assert_int_equal(vl_scene_load(vl_test_source_path("cases/fig03-smooth.ini"), &g_scene, &err),
+                   VL_OK);
   assert_string_equal(g_scene.compound, "model-rubber");
   assert_true(g_scene.radius_m == 0.01 && g_scene.load_n_per_m == 1000);
   assert_int_equal(g_scene.quantity, VL_SWEEP_DEBORAH);
@@ -356,13 +366,13 @@ static void test_unknown_section_and_key(void **state) {
   /* typos of a key */
   parse_fails(edit(BASE, "radius_m = 0.01", "radius = 0.01"), 7, "[contact] radius: unknown key",
               "did you mean 'radius_m'");
-  parse_fails(edit(BASE, "radius_m = 0.01", "raduis_m = 0.01"), 7, "[contact] raduis_m: unknown key",
-              "did you mean 'radius_m'");
+  parse_fails(edit(BASE, "radius_m = 0.01", "raduis_m = 0.01"), 7,
+              "[contact] raduis_m: unknown key", "did you mean 'radius_m'");
   parse_fails(edit(BASE, "radius_m = 0.01", "radius_mm = 0.01"), 7, "[contact] radius_mm", NULL);
   parse_fails(edit(BASE, "viscoelastic = on", "roughnes = on"), 15, "[effects] roughnes",
               "did you mean 'roughness'");
-  parse_fails(edit(BASE, "viscoelastic = on", "frobnicate = on"), 15, "[effects] frobnicate: unknown key",
-              NULL);
+  parse_fails(edit(BASE, "viscoelastic = on", "frobnicate = on"), 15,
+              "[effects] frobnicate: unknown key", NULL);
   /* a known key in the wrong section */
   parse_fails(edit(BASE, "points = 7", "points = 7\ngrid = 64"), 14, "[sweep] grid: unknown key",
               "belongs in [numerics]");
@@ -378,16 +388,18 @@ static void test_unknown_section_and_key(void **state) {
 
 static void test_bad_numbers(void **state) {
   (void)state;
-  const char *bad[] = {"1cm", "nan", "NaN", "inf", "-inf", "infinity", "-0.01", "0", "-0",
-                       "",    "1e999", "0.01 0.02", "0,01", "abc", "1e-400"};
+  const char *bad[] = {"1cm", "nan", "NaN",   "inf",       "-inf", "infinity", "-0.01", "0",
+                       "-0",  "",    "1e999", "0.01 0.02", "0,01", "abc",      "1e-400"};
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
     char line[64], quoted[64];
     snprintf(line, sizeof line, "radius_m = %s", bad[i]);
     snprintf(quoted, sizeof quoted, "'%s'", bad[i]);
     parse_fails(edit(BASE, "radius_m = 0.01", line), 7, "[contact] radius_m", quoted);
   }
-  parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 0"), 8, "[contact] load_n_per_m", "positive");
-  parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 1 kN"), 8, "[contact] load_n_per_m", NULL);
+  parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 0"), 8, "[contact] load_n_per_m",
+              "positive");
+  parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 1 kN"), 8, "[contact] load_n_per_m",
+              NULL);
   parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 1000\nsigma_s_pa = -1"), 9,
               "[contact] sigma_s_pa", ">= 0");
   parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 1000\nsigma_s_pa = nan"), 9,
@@ -395,13 +407,15 @@ static void test_bad_numbers(void **state) {
   parse_fails(edit(BASE, "from = 1e-2", "from = -1e-2"), 11, "[sweep] from", "positive");
   parse_fails(edit(BASE, "from = 1e-2", "from = 0"), 11, "[sweep] from", NULL);
   parse_fails(edit(BASE, "to = 1e2", "to = inf"), 12, "[sweep] to", NULL);
-  const char *bad_points[] = {"7.5", "0", "-3", "1e3", "seven", "100001", "", "99999999999999999999"};
+  const char *bad_points[] = {"7.5",   "0",      "-3", "1e3",
+                              "seven", "100001", "",   "99999999999999999999"};
   for (size_t i = 0; i < sizeof bad_points / sizeof *bad_points; i++) {
     char line[64];
     snprintf(line, sizeof line, "points = %s", bad_points[i]);
     parse_fails(edit(BASE, "points = 7", line), 13, "[sweep] points", "whole number");
   }
-  parse_fails(edit(BASE, "quantity = deborah", "quantity = speed"), 10, "[sweep] quantity", "'speed'");
+  parse_fails(edit(BASE, "quantity = deborah", "quantity = speed"), 10, "[sweep] quantity",
+              "'speed'");
   parse_fails(edit(BASE, "grid = 128", "grid = 8"), 17, "[numerics] grid", "[16, 262144]");
   parse_fails(edit(BASE, "grid = 128", "grid = 300000"), 17, "[numerics] grid", NULL);
   /* a uniform grid above 8192 cells: refused at the grid's line, with the way out */
@@ -409,20 +423,23 @@ static void test_bad_numbers(void **state) {
   /* grid_growth: a ratio in [1, 2], and only for rough contacts */
   parse_fails(edit(BASE, "grid = 128", "grid = 128\ngrid_growth = 0.9"), 18,
               "[numerics] grid_growth", "[1, 2]");
-  parse_fails(edit(BASE, "grid = 128", "grid = 128\ngrid_growth = 3"), 18,
-              "[numerics] grid_growth", "'3'");
+  parse_fails(edit(BASE, "grid = 128", "grid = 128\ngrid_growth = 3"), 18, "[numerics] grid_growth",
+              "'3'");
   parse_fails(edit(BASE, "grid = 128", "grid = 128\ngrid_growth = 1.05"), 18,
               "[numerics] grid_growth", "roughness = on");
   parse_fails(edit(BASE, "grid = 128", "grid = 128.5"), 17, "[numerics] grid", NULL);
-  parse_fails(edit(BASE, "grid = 128", "grid = 128\ntolerance = 0"), 18, "[numerics] tolerance", "(0, 1)");
-  parse_fails(edit(BASE, "grid = 128", "grid = 128\ntolerance = 1"), 18, "[numerics] tolerance", NULL);
-  parse_fails(edit(BASE, "grid = 128", "grid = 128\ntolerance = nan"), 18, "[numerics] tolerance", NULL);
+  parse_fails(edit(BASE, "grid = 128", "grid = 128\ntolerance = 0"), 18, "[numerics] tolerance",
+              "(0, 1)");
+  parse_fails(edit(BASE, "grid = 128", "grid = 128\ntolerance = 1"), 18, "[numerics] tolerance",
+              NULL);
+  parse_fails(edit(BASE, "grid = 128", "grid = 128\ntolerance = nan"), 18, "[numerics] tolerance",
+              NULL);
   parse_fails(edit(BASE, "grid = 128", "grid = 128\nlinear_solver = umfpack"), 18,
               "[numerics] linear_solver", "'umfpack'");
   parse_fails(edit(BASE, "grid = 128", "grid = 128\npersson_table = 10"), 18,
               "[numerics] persson_table", NULL);
-  parse_fails(edit(BASE, "viscoelastic = on", "temperature_c = -300"), 15, "[effects] temperature_c",
-              NULL);
+  parse_fails(edit(BASE, "viscoelastic = on", "temperature_c = -300"), 15,
+              "[effects] temperature_c", NULL);
   parse_fails(edit(BASE, "compound = model-rubber", "compound ="), 5, "[materials] compound",
               "bad name");
 }
@@ -433,13 +450,14 @@ static void test_bad_switches_and_lists(void **state) {
               "[effects] roughness", "'maybe'");
   parse_fails(edit(BASE, "viscoelastic = on", "viscoelastic = ON"), 15, "[effects] viscoelastic",
               "on or off");
-  parse_fails(edit(BASE, "viscoelastic = on", "viscoelastic ="), 15, "[effects] viscoelastic", NULL);
+  parse_fails(edit(BASE, "viscoelastic = on", "viscoelastic ="), 15, "[effects] viscoelastic",
+              NULL);
   parse_fails(edit(BASE, "viscoelastic = on", "flow_factors = patir_cheng"), 15,
               "[effects] flow_factors", "'patir_cheng'");
   /* domain_a0: two numbers, start < 0 < end */
-  const char *bad_domain[] = {"1",        "1.5, -1.5", "-1.5, -1.5", "-1.5",     "-1.5, 1.5, 2",
-                              "-1.5,",    ",1.5",      "-1.5,,1.5",  "a, b",     "0.2, 1.5",
-                              "-1.5, -0.2", "nan, 1",  "-1.5 1.5",   ""};
+  const char *bad_domain[] = {"1",          "1.5, -1.5", "-1.5, -1.5", "-1.5", "-1.5, 1.5, 2",
+                              "-1.5,",      ",1.5",      "-1.5,,1.5",  "a, b", "0.2, 1.5",
+                              "-1.5, -0.2", "nan, 1",    "-1.5 1.5",   ""};
   for (size_t i = 0; i < sizeof bad_domain / sizeof *bad_domain; i++) {
     char line[64];
     snprintf(line, sizeof line, "grid = 128\ndomain_a0 = %s", bad_domain[i]);
@@ -453,7 +471,8 @@ static void test_bad_switches_and_lists(void **state) {
     parse_fails(edit(BASE, "points = 7", line), 14, "[sweep] fields_at", NULL);
   }
   char list[512] = "points = 7\nfields_at = 1";
-  for (int i = 0; i < VL_FIELDS_AT_MAX; i++) strcat(list, ",1");
+  for (int i = 0; i < VL_FIELDS_AT_MAX; i++)
+    strcat(list, ",1");
   parse_fails(edit(BASE, "points = 7", list), 14, "[sweep] fields_at", "1 to 32");
   /* outside [from, to] = [1e-2, 1e2]: the line of fields_at, the value named */
   parse_fails(edit(BASE, "points = 7", "points = 7\nfields_at = 0.5, 1000"), 14,
@@ -534,8 +553,9 @@ static void test_inconsistent_effects(void **state) {
   parse_fails(edit(edit(BASE, fx, "viscoelastic = on\nroughness = on\nviscous_flattening = on"),
                    "compound = model-rubber", "compound = model-rubber\nsurface = s1"),
               18, "[effects] viscous_flattening", "fluid = on");
-  parse_ok(edit(edit(BASE, fx, "viscoelastic = on\nroughness = on\nfluid = on\nviscous_flattening = on"),
-                "compound = model-rubber", "compound = model-rubber\nsurface = s1\nfluid = f1"));
+  parse_ok(
+      edit(edit(BASE, fx, "viscoelastic = on\nroughness = on\nfluid = on\nviscous_flattening = on"),
+           "compound = model-rubber", "compound = model-rubber\nsurface = s1\nfluid = f1"));
   assert_true(g_scene.effects.viscous_flattening && g_scene.effects.roughness &&
               g_scene.effects.fluid);
   /* temperature = on needs the temperature; temperature_c alone is refused */
@@ -560,12 +580,14 @@ static void test_inconsistent_effects(void **state) {
   assert_true(g_scene.effects.film_cutoff_m == 1e-9);
   parse_ok(edit(rough, fx, "viscoelastic = on\nroughness = on"));
   assert_int_equal(g_scene.effects.flow_factors, VL_FLOW_FACTORS_SMOOTH);
-  parse_ok(edit(rough, fx, "roughness = on\nfluid = on\nflow_factors = persson-emt\n"
-                           "film_cutoff_m = 3e-10"));
+  parse_ok(edit(rough, fx,
+                "roughness = on\nfluid = on\nflow_factors = persson-emt\n"
+                "film_cutoff_m = 3e-10"));
   assert_true(g_scene.effects.film_cutoff_m == 3e-10);
   /* the cut-off: persson-emt only, a length in (0, 1e-6] m */
-  parse_fails(edit(rough, fx, "roughness = on\nfluid = on\nflow_factors = patir-cheng\n"
-                              "film_cutoff_m = 1e-9"),
+  parse_fails(edit(rough, fx,
+                   "roughness = on\nfluid = on\nflow_factors = patir-cheng\n"
+                   "film_cutoff_m = 1e-9"),
               20, "[effects] film_cutoff_m", "persson-emt only");
   parse_fails(edit(rough, fx, "roughness = on\nfluid = on\nfilm_cutoff_m = 0"), 19,
               "[effects] film_cutoff_m", "(0, 1e-6]");
@@ -598,7 +620,8 @@ static void test_files(void **state) {
   assert_int_equal(vl_scene_load(path, &g_scene, &err), VL_EINPUT);
   char want[4300];
   snprintf(want, sizeof want, "%s:17: [numerics] grid", path);
-  if (strncmp(err.msg, want, strlen(want))) fail_msg("'%s' does not start with '%s'", err.msg, want);
+  if (strncmp(err.msg, want, strlen(want)))
+    fail_msg("'%s' does not start with '%s'", err.msg, want);
   /* a NUL byte on line 5 */
   snprintf(path, sizeof path, "%s/nul.ini", dir);
   FILE *f = fopen(path, "wb");
@@ -610,14 +633,16 @@ static void test_files(void **state) {
   fclose(f);
   assert_int_equal(vl_scene_load(path, &g_scene, &err), VL_EINPUT);
   snprintf(want, sizeof want, "%s:5: ", path);
-  if (strncmp(err.msg, want, strlen(want))) fail_msg("'%s' does not start with '%s'", err.msg, want);
+  if (strncmp(err.msg, want, strlen(want)))
+    fail_msg("'%s' does not start with '%s'", err.msg, want);
   assert_non_null(strstr(err.msg, "NUL"));
   /* a file larger than the first read buffer (16 KiB) */
   size_t big = 40000;
   char *text = malloc(big + strlen(BASE) + 1);
   assert_non_null(text);
   size_t k = 0;
-  while (k + 40 < big) k += (size_t)sprintf(text + k, "; %036zu\n", k);
+  while (k + 40 < big)
+    k += (size_t)sprintf(text + k, "; %036zu\n", k);
   strcpy(text + k, edit(BASE, "grid = 128", "grid = 256"));
   snprintf(path, sizeof path, "%s/big.ini", dir);
   vl_test_write_file(path, text);
@@ -644,9 +669,9 @@ static void test_mutations(void **state) {
       size_t len = strlen(text), pos = (size_t)(x % len);
       char c = alphabet[(x >> 20) % (sizeof alphabet - 1)];
       switch ((x >> 40) % 3) {
-      case 0: text[pos] = c; break;                                        /* replace */
-      case 1: memmove(text + pos, text + pos + 1, len - pos); break;         /* delete */
-      default:                                                             /* insert */
+      case 0: text[pos] = c; break;                                  /* replace */
+      case 1: memmove(text + pos, text + pos + 1, len - pos); break; /* delete */
+      default:                                                       /* insert */
         if (len + 2 < sizeof text) {
           memmove(text + pos + 1, text + pos, len - pos + 1);
           text[pos] = c;
@@ -654,7 +679,8 @@ static void test_mutations(void **state) {
       }
     }
     int lines = 1;
-    for (const char *p = text; *p; p++) lines += *p == '\n';
+    for (const char *p = text; *p; p++)
+      lines += *p == '\n';
     vl_error err = {{0}};
     vl_status st = vl_scene_parse(text, "t.ini", &g_scene, &err);
     if (st == VL_OK) continue;
@@ -662,7 +688,8 @@ static void test_mutations(void **state) {
     if (strncmp(err.msg, "t.ini:", 6)) fail_msg("message '%s' lacks the file", err.msg);
     if (err.msg[6] >= '0' && err.msg[6] <= '9') {
       int line = atoi(err.msg + 6);
-      if (line < 1 || line > lines) fail_msg("line %d of %d in '%s' for:\n%s", line, lines, err.msg, text);
+      if (line < 1 || line > lines)
+        fail_msg("line %d of %d in '%s' for:\n%s", line, lines, err.msg, text);
     }
   }
 }

@@ -363,8 +363,10 @@ static void test_line_to_2d(void **state) {
     worst_h = fmax(worst_h, fabs(h - s.hurst));
     q_max = p.q_max_per_m;
     if (r < 2 || getenv("VL_TOPO_VERBOSE"))
-      fprintf(stderr, "line %zu: %zu points (%zu dropped), C1 tail slope %.3f, H fit %.3f, "
-              "PSD/topography rms %.3f\n", r, p.n, p.n_dropped, p.tail_slope, h, ratio);
+      fprintf(stderr,
+              "line %zu: %zu points (%zu dropped), C1 tail slope %.3f, H fit %.3f, "
+              "PSD/topography rms %.3f\n",
+              r, p.n, p.n_dropped, p.tail_slope, h, ratio);
     vl_topography_spectrum_free(&p);
     vl_topography_free(&t);
   }
@@ -412,9 +414,10 @@ static void test_abel_power_law(void **state) {
   for (size_t k = 0; k < p.n; k++)
     if (p.count[k] > 0) worst = fmax(worst, fabs(p.c_m4[k] / spectrum_c(&s, p.q_per_m[k]) - 1.0));
   double f = tgamma(hurst + 1.0) / (sqrt(PI) * tgamma(hurst + 0.5));
-  fprintf(stderr, "power law H %.1f, exact periodogram: C worst %.1f %% over %zu points "
-          "(C1/(pi q) would be off by %.0f %%)\n", hurst, 100 * worst, p.n,
-          100 * (1.0 / (f * PI) - 1.0));
+  fprintf(stderr,
+          "power law H %.1f, exact periodogram: C worst %.1f %% over %zu points "
+          "(C1/(pi q) would be off by %.0f %%)\n",
+          hurst, 100 * worst, p.n, 100 * (1.0 / (f * PI) - 1.0));
   assert_int_equal(p.n_dropped, 0);
   assert_true(worst < 0.05);
   vl_topography_spectrum_free(&p);
@@ -442,9 +445,11 @@ static void test_sinusoid_map(void **state) {
     size_t best = 0;
     for (size_t k = 1; k < p.n; k++)
       if (p.c_m4[k] > p.c_m4[best]) best = k;
-    fprintf(stderr, "sinusoid map taper %.1f: peak at q/q0 %.3f, band rms / (a/sqrt 2) %.4f, "
-            "topography %.4f\n", o.taper, p.q_per_m[best] / q0,
-            p.hrms_band_m / (amp / sqrt(2.0)), p.hrms_topography_m / (amp / sqrt(2.0)));
+    fprintf(stderr,
+            "sinusoid map taper %.1f: peak at q/q0 %.3f, band rms / (a/sqrt 2) %.4f, "
+            "topography %.4f\n",
+            o.taper, p.q_per_m[best] / q0, p.hrms_band_m / (amp / sqrt(2.0)),
+            p.hrms_topography_m / (amp / sqrt(2.0)));
     assert_true(fabs(log10(p.q_per_m[best] / q0)) < 0.5 / o.bins_per_decade);
     assert_true(vl_test_rel(p.hrms_band_m, amp / sqrt(2.0)) < 0.02);
     assert_true(vl_test_rel(p.hrms_topography_m, amp / sqrt(2.0)) < 0.01);
@@ -519,9 +524,9 @@ static double line_height(size_t i) {
 typedef struct {
   const char *preamble; /* before the header ('#' lines, BOM), may be "" */
   const char *header;
-  const char *sep;  /* between the two fields */
-  double xu, zu;    /* m per file unit */
-  int comma;        /* decimal comma */
+  const char *sep; /* between the two fields */
+  double xu, zu;   /* m per file unit */
+  int comma;       /* decimal comma */
   const char *nl;
 } line_layout;
 
@@ -719,7 +724,7 @@ static void test_refusals(void **state) {
   /* maps */
   refused("# Width: 1 um\n1 2 3\n", "a height map needs the header lines");
   refused("# Width: wide\n# Value units: m\n1 2 3\n", "bad.txt:1: 'Width:' must be a positive "
-                                                       "length");
+                                                      "length");
   refused("# Width: 1 furlong\n", "bad.txt:1: 'Width:': unknown length unit 'furlong'");
   refused("# Width: 1 um\n# Value units: V\n",
           "bad.txt:2: 'Value units:': unknown length unit 'V'");
@@ -756,6 +761,12 @@ static void test_psd_refusals(void **state) {
   assert_int_equal(vl_topography_psd(&t, NULL, &p, &err), VL_EINPUT);
   assert_non_null(strstr(err.msg, "no roughness left"));
   assert_null(p.q_per_m);
+  /* constant heights: their rms about the mean is 0 and the detrended rms
+   * round-off of the height (it was accepted as a 3.7e-26 m surface) */
+  for (size_t j = 0; j < 64; j++)
+    t.h_m[j] = 3.3e-6;
+  assert_int_equal(vl_topography_psd(&t, NULL, &p, &err), VL_EINPUT);
+  assert_non_null(strstr(err.msg, "no roughness left"));
   for (size_t j = 0; j < 64; j++)
     t.h_m[j] = 1e-9 * sin(0.3 * (double)j * (double)j);
   struct {
@@ -817,10 +828,11 @@ static void test_real_afm(void **state) {
     check_tabulated(&p);
     double h_fit = hurst_fit(&p, 10.0 * p.q_min_per_m, p.q_max_per_m);
     double ratio = p.hrms_psd_m / rms;
-    fprintf(stderr, "AFM map taper %.2f: rms %.2f nm; %zu points q = %.3g ... %.3g 1/m; H fit "
-            "(q > 10 x 2pi/L) %.2f; band/rms %.3f, PSD/rms %.3f\n  %s\n", o.taper, 1e9 * rms,
-            p.n, p.q_per_m[0], p.q_per_m[p.n - 1], h_fit, p.hrms_band_m / rms, ratio,
-            p.provenance);
+    fprintf(stderr,
+            "AFM map taper %.2f: rms %.2f nm; %zu points q = %.3g ... %.3g 1/m; H fit "
+            "(q > 10 x 2pi/L) %.2f; band/rms %.3f, PSD/rms %.3f\n  %s\n",
+            o.taper, 1e9 * rms, p.n, p.q_per_m[0], p.q_per_m[p.n - 1], h_fit, p.hrms_band_m / rms,
+            ratio, p.provenance);
     /* the default window only: Hann weighs the centre of this map, which is
      * smoother than its edges (see topography.h) */
     if (!w) assert_true(fabs(ratio - 1.0) < 0.05);

@@ -152,8 +152,8 @@ static void test_bridged_pairs(void **state) {
     for (size_t ref = 0; ref < 2; ref++) {
       assert_int_equal(vl_tts_chain_info(2, iso, ref, lat, &info, &err), VL_OK);
       double d = lat[1] - lat[0];
-      fprintf(stderr, "offset %.2f: shift %.4f, overlap %.3f, bridged %d, at limit %d\n",
-              -steps[i], d, info.overlap_decades, info.bridged, info.at_limit);
+      fprintf(stderr, "offset %.2f: shift %.4f, overlap %.3f, bridged %d, at limit %d\n", -steps[i],
+              d, info.overlap_decades, info.bridged, info.at_limit);
       assert_true(fabs(info.shift - d) < 1e-12);
       if (steps[i] > 3.0 + 1.0) { /* beyond a gap of a decade: flagged either way */
         fprintf(stderr, "  no join %d\n", info.no_join);
@@ -219,12 +219,9 @@ static void test_refusals(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_pair_exact),
-      cmocka_unit_test(test_chain_and_wlf),
-      cmocka_unit_test(test_nonsuperposing_loss),
-      cmocka_unit_test(test_bridged_pairs),
-      cmocka_unit_test(test_wlf_exact),
-      cmocka_unit_test(test_refusals),
+      cmocka_unit_test(test_pair_exact),          cmocka_unit_test(test_chain_and_wlf),
+      cmocka_unit_test(test_nonsuperposing_loss), cmocka_unit_test(test_bridged_pairs),
+      cmocka_unit_test(test_wlf_exact),           cmocka_unit_test(test_refusals),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

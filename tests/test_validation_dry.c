@@ -13,9 +13,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "contact_test.h"
 #include "hunter.h"
 #include "persson_linear.h"
-#include "contact_test.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"
@@ -47,7 +47,8 @@ static vl_contact *make_contact(double ratio, size_t grid, const vl_persson *rou
 /* Sweeps Deborah numbers de[0..n-1] (increasing) by continuation. */
 static void sweep_deborah(vl_contact *c, size_t n, const double *de, vl_point *pts) {
   double *v = malloc(n * sizeof *v);
-  for (size_t i = 0; i < n; i++) v[i] = de[i] * vl_contact_a0(c) / TAU;
+  for (size_t i = 0; i < n; i++)
+    v[i] = de[i] * vl_contact_a0(c) / TAU;
   vl_error err;
   vl_sweep_stats st;
   assert_int_equal(vl_sweep_run(c, n, v, NULL, pts, NULL, NULL, &st, &err), VL_OK);
@@ -100,7 +101,8 @@ static void test_elastic_limits(void **state) {
   assert_true(pts[6].converged);
   pressure_moments(c, &a, &pm);
   double ah = 1.0 / sqrt(10.0), ph = sqrt(10.0);
-  printf("  De = 1e4: half-width %.6f a0 (Hertz Einf: %.6f), p_max %.6f p0 (%.6f)\n", a, ah, pm, ph);
+  printf("  De = 1e4: half-width %.6f a0 (Hertz Einf: %.6f), p_max %.6f p0 (%.6f)\n", a, ah, pm,
+         ph);
   assert_true(fabs(a / ah - 1.0) < 5e-3);
   assert_true(fabs(pm / ph - 1.0) < 5e-3);
   vl_contact_free(c);
@@ -114,7 +116,8 @@ static void test_hunter_default_grid(void **state) {
   enum { N = 17 };
   double de[N];
   vl_point pts[N];
-  for (int i = 0; i < N; i++) de[i] = pow(10.0, -2.0 + 4.0 * i / (N - 1));
+  for (int i = 0; i < N; i++)
+    de[i] = pow(10.0, -2.0 + 4.0 * i / (N - 1));
   sweep_deborah(c, N, de, pts);
   double worst = 0.0;
   printf("  %10s %12s %12s %10s\n", "De", "mu R/a0", "Hunter", "rel.err");
@@ -158,10 +161,12 @@ static void test_hunter_grid_convergence(void **state) {
                    vl_test_rel(pts[3].mu_Rc * RADIUS / vl_contact_a0(c), href[1]),
                    vl_test_rel(pts[5].mu_Rc * RADIUS / vl_contact_a0(c), href[2])};
     printf("  %6zu %12.3e %12.3e %12.3e\n", grids[g], e[0], e[1], e[2]);
-    for (int k = 0; k < 3; k++) finest[k] = e[k];
+    for (int k = 0; k < 3; k++)
+      finest[k] = e[k];
     vl_contact_free(c);
   }
-  for (int k = 0; k < 3; k++) assert_true(finest[k] < 1e-3);
+  for (int k = 0; k < 3; k++)
+    assert_true(finest[k] < 1e-3);
 }
 
 /* docs/VALIDATION.md 3: Persson's linear-order formula is exact to first order
@@ -175,7 +180,8 @@ static void persson_linear_case(double ratio, double tol_linear) {
   enum { N = 9 };
   double de[N];
   vl_point pts[N];
-  for (int i = 0; i < N; i++) de[i] = pow(10.0, -2.0 + 4.0 * i / (N - 1));
+  for (int i = 0; i < N; i++)
+    de[i] = pow(10.0, -2.0 + 4.0 * i / (N - 1));
   sweep_deborah(c, N, de, pts);
   double worst = 0.0, worst_h = 0.0;
   for (int i = 0; i < N; i++) {
@@ -185,7 +191,8 @@ static void persson_linear_case(double ratio, double tol_linear) {
     vl_oracle_hunter_solution h;
     assert_int_equal(vl_oracle_hunter_solve(de[i], ratio, &h), 0);
     double e = vl_test_rel(mu, ref), eh = vl_test_rel(mu, h.mu_R_over_a0);
-    printf("  Einf/E0 %.2f De %8.3g  solver %12.6g  Persson-linear %12.6g (rel %8.2e)  Hunter rel %8.2e\n",
+    printf("  Einf/E0 %.2f De %8.3g  solver %12.6g  Persson-linear %12.6g (rel %8.2e)  Hunter rel "
+           "%8.2e\n",
            ratio, de[i], mu, ref, e, eh);
     worst = fmax(worst, e);
     worst_h = fmax(worst_h, eh);

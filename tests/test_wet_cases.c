@@ -260,7 +260,8 @@ static void test_fig12(void **state) {
       fl[k][i] = pt[i].fluid_load_fraction;
       de[k][i] = v[i] * 0.1 / vl_contact_a0(c);
       if (i > 0 && isnan(ml[k]) && fl[k][i - 1] < 0.5 && fl[k][i] >= 0.5)
-        ml[k] = v0eta[i - 1] * pow(v0eta[i] / v0eta[i - 1], (0.5 - fl[k][i - 1]) / (fl[k][i] - fl[k][i - 1]));
+        ml[k] = v0eta[i - 1] *
+                pow(v0eta[i] / v0eta[i - 1], (0.5 - fl[k][i - 1]) / (fl[k][i] - fl[k][i - 1]));
     }
     printf("  eta %6.0e: ML transition at v0 eta = %.3g Pa m, mu range %.4f..%.4f\n", eta, ml[k],
            mu[k][0], mu[k][M - 1]);
@@ -272,7 +273,8 @@ static void test_fig12(void **state) {
   double spread = 0.0;
   for (int i = 0; i < M; i++) {
     double lo = INFINITY, hi = 0.0;
-    for (int k = 0; k < K; k++) lo = fmin(lo, mu[k][i]), hi = fmax(hi, mu[k][i]);
+    for (int k = 0; k < K; k++)
+      lo = fmin(lo, mu[k][i]), hi = fmax(hi, mu[k][i]);
     spread = fmax(spread, hi / lo);
   }
   printf("  largest ratio between curves at equal v0 eta: %.2f\n", spread);
@@ -301,7 +303,8 @@ static void test_fig12(void **state) {
     }
   }
   printf("  rolling friction at the end of the sweep (v0 eta = 1 Pa m): ");
-  for (int k = 0; k < K; k++) printf("%.4f ", rolling[k][M - 1]);
+  for (int k = 0; k < K; k++)
+    printf("%.4f ", rolling[k][M - 1]);
   printf("\n");
 }
 
@@ -329,7 +332,8 @@ static void test_domain_length(void **state) {
     double v[] = {1e-4 / 1e-4, 1e-3 / 1e-4, 1e-2 / 1e-4, 0.1 / 1e-4, 0.3 / 1e-4, 1.0 / 1e-4};
     vl_point pt[6];
     assert_int_equal(vl_sweep_run(c, 6, v, NULL, pt, NULL, NULL, NULL, &err), VL_OK);
-    for (int i = 0; i < 6; i++) assert_true(pt[i].converged);
+    for (int i = 0; i < 6; i++)
+      assert_true(pt[i].converged);
     mu[k][0] = pt[4].mu;
     mu[k][1] = pt[5].mu;
     printf("  inlet %4.1f a0 (grid %zu): mu = %.5f at 0.3 Pa m, %.5f at 1 Pa m\n", -inlets[k],
@@ -348,6 +352,7 @@ static void test_domain_length(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {cmocka_unit_test(test_fig05), cmocka_unit_test(test_fig10),
-                                     cmocka_unit_test(test_fig12), cmocka_unit_test(test_domain_length)};
+                                     cmocka_unit_test(test_fig12),
+                                     cmocka_unit_test(test_domain_length)};
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -4,8 +4,10 @@
 #include <stdint.h>
 #include <cmocka.h>
 
-#include "vl_test_util.h"
 #include "vl_test_scenes.h"
+#include "vl_test_util.h"
+
+#include <sqlite3.h>
 
 #include <math.h>
 #include <stdio.h>
@@ -52,8 +54,8 @@ int vl_test_cli(const char *env_prefix, const char *args, char **out, char **err
   char cmd[16384], outp[4200], errp[4200];
   snprintf(outp, sizeof outp, "%s/stdout", dir);
   snprintf(errp, sizeof errp, "%s/stderr", dir);
-  snprintf(cmd, sizeof cmd, "%s %s %s </dev/null >%s 2>%s", env_prefix ? env_prefix : "", cli,
-           args, outp, errp);
+  snprintf(cmd, sizeof cmd, "%s %s %s </dev/null >%s 2>%s", env_prefix ? env_prefix : "", cli, args,
+           outp, errp);
   int st = system(cmd);
   if (out) *out = vl_test_read_file(outp);
   if (err) *err = vl_test_read_file(errp);
@@ -71,9 +73,7 @@ const char *vl_test_source_path(const char *rel) {
   return path;
 }
 
-double vl_test_rel(double a, double b) {
-  return fabs(a - b) / fmax(fabs(b), 1e-300);
-}
+double vl_test_rel(double a, double b) { return fabs(a - b) / fmax(fabs(b), 1e-300); }
 
 /* ---- JSON --------------------------------------------------------------- */
 
@@ -311,4 +311,12 @@ void vl_test_fig05_config(vl_contact_config *cfg, const vl_persson *tab, double 
   cfg->grid = grid;
   cfg->x_min_a0 = x_min_a0;
   cfg->x_max_a0 = 1.6;
+}
+
+void vl_test_sql(const char *path, const char *sql) {
+  sqlite3 *h = NULL;
+  char *msg = NULL;
+  assert_int_equal(sqlite3_open(path, &h), SQLITE_OK);
+  if (sqlite3_exec(h, sql, NULL, NULL, &msg) != SQLITE_OK) fail_msg("%s: %s", sql, msg);
+  sqlite3_close(h);
 }

@@ -82,4 +82,8 @@ const char *vl_test_scratch(const char *name, const char *text);
 void vl_test_expect_fail(int code, const char *needle1, const char *needle2, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 
+/* Runs sql on the database file at path through a connection of its own,
+ * as another program would; fails the test on an error. */
+void vl_test_sql(const char *path, const char *sql);
+
 #endif

@@ -26,9 +26,9 @@
 #define VL_ATOMIC_PATH_MAX 4352
 
 typedef struct {
-  FILE *f;                        /* write the contents here */
-  char path[VL_ATOMIC_PATH_MAX];  /* the final name */
-  char tmp[VL_ATOMIC_PATH_MAX];   /* the temporary's name ("" when direct) */
+  FILE *f;                       /* write the contents here */
+  char path[VL_ATOMIC_PATH_MAX]; /* the final name */
+  char tmp[VL_ATOMIC_PATH_MAX];  /* the temporary's name ("" when direct) */
 } vl_atomic_file;
 
 /* Creates the temporary for path (mode 0666 less the umask, as fopen).

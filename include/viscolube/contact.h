@@ -43,9 +43,9 @@
 
 #include "viscolube/flattening.h"
 #include "viscolube/flow_factors.h"
-#include "viscolube/rheology.h"
 #include "viscolube/persson.h"
 #include "viscolube/results.h"
+#include "viscolube/rheology.h"
 #include "viscolube/status.h"
 
 typedef enum {
@@ -132,17 +132,17 @@ typedef enum {
 #define VL_WET_GRID_GROWTH 1.05
 
 typedef struct {
-  vl_prony rubber;            /* n_terms = 0: elastic with E = e_inf_pa */
+  vl_prony rubber; /* n_terms = 0: elastic with E = e_inf_pa */
   double radius_m;
   double load_n_per_m;
-  double sigma_s_pa;          /* shear stress in the real contact area; 0 = off */
-  const vl_persson *roughness;/* NULL = smooth (hard contact); not owned */
-  double eta_pa_s;            /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
+  double sigma_s_pa;                /* shear stress in the real contact area; 0 = off */
+  const vl_persson *roughness;      /* NULL = smooth (hard contact); not owned */
+  double eta_pa_s;                  /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
   vl_flow_factor_kind flow_factors; /* with roughness; smooth surfaces use smooth */
   /* persson-emt: the factor table of the surface of roughness (same h_rms;
    * not owned, must outlive the contact); NULL for the other models */
   const vl_emt_table *flow_table;
-  size_t grid;                /* cells of the uniform grid on the domain (the resolution) */
+  size_t grid; /* cells of the uniform grid on the domain (the resolution) */
   /* Graded inlet (rough contacts only; <= 1: uniform grid): upstream of
    * x = -VL_GRADE_START_A0 a0 the uniform cells are merged into cells that
    * grow by this ratio towards the inlet end (an odd number of uniform cells
@@ -152,11 +152,11 @@ typedef struct {
    * costs tens of cells instead of hundreds. The last cell may end up to
    * one uniform cell beyond x_min_a0. */
   double grid_growth;
-  double x_min_a0, x_max_a0;  /* domain in units of a0 (the relaxed Hertz half-width, however
-                               * stiff the solid): smooth wet contacts need an inlet of tens
-                               * of vl_contact_inlet_length_m beyond the contact */
-  double tolerance;           /* scaled residual norm for convergence */
-  int max_iterations;         /* Newton iterations per solve (0 = VL_NEWTON_MAX_ITERATIONS) */
+  double x_min_a0, x_max_a0; /* domain in units of a0 (the relaxed Hertz half-width, however
+                              * stiff the solid): smooth wet contacts need an inlet of tens
+                              * of vl_contact_inlet_length_m beyond the contact */
+  double tolerance;          /* scaled residual norm for convergence */
+  int max_iterations;        /* Newton iterations per solve (0 = VL_NEWTON_MAX_ITERATIONS) */
   vl_linear_solver linear_solver;
   /* Viscous flattening of the asperities (seed Appendix C; NULL = off).
    * The PSD both the contact and the flow factors see becomes
@@ -243,7 +243,7 @@ double vl_contact_inlet_length_m(const vl_contact_config *cfg, double v0_m_s);
  * cells, cost counters) are private: src/solver/contact_test.h. */
 
 size_t vl_contact_grid(const vl_contact *c); /* cells (fewer than cfg.grid when graded) */
-double vl_contact_a0(const vl_contact *c); /* m */
-double vl_contact_p0(const vl_contact *c); /* Pa */
+double vl_contact_a0(const vl_contact *c);   /* m */
+double vl_contact_p0(const vl_contact *c);   /* Pa */
 
 #endif

@@ -37,8 +37,8 @@
 #include "viscolube/dma.h"
 #include "viscolube/flow_factors.h"
 #include "viscolube/fluid.h"
-#include "viscolube/rheology.h"
 #include "viscolube/persson.h"
+#include "viscolube/rheology.h"
 #include "viscolube/status.h"
 
 #define VL_DB_NAME_MAX 64
@@ -82,7 +82,7 @@ typedef struct {
   char name[VL_DB_NAME_MAX];
   double viscosity_pa_s; /* low-shear viscosity at tref_c */
   double tref_c;
-  vl_viscosity_law law;  /* viscosity vs temperature (fluid.h); kind NONE = none stored */
+  vl_viscosity_law law; /* viscosity vs temperature (fluid.h); kind NONE = none stored */
   char description[VL_DB_TEXT_MAX];
   char source_file[VL_DB_TEXT_MAX];
   char created_at[32];

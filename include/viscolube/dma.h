@@ -161,12 +161,12 @@ typedef struct {
   double wlf_rms;          /* rms residual of the WLF fit in log10 a_T */
   vl_prony prony;          /* the fitted series at tref_c */
   vl_prony_fit_report fit;
-  int shear;               /* the file held shear moduli, converted: E = 2 (1 + nu) G */
-  char delimiter;          /* the file's delimiter (',', ';' or '\t') */
-  int decimal_comma;       /* its numbers had decimal commas */
-  size_t n_ignored;        /* header columns not used */
-  size_t n_extrapolated;   /* neighbouring isotherms shifted across a gap or a thin overlap */
-  size_t n_warnings;       /* the lines of notes that start "warning: " */
+  int shear;                    /* the file held shear moduli, converted: E = 2 (1 + nu) G */
+  char delimiter;               /* the file's delimiter (',', ';' or '\t') */
+  int decimal_comma;            /* its numbers had decimal commas */
+  size_t n_ignored;             /* header columns not used */
+  size_t n_extrapolated;        /* neighbouring isotherms shifted across a gap or a thin overlap */
+  size_t n_warnings;            /* the lines of notes that start "warning: " */
   char notes[VL_DMA_NOTES_MAX]; /* what the user should know, one sentence per line ('\n'
                                    after each): conversions, ignored columns, the dialect,
                                    warnings on the superposition and the fit */

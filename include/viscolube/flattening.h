@@ -67,10 +67,10 @@ vl_status vl_flattening_response_parse(const char *text, vl_flattening_response 
 const char *vl_flattening_response_name(vl_flattening_response response);
 
 typedef struct {
-  vl_prony rubber;              /* copied; n_terms = 0: elastic with Er = Einf/(1-nu^2) */
-  double load_n_per_m;          /* fN and R: only through aH and so wH */
+  vl_prony rubber;     /* copied; n_terms = 0: elastic with Er = Einf/(1-nu^2) */
+  double load_n_per_m; /* fN and R: only through aH and so wH */
   double radius_m;
-  double eta_pa_s;              /* fluid viscosity, >= 0 (0: no flattening) */
+  double eta_pa_s; /* fluid viscosity, >= 0 (0: no flattening) */
   vl_flattening_response response;
   /* per-speed table in x = ln(u/h_rms): nodes per decade (0: 64) over
    * [u_min, u_max] h_rms (0, 0: 1e-3, 1e2); outside it the exact quadrature */
@@ -131,13 +131,13 @@ double vl_flattening_eps_exact(const vl_flattening *f, double u_m, double *deps_
 
 /* What the current speed fixed. */
 typedef struct {
-  double v0_m_s;          /* as set (>= 0) */
-  double omega_h_rad_s;   /* wH = pi v0 / aH */
-  double e_abs_pa;        /* |Er(wH)| (reduced) */
-  double a_h_m;           /* aH */
-  double j_eff_per_pa;    /* the compliance multiplying s: J'_r (complex) or |J_r| (modulus) */
-  double tan_delta;       /* J''/J' at wH used in lambda (0 for VL_FLATTENING_MODULUS) */
-  double hrms_m;          /* of the surface */
+  double v0_m_s;        /* as set (>= 0) */
+  double omega_h_rad_s; /* wH = pi v0 / aH */
+  double e_abs_pa;      /* |Er(wH)| (reduced) */
+  double a_h_m;         /* aH */
+  double j_eff_per_pa;  /* the compliance multiplying s: J'_r (complex) or |J_r| (modulus) */
+  double tan_delta;     /* J''/J' at wH used in lambda (0 for VL_FLATTENING_MODULUS) */
+  double hrms_m;        /* of the surface */
   /* the u at which the longest wavelength (q0) has t = j_eff s(q0, u) = 1:
    * flattening sets in near it, u_c = (12 eta v0 j_eff / q0^2)^(1/3) */
   double u_onset_m;

@@ -94,8 +94,7 @@ void vl_flow_factors_eval(vl_flow_factor_kind kind, double u_m, double hrms_m,
  * flattening: hrms_m = s h0) keeps the model's scale invariance. persson-emt
  * without a table, or hrms_m <= 0, gives NaN. */
 void vl_flow_factors_eval_table(vl_flow_factor_kind kind, const vl_emt_table *table, double u_m,
-                                double hrms_m, vl_flow_factor_values *v,
-                                vl_flow_factor_values *d);
+                                double hrms_m, vl_flow_factor_values *v, vl_flow_factor_values *d);
 
 /* The solver's combinations (vl_flow_terms) and, when d != NULL, their
  * derivatives d/du. Same conventions as vl_flow_factors_eval; for the smooth

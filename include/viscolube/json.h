@@ -39,7 +39,7 @@ typedef enum {
 typedef struct {
   unsigned char layout; /* vl_json_layout */
   bool object;
-  size_t members;       /* written so far */
+  size_t members; /* written so far */
 } vl_json_level;
 
 typedef struct {

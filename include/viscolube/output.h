@@ -8,9 +8,9 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "viscolube/json.h"
 #include "viscolube/results.h"
 #include "viscolube/status.h"
-#include "viscolube/json.h"
 
 /* What turns a speed into the other sweep coordinates (0 = not defined). */
 typedef struct {

@@ -30,8 +30,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "viscolube/results.h"
 #include "viscolube/output.h"
+#include "viscolube/results.h"
 #include "viscolube/scene.h"
 #include "viscolube/status.h"
 
@@ -169,5 +169,23 @@ vl_status vl_plot_modulus(const char *stem, const vl_plot_modulus_data *d,
 vl_status vl_plot_shifts(const char *stem, size_t n, const double *t_c, const double *log10_a_t,
                          double tref_c, double c1, double c2_k, const vl_plot_options *opt,
                          vl_plot_report *report, vl_error *err);
+
+/* A flow-factor table of one surface (flow_factors.h) against x = u/h_rms. */
+typedef struct {
+  size_t n;                                              /* rows, >= 2 */
+  const double *x;                                       /* u/h_rms, positive and finite */
+  const double *phi_p, *phi_s, *phi_fp, *phi_fs, *phi_f; /* a non-finite value is a gap */
+  const double *area_ratio; /* A/A0 of the contact law at x; NULL = not drawn */
+  double x_percolation;     /* where pressure flow stops; NAN = not marked */
+} vl_plot_flow_factor_data;
+
+/* Two panels against x on a logarithmic axis: the flow factors phi_p,
+ * phi_fp (dashed, as it coincides with phi_p for smooth surfaces), phi_s
+ * and A/A0 (top), the shear factors phi_f and phi_fs (bottom), each with a
+ * linear y axis; a dotted grey line at x_percolation when it lies inside
+ * the axis. VL_EINPUT: fewer than 2 rows, a NULL factor array, an x that is
+ * not positive and finite. */
+vl_status vl_plot_flow_factors(const char *stem, const vl_plot_flow_factor_data *d,
+                               const vl_plot_options *opt, vl_plot_report *report, vl_error *err);
 
 #endif

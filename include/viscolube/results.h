@@ -14,18 +14,18 @@
 typedef struct {
   double v0_m_s;
   bool converged;
-  long iterations;            /* Newton iterations of this call (smooth wet: including a
-                               * failed continuation attempt and coarse-grid starts) */
-  double residual;            /* final scaled residual norm (max norm) */
+  long iterations; /* Newton iterations of this call (smooth wet: including a
+                    * failed continuation attempt and coarse-grid starts) */
+  double residual; /* final scaled residual norm (max norm) */
   double mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf;
-  double u_min_m, u_central_m;/* min separation; separation at the pressure centroid */
-  double x_centroid_m;        /* pressure centroid (negative: inlet side) */
-  double contact_width_m;     /* extent where pc >= 1% of its maximum */
-  double fluid_load_fraction; /* \int pf / fN */
-  double load_error;          /* |\int p - fN| / fN */
-  double E_wH_pa;             /* |Er(wH)| (rough) or Er of the relaxed state */
-  double a_H_m;               /* Hertz half-width with |Er(wH)| */
-  double Q;                   /* rolling number (wet rough only; else 0) */
+  double u_min_m, u_central_m; /* min separation; separation at the pressure centroid */
+  double x_centroid_m;         /* pressure centroid (negative: inlet side) */
+  double contact_width_m;      /* extent where pc >= 1% of its maximum */
+  double fluid_load_fraction;  /* \int pf / fN */
+  double load_error;           /* |\int p - fN| / fN */
+  double E_wH_pa;              /* |Er(wH)| (rough) or Er of the relaxed state */
+  double a_H_m;                /* Hertz half-width with |Er(wH)| */
+  double Q;                    /* rolling number (wet rough only; else 0) */
   double peak_pressure_pa, x_peak_m;
   double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
   double x_min_film_m;        /* where u is smallest (EHL constriction: outlet side, x > 0) */

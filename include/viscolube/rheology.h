@@ -22,11 +22,11 @@
 #define VL_PRONY_MAX_TERMS 128
 
 typedef struct {
-  double e_inf_pa;                    /* glassy (high-frequency) modulus */
-  double nu;                          /* Poisson ratio, frequency independent */
-  size_t n_terms;                     /* 0 = purely elastic with E = Einf */
-  double A[VL_PRONY_MAX_TERMS];       /* dimensionless creep strengths */
-  double tau_s[VL_PRONY_MAX_TERMS];   /* retardation times */
+  double e_inf_pa;                  /* glassy (high-frequency) modulus */
+  double nu;                        /* Poisson ratio, frequency independent */
+  size_t n_terms;                   /* 0 = purely elastic with E = Einf */
+  double A[VL_PRONY_MAX_TERMS];     /* dimensionless creep strengths */
+  double tau_s[VL_PRONY_MAX_TERMS]; /* retardation times */
 } vl_prony;
 
 /* Checks Einf > 0, 0 <= nu < 0.5 (nu = 0.5 allowed), A_i >= 0, tau_i > 0, all
@@ -38,8 +38,8 @@ vl_status vl_prony_validate(const vl_prony *prony, vl_error *err);
 vl_prony vl_prony_single(double e0_pa, double einf_over_e0, double tau_s, double nu);
 
 double vl_prony_sum_A(const vl_prony *prony);
-double vl_prony_e0(const vl_prony *prony);                 /* relaxed modulus */
-double vl_prony_reduced_factor(const vl_prony *prony);     /* 1/(1 - nu^2) */
+double vl_prony_e0(const vl_prony *prony);             /* relaxed modulus */
+double vl_prony_reduced_factor(const vl_prony *prony); /* 1/(1 - nu^2) */
 
 double complex vl_prony_compliance(const vl_prony *prony, double omega); /* J' - i J'' */
 double complex vl_prony_modulus(const vl_prony *prony, double omega);    /* E' + i E'' */
@@ -48,8 +48,8 @@ double vl_prony_tan_delta(const vl_prony *prony, double omega);
 /* Frequency (rad/s) and height of the loss-tangent maximum, found on a log
  * grid over the span of the tau_i and refined by golden section. For an
  * elastic material returns VL_EINPUT. */
-vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak,
-                             double *tan_delta_peak, vl_error *err);
+vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak, double *tan_delta_peak,
+                             vl_error *err);
 
 /* Multiplies every tau_i by a_T (time-temperature superposition). */
 void vl_prony_shift(vl_prony *prony, double a_T);
@@ -60,7 +60,7 @@ double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c);
 
 /* |Er(wH)| and a_H at speed v0 from the fixed point wH = pi v0 / a_H,
  * a_H^2 = 4 fN R/(pi |Er(wH)|) (docs/MODEL.md section 4). Reduced moduli. */
-void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
-                       double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H);
+void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m, double v0_m_s,
+                       double *E_abs_pa, double *a_H_m, double *omega_H);
 
 #endif

@@ -17,19 +17,19 @@ typedef enum { VL_PSD_SELF_AFFINE = 0, VL_PSD_TABULATED = 1 } vl_psd_kind;
 
 typedef struct {
   vl_psd_kind kind;
-  double hurst;      /* self-affine only, 0 < H <= 1 */
-  double q0, q1;     /* 1/m: the band (tabulated: first and last q) */
-  double c0;         /* m^4, self-affine prefactor derived from h_rms */
-  double hrms_m;     /* rms height */
-  size_t n;          /* tabulated points (0 for self-affine) */
-  double *q;         /* owned, n values, strictly increasing */
-  double *C;         /* owned, n values, > 0 */
+  double hurst;  /* self-affine only, 0 < H <= 1 */
+  double q0, q1; /* 1/m: the band (tabulated: first and last q) */
+  double c0;     /* m^4, self-affine prefactor derived from h_rms */
+  double hrms_m; /* rms height */
+  size_t n;      /* tabulated points (0 for self-affine) */
+  double *q;     /* owned, n values, strictly increasing */
+  double *C;     /* owned, n values, > 0 */
 } vl_psd;
 
 /* Self-affine PSD from H, q0, q1, h_rms; validates (0 < H <= 1, 0 < q0 < q1,
  * h_rms > 0, all finite) and derives C0. */
-vl_status vl_psd_init_self_affine(vl_psd *psd, double hurst, double q0, double q1,
-                                  double hrms_m, vl_error *err);
+vl_status vl_psd_init_self_affine(vl_psd *psd, double hurst, double q0, double q1, double hrms_m,
+                                  vl_error *err);
 
 /* Tabulated PSD, copying the arrays; validates (n >= 2, q strictly increasing
  * and > 0, C > 0, finite) and derives h_rms. */

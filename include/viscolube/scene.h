@@ -26,11 +26,10 @@
  * are the solver's: contact.h. */
 
 typedef enum {
-  VL_SWEEP_V0 = 0,     /* sliding speed, m/s */
-  VL_SWEEP_V0_ETA,     /* v0 * eta, Pa m */
-  VL_SWEEP_DEBORAH     /* v0 tau / a0, one-term compounds */
+  VL_SWEEP_V0 = 0, /* sliding speed, m/s */
+  VL_SWEEP_V0_ETA, /* v0 * eta, Pa m */
+  VL_SWEEP_DEBORAH /* v0 tau / a0, one-term compounds */
 } vl_sweep_quantity;
-
 
 typedef enum {
   VL_ELASTIC_RELAXED = 0, /* viscoelastic = off: E = E0 of the compound */
@@ -43,8 +42,8 @@ typedef struct {
   char title[256];
   /* [materials] */
   char compound[VL_NAME_MAX], surface[VL_NAME_MAX];
-  char fluid[VL_NAME_MAX];                  /* the fluid of this run: fluids[0] */
-  size_t n_fluids;                          /* `fluid = a, b, ...`: one curve each */
+  char fluid[VL_NAME_MAX]; /* the fluid of this run: fluids[0] */
+  size_t n_fluids;         /* `fluid = a, b, ...`: one curve each */
   char fluids[VL_FLUIDS_MAX][VL_NAME_MAX];
   vl_elastic_choice elastic;
   double elastic_modulus_pa;
@@ -66,7 +65,7 @@ typedef struct {
   } effects;
   /* [numerics] */
   size_t grid;
-  double grid_growth;  /* vl_contact_config.grid_growth; 1 = uniform */
+  double grid_growth; /* vl_contact_config.grid_growth; 1 = uniform */
   double domain_min_a0, domain_max_a0;
   double tolerance;
   vl_linear_solver linear_solver;

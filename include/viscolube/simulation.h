@@ -46,10 +46,10 @@ bool vl_simulation_wants_fields(const vl_simulation *sim, size_t i);
 
 vl_contact *vl_simulation_contact(vl_simulation *sim);
 const vl_scene *vl_simulation_scene(const vl_simulation *sim);
-double vl_simulation_eta(const vl_simulation *sim);      /* Pa s, 0 if no fluid named; with
-                                                          * [effects] temperature and fluid on:
-                                                          * at the scene's temperature */
-double vl_simulation_tau(const vl_simulation *sim);      /* s, one-term compounds, else 0 */
+double vl_simulation_eta(const vl_simulation *sim);             /* Pa s, 0 if no fluid named; with
+                                                                 * [effects] temperature and fluid on:
+                                                                 * at the scene's temperature */
+double vl_simulation_tau(const vl_simulation *sim);             /* s, one-term compounds, else 0 */
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim); /* at the scene's temperature */
 /* [effects] temperature = on: the scene's temperature_c (C) and the WLF
  * shift factor a_T its compound's times were multiplied by (1 in an
@@ -65,8 +65,12 @@ const vl_psd *vl_simulation_psd(const vl_simulation *sim); /* NULL when smooth *
  * NULL. */
 const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cutoff_m);
 
-/* Runs the sweep (continuation in speed); every point's warnings gain the
- * model-assumption checks of assumptions.h before cb sees it. */
+/* Runs the sweep (vl_sweep_run: continuation in speed, upwards from the
+ * first speed, which may lie anywhere on the curve; a point continuation
+ * misses is retried by fresh starts at, below and above its speed); every
+ * point's warnings gain the model-assumption checks of assumptions.h before
+ * cb sees it. A one-point scene (from = to) is a robust single solve: the
+ * query `friction` needs nothing else. */
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err);
 

@@ -25,12 +25,10 @@ typedef struct {
 } vl_error;
 
 /* Writes a printf-style message into err (no-op when err is NULL). */
-void vl_error_set(vl_error *err, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
+void vl_error_set(vl_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Prepends "prefix: " to the message already in err (for adding context). */
-void vl_error_prefix(vl_error *err, const char *fmt, ...)
-    __attribute__((format(printf, 2, 3)));
+void vl_error_prefix(vl_error *err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* A short stable name for a status ("input error", "not found", ...). */
 const char *vl_status_name(vl_status status);

@@ -13,23 +13,43 @@ typedef void (*vl_sweep_callback)(void *user, size_t index, size_t total, const 
                                   const vl_contact *contact);
 
 typedef struct {
-  int max_subdivisions;  /* a failed step is split in 2, 4, ... up to 2^this */
+  int max_subdivisions; /* a failed step is split in 2, 4, ... up to 2^this */
 } vl_sweep_options;
 
 typedef struct {
   size_t converged, failed;
-  long newton_iterations;  /* all solves, including sub-steps */
-  size_t substeps;         /* extra solves inserted by step control */
-  size_t fresh_starts;     /* points retried from the Hertz guess after continuation failed */
+  long newton_iterations; /* all solves, including sub-steps */
+  size_t substeps;        /* extra solves inserted by step control */
+  size_t fresh_starts;    /* points retried from the Hertz guess after continuation failed */
+  size_t starts_below;    /* points retried from a fresh start at a lower speed */
+  size_t starts_above;    /* points retried from a fresh start at a higher speed */
   double seconds;
 } vl_sweep_stats;
 
 void vl_sweep_options_defaults(vl_sweep_options *opt);
 
-/* Solves at v0[0..n-1] in order (increasing speed recommended), each from the
- * previous converged solution. A failed step is retried through
- * geometrically spaced intermediate speeds (step halving in log v0), then
- * once from the Hertz guess (vl_contact_reset); a point that still fails is
+/* Solves at v0[0..n-1] in order, each from the previous converged
+ * solution. Increasing speed is the direction continuation is easiest in:
+ * from the boundary regime, where any start converges, up through the
+ * mixed regime, where the film lifts the solid off gradually (a fresh start
+ * in the hydrodynamic regime misses the lifted film). Every point is tried
+ * by these paths in turn:
+ *   1. continuation: a failed step is retried through geometrically spaced
+ *      intermediate speeds (step halving in log v0, up to
+ *      2^max_subdivisions sub-steps);
+ *   2. a fresh start at v0 (vl_contact_reset; vl_contact_solve then starts
+ *      a rough film that Hertz does not from the dry contact at v0);
+ *   3. without a converged point below v0 (the first point, or after a
+ *      failed one): a fresh start 1, 2, 4, 8 or 12 decades below v0, the
+ *      first that converges, continued up to v0 with step control (steps
+ *      of a quarter decade, doubled up to a decade after easy steps,
+ *      halved as in 1);
+ *   4. a fresh start 0.5, 1 or 2 decades above v0, continued down to v0
+ *      the same way: past a fold of the curve (a film that lifts off the
+ *      asperities within a step: the mixed branch ends) the lifted branch
+ *      is found from above.
+ * So the first point need not lie in the boundary regime. Only the
+ * requested speeds are reported (cb, out); a point that still fails is
  * reported with converged = false and the sweep goes on from the Hertz
  * guess. out[n] is filled.
  * Returns VL_OK even when some points failed (see stats); errors only for

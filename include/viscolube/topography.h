@@ -17,8 +17,8 @@
  * data row: tab if it has one, else ';', else blanks if they separate two
  * fields, else ','; with a delimiter other than ',' a ',' inside numbers is
  * a decimal comma ("0,25;1,5"; the first row that shows a separator
- * decides), and then '.' is refused (it would be a thousands separator). Positions must increase on a uniform grid (every
- * position within VL_TOPOGRAPHY_GRID_TOL spacings of x_0 + i dx); at least
+ * decides), and then '.' is refused (it would be a thousands separator). Positions must increase on
+ * a uniform grid (every position within VL_TOPOGRAPHY_GRID_TOL spacings of x_0 + i dx); at least
  * VL_TOPOGRAPHY_MIN_POINTS points.
  *
  * Height map (as Gwyddion and SurfaceTopography export "matrix" files):
@@ -170,16 +170,16 @@ typedef struct {
 vl_topography_psd_options vl_topography_psd_options_default(void);
 
 typedef struct {
-  size_t n;        /* tabulated points (>= 2) */
-  double *q_per_m; /* strictly increasing, > 0 (owned) */
-  double *c_m4;    /* isotropic 2-D C(q) > 0 (owned) */
-  size_t *count;   /* wavevectors (line: frequencies) averaged into each point; 0 for
-                      step 7's point (owned) */
-  size_t n1;         /* line scans: binned 1-D points, else 0 */
-  double *q1_per_m;  /* line scans: bin wavevectors (owned), else NULL */
-  double *c1_m3;     /* line scans: binned 1-D C1(q) as measured (before step 6's pooling),
-                        two-sided density (owned), else NULL */
-  size_t n_dropped;  /* line scans: points with C <= 0 after step 6 */
+  size_t n;         /* tabulated points (>= 2) */
+  double *q_per_m;  /* strictly increasing, > 0 (owned) */
+  double *c_m4;     /* isotropic 2-D C(q) > 0 (owned) */
+  size_t *count;    /* wavevectors (line: frequencies) averaged into each point; 0 for
+                       step 7's point (owned) */
+  size_t n1;        /* line scans: binned 1-D points, else 0 */
+  double *q1_per_m; /* line scans: bin wavevectors (owned), else NULL */
+  double *c1_m3;    /* line scans: binned 1-D C1(q) as measured (before step 6's pooling),
+                       two-sided density (owned), else NULL */
+  size_t n_dropped; /* line scans: points with C <= 0 after step 6 */
   double q_min_per_m, q_max_per_m; /* the band kept (step 4) */
   double tail_slope;               /* line scans: -dlnC1/dlnq beyond the last bin */
   double window_power;             /* mean(w^2) of the window (step 2) */

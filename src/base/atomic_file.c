@@ -77,8 +77,10 @@ vl_status vl_atomic_file_commit(vl_atomic_file *af, vl_error *err) {
      left the stream in error and, most likely, its errno (cleared at
      open, so a stale one is not blamed) */
   int e = 0, direct = !af->tmp[0];
-  if (fflush(af->f) != 0 || ferror(af->f)) e = errno ? errno : EIO;
-  else if (!direct && fsync(fileno(af->f)) != 0) e = errno;
+  if (fflush(af->f) != 0 || ferror(af->f))
+    e = errno ? errno : EIO;
+  else if (!direct && fsync(fileno(af->f)) != 0)
+    e = errno;
   if (fclose(af->f) != 0 && !e) e = errno ? errno : EIO;
   af->f = NULL;
   if (!e && !direct && rename(af->tmp, af->path) != 0) e = errno;

@@ -9,7 +9,8 @@ size_t vl_edit_distance(const char *a, size_t na, const char *b, size_t nb, bool
   if (na > VL_EDIT_MAX || nb > VL_EDIT_MAX) return SIZE_MAX;
   size_t rows[3][VL_EDIT_MAX + 1];
   size_t *before = rows[0], *prev = rows[1], *cur = rows[2];
-  for (size_t j = 0; j <= nb; j++) prev[j] = j;
+  for (size_t j = 0; j <= nb; j++)
+    prev[j] = j;
   for (size_t i = 1; i <= na; i++) {
     cur[0] = i;
     for (size_t j = 1; j <= nb; j++) {

@@ -107,8 +107,10 @@ void vl_json_key(vl_json *w, const char *key) {
 
 void vl_json_string(vl_json *w, const char *s) {
   before_value(w);
-  if (s) put_string(w->out, s);
-  else fputs("null", w->out);
+  if (s)
+    put_string(w->out, s);
+  else
+    fputs("null", w->out);
 }
 
 void vl_json_number_digits(vl_json *w, double v, int digits) {

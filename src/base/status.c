@@ -4,12 +4,22 @@
 #include <stdio.h>
 #include <string.h>
 
+/* Messages quote the user's input (a unit, a name, a cell): a control byte
+ * there (a carriage return, an escape) would reach the terminal as it is.
+ * Every one becomes '?', except the newlines that separate the lines of a
+ * message listing several problems. */
+static void printable(char *msg) {
+  for (char *c = msg; *c; c++)
+    if (((unsigned char)*c < 0x20 && *c != '\n') || *c == 0x7f) *c = '?';
+}
+
 void vl_error_set(vl_error *err, const char *fmt, ...) {
   if (!err) return;
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(err->msg, sizeof err->msg, fmt, ap);
   va_end(ap);
+  printable(err->msg);
 }
 
 void vl_error_prefix(vl_error *err, const char *fmt, ...) {
@@ -22,13 +32,16 @@ void vl_error_prefix(vl_error *err, const char *fmt, ...) {
   va_end(ap);
   memcpy(old, err->msg, sizeof old);
   /* prefix + ": " + old, truncated to the buffer */
-  size_t lp = strnlen(prefix, sizeof prefix), lo = strnlen(old, sizeof old), cap = sizeof err->msg - 1;
+  size_t lp = strnlen(prefix, sizeof prefix), lo = strnlen(old, sizeof old),
+         cap = sizeof err->msg - 1;
   size_t k = lp < cap ? lp : cap;
   memcpy(err->msg, prefix, k);
-  for (const char *sep = ": "; *sep && k < cap; sep++) err->msg[k++] = *sep;
+  for (const char *sep = ": "; *sep && k < cap; sep++)
+    err->msg[k++] = *sep;
   size_t rest = lo < cap - k ? lo : cap - k;
   memcpy(err->msg + k, old, rest);
   err->msg[k + rest] = '\0';
+  printable(err->msg);
 }
 
 const char *vl_status_name(vl_status status) {

@@ -3,10 +3,13 @@
 #define VL_CLI_H
 
 /* The program uses the library through its public header only. */
+#include <stdio.h>
+
 #include "viscolube.h"
 
 typedef struct {
   const char *db_path; /* --db PATH, else $VISCOLUBE_DB, else NULL = default */
+  int quiet;           /* --quiet: no warnings or progress on stderr */
 } vl_cli_globals;
 
 /* `compound|surface|fluid VERB ...` (argv[0] is the noun). Returns exit code. */
@@ -21,8 +24,44 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv);
 /* `compare --compounds A,B --surface S --fluid F ...`. */
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv);
 
+/* `surface flow-factors NAME` options as given (NULL or 0 when absent);
+ * cli_materials.c parses the command line, vl_cli_surface_flow_factors
+ * checks the values. */
+typedef struct {
+  const char *model, *u_range, *points, *film_cutoff, *out;
+  int json, plot;
+} vl_cli_flow_factor_args;
+
+/* `surface flow-factors` for surface name (a valid name), in
+ * cli_surface.c. Returns the exit code. */
+int vl_cli_surface_flow_factors(const vl_cli_globals *g, const char *name,
+                                const vl_cli_flow_factor_args *a);
+
+/* `surface add NAME --topography FILE [--description TEXT]` (description
+ * may be NULL), in cli_surface.c. Returns the exit code. */
+int vl_cli_surface_add_topography(const vl_cli_globals *g, const char *name, const char *path,
+                                  const char *description);
+
 /* mkdir -p: creates path and its missing parents (0 on success, -1 with
  * errno set). */
 int vl_cli_make_dirs(const char *path);
+
+/* Checks an output folder before anything is computed: creates it (and
+ * its parents) if missing, and makes sure it is a folder the program can
+ * write in (a probe file is created and removed). VL_OK, else VL_EIO with
+ * a message naming the folder and the option that gave it. */
+vl_status vl_cli_check_out_dir(const char *option, const char *path, vl_error *err);
+
+/* The model-validity warnings of points pts[0..n) (vl_point.warnings), one
+ * line per kind ("warning: [label: ]TEXT — points 1-45 of 45 (v0 = ...)"),
+ * a number that varies over the points shown as its range; for n = 1
+ * without the points. label may be NULL. Returns the number of lines. */
+size_t vl_cli_print_warnings(FILE *out, const char *label, size_t n, const vl_point *pts);
+
+/* The points that did not converge: a line with their count and the exit
+ * status, then one line each (speed, iterations, residual; at most ten).
+ * where (may be NULL) is appended to the first line. Returns the count. */
+size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size_t n,
+                             const vl_point *pts, const char *where);
 
 #endif

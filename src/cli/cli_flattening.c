@@ -80,8 +80,10 @@ static double crossing(const vl_flattening *f, double hrms, size_t n, const doub
       double lo = log(u[i - 1]), hi = log(u[i]);
       for (int it = 0; it < 60; it++) {
         double mid = 0.5 * (lo + hi);
-        if (vl_flattening_eps_exact(f, hrms * exp(mid), NULL) < level) lo = mid;
-        else hi = mid;
+        if (vl_flattening_eps_exact(f, hrms * exp(mid), NULL) < level)
+          lo = mid;
+        else
+          hi = mid;
       }
       return exp(0.5 * (lo + hi));
     }
@@ -136,12 +138,15 @@ static int number_option(flat_args *a, const char *o, const char *v) {
     fprintf(stderr, "viscolube flattening: option %s needs a positive number (got '%s')\n", o, v);
     return 0;
   }
-  if (!strcmp(o, "--load")) a->load = d, a->have_load = 1;
-  else if (!strcmp(o, "--radius")) a->radius = d, a->have_radius = 1;
+  if (!strcmp(o, "--load"))
+    a->load = d, a->have_load = 1;
+  else if (!strcmp(o, "--radius"))
+    a->radius = d, a->have_radius = 1;
   else if (d != floor(d) || d > 1000) {
     fprintf(stderr, "viscolube flattening: --per-decade needs a whole number in [1, 1000]\n");
     return 0;
-  } else a->per_decade = d;
+  } else
+    a->per_decade = d;
   return 1;
 }
 
@@ -187,11 +192,16 @@ static int flat_parse(int argc, char **argv, flat_args *a) {
       return 2;
     }
     i++;
-    if (!strcmp(o, "--compound")) a->compound = v;
-    else if (!strcmp(o, "--surface")) a->surface = v;
-    else if (!strcmp(o, "--fluid")) a->fluid = v;
-    else if (!strcmp(o, "--case")) a->case_path = v;
-    else if (!strcmp(o, "--out")) a->out_dir = v;
+    if (!strcmp(o, "--compound"))
+      a->compound = v;
+    else if (!strcmp(o, "--surface"))
+      a->surface = v;
+    else if (!strcmp(o, "--fluid"))
+      a->fluid = v;
+    else if (!strcmp(o, "--case"))
+      a->case_path = v;
+    else if (!strcmp(o, "--out"))
+      a->out_dir = v;
     else if (!strcmp(o, "--speeds") || !strcmp(o, "--hurst") || !strcmp(o, "--u-range")) {
       if (!list_option(a, o, v)) return 2;
     } else if (!strcmp(o, "--load") || !strcmp(o, "--radius") || !strcmp(o, "--per-decade")) {
@@ -232,8 +242,10 @@ static int flat_from_case(flat_args *a) {
     return 2;
   }
   if (sc->points > MAX_SPEEDS) {
-    fprintf(stderr, "viscolube flattening: %s: at most %d speeds (the sweep has %zu points); "
-                    "give --speeds\n", a->case_path, MAX_SPEEDS, sc->points);
+    fprintf(stderr,
+            "viscolube flattening: %s: at most %d speeds (the sweep has %zu points); "
+            "give --speeds\n",
+            a->case_path, MAX_SPEEDS, sc->points);
     return 2;
   }
   a->n_speeds = sc->points;
@@ -262,7 +274,8 @@ static vl_status flat_load(vl_db *db, flat_args *a, vl_flattening_config *cfg, f
   }
   if (st != VL_OK) return st;
   if (a->case_needs_eta)
-    for (size_t k = 0; k < a->n_speeds; k++) a->speeds[k] /= fc->eta; /* v0 eta -> v0 */
+    for (size_t k = 0; k < a->n_speeds; k++)
+      a->speeds[k] /= fc->eta; /* v0 eta -> v0 */
   if (a->n_hurst == 0) {
     a->hursts[0] = fc->psd0.kind == VL_PSD_SELF_AFFINE ? fc->psd0.hurst : NAN;
     a->n_hurst = 1;
@@ -294,8 +307,8 @@ static vl_status flat_grid(const flat_args *a, flat_curves *fc, vl_error *err) {
     return VL_ENOMEM;
   }
   for (size_t i = 0; i < n_u; i++)
-    fc->u[i] = i + 1 == n_u ? a->u_hi
-                            : a->u_lo * pow(a->u_hi / a->u_lo, (double)i / (double)(n_u - 1));
+    fc->u[i] =
+        i + 1 == n_u ? a->u_hi : a->u_lo * pow(a->u_hi / a->u_lo, (double)i / (double)(n_u - 1));
   return VL_OK;
 }
 
@@ -321,16 +334,15 @@ static vl_status flat_curve(vl_flattening *f, double hrms_m, double hurst, doubl
 
 /* Every curve: per Hurst exponent (the stored surface recomputed with it
  * when it differs), per speed. */
-static vl_status flat_compute(const flat_args *a, const vl_flattening_config *cfg,
-                              flat_curves *fc, vl_error *err) {
+static vl_status flat_compute(const flat_args *a, const vl_flattening_config *cfg, flat_curves *fc,
+                              vl_error *err) {
   vl_status st = VL_OK;
   const vl_psd *psd0 = &fc->psd0;
   for (size_t h = 0; h < a->n_hurst && st == VL_OK; h++) {
     vl_psd variant = {0};
     const vl_psd *psd = psd0;
     if (psd0->kind == VL_PSD_SELF_AFFINE && a->hursts[h] != psd0->hurst) {
-      st = vl_psd_init_self_affine(&variant, a->hursts[h], psd0->q0, psd0->q1, psd0->hrms_m,
-                                   err);
+      st = vl_psd_init_self_affine(&variant, a->hursts[h], psd0->q0, psd0->q1, psd0->hrms_m, err);
       psd = &variant;
     }
     vl_flattening *f = NULL;
@@ -354,13 +366,16 @@ static vl_status write_curves_csv(const char *path, const flat_curves *fc, vl_er
   fputs("u_over_hrms", f);
   for (size_t c = 0; c < fc->n_curves; c++) {
     const curve_info *ci = &fc->info[c];
-    if (isnan(ci->hurst)) fprintf(f, ",eps_v%g", ci->v0); /* tabulated surface */
-    else fprintf(f, ",eps_H%g_v%g", ci->hurst, ci->v0);
+    if (isnan(ci->hurst))
+      fprintf(f, ",eps_v%g", ci->v0); /* tabulated surface */
+    else
+      fprintf(f, ",eps_H%g_v%g", ci->hurst, ci->v0);
   }
   fputc('\n', f);
   for (size_t i = 0; i < fc->n_u; i++) {
     fprintf(f, "%.8g", fc->u[i]);
-    for (size_t c = 0; c < fc->n_curves; c++) fprintf(f, ",%.10g", fc->eps[c * fc->n_u + i]);
+    for (size_t c = 0; c < fc->n_curves; c++)
+      fprintf(f, ",%.10g", fc->eps[c * fc->n_u + i]);
     fputc('\n', f);
   }
   return vl_atomic_file_commit(&af, err);
@@ -372,12 +387,13 @@ static vl_status write_summary_csv(const char *path, const flat_curves *fc, vl_e
   if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
   FILE *f = af.f;
   fputs("hurst,v0_m_s,omega_h_rad_s,e_abs_wh_pa,a_h_m,tan_delta_wh,u_onset_over_hrms,"
-        "u90_over_hrms,u50_over_hrms,eps_min,u_at_eps_min_over_hrms,eps_max\n", f);
+        "u90_over_hrms,u50_over_hrms,eps_min,u_at_eps_min_over_hrms,eps_max\n",
+        f);
   for (size_t c = 0; c < fc->n_curves; c++) {
     const curve_info *ci = &fc->info[c];
     print_opt(f, ci->hurst);
-    fprintf(f, ",%g,%.8g,%.8g,%.8g,%.8g,%.8g,", ci->v0, ci->st.omega_h_rad_s,
-            ci->st.e_abs_pa, ci->st.a_h_m, ci->st.tan_delta, ci->st.u_onset_m / ci->st.hrms_m);
+    fprintf(f, ",%g,%.8g,%.8g,%.8g,%.8g,%.8g,", ci->v0, ci->st.omega_h_rad_s, ci->st.e_abs_pa,
+            ci->st.a_h_m, ci->st.tan_delta, ci->st.u_onset_m / ci->st.hrms_m);
     print_opt(f, ci->u90);
     fputc(',', f);
     print_opt(f, ci->u50);
@@ -401,7 +417,8 @@ static void print_json(const flat_args *a, const flat_curves *fc) {
   vl_json_key_number(&w, "hrms_m", fc->psd0.hrms_m);
   vl_json_key(&w, "u_over_hrms");
   vl_json_array_begin(&w, VL_JSON_INLINE);
-  for (size_t i = 0; i < fc->n_u; i++) vl_json_number_digits(&w, fc->u[i], 8);
+  for (size_t i = 0; i < fc->n_u; i++)
+    vl_json_number_digits(&w, fc->u[i], 8);
   vl_json_end(&w);
   vl_json_key(&w, "curves");
   vl_json_array_begin(&w, VL_JSON_INLINE);
@@ -420,7 +437,8 @@ static void print_json(const flat_args *a, const flat_curves *fc) {
     vl_json_key_number(&w, "eps_min", ci->eps_min);
     vl_json_key(&w, "epsilon_f");
     vl_json_array_begin(&w, VL_JSON_INLINE);
-    for (size_t i = 0; i < fc->n_u; i++) vl_json_number(&w, fc->eps[c * fc->n_u + i]);
+    for (size_t i = 0; i < fc->n_u; i++)
+      vl_json_number(&w, fc->eps[c * fc->n_u + i]);
     vl_json_end(&w);
     vl_json_end(&w);
   }
@@ -435,8 +453,8 @@ static void print_text(const flat_args *a, const flat_curves *fc) {
          "response %s\n",
          a->compound, a->surface, a->fluid, fc->eta, a->radius, a->load,
          vl_flattening_response_name(a->response));
-  printf("%5s %9s %10s %10s %7s %9s %9s %9s", "H", "v0 m/s", "wH rad/s", "|Er(wH)| Pa",
-         "tan d", "u90/h", "u50/h", "eps_min");
+  printf("%5s %9s %10s %10s %7s %9s %9s %9s", "H", "v0 m/s", "wH rad/s", "|Er(wH)| Pa", "tan d",
+         "u90/h", "u50/h", "eps_min");
   for (size_t j = 0; j < N_TABLE_U; j++) {
     char label[32];
     snprintf(label, sizeof label, "eps(%g)", table_u[j]);
@@ -446,9 +464,9 @@ static void print_text(const flat_args *a, const flat_curves *fc) {
   for (size_t c = 0; c < fc->n_curves; c++) {
     const curve_info *ci = &fc->info[c];
     printf("%5.2f %9.3g %10.3g %10.3g %7.3f %9.3g %9.3g %9.4f", ci->hurst, ci->v0,
-           ci->st.omega_h_rad_s, ci->st.e_abs_pa, ci->st.tan_delta, ci->u90, ci->u50,
-           ci->eps_min);
-    for (size_t j = 0; j < N_TABLE_U; j++) printf(" %10.4f", ci->at[j]);
+           ci->st.omega_h_rad_s, ci->st.e_abs_pa, ci->st.tan_delta, ci->u90, ci->u50, ci->eps_min);
+    for (size_t j = 0; j < N_TABLE_U; j++)
+      printf(" %10.4f", ci->at[j]);
     printf("\n");
   }
   printf("(u90, u50: u/h_rms where epsilon_f = 0.9, 0.5, nan: not reached in [%g, %g]; "
@@ -472,8 +490,13 @@ static vl_status write_files(const flat_args *a, const flat_curves *fc, vl_error
 }
 
 int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
-  flat_args a = {.out_dir = "out/flattening", .load = 117.0, .radius = 1e-3, .u_lo = 1e-3,
-                 .u_hi = 10.0, .per_decade = 20.0, .response = VL_FLATTENING_MODULUS};
+  flat_args a = {.out_dir = "out/flattening",
+                 .load = 117.0,
+                 .radius = 1e-3,
+                 .u_lo = 1e-3,
+                 .u_hi = 10.0,
+                 .per_decade = 20.0,
+                 .response = VL_FLATTENING_MODULUS};
   int rc = flat_parse(argc, argv, &a);
   if (rc < 0 && a.case_path) rc = flat_from_case(&a);
   if (rc >= 0) return rc;
@@ -497,8 +520,10 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
   if (st == VL_OK) st = flat_compute(&a, &cfg, &fc, &err);
   if (st == VL_OK) st = write_files(&a, &fc, &err);
   if (st == VL_OK) {
-    if (a.json) print_json(&a, &fc);
-    else print_text(&a, &fc);
+    if (a.json)
+      print_json(&a, &fc);
+    else
+      print_text(&a, &fc);
   } else {
     fprintf(stderr, "viscolube flattening: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
     rc = vl_status_exit_code(st);

@@ -77,8 +77,15 @@ static const char *const noun_help[] = {
         "  list [--json]          one line per surface: name, kind, h_rms, rms slope, band\n"
         "  show NAME [--json]     h_rms, rms slope, C0, q0, q1, H or point count\n"
         "  add NAME --self-affine --hurst H --q0 PER_M --q1 PER_M --hrms M\n"
-        "  add NAME --psd FILE    register a surface (see `surface add --help`)\n"
+        "  add NAME --psd FILE\n"
+        "  add NAME --topography FILE\n"
+        "                         register a surface from its parameters, a tabulated\n"
+        "                         spectrum or a measured line scan or height map (see\n"
+        "                         `surface add --help`)\n"
         "  remove NAME            delete a surface\n"
+        "  flow-factors NAME [--model M] [--u-range MIN,MAX] [--points N]\n"
+        "                         the flow factors phi_p, phi_s, phi_fp, phi_fs, phi_f and\n"
+        "                         A/A0 against u/h_rms (see `surface flow-factors --help`)\n"
         "\n"
         "`viscolube surface VERB --help` describes a verb.\n",
     [NOUN_FLUID] = "usage: viscolube [--db PATH] fluid VERB ...\n"
@@ -191,6 +198,7 @@ static const char surface_add_help[] =
     "usage: viscolube [--db PATH] surface add NAME --self-affine --hurst H --q0 PER_M\n"
     "                 --q1 PER_M --hrms M [--description TEXT]\n"
     "       viscolube [--db PATH] surface add NAME --psd FILE [--description TEXT]\n"
+    "       viscolube [--db PATH] surface add NAME --topography FILE [--description TEXT]\n"
     "\n"
     "Registers an isotropic roughness power spectrum C(q) (m^4), with\n"
     "h_rms^2 = 2 pi \\int q C(q) dq.\n"
@@ -205,7 +213,42 @@ static const char surface_add_help[] =
     "                  q > 0 strictly increasing, C > 0, at least 2 rows; an optional\n"
     "                  units row '1/m,m^4' may follow the header. Interpolated as a\n"
     "                  power law between points, zero outside.\n"
+    "  --topography FILE  measured heights (docs/FORMATS.md), the spectrum estimated\n"
+    "                  from them (detrended, Tukey window, FFT, log bins; a line scan's\n"
+    "                  1-D spectrum turned 2-D by the inverse Abel transform):\n"
+    "                    line scan: a header naming the units, then position,height\n"
+    "                      rows ('x [um],z [nm]'; tab, ';', blank or ',' separated)\n"
+    "                    height map: '# Width: 10 um', '# Height: 10 um' and\n"
+    "                      '# Value units: m' lines, then one row of heights per line\n"
+    "                      (Gwyddion and SurfaceTopography 'matrix' exports)\n"
+    "                  Reports the measured rms, the PSD's h_rms and their ratio and\n"
+    "                  stores how the spectrum was made as the description (after\n"
+    "                  --description when given).\n"
     "  --description TEXT  free text; note the source of the data here\n";
+
+/* `surface flow-factors --help` */
+static const char surface_flow_factors_help[] =
+    "usage: viscolube [--db PATH] surface flow-factors NAME [--model MODEL]\n"
+    "                 [--u-range MIN,MAX] [--points N] [--film-cutoff M] [--out FILE]\n"
+    "                 [--json] [--plot]\n"
+    "\n"
+    "The flow and shear-stress factors of the averaged Reynolds equation for surface\n"
+    "NAME (docs/FLOW_FACTORS.md) against the average separation u/h_rms, with the\n"
+    "contact area A/A0 of Persson's contact law at that separation. Columns:\n"
+    "  u_over_hrms, contact_fraction, phi_p, phi_s, phi_fp, phi_fs, phi_f\n"
+    "  --model MODEL   persson-emt (default; its table is cached in the database),\n"
+    "                  patir-cheng or smooth\n"
+    "  --u-range MIN,MAX  u/h_rms range, log spaced (default 0.001,30)\n"
+    "  --points N      rows, 2 to 10000 (default 100)\n"
+    "  --film-cutoff M persson-emt's film cut-off in (0, 1e-6] m (default 1e-9): gaps\n"
+    "                  narrower carry no Couette shear (phi_f)\n"
+    "  --out FILE      also write the table as CSV (a '#' line naming the surface,\n"
+    "                  model, h_rms and cut-off, then the columns; exact numbers)\n"
+    "  --json          print one JSON object (surface, model, hrms_m, film_cutoff_m,\n"
+    "                  percolation_u_over_hrms, rows) instead of the table\n"
+    "  --plot          draw the factors against u/h_rms as FILE's stem .png and .svg\n"
+    "                  (without --out: flow-factors-NAME.png and .svg here)\n"
+    "The header gives the percolation point, where the pressure flow stops.\n";
 
 /* `fluid add --help` */
 static const char fluid_add_help[] =
@@ -246,6 +289,8 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
             "Prints what is stored about %s NAME and the quantities derived from it.\n"
             "  --json   print one JSON object instead\n",
             noun, noun);
+  } else if (!strcmp(verb, "flow-factors")) {
+    fputs(surface_flow_factors_help, out);
   } else if (!strcmp(verb, "remove")) {
     fprintf(out,
             "usage: viscolube [--db PATH] %s remove NAME\n"
@@ -762,9 +807,10 @@ static void surface_line(FILE *out, const vl_db_surface *s) {
 }
 
 static int surface_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--self-affine", NULL, NULL},  {"--hurst", "H", NULL}, {"--q0", "PER_M", NULL},
-                   {"--q1", "PER_M", NULL},        {"--hrms", "M", NULL},  {"--psd", "FILE", NULL},
-                   {"--description", "TEXT", NULL}};
+  option opts[] = {{"--self-affine", NULL, NULL},   {"--hurst", "H", NULL},
+                   {"--q0", "PER_M", NULL},         {"--q1", "PER_M", NULL},
+                   {"--hrms", "M", NULL},           {"--psd", "FILE", NULL},
+                   {"--description", "TEXT", NULL}, {"--topography", "FILE", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -773,22 +819,28 @@ static int surface_add(const context *cx, const vl_cli_globals *g, int argc, cha
   if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
   option *sa = find_opt(opts, n_opts, "--self-affine"), *psd_opt = find_opt(opts, n_opts, "--psd");
   option *desc = find_opt(opts, n_opts, "--description");
+  option *topo = find_opt(opts, n_opts, "--topography");
   const char *sa_opts[] = {"--hurst", "--q0", "--q1", "--hrms"};
-  if (sa->value && psd_opt->value)
-    return fail(cx, VL_EINPUT, "give either --self-affine or --psd FILE, not both");
-  if (!sa->value && !psd_opt->value)
+  int n_forms = (sa->value != NULL) + (psd_opt->value != NULL) + (topo->value != NULL);
+  if (n_forms > 1)
     return fail(cx, VL_EINPUT,
-                "give --self-affine --hurst H --q0 PER_M --q1 PER_M --hrms M, or --psd FILE");
+                "give one of --self-affine, --psd FILE and --topography FILE, not several");
+  if (n_forms == 0)
+    return fail(cx, VL_EINPUT,
+                "give --self-affine --hurst H --q0 PER_M --q1 PER_M --hrms M, --psd FILE or "
+                "--topography FILE");
   for (size_t k = 0; k < 4; k++) {
     option *o = find_opt(opts, n_opts, sa_opts[k]);
-    if (psd_opt->value && o->value)
-      return failf(cx, VL_EINPUT, "option %s belongs to --self-affine, not to --psd", o->name);
+    if (!sa->value && o->value)
+      return failf(cx, VL_EINPUT, "option %s belongs to --self-affine, not to %s", o->name,
+                   psd_opt->value ? "--psd" : "--topography");
     if (sa->value && !o->value)
       return failf(cx, VL_EINPUT, "--self-affine needs option %s %s", o->name, o->metavar);
   }
   if (desc->value && strlen(desc->value) >= VL_DB_TEXT_MAX)
     return failf(cx, VL_EINPUT, "option --description: longer than %d characters",
                  VL_DB_TEXT_MAX - 1);
+  if (topo->value) return vl_cli_surface_add_topography(g, name, topo->value, desc->value);
 
   vl_error err;
   vl_psd psd;
@@ -868,8 +920,9 @@ static void fluid_text(FILE *out, const vl_db_fluid *f) {
     double lo = NAN, hi = NAN;
     if (vl_fluid_viscosity(l, f->viscosity_pa_s, f->tref_c, l->tmin_c, &lo, NULL) == VL_OK &&
         vl_fluid_viscosity(l, f->viscosity_pa_s, f->tref_c, l->tmax_c, &hi, NULL) == VL_OK)
-      fprintf(out, "                (through the viscosity above; %.4g Pa s at %.6g C, "
-                   "%.4g Pa s at %.6g C)\n",
+      fprintf(out,
+              "                (through the viscosity above; %.4g Pa s at %.6g C, "
+              "%.4g Pa s at %.6g C)\n",
               lo, l->tmin_c, hi, l->tmax_c);
   } else {
     fprintf(out, "  law           none (known at %.6g C only)\n", f->tref_c);
@@ -882,9 +935,12 @@ static void fluid_line(FILE *out, const vl_db_fluid *f) {
 }
 
 static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  option opts[] = {{"--viscosity", "PA_S", NULL},   {"--tref", "C", NULL},
-                   {"--vogel-b", "K", NULL},          {"--vogel-c", "K", NULL},
-                   {"--law-range", "TMIN_C,TMAX_C", NULL}, {"--description", "TEXT", NULL}};
+  option opts[] = {{"--viscosity", "PA_S", NULL},
+                   {"--tref", "C", NULL},
+                   {"--vogel-b", "K", NULL},
+                   {"--vogel-c", "K", NULL},
+                   {"--law-range", "TMIN_C,TMAX_C", NULL},
+                   {"--description", "TEXT", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -1106,8 +1162,7 @@ static int plot_compound(const context *cx, vl_db *db, const vl_db_compound *c,
   int shifts = fit->has_fit && fit->n_shifts >= 2;
   if (n + n_fit == 0) {
     st = VL_EINPUT;
-    vl_error_set(&err, "option --plot: compound '%s' is elastic and has no measured data",
-                 c->name);
+    vl_error_set(&err, "option --plot: compound '%s' is elastic and has no measured data", c->name);
   } else if (vl_cli_make_dirs(dir) != 0) {
     st = VL_EIO;
     vl_error_set(&err, "%s: cannot create directory: %s", dir, strerror(errno));
@@ -1202,6 +1257,23 @@ static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **
   return rc >= 0 ? rc : 0;
 }
 
+/* `surface flow-factors NAME ...`: parsed here, computed in cli_surface.c. */
+static int do_flow_factors(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
+  option opts[] = {{"--model", "MODEL", NULL}, {"--u-range", "MIN,MAX", NULL},
+                   {"--points", "N", NULL},    {"--film-cutoff", "M", NULL},
+                   {"--out", "FILE", NULL},    {"--json", NULL, NULL},
+                   {"--plot", NULL, NULL}};
+  const char *pos[1], *name = NULL;
+  size_t n_pos;
+  int rc;
+  if ((rc = parse_args(cx, argc, argv, 2, opts, 7, pos, 1, &n_pos)) >= 0) return rc;
+  if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  vl_cli_flow_factor_args a = {opts[0].value,        opts[1].value, opts[2].value,
+                               opts[3].value,        opts[4].value, opts[5].value != NULL,
+                               opts[6].value != NULL};
+  return vl_cli_surface_flow_factors(g, name, &a);
+}
+
 static int do_remove(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -1241,15 +1313,16 @@ int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv) {
     fputs(noun_help[cx.kind], stdout);
     return 0;
   }
-  static const char *const verbs[] = {"list", "show", "add", "remove"};
+  static const char *const verbs[] = {"list", "show", "add", "remove", "flow-factors"};
+  size_t n_verbs = cx.kind == NOUN_SURFACE ? 5 : 4; /* flow-factors: surfaces only */
   int known = 0;
-  for (size_t k = 0; k < 4; k++)
+  for (size_t k = 0; k < n_verbs; k++)
     known |= !strcmp(verb, verbs[k]);
   if (!known)
     return failf(&cx, VL_EINPUT,
-                 "unknown verb '%s' (expected list, show, add or remove; see "
+                 "unknown verb '%s' (expected list, show, add%s or remove; see "
                  "viscolube %s --help)",
-                 verb, cx.noun);
+                 verb, cx.kind == NOUN_SURFACE ? ", flow-factors" : "", cx.noun);
   cx.verb = verb;
   /* --help anywhere after the verb wins, so a half-typed command can ask. */
   for (int i = 2; i < argc; i++) {
@@ -1261,6 +1334,7 @@ int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv) {
   if (!strcmp(verb, "list")) return do_list(&cx, g, argc, argv);
   if (!strcmp(verb, "show")) return do_show(&cx, g, argc, argv);
   if (!strcmp(verb, "remove")) return do_remove(&cx, g, argc, argv);
+  if (!strcmp(verb, "flow-factors")) return do_flow_factors(&cx, g, argc, argv);
   if (cx.kind == NOUN_COMPOUND) return compound_add(&cx, g, argc, argv);
   if (cx.kind == NOUN_SURFACE) return surface_add(&cx, g, argc, argv);
   return fluid_add(&cx, g, argc, argv);

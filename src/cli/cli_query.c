@@ -20,13 +20,15 @@ typedef struct {
   double film_cutoff_m; /* --film-cutoff; 0: the default */
   int json;
   int plot;
+  int quiet;            /* --quiet (or the global one): no warnings, no progress */
   int have_temperature; /* --temperature: compound (WLF) and fluid (its law) at temperature_c */
   double temperature_c;
 } conditions;
 
 /* The strict decimal syntax of every numeric option and CSV cell
  * (vl_csv_parse_double): no hex floats, NaN, Inf or trailing units. */
-static int parse_number(const char *cmd, const char *opt, const char *v, double *out, int positive) {
+static int parse_number(const char *cmd, const char *opt, const char *v, double *out,
+                        int positive) {
   double d = 0.0;
   if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || (positive ? d <= 0.0 : d < 0.0)) {
     fprintf(stderr, "viscolube %s: option %s needs a %s number (got '%s')\n", cmd, opt,
@@ -47,6 +49,10 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
     c->json = 1;
     return 1;
   }
+  if (!strcmp(o, "--quiet") || !strcmp(o, "-q")) {
+    c->quiet = 1;
+    return 1;
+  }
   if (!strcmp(o, "--plot") && !strcmp(cmd, "compare")) {
     c->plot = 1;
     return 1;
@@ -56,18 +62,24 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
       fprintf(stderr, "viscolube %s: option %s needs a value\n", cmd, o);
       return -1;
     }
-    if (!strcmp(o, "--surface")) c->surface = v;
-    else if (!strcmp(o, "--fluid")) c->fluid = v;
-    else c->flow_factors = v;
+    if (!strcmp(o, "--surface"))
+      c->surface = v;
+    else if (!strcmp(o, "--fluid"))
+      c->fluid = v;
+    else
+      c->flow_factors = v;
     (*i)++;
     return 1;
   }
   if (!strcmp(o, "--load") || !strcmp(o, "--radius") || !strcmp(o, "--sigma-s") ||
       !strcmp(o, "--grid")) {
     if (!parse_number(cmd, o, v, &d, strcmp(o, "--sigma-s") != 0)) return -1;
-    if (!strcmp(o, "--load")) c->load = d;
-    else if (!strcmp(o, "--radius")) c->radius = d;
-    else if (!strcmp(o, "--sigma-s")) c->sigma_s = d;
+    if (!strcmp(o, "--load"))
+      c->load = d;
+    else if (!strcmp(o, "--radius"))
+      c->radius = d;
+    else if (!strcmp(o, "--sigma-s"))
+      c->sigma_s = d;
     else {
       if (d < VL_GRID_MIN || d > VL_GRID_GRADED_MAX || d != floor(d)) {
         fprintf(stderr, "viscolube %s: option --grid needs a whole number in [%d, %d]\n", cmd,
@@ -111,8 +123,8 @@ static vl_status fluid_eta(vl_db *db, const conditions *c, double *eta, vl_error
   if (!c->have_temperature) return vl_db_fluid_get(db, c->fluid, eta, err);
   vl_db_fluid f;
   vl_status st = vl_db_fluid_info(db, c->fluid, &f, err);
-  if (st == VL_OK) st = vl_fluid_viscosity(&f.law, f.viscosity_pa_s, f.tref_c, c->temperature_c,
-                                           eta, err);
+  if (st == VL_OK)
+    st = vl_fluid_viscosity(&f.law, f.viscosity_pa_s, f.tref_c, c->temperature_c, eta, err);
   if (st == VL_EINPUT)
     vl_error_prefix(err, "--temperature %g: fluid '%s'", c->temperature_c, c->fluid);
   return st;
@@ -138,8 +150,8 @@ static const char *model_of(const conditions *c, double *film_cutoff_m) {
   vl_flow_factor_kind k = VL_SCENE_ROUGH_FLOW_FACTORS;
   if (c->flow_factors) vl_flow_factors_parse(c->flow_factors, &k, NULL);
   *film_cutoff_m = k != VL_FLOW_FACTORS_PERSSON_EMT ? 0.0
-                   : c->film_cutoff_m > 0.0        ? c->film_cutoff_m
-                                                   : VL_FILM_CUTOFF_DEFAULT_M;
+                   : c->film_cutoff_m > 0.0         ? c->film_cutoff_m
+                                                    : VL_FILM_CUTOFF_DEFAULT_M;
   return vl_flow_factors_name(k);
 }
 
@@ -184,6 +196,15 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
   return 1;
 }
 
+/* 1 if name (given by option opt) is a valid material name, else 0 after
+ * the message: a name becomes a folder name (compare's DIR/<compound>). */
+static int valid_name(const char *cmd, const char *opt, const char *name) {
+  vl_error err;
+  if (vl_db_check_name(name, &err) == VL_OK) return 1;
+  fprintf(stderr, "viscolube %s: %s: %s\n", cmd, opt, err.msg);
+  return 0;
+}
+
 static int need(const char *cmd, const char *what, const void *value) {
   if (value) return 1;
   fprintf(stderr, "viscolube %s: missing %s (see viscolube %s --help)\n", cmd, what, cmd);
@@ -195,6 +216,7 @@ static void friction_usage(FILE *out) {
         "                          [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
         "                          [--flow-factors persson-emt|patir-cheng|smooth]\n"
         "                          [--film-cutoff M] [--grid N] [--temperature C] [--json]\n"
+        "                          [--quiet]\n"
         "\n"
         "Friction of one operating point: a smooth rigid cylinder (radius, load per unit\n"
         "length) sliding at V on the stored compound with the stored rough surface in the\n"
@@ -212,7 +234,11 @@ static void friction_usage(FILE *out) {
         "effective medium, consistent with the contact law: docs/FLOW_FACTORS.md) with\n"
         "--film-cutoff 1e-9 (gaps below it carry no Couette shear), domain [-96, 1.6] a0 with\n"
         "--grid 2928 (the uniform cells: a0/30) merged upstream of -2 a0 into cells\n"
-        "growing by 5 % (about 200 cells), tolerance 1e-6 (docs/NUMERICS.md).\n",
+        "growing by 5 % (about 200 cells), tolerance 1e-6 (docs/NUMERICS.md).\n"
+        "The point's model-validity warnings follow on stderr, one a line (with --json\n"
+        "only in the JSON; --quiet leaves them out).\n"
+        "Exit status: 0 converged, 7 did not converge (iterations and residual on\n"
+        "stderr), 2 bad option or name, 3 unknown material, 5 database error.\n",
         out);
 }
 
@@ -246,6 +272,10 @@ static int friction_args(int argc, char **argv, conditions *c, const char **comp
       !need("friction", "--fluid", c->fluid) ||
       !need("friction", "--speed", have_speed ? "" : NULL))
     return 2;
+  if (!valid_name("friction", "--compound", *compound) ||
+      !valid_name("friction", "--surface", c->surface) ||
+      !valid_name("friction", "--fluid", c->fluid))
+    return 2;
   return -1;
 }
 
@@ -253,9 +283,8 @@ static int friction_args(int argc, char **argv, conditions *c, const char **comp
  * fails, continuation from the boundary regime (v0 eta = 1e-12 Pa m), 4
  * points a decade. *sim is the simulation of the last attempt (the caller
  * frees it); stats->converged + failed counts the points solved. */
-static vl_status solve_point(vl_scene *sc, vl_db *db, double speed, double eta,
-                             vl_simulation **sim, vl_point *pt, vl_sweep_stats *stats,
-                             vl_error *err) {
+static vl_status solve_point(vl_scene *sc, vl_db *db, double speed, double eta, vl_simulation **sim,
+                             vl_point *pt, vl_sweep_stats *stats, vl_error *err) {
   vl_status st = VL_OK;
   for (int attempt = 0; st == VL_OK && attempt < 2; attempt++) {
     sc->to = speed * eta;
@@ -285,8 +314,8 @@ static vl_status solve_point(vl_scene *sc, vl_db *db, double speed, double eta,
 
 /* The point as JSON; with --temperature the temperature, shift and
  * viscosity come first in the same object. */
-static void friction_json(const conditions *c, vl_simulation *sim, double eta,
-                          const vl_point *pt, const vl_curve_meta *meta) {
+static void friction_json(const conditions *c, vl_simulation *sim, double eta, const vl_point *pt,
+                          const vl_curve_meta *meta) {
   vl_json w;
   vl_json_init(&w, stdout, 10);
   vl_json_object_begin(&w, VL_JSON_INLINE);
@@ -325,13 +354,14 @@ static void friction_text(const conditions *c, const char *compound, double spee
   printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
          "regime: %s\n  Q = %.3g; %ld Newton iterations, residual %.2g (%zu continuation "
          "points)\n",
-         pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0,
-         100.0 * (1.0 - pt->fluid_load_fraction), vl_regime_name(pt->regime), pt->Q,
-         pt->iterations, pt->residual, stats->converged + stats->failed);
+         pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
+         vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual,
+         stats->converged + stats->failed);
 }
 
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN};
+  conditions c = {
+      .load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN, .quiet = g->quiet};
   const char *compound = NULL;
   double speed = 0.0;
   int rc = friction_args(argc, argv, &c, &compound, &speed);
@@ -356,11 +386,17 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
   }
   vl_curve_meta meta = {eta, 0.0, vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
   meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
-  if (c.json) friction_json(&c, sim, eta, &pt, &meta);
-  else if (pt.converged) friction_text(&c, compound, speed, sim, eta, &pt, &stats);
+  if (c.json)
+    friction_json(&c, sim, eta, &pt, &meta);
+  else if (pt.converged)
+    friction_text(&c, compound, speed, sim, eta, &pt, &stats);
+  fflush(stdout);
+  if (!c.json && !c.quiet) vl_cli_print_warnings(stderr, NULL, 1, &pt);
   if (!pt.converged) {
-    fprintf(stderr, "viscolube friction: the solve did not converge at v0 = %g m/s "
-                    "(%ld iterations, residual %.3g)\n", speed, pt.iterations, pt.residual);
+    fprintf(stderr,
+            "viscolube friction: the solve did not converge at v0 = %g m/s "
+            "(%ld iterations, residual %.3g)\n",
+            speed, pt.iterations, pt.residual);
     rc = vl_status_exit_code(VL_ENOCONV);
   }
 done:
@@ -375,7 +411,7 @@ static void compare_usage(FILE *out) {
         "                         [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
         "                         [--flow-factors persson-emt|patir-cheng|smooth]\n"
         "                         [--film-cutoff M] [--grid N] [--json] [--plot]\n"
-        "                         [--temperature C]\n"
+        "                         [--temperature C] [--quiet]\n"
         "\n"
         "Stribeck curves (mu vs v0*eta, Pa m) of several compounds on one surface in one\n"
         "fluid, side by side: mu and u_min/h_rms per compound. Writes DIR/compare.csv\n"
@@ -386,6 +422,14 @@ static void compare_usage(FILE *out) {
         "--temperature C: every compound and the fluid at C, as for `viscolube friction`\n"
         "(v0*eta then uses the fluid's viscosity at C); compare.csv gets the columns\n"
         "temperature_c and eta_pa_s, the JSON the keys of the same names.\n"
+        "DIR and DIR/<compound> are checked (created, writable, not a file) before\n"
+        "anything is computed.\n"
+        "After the table, on stderr: one line per kind of model-validity warning and\n"
+        "compound with the points it applies to (with --json only in the JSON), and the\n"
+        "points that did not converge (speed, iterations, residual). --quiet leaves out\n"
+        "the warnings and the progress lines.\n"
+        "Exit status: 0 every point converged, 7 some did not (written with converged = 0),\n"
+        "2 bad option or name, 3 unknown material, 5 database error, 6 file error.\n"
         "Defaults: --from 1e-12 --to 0.1 --points 45, and those of `viscolube friction`.\n",
         out);
 }
@@ -457,6 +501,11 @@ static int compare_check(compare_args *a) {
   if (!need("compare", "--compounds", a->nc ? "" : NULL) ||
       !need("compare", "--surface", a->c.surface) || !need("compare", "--fluid", a->c.fluid))
     return 2;
+  for (size_t k = 0; k < a->nc; k++)
+    if (!valid_name("compare", "--compounds", a->names[k])) return 2;
+  if (!valid_name("compare", "--surface", a->c.surface) ||
+      !valid_name("compare", "--fluid", a->c.fluid))
+    return 2;
   if (!(a->to > a->from) || a->points != floor(a->points) || a->points < 2 || a->points > 10000) {
     fprintf(stderr, "viscolube compare: need --from < --to and a whole --points in [2, 10000]\n");
     return 2;
@@ -466,7 +515,7 @@ static int compare_check(compare_args *a) {
 
 /* Before anything is computed or written: every compound exists and, with
  * --temperature, can be taken there (WLF constants, fluid law); the output
- * directory exists. */
+ * folders exist and can be written in. */
 static vl_status compare_prepare(vl_db *db, const compare_args *a, compare_curves *cv,
                                  vl_error *err) {
   vl_status st = VL_OK;
@@ -474,11 +523,14 @@ static vl_status compare_prepare(vl_db *db, const compare_args *a, compare_curve
     vl_prony probe;
     st = vl_db_compound_get(db, a->names[k], &probe, err);
   }
-  for (size_t k = 0; st == VL_OK && k < a->nc; k++) st = compound_at(db, &a->c, a->names[k], err);
+  for (size_t k = 0; st == VL_OK && k < a->nc; k++)
+    st = compound_at(db, &a->c, a->names[k], err);
   if (st == VL_OK && a->c.have_temperature) st = fluid_eta(db, &a->c, &cv->eta, err);
-  if (st == VL_OK && vl_cli_make_dirs(a->out_dir) != 0) {
-    vl_error_set(err, "%s: cannot create: %s", a->out_dir, strerror(errno));
-    st = VL_EIO;
+  if (st == VL_OK) st = vl_cli_check_out_dir("--out", a->out_dir, err);
+  for (size_t k = 0; st == VL_OK && k < a->nc; k++) {
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s/%s", a->out_dir, a->names[k]);
+    st = vl_cli_check_out_dir("--out", dir, err);
   }
   return st;
 }
@@ -498,7 +550,7 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   const vl_psd *psd = vl_simulation_psd(sim);
   cv->hrms[k] = psd ? psd->hrms_m : 1.0;
   vl_sweep_stats stats;
-  if (!a->c.json) fprintf(stderr, "compare: %s ...\n", a->names[k]);
+  if (!a->c.json && !a->c.quiet) fprintf(stderr, "compare: %s ...\n", a->names[k]);
   vl_point *pts = cv->pts + k * cv->n;
   *st = vl_simulation_run(sim, pts, NULL, NULL, &stats, err);
   cv->failed += stats.failed;
@@ -566,14 +618,17 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
     printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.temperature_c,
            cv->eta);
   printf("%12s", "v0_eta_pa_m");
-  for (size_t k = 0; k < a->nc; k++) printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
+  for (size_t k = 0; k < a->nc; k++)
+    printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
   printf("\n");
   for (size_t i = 0; i < cv->n; i++) {
     printf("%12.4g", cv->pts[i].v0_m_s * cv->eta);
     for (size_t k = 0; k < a->nc; k++) {
       const vl_point *p = &cv->pts[k * cv->n + i];
-      if (p->converged) printf(" %14.5g %14.4g", p->mu, p->u_min_m / cv->hrms[k]);
-      else printf(" %14s %14s", "-", "-");
+      if (p->converged)
+        printf(" %14.5g %14.4g", p->mu, p->u_min_m / cv->hrms[k]);
+      else
+        printf(" %14s %14s", "-", "-");
     }
     printf("\n");
   }
@@ -591,7 +646,8 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
   }
   vl_json_key(&w, "v0_eta_pa_m");
   vl_json_array_begin(&w, VL_JSON_INLINE);
-  for (size_t i = 0; i < cv->n; i++) vl_json_number_digits(&w, cv->pts[i].v0_m_s * cv->eta, 6);
+  for (size_t i = 0; i < cv->n; i++)
+    vl_json_number_digits(&w, cv->pts[i].v0_m_s * cv->eta, 6);
   vl_json_end(&w);
   for (size_t k = 0; k < a->nc; k++) {
     vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0};
@@ -607,8 +663,8 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
 static vl_status compare_plots(const compare_args *a, const compare_curves *cv, vl_error *err) {
   vl_plot_curve curves[MAX_COMPOUNDS];
   for (size_t k = 0; k < a->nc; k++)
-    curves[k] = (vl_plot_curve){a->names[k], cv->n, cv->pts + k * cv->n,
-                                {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
+    curves[k] = (vl_plot_curve){
+        a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.mark_half_load = true;
@@ -623,9 +679,26 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
   return st;
 }
 
+/* After the table, on stderr: each compound's warnings and failed points. */
+static void compare_report(const compare_args *a, const compare_curves *cv) {
+  fflush(stdout); /* the lines follow the table in a shared log */
+  for (size_t k = 0; k < a->nc; k++) {
+    const vl_point *pts = cv->pts + k * cv->n;
+    if (!a->c.json && !a->c.quiet) vl_cli_print_warnings(stderr, a->names[k], cv->n, pts);
+    char where[4400];
+    snprintf(where, sizeof where, "written with converged = 0 in %s/%s/curve.csv", a->out_dir,
+             a->names[k]);
+    vl_cli_print_failures(stderr, "compare", a->names[k], cv->n, pts, where);
+  }
+}
+
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  compare_args a = {.c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN},
-                    .from = 1e-12, .to = 0.1, .points = 45, .out_dir = "out/compare"};
+  compare_args a = {
+      .c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN, .quiet = g->quiet},
+      .from = 1e-12,
+      .to = 0.1,
+      .points = 45,
+      .out_dir = "out/compare"};
   int rc = compare_parse(argc, argv, &a);
   if (rc < 0) rc = compare_check(&a);
   if (rc >= 0) return rc;
@@ -645,11 +718,15 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   snprintf(path, sizeof path, "%s/compare.csv", a.out_dir);
   if (st == VL_OK) st = write_compare_csv(path, &a, &cv, &err);
   if (st != VL_OK) goto done;
-  if (a.c.json) compare_json(&a, &cv);
-  else compare_table(&a, &cv);
+  if (a.c.json)
+    compare_json(&a, &cv);
+  else
+    compare_table(&a, &cv);
   if (a.c.plot && (st = compare_plots(&a, &cv, &err)) != VL_OK) goto done;
-  if (!a.c.json) printf("wrote %s and %s/<compound>/curve.csv%s\n", path, a.out_dir,
-                        a.c.plot ? " and compare-mu/compare-umin figures" : "");
+  if (!a.c.json)
+    printf("wrote %s and %s/<compound>/curve.csv%s\n", path, a.out_dir,
+           a.c.plot ? " and compare-mu/compare-umin figures" : "");
+  compare_report(&a, &cv);
   if (cv.failed) rc = vl_status_exit_code(VL_ENOCONV);
 done:
   if (st != VL_OK) {

@@ -10,7 +10,7 @@
 #include "cli.h"
 
 static void run_usage(FILE *out) {
-  fputs("usage: viscolube run SCENE [--out DIR] [--json] [--plot]\n"
+  fputs("usage: viscolube run SCENE [--out DIR] [--json] [--plot] [--quiet]\n"
         "\n"
         "Runs the sweep of a scene file (see cases/ and README.md) and writes\n"
         "  DIR/curve.csv         one row per speed (mu and its four components, separations,\n"
@@ -29,9 +29,15 @@ static void run_usage(FILE *out) {
         "written to DIR/<fluid>/ (with --json: an object keyed by fluid); with --plot also\n"
         "DIR/stribeck-all (mu of every fluid on one axis) and, for one-term compounds,\n"
         "DIR/rolling-all (mu_Rc + mu_Rf against v0 tau/a0).\n"
-        "DIR defaults to out/<scene name>. Prints a short table, or with --json the curve\n"
-        "as a JSON array. Exit status 0 when every point converged, 7 when some did not\n"
-        "(they are still written, flagged converged = 0).\n",
+        "DIR defaults to out/<scene name>; it is checked (created, writable, not a file)\n"
+        "before anything is computed. Prints a short table, or with --json the curve as a\n"
+        "JSON array. After the table, on stderr: one line per kind of model-validity\n"
+        "warning with the points it applies to (the warnings column of curve.csv; with\n"
+        "--json only in the JSON), and the points that did not converge with their speed,\n"
+        "iterations and residual. --quiet leaves out the warnings and the progress line.\n"
+        "Exit status: 0 when every point converged, 7 when some did not (they are still\n"
+        "written, flagged converged = 0), 2 bad scene or option, 3 unknown material,\n"
+        "5 database error, 6 file error (e.g. --out not writable).\n",
         out);
 }
 
@@ -40,6 +46,7 @@ typedef struct {
   const char *out_dir;
   vl_fields fields;
   int tty;
+  int quiet;
   int io_failed;
   vl_error err;
   /* --plot: the fields of the fields_at speeds, kept for the figures */
@@ -52,7 +59,7 @@ typedef struct {
 static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
                      const vl_contact *contact) {
   run_ctx *ctx = user;
-  if (ctx->tty) {
+  if (ctx->tty && !ctx->quiet) {
     fprintf(stderr, "\r  point %zu/%zu  v0 = %-10.3g m/s  %s", i + 1, total, pt->v0_m_s,
             pt->converged ? "ok       " : "FAILED   ");
     if (i + 1 == total) fputc('\n', stderr);
@@ -68,13 +75,13 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
   vl_contact_fields(contact, f);
   char path[4200];
   snprintf(path, sizeof path, "%s/fields/%03zu.csv", ctx->out_dir, i);
-  if (vl_write_fields_csv(path, f, vl_contact_a0(contact), &ctx->err) != VL_OK)
-    ctx->io_failed = 1;
+  if (vl_write_fields_csv(path, f, vl_contact_a0(contact), &ctx->err) != VL_OK) ctx->io_failed = 1;
 }
 
 /* Sets aside the fields of the fields_at speeds for the figures. */
 static vl_status keep_fields(run_ctx *ctx, size_t n, size_t grid, vl_error *err) {
-  for (size_t i = 0; i < n; i++) ctx->n_kept += vl_simulation_wants_fields(ctx->sim, i);
+  for (size_t i = 0; i < n; i++)
+    ctx->n_kept += vl_simulation_wants_fields(ctx->sim, i);
   if (!ctx->n_kept) return VL_OK;
   ctx->kept_index = calloc(ctx->n_kept, sizeof *ctx->kept_index);
   ctx->kept = calloc(ctx->n_kept, sizeof *ctx->kept);
@@ -87,8 +94,8 @@ static vl_status keep_fields(run_ctx *ctx, size_t n, size_t grid, vl_error *err)
     if (!vl_simulation_wants_fields(ctx->sim, i)) continue;
     double *b = ctx->kept_buf + 7 * grid * k;
     ctx->kept_index[k] = i;
-    ctx->kept[k] = (vl_fields){0,           b,           b + grid,     b + 2 * grid,
-                               b + 3 * grid, b + 4 * grid, b + 5 * grid, b + 6 * grid};
+    ctx->kept[k] = (vl_fields){
+        0, b, b + grid, b + 2 * grid, b + 3 * grid, b + 4 * grid, b + 5 * grid, b + 6 * grid};
     k++;
   }
   return VL_OK;
@@ -152,13 +159,14 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
     static const struct {
       vl_plot_field field;
       const char *name;
-    } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"}, {VL_PLOT_FIELD_PF, "fields-pf"},
+    } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"},
+                {VL_PLOT_FIELD_PF, "fields-pf"},
                 {VL_PLOT_FIELD_U, "fields-u"}};
     for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
       if (figs[k].field == VL_PLOT_FIELD_PF && !scene->effects.fluid) continue;
       snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
-      st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, &opt,
-                          NULL, err);
+      st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, &opt, NULL,
+                          err);
       if (st != VL_OK) goto done;
       if (len < list_size)
         len += (size_t)snprintf(list + len, list_size - len, ", %s", figs[k].name);
@@ -196,12 +204,12 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
     const vl_point *p = &pts[i];
     double q = sweep_value(scene->quantity, p, meta);
     if (p->converged)
-      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld\n",
-             p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0,
-             p->mu_Sf + 0.0, p->u_min_m, vl_regime_name(p->regime), "yes", p->iterations);
+      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld\n", p->v0_m_s,
+             q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m,
+             vl_regime_name(p->regime), "yes", p->iterations);
     else
-      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld\n", p->v0_m_s, q, "-",
-             "-", "-", "-", "-", "-", "-", "NO", p->iterations);
+      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld\n", p->v0_m_s, q, "-", "-",
+             "-", "-", "-", "-", "-", "NO", p->iterations);
   }
   printf("%zu converged, %zu failed, %ld Newton iterations, %.3f s (%.1f ms per point)\n",
          stats->converged, stats->failed, stats->newton_iterations, stats->seconds,
@@ -214,7 +222,7 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
  * this curve's fluid (its key in the JSON object, in the figures' title). */
 static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *db,
                          const char *out_dir, vl_json *json, const char *fluid_key, int plot,
-                         kept_curve *keep, size_t *failed, vl_error *err) {
+                         int quiet, kept_curve *keep, size_t *failed, vl_error *err) {
   vl_simulation *sim = NULL;
   vl_point *pts = NULL;
   double *buf = NULL;
@@ -236,12 +244,14 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
     st = VL_ENOMEM;
     goto done;
   }
-  ctx.fields = (vl_fields){grid,           buf,           buf + grid,     buf + 2 * grid,
-                           buf + 3 * grid, buf + 4 * grid, buf + 5 * grid, buf + 6 * grid};
+  ctx.fields = (vl_fields){
+      grid,           buf,           buf + grid, buf + 2 * grid, buf + 3 * grid, buf + 4 * grid,
+      buf + 5 * grid, buf + 6 * grid};
   ctx.sim = sim;
   ctx.out_dir = out_dir;
   if (plot && (st = keep_fields(&ctx, n, grid, err)) != VL_OK) goto done;
   ctx.tty = isatty(STDERR_FILENO);
+  ctx.quiet = quiet;
   const vl_contact *contact = vl_simulation_contact(sim);
   if (!json)
     printf("scene %s%s%s%s%s: %zu points, grid %zu on [%g, %g] a0, a0 = %.4g m, p0 = %.4g Pa\n",
@@ -283,6 +293,12 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
     printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
     if (plot) printf("plots (png, svg) in %s: %s\n", out_dir, plots);
   }
+  /* stdout first, so that the lines follow the table in a shared log */
+  fflush(stdout);
+  if (!json && !quiet) vl_cli_print_warnings(stderr, fluid_key, n, pts);
+  char where[4300];
+  snprintf(where, sizeof where, "written with converged = 0 in %s", curve_path);
+  vl_cli_print_failures(stderr, "run", fluid_key, n, pts, where);
   if (keep) {
     const vl_psd *psd = vl_simulation_psd(sim);
     *keep = (kept_curve){pts, n, meta, psd ? vl_psd_hrms(psd) : 0};
@@ -310,8 +326,8 @@ static vl_status plot_all_fluids(const vl_scene *scene, const char *out_dir,
     vl_plot_format_value(eta, sizeof eta, curves[k].meta.eta_pa_s);
     /* the viscosity first: a long fluid name is what gets cut in the legend */
     snprintf(labels[k], sizeof labels[k], "η = %s Pa s (%s)", eta, scene->fluids[k]);
-    pc[k] = (vl_plot_curve){labels[k], curves[k].n, curves[k].pts, curves[k].meta,
-                            curves[k].h_rms_m};
+    pc[k] =
+        (vl_plot_curve){labels[k], curves[k].n, curves[k].pts, curves[k].meta, curves[k].h_rms_m};
     if (!(curves[k].meta.tau_s > 0 && curves[k].meta.a0_m > 0)) deborah = false;
   }
   vl_plot_options opt;
@@ -335,6 +351,42 @@ static vl_status plot_all_fluids(const vl_scene *scene, const char *out_dir,
   return VL_OK;
 }
 
+/* The scene's material names are valid names (a multi-fluid scene makes a
+ * folder of each fluid's: "..", "a/b" would leave DIR). */
+static vl_status check_names(const vl_scene *scene, vl_error *err) {
+  struct {
+    const char *key, *name;
+  } names[2 + VL_FLUIDS_MAX] = {{"compound", scene->compound}, {"surface", scene->surface}};
+  size_t n = 2;
+  for (size_t k = 0; k < scene->n_fluids && k < VL_FLUIDS_MAX; k++)
+    names[n].key = "fluid", names[n++].name = scene->fluids[k];
+  if (scene->n_fluids == 0) names[n].key = "fluid", names[n++].name = scene->fluid;
+  for (size_t k = 0; k < n; k++) {
+    if (!names[k].name[0]) continue; /* not used by this scene */
+    if (vl_db_check_name(names[k].name, err) != VL_OK) {
+      vl_error_prefix(err, "%s: [materials] %s", scene->path, names[k].key);
+      return VL_EINPUT;
+    }
+  }
+  return VL_OK;
+}
+
+/* Every folder the run writes in, checked before anything is computed. */
+static vl_status check_outputs(const vl_scene *scene, const char *out_dir, vl_error *err) {
+  char dir[4200], fields[4300];
+  vl_status st = vl_cli_check_out_dir("--out", out_dir, err);
+  for (size_t k = 0; st == VL_OK && k < (scene->n_fluids > 1 ? scene->n_fluids : 1); k++) {
+    if (scene->n_fluids > 1)
+      snprintf(dir, sizeof dir, "%s/%s", out_dir, scene->fluids[k]);
+    else
+      snprintf(dir, sizeof dir, "%s", out_dir);
+    if (scene->n_fluids > 1) st = vl_cli_check_out_dir("--out", dir, err);
+    snprintf(fields, sizeof fields, "%s/fields", dir);
+    if (st == VL_OK && scene->n_fields_at) st = vl_cli_check_out_dir("--out", fields, err);
+  }
+  return st;
+}
+
 #if defined(__SANITIZE_ADDRESS__)
 /* Sanitizer builds only: fontconfig, under PLplot's cairo drivers, keeps
  * caches it never frees (not ours to fix); LeakSanitizer would fail every
@@ -347,7 +399,7 @@ const char *__lsan_default_options(void) { return "print_suppressions=0"; }
 
 int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   const char *scene_path = NULL, *out_dir = NULL;
-  int json = 0, plot = 0;
+  int json = 0, plot = 0, quiet = g->quiet;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       run_usage(stdout);
@@ -356,6 +408,8 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
       json = 1;
     } else if (!strcmp(argv[i], "--plot")) {
       plot = 1;
+    } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
+      quiet = 1;
     } else if (!strcmp(argv[i], "--out")) {
       if (i + 1 >= argc) {
         fputs("viscolube run: option --out needs a DIR\n", stderr);
@@ -400,12 +454,18 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
     snprintf(default_dir, sizeof default_dir, "out/%.*s", (int)stem, base);
     out_dir = default_dir;
   }
+  st = check_names(&scene, &err);
+  if (st != VL_OK) goto fail;
+  /* the database first: a command that cannot open it leaves no folder
+   * behind; then --out, still before anything is computed */
   st = vl_db_open(g->db_path, &db, &err);
+  if (st != VL_OK) goto fail;
+  st = check_outputs(&scene, out_dir, &err);
   if (st != VL_OK) goto fail;
   vl_json w, *jw = json ? &w : NULL;
   vl_json_init(&w, stdout, 10);
   if (scene.n_fluids <= 1) {
-    st = run_one(scene_path, &scene, db, out_dir, jw, NULL, plot, NULL, &failed, &err);
+    st = run_one(scene_path, &scene, db, out_dir, jw, NULL, plot, quiet, NULL, &failed, &err);
     if (st != VL_OK) goto fail;
   } else {
     /* one curve per fluid, each in DIR/<fluid>/ */
@@ -416,7 +476,7 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
       one.n_fluids = 1;
       char dir[4200];
       snprintf(dir, sizeof dir, "%s/%s", out_dir, one.fluid);
-      st = run_one(scene_path, &one, db, dir, jw, one.fluid, plot, plot ? &curves[k] : NULL,
+      st = run_one(scene_path, &one, db, dir, jw, one.fluid, plot, quiet, plot ? &curves[k] : NULL,
                    &failed, &err);
       if (st != VL_OK) goto fail;
     }
@@ -435,7 +495,8 @@ fail:
   fprintf(stderr, "viscolube run: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
   rc = vl_status_exit_code(st);
 done:
-  for (size_t k = 0; k < VL_FLUIDS_MAX; k++) free(curves[k].pts);
+  for (size_t k = 0; k < VL_FLUIDS_MAX; k++)
+    free(curves[k].pts);
   vl_db_close(db);
   return rc;
 }

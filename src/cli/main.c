@@ -4,32 +4,50 @@
 #include <string.h>
 
 #include "cli.h"
+#include "vl_version.h" /* generated at configure time (src/CMakeLists.txt) */
 
 /* `flattening ...` (src/cli/cli_flattening.c); belongs in cli.h */
 int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
 
 static void usage(FILE *out) {
-  fputs("usage: viscolube [--db PATH] NOUN VERB ...\n"
-        "\n"
-        "Predicts the friction of wet rubber contacts (Scaraggi & Persson's mean-field\n"
-        "theory of viscoelastic lubrication) from a material database.\n"
-        "\n"
-        "nouns:\n"
-        "  compound   rubber compounds (Prony series): list, show, add, remove\n"
-        "  surface    roughness power spectra: list, show, add, remove\n"
-        "  fluid      lubricants: list, show, add, remove\n"
-        "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
-        "  friction   one operating point of a stored compound/surface/fluid triple\n"
-        "  compare    Stribeck curves of several compounds side by side\n"
-        "  flattening viscous flattening of the asperities, epsilon_f vs u/h_rms (seed Figs. 19-20)\n"
-        "\n"
-        "options:\n"
-        "  --db PATH  database file (default: $VISCOLUBE_DB, else\n"
-        "             $XDG_DATA_HOME/viscolube/materials.db, else\n"
-        "             ~/.local/share/viscolube/materials.db; created on first use\n"
-        "             from the materials shipped in the program)\n"
-        "  --help     this text; `viscolube NOUN --help` for a noun\n",
-        out);
+  fputs(
+      "usage: viscolube [--db PATH] [--quiet] NOUN VERB ...\n"
+      "       viscolube --version | --help\n"
+      "\n"
+      "Predicts the friction of wet rubber contacts (Scaraggi & Persson's mean-field\n"
+      "theory of viscoelastic lubrication) from a material database.\n"
+      "\n"
+      "nouns:\n"
+      "  compound   rubber compounds (Prony series): list, show, add, remove\n"
+      "  surface    roughness power spectra: list, show, add, remove, flow-factors\n"
+      "  fluid      lubricants: list, show, add, remove\n"
+      "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
+      "  friction   one operating point of a stored compound/surface/fluid triple\n"
+      "  compare    Stribeck curves of several compounds side by side\n"
+      "  flattening viscous flattening of the asperities, epsilon_f vs u/h_rms (seed Figs. 19-20)\n"
+      "\n"
+      "options:\n"
+      "  --db PATH  database file (default: $VISCOLUBE_DB, else\n"
+      "             $XDG_DATA_HOME/viscolube/materials.db, else\n"
+      "             ~/.local/share/viscolube/materials.db; created on first use\n"
+      "             from the materials shipped in the program)\n"
+      "  --quiet    no model-validity warnings and no progress lines on stderr (run,\n"
+      "             friction, compare; also an option of each). Errors and the list of\n"
+      "             points that did not converge are still printed.\n"
+      "  --version  the version and the source commit it was built from\n"
+      "  --help     this text; `viscolube NOUN --help` for a noun\n"
+      "\n"
+      "exit status:\n"
+      "  0   success\n"
+      "  2   bad input: an option, a scene file, a table, a material name\n"
+      "  3   a named compound, surface or fluid is not in the database\n"
+      "  4   a name is already taken\n"
+      "  5   database error (corrupt, read-only, locked, newer schema)\n"
+      "  6   a file or folder could not be read or written (e.g. --out)\n"
+      "  7   some points did not converge (results written, flagged converged = 0;\n"
+      "      stderr lists each with its speed, iterations and residual)\n"
+      "  70  out of memory or internal error\n",
+      out);
 }
 
 int main(int argc, char **argv) {
@@ -39,6 +57,11 @@ int main(int argc, char **argv) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
       usage(stdout);
       return 0;
+    } else if (!strcmp(argv[i], "--version")) {
+      printf("viscolube %s (source %s)\n", VL_VERSION, VL_SOURCE_COMMIT);
+      return 0;
+    } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
+      g.quiet = 1;
     } else if (!strcmp(argv[i], "--db")) {
       if (i + 1 >= argc) {
         fputs("viscolube: option --db needs a PATH\n", stderr);

@@ -22,8 +22,7 @@ static vl_status emt_encode(const void *t, void **blob, size_t *len, vl_error *e
 }
 
 vl_status vl_db_flow_table(vl_db *db, const char *name, const vl_psd *psd, double film_cutoff_m,
-                           size_t n_points, vl_emt_table **out, bool *from_cache,
-                           vl_error *err) {
+                           size_t n_points, vl_emt_table **out, bool *from_cache, vl_error *err) {
   *out = NULL;
   if (from_cache) *from_cache = false;
   size_t n = n_points ? n_points : VL_EMT_DEFAULT_N_POINTS;

@@ -12,13 +12,13 @@ static vl_status fluid_law_read(vl_db *db, sqlite3_stmt *st, int col, vl_db_flui
   vl_viscosity_law *law = &out->law;
   memset(law, 0, sizeof *law);
   int nulls = 0;
-  for (int k = 0; k < 5; k++) nulls += sqlite3_column_type(st, col + k) == SQLITE_NULL;
+  for (int k = 0; k < 5; k++)
+    nulls += sqlite3_column_type(st, col + k) == SQLITE_NULL;
   if (nulls == 5) return VL_OK;
   vl_error why = {{0}};
   vl_status s = VL_EINPUT;
-  if (nulls == 0 &&
-      vl_viscosity_law_parse((const char *)sqlite3_column_text(st, col), &law->kind, &why) ==
-          VL_OK) {
+  if (nulls == 0 && vl_viscosity_law_parse((const char *)sqlite3_column_text(st, col), &law->kind,
+                                           &why) == VL_OK) {
     law->vogel_b_k = column_real(st, col + 1);
     law->vogel_c_k = column_real(st, col + 2);
     law->tmin_c = column_real(st, col + 3);

@@ -19,6 +19,16 @@ vl_status vl_db_check_name(const char *name, vl_error *err) {
     vl_error_set(err, "name '%.40s...' is longer than %d characters", name, VL_DB_NAME_MAX - 1);
     return VL_EINPUT;
   }
+  /* material names become folder names (compare's DIR/<compound>/, a
+   * multi-fluid run's DIR/<fluid>/): "." and ".." would be the folder
+   * itself or its parent */
+  if (!strcmp(name, ".") || !strcmp(name, "..")) {
+    vl_error_set(err,
+                 "name '%s' is refused: it names a folder ('.' or '..'), and material names "
+                 "become folder names",
+                 name);
+    return VL_EINPUT;
+  }
   if (name[0] == '-') {
     vl_error_set(err, "name '%s' must not start with '-' (it would read as an option)", name);
     return VL_EINPUT;
@@ -27,6 +37,13 @@ vl_status vl_db_check_name(const char *name, vl_error *err) {
     char c = name[i];
     int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
              c == '.' || c == '_' || c == '+' || c == '-';
+    if (!ok && (c == '/' || c == '\\')) {
+      vl_error_set(err,
+                   "name '%s': character %zu is a path separator ('%c'); material names "
+                   "become folder names and must not contain '/' or '\\'",
+                   name, i + 1, c);
+      return VL_EINPUT;
+    }
     if (!ok) {
       vl_error_set(err, "name '%s': character %zu is not one of A-Z a-z 0-9 . _ + -", name, i + 1);
       return VL_EINPUT;

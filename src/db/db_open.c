@@ -30,8 +30,8 @@ vl_status vl_dbi_fail(const vl_db *db, int rc, const char *doing, vl_error *err)
   const char *path = db ? db->path : "?";
   /* the errno behind an I/O failure says more than "disk I/O error" */
   int sys = db && db->h ? sqlite3_system_errno(db->h) : 0;
-  if ((rc & 0xff) == SQLITE_FULL || ((rc & 0xff) == SQLITE_IOERR &&
-                                     (sys == ENOSPC || sys == EFBIG || sys == EDQUOT))) {
+  if ((rc & 0xff) == SQLITE_FULL ||
+      ((rc & 0xff) == SQLITE_IOERR && (sys == ENOSPC || sys == EFBIG || sys == EDQUOT))) {
     vl_error_set(err,
                  "database %s: %s: no room to write (%s): the disk is full or a file-size limit "
                  "was reached; nothing was changed",

@@ -3,8 +3,8 @@
 
 #include "viscolube/csv.h"
 
-#include "edit_distance.h"
 #include "abel.h"
+#include "edit_distance.h"
 #include "import_text.h"
 
 #include <errno.h>
@@ -44,8 +44,7 @@ static span trim(span s) {
 
 /* The next line of text that is not blank and not a '#' comment (CR
  * removed; a leading byte-order mark skipped); 0 at the end. */
-static int next_meaningful(const char *text, size_t len, size_t *pos, size_t *line_no,
-                           span *line) {
+static int next_meaningful(const char *text, size_t len, size_t *pos, size_t *line_no, span *line) {
   if (*pos == 0 && len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) *pos = 3;
   while (*pos < len) {
     (*line_no)++;
@@ -221,8 +220,8 @@ typedef struct {
   const vl_csv_column *cols; /* the requested columns */
   size_t n_cols;
   vl_csv_options opt;
-  span *cells;         /* the fields of the current line (cell_cap kept) */
-  const char **tp;     /* split scratch (cell_cap) */
+  span *cells;     /* the fields of the current line (cell_cap kept) */
+  const char **tp; /* split scratch (cell_cap) */
   size_t *tn;
   size_t cell_cap;
   size_t *map;         /* field f of the file holds column map[f], or IGNORED */
@@ -343,8 +342,7 @@ static vl_status read_header(csv_reader *r, span line, vl_error *err) {
     }
   }
   r->n_fields = count;
-  expected_units(r->cols, r->map, r->n_fields, r->opt.delimiter, r->units_row,
-                 sizeof r->units_row);
+  expected_units(r->cols, r->map, r->n_fields, r->opt.delimiter, r->units_row, sizeof r->units_row);
   return VL_OK;
 }
 
@@ -687,11 +685,25 @@ static const struct {
   const char *name;
   psd_role r;
 } psd_names[] = {
-    {"q", P_Q},          {"wavevector", P_Q},  {"wavenumber", P_Q},  {"k", P_Q},
-    {"c", P_C},          {"c(q)", P_C},        {"psd", P_C},         {"powerspectraldensity", P_C},
-    {"powerspectrum", P_C}, {"c2d", P_C2D},    {"c2", P_C2D},        {"c2(q)", P_C2D},
-    {"psd2d", P_C2D},    {"c2d(q)", P_C2D},    {"c1d", P_C1D},       {"c1", P_C1D},
-    {"c1(q)", P_C1D},    {"psd1d", P_C1D},     {"c1d(q)", P_C1D},
+    {"q", P_Q},
+    {"wavevector", P_Q},
+    {"wavenumber", P_Q},
+    {"k", P_Q},
+    {"c", P_C},
+    {"c(q)", P_C},
+    {"psd", P_C},
+    {"powerspectraldensity", P_C},
+    {"powerspectrum", P_C},
+    {"c2d", P_C2D},
+    {"c2", P_C2D},
+    {"c2(q)", P_C2D},
+    {"psd2d", P_C2D},
+    {"c2d(q)", P_C2D},
+    {"c1d", P_C1D},
+    {"c1", P_C1D},
+    {"c1(q)", P_C1D},
+    {"psd1d", P_C1D},
+    {"c1d(q)", P_C1D},
 };
 
 static void psd_normalise(const char *s, size_t n, char *out, size_t cap) {
@@ -718,7 +730,7 @@ static psd_role psd_name_role(span name) {
 static const struct {
   const char *name;
   double m;
-} psd_lengths[] = {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"\xC2\xB5m", 1e-6},
+} psd_lengths[] = {{"m", 1.0},          {"mm", 1e-3},     {"um", 1e-6}, {"\xC2\xB5m", 1e-6},
                    {"\xCE\xBCm", 1e-6}, {"micron", 1e-6}, {"nm", 1e-9}};
 
 /* The length unit spelt by s[0..n) exactly, or 0. */
@@ -740,11 +752,16 @@ static int q_unit(span u, double *factor) {
   b[k] = '\0';
   const char *len = NULL;
   size_t ln = 0;
-  if (!strncmp(b, "1/", 2)) len = b + 2, ln = k - 2;
-  else if (!strncmp(b, "per", 3)) len = b + 3, ln = k - 3;
-  else if (b[0] == '/') len = b + 1, ln = k - 1;
-  else if (k > 3 && !strcmp(b + k - 3, "^-1")) len = b, ln = k - 3;
-  else if (k > 2 && !strcmp(b + k - 2, "-1")) len = b, ln = k - 2;
+  if (!strncmp(b, "1/", 2))
+    len = b + 2, ln = k - 2;
+  else if (!strncmp(b, "per", 3))
+    len = b + 3, ln = k - 3;
+  else if (b[0] == '/')
+    len = b + 1, ln = k - 1;
+  else if (k > 3 && !strcmp(b + k - 3, "^-1"))
+    len = b, ln = k - 3;
+  else if (k > 2 && !strcmp(b + k - 2, "-1"))
+    len = b, ln = k - 2;
   double m = len ? psd_length(len, ln) : 0.0;
   if (!(m > 0.0)) return 0;
   *factor = 1.0 / m;
@@ -848,8 +865,8 @@ static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error
     if (!psd_header_cell(cells[f], &col)) continue;
     psd_col *slot = col.r == P_Q ? &pl->q : &pl->c;
     if (slot->text[0]) {
-      vl_error_set(err, "%s:%zu: header field %zu: a second %s column ('%s', after '%s')",
-                   pl->src, line_no, f + 1, col.r == P_Q ? "q" : "C", col.text, slot->text);
+      vl_error_set(err, "%s:%zu: header field %zu: a second %s column ('%s', after '%s')", pl->src,
+                   line_no, f + 1, col.r == P_Q ? "q" : "C", col.text, slot->text);
       return VL_EINPUT;
     }
     *slot = col;
@@ -866,8 +883,7 @@ static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error
   psd_col *pc[2] = {&pl->q, &pl->c};
   for (int i = 0; i < 2; i++) {
     if (pc[i]->has_unit && !psd_unit_of(pc[i], pc[i]->unit)) {
-      vl_error_set(err,
-                   "%s:%zu: header field %zu: '%s' in '%s' is not a unit of %s (expected %s)",
+      vl_error_set(err, "%s:%zu: header field %zu: '%s' in '%s' is not a unit of %s (expected %s)",
                    pl->src, line_no, pc[i]->field + 1, pc[i]->unit, pc[i]->text,
                    i ? "a spectrum" : "a wavevector",
                    i ? "m^4, um^4, nm^4 (2-D) or m^3, um^3, nm^3 (1-D)" : "1/m, 1/um or 1/nm");
@@ -894,12 +910,14 @@ static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error
       if (!psd_unit_of(&probe, pl->units_row[i])) {
         vl_error_set(err, "%s:%zu: column '%s' (field %zu): '%s' is not a unit of %s", pl->src,
                      line_no, pc[i]->text, pc[i]->field + 1, pl->units_row[i],
-                     i ? "a spectrum (m^4, um^4, nm^4; 1-D: m^3 ...)" : "a wavevector (1/m, 1/um, "
-                                                                        "1/nm)");
+                     i ? "a spectrum (m^4, um^4, nm^4; 1-D: m^3 ...)"
+                       : "a wavevector (1/m, 1/um, "
+                         "1/nm)");
         return VL_EINPUT;
       }
       if (pc[i]->has_unit && (probe.factor != pc[i]->factor || probe.power != pc[i]->power)) {
-        vl_error_set(err, "%s:%zu: column '%s' (field %zu): mixed units: the header says %s but "
+        vl_error_set(err,
+                     "%s:%zu: column '%s' (field %zu): mixed units: the header says %s but "
                      "the units row says %s",
                      pl->src, line_no, pc[i]->text, pc[i]->field + 1, pc[i]->unit,
                      pl->units_row[i]);
@@ -929,7 +947,8 @@ static vl_status psd_dimension(const psd_layout *pl, vl_psd_file_kind kind, vl_e
   int says_1d = pl->c.power == 3 || pl->c.r == P_C1D;
   int says_2d = pl->c.power == 4 || pl->c.r == P_C2D;
   if (says_1d && says_2d) {
-    vl_error_set(err, "%s:%zu: column '%s' (field %zu): the name and the unit disagree on a 1-D "
+    vl_error_set(err,
+                 "%s:%zu: column '%s' (field %zu): the name and the unit disagree on a 1-D "
                  "(m^3) or 2-D (m^4) spectrum",
                  pl->src, pl->header_line, pl->c.text, pl->c.field + 1);
     return VL_EINPUT;
@@ -1047,8 +1066,8 @@ static vl_status psd_plausible(const char *src, const vl_psd *psd, vl_psd_read_r
 
 /* The 2-D spectrum from the 1-D one in p[0..*n) (inverse Abel transform,
  * abel.h); points where it is not positive are dropped. */
-static vl_status psd_from_profile(psd_point *p, size_t *n, const char *src,
-                                  vl_psd_read_report *rep, vl_error *err) {
+static vl_status psd_from_profile(psd_point *p, size_t *n, const char *src, vl_psd_read_report *rep,
+                                  vl_error *err) {
   double *q = malloc(*n * sizeof *q), *c1 = malloc(*n * sizeof *c1), *c2 = malloc(*n * sizeof *c2);
   double tail = 0.0;
   vl_status st = VL_ENOMEM;
@@ -1102,13 +1121,15 @@ vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
   if (st != VL_OK) goto cleanup;
   /* the units row as spelt (then the reader matches it), else any units */
   vl_csv_column cols[2] = {
-      {.name = pl.q.text, .units = pl.has_units_row ? pl.units_row[0] : "1/m",
+      {.name = pl.q.text,
+       .units = pl.has_units_row ? pl.units_row[0] : "1/m",
        .sign = VL_CSV_POSITIVE},
-      {.name = pl.c.text, .units = pl.has_units_row ? pl.units_row[1] : "m^4",
+      {.name = pl.c.text,
+       .units = pl.has_units_row ? pl.units_row[1] : "m^4",
        .sign = VL_CSV_POSITIVE},
   };
-  vl_csv_options copt = {.ignore_unknown = 1, .delimiter = pl.d.delimiter,
-                         .decimal_comma = pl.d.decimal_comma};
+  vl_csv_options copt = {
+      .ignore_unknown = 1, .delimiter = pl.d.delimiter, .decimal_comma = pl.d.decimal_comma};
   if (!pl.q.text[0]) cols[0].name = "q_per_m", cols[1].name = "C_m4"; /* empty file */
   if ((st = vl_csv_read_text_opts(text, len, pl.src, cols, 2, &copt, &csv, err)) != VL_OK)
     goto cleanup;

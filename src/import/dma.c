@@ -14,8 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "viscolube/csv.h"
 #include "tts.h"
+#include "viscolube/csv.h"
 
 #include "edit_distance.h"
 #include "import_text.h"
@@ -155,20 +155,20 @@ typedef struct {
   const char *name; /* as printed; matched without regard to case and blanks */
   double factor;    /* SI value = factor * file value (+ offset for temperatures) */
   double offset;
-  int primary;     /* listed in messages */
-  int omega_only;  /* "1/s": an angular frequency only under an omega name */
+  int primary;    /* listed in messages */
+  int omega_only; /* "1/s": an angular frequency only under an omega name */
 } unit_def;
 
-static const unit_def freq_units[] = {{"Hz", TWO_PI, 0.0, 1, 0},      {"rad/s", 1.0, 0.0, 1, 0},
-                                      {"rad s^-1", 1.0, 0.0, 0, 0},   {"rad.s-1", 1.0, 0.0, 0, 0},
-                                      {"rad*s^-1", 1.0, 0.0, 0, 0},   {"rad/sec", 1.0, 0.0, 0, 0},
-                                      {"1/s", 1.0, 0.0, 0, 1},        {"s^-1", 1.0, 0.0, 0, 1},
-                                      {"s-1", 1.0, 0.0, 0, 1},        {NULL, 0, 0, 0, 0}};
+static const unit_def freq_units[] = {{"Hz", TWO_PI, 0.0, 1, 0},    {"rad/s", 1.0, 0.0, 1, 0},
+                                      {"rad s^-1", 1.0, 0.0, 0, 0}, {"rad.s-1", 1.0, 0.0, 0, 0},
+                                      {"rad*s^-1", 1.0, 0.0, 0, 0}, {"rad/sec", 1.0, 0.0, 0, 0},
+                                      {"1/s", 1.0, 0.0, 0, 1},      {"s^-1", 1.0, 0.0, 0, 1},
+                                      {"s-1", 1.0, 0.0, 0, 1},      {NULL, 0, 0, 0, 0}};
 static const unit_def modulus_units[] = {
-    {"Pa", 1.0, 0.0, 1, 0},       {"kPa", 1e3, 0.0, 1, 0},       {"MPa", 1e6, 0.0, 1, 0},
-    {"GPa", 1e9, 0.0, 1, 0},      {"N/m^2", 1.0, 0.0, 0, 0},     {"N/m2", 1.0, 0.0, 0, 0},
-    {"N/mm^2", 1e6, 0.0, 0, 0},   {"N/mm2", 1e6, 0.0, 0, 0},     {"dyn/cm^2", 0.1, 0.0, 0, 0},
-    {"dyn/cm2", 0.1, 0.0, 0, 0},  {NULL, 0, 0, 0, 0}};
+    {"Pa", 1.0, 0.0, 1, 0},      {"kPa", 1e3, 0.0, 1, 0},   {"MPa", 1e6, 0.0, 1, 0},
+    {"GPa", 1e9, 0.0, 1, 0},     {"N/m^2", 1.0, 0.0, 0, 0}, {"N/m2", 1.0, 0.0, 0, 0},
+    {"N/mm^2", 1e6, 0.0, 0, 0},  {"N/mm2", 1e6, 0.0, 0, 0}, {"dyn/cm^2", 0.1, 0.0, 0, 0},
+    {"dyn/cm2", 0.1, 0.0, 0, 0}, {NULL, 0, 0, 0, 0}};
 static const unit_def compliance_units[] = {
     {"1/Pa", 1.0, 0.0, 1, 0},    {"1/kPa", 1e-3, 0.0, 1, 0},  {"1/MPa", 1e-6, 0.0, 1, 0},
     {"1/GPa", 1e-9, 0.0, 1, 0},  {"Pa^-1", 1.0, 0.0, 0, 0},   {"kPa^-1", 1e-3, 0.0, 0, 0},
@@ -218,8 +218,10 @@ static void family_list(unit_family f, const char *sep, char *buf, size_t size) 
  * "mpa" is MPa (a millipascal modulus is no rubber's). */
 static int unit_eq(const char *a, const char *b) {
   for (;;) {
-    while (*a == ' ') a++;
-    while (*b == ' ') b++;
+    while (*a == ' ')
+      a++;
+    while (*b == ' ')
+      b++;
     char x = *a, y = *b;
     if (x >= 'A' && x <= 'Z') x = (char)(x - 'A' + 'a');
     if (y >= 'A' && y <= 'Z') y = (char)(y - 'A' + 'a');
@@ -254,8 +256,8 @@ const char *vl_dma_moduli_name(vl_dma_moduli moduli) {
 }
 
 vl_dma_options vl_dma_options_default(void) {
-  vl_dma_options o = {NULL, NULL, NULL, NAN, 0.0, VL_PRONY_WEIGHTS_RELATIVE, 0.5,
-                      VL_DMA_MODULI_AUTO};
+  vl_dma_options o = {
+      NULL, NULL, NULL, NAN, 0.0, VL_PRONY_WEIGHTS_RELATIVE, 0.5, VL_DMA_MODULI_AUTO};
   return o;
 }
 
@@ -466,9 +468,9 @@ typedef struct {
   int col_of_role[R_COUNT]; /* requested column index, or -1 */
   int field_of_role[R_COUNT];
   const unit_def *unit[R_COUNT];
-  int shear;          /* the moduli are shear moduli G (converted to E) */
+  int shear;           /* the moduli are shear moduli G (converted to E) */
   double shear_factor; /* E / G = 2 (1 + nu) */
-  char ignored[512];  /* "'run', 'force'": the columns not used */
+  char ignored[512];   /* "'run', 'force'": the columns not used */
   size_t n_ignored;
 } layout;
 
@@ -1276,8 +1278,8 @@ static double si_value(const vl_csv *csv, size_t k, const layout *lay, role r) {
 
 /* A redundant column (tan delta or |E*|) that disagrees with the pair the
  * moduli came from: one problem naming the line. */
-static void check_redundant(const vl_measured *m, size_t k, const layout *lay, role r,
-                            double given, double derived, vl_problems *pr) {
+static void check_redundant(const vl_measured *m, size_t k, const layout *lay, role r, double given,
+                            double derived, vl_problems *pr) {
   if (fabs(given - derived) <= TAN_CONSISTENCY * derived) return;
   int f = lay->field_of_role[r];
   const char *what = r == R_TAN ? "tan delta" : r == R_ABS ? "|E*|" : "E''";
@@ -1379,7 +1381,8 @@ static void convert_point(vl_measured *m, size_t k, const vl_csv *csv, const lay
   double t = raw + lay->unit[R_TEMP]->offset;
   int tf = lay->field_of_role[R_TEMP], kelvin = lay->unit[R_TEMP]->offset != 0.0;
   if (!(t > -273.15)) {
-    vl_problems_add(pr, m->line[k], "%s:%zu: column '%s' (field %d): %.6g %s is not above "
+    vl_problems_add(pr, m->line[k],
+                    "%s:%zu: column '%s' (field %d): %.6g %s is not above "
                     "absolute zero%s",
                     lay->src, m->line[k], lay->fields[tf].text, tf + 1, raw,
                     lay->unit[R_TEMP]->name, kelvin ? " (Celsius numbers under a K unit?)" : "");
@@ -1389,9 +1392,9 @@ static void convert_point(vl_measured *m, size_t k, const vl_csv *csv, const lay
                     "of a DMA measurement: %s",
                     lay->src, m->line[k], lay->fields[tf].text, tf + 1, raw,
                     lay->unit[R_TEMP]->name, t, TEMP_MIN_C, TEMP_MAX_C,
-                    kelvin ? "Celsius numbers under a K unit?"
-                           : t > TEMP_MAX_C ? "kelvin numbers under a C unit (give K)?"
-                                            : "a unit mistake?");
+                    kelvin           ? "Celsius numbers under a K unit?"
+                    : t > TEMP_MAX_C ? "kelvin numbers under a C unit (give K)?"
+                                     : "a unit mistake?");
   }
   m->temperature_c[k] = t;
   if (set) set[k] = vl_csv_value(csv, k, (size_t)cr[R_SET]);
@@ -1473,8 +1476,9 @@ static void read_notes(vl_measured *m, const layout *lay, const vl_dma_options *
          cols, lay->shear_factor, o->nu);
   } else if (lay->field_of_role[R_STORAGE] >= 0 &&
              lay->fields[lay->field_of_role[R_STORAGE]].k == K_GENERIC) {
-    note(m, "'%s' read as the tensile storage modulus E' (if the data are shear moduli G', say "
-            "so: they are converted with E = 2 (1 + nu) G)",
+    note(m,
+         "'%s' read as the tensile storage modulus E' (if the data are shear moduli G', say "
+         "so: they are converted with E = 2 (1 + nu) G)",
          lay->fields[lay->field_of_role[R_STORAGE]].text);
   }
 }
@@ -1483,8 +1487,8 @@ static void read_notes(vl_measured *m, const layout *lay, const vl_dma_options *
  * Celsius unit from the file: room-temperature kelvin numbers under a C
  * header (293 K read as 293 C) fall there, and a rubber's DMA does not
  * (it degrades). Refused unless the options confirm Celsius. */
-static vl_status kelvin_as_celsius(const vl_measured *m, const layout *lay,
-                                   const vl_dma_options *o, vl_error *err) {
+static vl_status kelvin_as_celsius(const vl_measured *m, const layout *lay, const vl_dma_options *o,
+                                   vl_error *err) {
   if (!m->has_temperature || lay->unit[R_TEMP]->offset != 0.0 || o->temp_unit) return VL_OK;
   double tmin = INFINITY;
   size_t first = 0;
@@ -1523,7 +1527,7 @@ static vl_status read_points(const char *text, size_t len, layout *lay, const vl
     goto cleanup;
   }
   m->n = csv.n_rows;
-  m->kind = cr[R_J1] >= 0                        ? VL_DMA_COMPLIANCE
+  m->kind = cr[R_J1] >= 0                           ? VL_DMA_COMPLIANCE
             : cr[R_STORAGE] >= 0 && cr[R_LOSS] >= 0 ? VL_DMA_STORAGE_LOSS
                                                     : VL_DMA_STORAGE_TAN_DELTA;
   m->has_temperature = cr[R_TEMP] >= 0;
@@ -1567,8 +1571,7 @@ static void fit_warnings(vl_measured *m) {
          "warning: the Prony series misses the master curve by %.1f %% rms in E' and %.1f %% "
          "in E'' (above %.0f %%): the data are represented only roughly (E'' inconsistent with "
          "E', isotherms that do not superpose, or outliers)",
-         100.0 * m->fit.rms_rel_storage, 100.0 * m->fit.rms_rel_loss,
-         100.0 * VL_DMA_WARN_FIT_RMS);
+         100.0 * m->fit.rms_rel_storage, 100.0 * m->fit.rms_rel_loss, 100.0 * VL_DMA_WARN_FIT_RMS);
     m->n_warnings++;
   }
 }
@@ -1597,8 +1600,7 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
   }
   if (!text) text = "";
   if ((st = vl_import_refuse_spreadsheet(text, len, lay.src, err)) != VL_OK) goto cleanup;
-  if ((st = vl_import_detect_dialect(text, len, lay.src, &lay.dialect, err)) != VL_OK)
-    goto cleanup;
+  if ((st = vl_import_detect_dialect(text, len, lay.src, &lay.dialect, err)) != VL_OK) goto cleanup;
   if ((st = scan_header(text, len, &lay, &o, err)) != VL_OK) goto cleanup;
   if ((st = resolve_units(&lay, &o, err)) != VL_OK) goto cleanup;
   vl_measured *m = out;

@@ -181,8 +181,8 @@ static int has_decimal_comma(const char *cell, size_t n) {
   return 0;
 }
 
-vl_status vl_import_detect_dialect(const char *text, size_t len, const char *source,
-                                   vl_dialect *d, vl_error *err) {
+vl_status vl_import_detect_dialect(const char *text, size_t len, const char *source, vl_dialect *d,
+                                   vl_error *err) {
   static const char cand[3] = {'\t', ';', ','};
   const char *src = source ? source : "<text>";
   size_t pos = 0, line_no = 0, n, header_line;
@@ -269,7 +269,8 @@ void vl_problems_finish(const vl_problems *p, const char *source, vl_error *err)
     vl_error_set(err, "%s", p->text);
     return;
   }
-  vl_error_set(err, "%s\n%s: and %zu more problem%s (%zu line%s at fault in all); fix these and "
+  vl_error_set(err,
+               "%s\n%s: and %zu more problem%s (%zu line%s at fault in all); fix these and "
                "read the file again",
                p->text, source ? source : "<text>", more, more == 1 ? "" : "s", p->lines,
                p->lines == 1 ? "" : "s");

@@ -34,8 +34,8 @@ vl_status vl_import_refuse_spreadsheet(const char *text, size_t len, const char 
  * so that the reader names the first ragged line. Two fitting is
  * ambiguous: VL_EINPUT naming both. With ';' or tab, a comma between
  * digits in a sampled cell ("0,25") makes the file decimal-comma. */
-vl_status vl_import_detect_dialect(const char *text, size_t len, const char *source,
-                                   vl_dialect *d, vl_error *err);
+vl_status vl_import_detect_dialect(const char *text, size_t len, const char *source, vl_dialect *d,
+                                   vl_error *err);
 
 /* "comma", "semicolon" or "tab". */
 const char *vl_dialect_delimiter_name(char delimiter);
@@ -58,9 +58,9 @@ vl_status vl_import_parse_number(const char *cell, size_t n, int decimal_comma, 
  * sentence per line, then "and N more". */
 typedef struct {
   char text[VL_ERROR_MAX];
-  size_t len;   /* bytes used in text */
-  size_t shown; /* sentences in text */
-  size_t total; /* sentences added */
+  size_t len;              /* bytes used in text */
+  size_t shown;            /* sentences in text */
+  size_t total;            /* sentences added */
   size_t last_line, lines; /* distinct source lines at fault */
 } vl_problems;
 

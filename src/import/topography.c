@@ -5,6 +5,8 @@
 
 #include "viscolube/topography.h"
 
+#include "slurp.h"
+
 #include <errno.h>
 #include <fftw3.h>
 #include <limits.h>
@@ -188,12 +190,30 @@ static const struct {
   const char *name; /* lower case */
   double factor;    /* m per unit */
 } length_units[] = {
-    {"m", 1.0},           {"meter", 1.0},        {"meters", 1.0},         {"metre", 1.0},
-    {"metres", 1.0},      {"mm", 1e-3},          {"millimeter", 1e-3},    {"millimeters", 1e-3},
-    {"millimetre", 1e-3}, {"millimetres", 1e-3}, {"um", 1e-6},            {"\xC2\xB5m", 1e-6},
-    {"\xCE\xBCm", 1e-6},  {"micron", 1e-6},      {"microns", 1e-6},       {"micrometer", 1e-6},
-    {"micrometers", 1e-6}, {"micrometre", 1e-6}, {"micrometres", 1e-6},   {"nm", 1e-9},
-    {"nanometer", 1e-9},  {"nanometers", 1e-9},  {"nanometre", 1e-9},     {"nanometres", 1e-9},
+    {"m", 1.0},
+    {"meter", 1.0},
+    {"meters", 1.0},
+    {"metre", 1.0},
+    {"metres", 1.0},
+    {"mm", 1e-3},
+    {"millimeter", 1e-3},
+    {"millimeters", 1e-3},
+    {"millimetre", 1e-3},
+    {"millimetres", 1e-3},
+    {"um", 1e-6},
+    {"\xC2\xB5m", 1e-6},
+    {"\xCE\xBCm", 1e-6},
+    {"micron", 1e-6},
+    {"microns", 1e-6},
+    {"micrometer", 1e-6},
+    {"micrometers", 1e-6},
+    {"micrometre", 1e-6},
+    {"micrometres", 1e-6},
+    {"nm", 1e-9},
+    {"nanometer", 1e-9},
+    {"nanometers", 1e-9},
+    {"nanometre", 1e-9},
+    {"nanometres", 1e-9},
 };
 
 #define UNIT_LIST "m, mm, um, \xC2\xB5m or nm"
@@ -301,8 +321,8 @@ static vl_status parse_length(const reader *r, size_t line_no, const char *key, 
   }
   if (f == 0.0) {
     show(unit, shown, sizeof shown);
-    vl_error_set(r->err, "%s:%zu: '%s:': unknown length unit '%s' (" UNIT_LIST ")", r->src,
-                 line_no, key, shown);
+    vl_error_set(r->err, "%s:%zu: '%s:': unknown length unit '%s' (" UNIT_LIST ")", r->src, line_no,
+                 key, shown);
     return VL_EINPUT;
   }
   *out = x * f;
@@ -352,8 +372,8 @@ static vl_status map_header_line(const reader *r, size_t line_no, span line, map
 /* ---- readers ------------------------------------------------------------- */
 
 /* Reads the matrix from the first data row (at *pos, line first_line) on. */
-static vl_status read_map(const reader *r, const char *text, size_t len, size_t pos,
-                          size_t line_no, const map_header *h, vl_topography *out) {
+static vl_status read_map(const reader *r, const char *text, size_t len, size_t pos, size_t line_no,
+                          const map_header *h, vl_topography *out) {
   vl_status st = VL_OK;
   dvec z = {0};
   span line, f;
@@ -465,18 +485,19 @@ static vl_status line_header(const reader *r, size_t line_no, span header, delim
     const char *what = c == 0 ? "position" : "height";
     show(trim(cells[c]), shown, sizeof shown);
     if (!header_unit(cells[c], &unit)) {
-      vl_error_set(r->err,
-                   "%s:%zu: field %d: the %s column '%s' names no unit (write e.g. '%s [um]'; "
-                   UNIT_LIST ")",
-                   r->src, line_no, c + 1, what, shown, c == 0 ? "x" : "z");
+      vl_error_set(
+          r->err,
+          "%s:%zu: field %d: the %s column '%s' names no unit (write e.g. '%s [um]'; " UNIT_LIST
+          ")",
+          r->src, line_no, c + 1, what, shown, c == 0 ? "x" : "z");
       return VL_EINPUT;
     }
     factor[c] = unit_factor(unit);
     if (factor[c] == 0.0) {
       char u[64];
       show(unit, u, sizeof u);
-      vl_error_set(r->err, "%s:%zu: field %d: unknown length unit '%s' for the %s (" UNIT_LIST
-                   ")", r->src, line_no, c + 1, u, what);
+      vl_error_set(r->err, "%s:%zu: field %d: unknown length unit '%s' for the %s (" UNIT_LIST ")",
+                   r->src, line_no, c + 1, u, what);
       return VL_EINPUT;
     }
   }
@@ -540,8 +561,10 @@ static vl_status read_line_scan(const reader *r, const char *text, size_t len, s
       k++;
     if (k != 2) {
       show(t, shown, sizeof shown);
-      vl_error_set(r->err, "%s:%zu: a line scan row has two fields, position and height "
-                   "(delimiter %s; got '%s')", r->src, line_no, delimiter_name(d), shown);
+      vl_error_set(r->err,
+                   "%s:%zu: a line scan row has two fields, position and height "
+                   "(delimiter %s; got '%s')",
+                   r->src, line_no, delimiter_name(d), shown);
       st = VL_EINPUT;
       goto cleanup;
     }
@@ -572,8 +595,10 @@ static vl_status read_line_scan(const reader *r, const char *text, size_t len, s
     }
   }
   if (x.n < VL_TOPOGRAPHY_MIN_POINTS) {
-    vl_error_set(r->err, "%s: a line scan needs at least %d points (got %zu after the header on "
-                 "line %zu)", r->src, VL_TOPOGRAPHY_MIN_POINTS, x.n, header_line);
+    vl_error_set(r->err,
+                 "%s: a line scan needs at least %d points (got %zu after the header on "
+                 "line %zu)",
+                 r->src, VL_TOPOGRAPHY_MIN_POINTS, x.n, header_line);
     st = VL_EINPUT;
     goto cleanup;
   }
@@ -618,9 +643,11 @@ vl_status vl_topography_read_text(const char *text, size_t len, const char *sour
       if (h.bad != VL_OK)
         vl_error_set(err, "%s", h.bad_msg.msg);
       else
-        vl_error_set(err, "%s: empty: no heights (a line scan needs a header row naming its "
+        vl_error_set(err,
+                     "%s: empty: no heights (a line scan needs a header row naming its "
                      "units, a height map '# Width:' and '# Value units:' header lines, then "
-                     "numbers)", r.src);
+                     "numbers)",
+                     r.src);
       break;
     }
     line_no++;
@@ -648,47 +675,12 @@ vl_status vl_topography_read_text(const char *text, size_t len, const char *sour
 }
 
 vl_status vl_topography_read_file(const char *path, vl_topography *out, vl_error *err) {
-  vl_status st = VL_OK;
   char *buf = NULL;
-  size_t len = 0, cap = 0;
+  size_t len = 0;
   memset(out, 0, sizeof *out);
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    vl_error_set(err, "%s: cannot open: %s", path, strerror(errno));
-    return VL_EIO;
-  }
-  for (;;) {
-    if (len == cap) {
-      if (cap >= VL_TOPOGRAPHY_MAX_BYTES) {
-        vl_error_set(err, "%s: larger than %zu MiB: not a topography file", path,
-                     VL_TOPOGRAPHY_MAX_BYTES >> 20);
-        st = VL_EINPUT;
-        goto cleanup;
-      }
-      size_t ncap = cap ? 2 * cap : 65536;
-      char *nb = realloc(buf, ncap);
-      if (!nb) {
-        vl_error_set(err, "%s: out of memory", path);
-        st = VL_ENOMEM;
-        goto cleanup;
-      }
-      buf = nb;
-      cap = ncap;
-    }
-    size_t got = fread(buf + len, 1, cap - len, f);
-    len += got;
-    if (got == 0) break;
-  }
-  if (ferror(f)) {
-    vl_error_set(err, "%s: cannot read: %s", path, strerror(errno));
-    st = VL_EIO;
-    goto cleanup;
-  }
-  st = vl_topography_read_text(buf, len, path, out, err);
-
-cleanup:
+  vl_status st = vl_slurp(path, VL_TOPOGRAPHY_MAX_BYTES, "a topography file", &buf, &len, err);
+  if (st == VL_OK) st = vl_topography_read_text(buf, len, path, out, err);
   free(buf);
-  fclose(f);
   return st;
 }
 
@@ -722,20 +714,25 @@ static plane fit_plane(const vl_topography *t) {
 }
 
 /* rms about the mean, for telling a plane from a rough surface */
+/* The scale the flatness test compares with: the rms of the heights about
+ * their mean, and at least their magnitude (a constant height map has a
+ * zero rms about its mean, and its detrended rms is round-off of the
+ * magnitude: 3.7e-26 m was accepted as a surface). */
 static double raw_rms(const vl_topography *t) {
   size_t n = t->nx * t->ny;
-  double m = 0.0, s = 0.0;
-  for (size_t k = 0; k < n; k++)
+  double m = 0.0, s = 0.0, big = 0.0;
+  for (size_t k = 0; k < n; k++) {
     m += t->h_m[k];
+    big = fmax(big, fabs(t->h_m[k]));
+  }
   m /= (double)n;
   for (size_t k = 0; k < n; k++)
     s += (t->h_m[k] - m) * (t->h_m[k] - m);
-  return sqrt(s / (double)n);
+  return fmax(sqrt(s / (double)n), big);
 }
 
 static double residual(const vl_topography *t, const plane *p, size_t i, size_t j) {
-  return t->h_m[i * t->nx + j] - p->a - p->bx * ((double)j - p->cx) -
-         p->by * ((double)i - p->cy);
+  return t->h_m[i * t->nx + j] - p->a - p->bx * ((double)j - p->cx) - p->by * ((double)i - p->cy);
 }
 
 double vl_topography_hrms(const vl_topography *t) {
@@ -1025,9 +1022,8 @@ void vl_topography_spectrum_free(vl_topography_spectrum *p) {
 static vl_status check_options(const vl_topography *t, const vl_topography_psd_options *o,
                                vl_error *err) {
   if (!t || !t->h_m || t->nx < VL_TOPOGRAPHY_MIN_POINTS ||
-      (t->kind == VL_TOPOGRAPHY_MAP && t->ny < VL_TOPOGRAPHY_MIN_POINTS) ||
-      !(t->dx_m > 0.0) || (t->kind == VL_TOPOGRAPHY_MAP && !(t->dy_m > 0.0)) ||
-      t->nx > INT_MAX || t->ny > INT_MAX) {
+      (t->kind == VL_TOPOGRAPHY_MAP && t->ny < VL_TOPOGRAPHY_MIN_POINTS) || !(t->dx_m > 0.0) ||
+      (t->kind == VL_TOPOGRAPHY_MAP && !(t->dy_m > 0.0)) || t->nx > INT_MAX || t->ny > INT_MAX) {
     vl_error_set(err, "%s: not a readable topography (size or pixel)",
                  t && t->source ? t->source : "<topography>");
     return VL_EINPUT;
@@ -1048,8 +1044,10 @@ static vl_status check_options(const vl_topography *t, const vl_topography_psd_o
     return VL_EINPUT;
   }
   if (!(isfinite(o->short_cut) && o->short_cut > 0.0 && o->short_cut <= 1.0)) {
-    vl_error_set(err, "topography PSD: the short-wavelength cut must be in (0, 1] (x pi/dx; got "
-                 "%g)", o->short_cut);
+    vl_error_set(err,
+                 "topography PSD: the short-wavelength cut must be in (0, 1] (x pi/dx; got "
+                 "%g)",
+                 o->short_cut);
     return VL_EINPUT;
   }
   return VL_OK;
@@ -1131,7 +1129,8 @@ static void provenance(const vl_topography *t, const vl_topography_psd_options *
     snprintf(steps, sizeof steps, "plane removed; %s (power / %.4g); 2-D FFT, radial average",
              window, out->window_power);
   else
-    snprintf(steps, sizeof steps, "line removed; %s (power / %.4g); 1-D FFT, inverse Abel "
+    snprintf(steps, sizeof steps,
+             "line removed; %s (power / %.4g); 1-D FFT, inverse Abel "
              "transform to 2-D (C1 tail slope %.3g; %zu points dropped, C <= 0)",
              window, out->window_power, out->tail_slope, out->n_dropped);
   snprintf(out->provenance, sizeof out->provenance,
@@ -1187,9 +1186,10 @@ vl_status vl_topography_psd(const vl_topography *t, const vl_topography_psd_opti
   }
   if (o.extend_low && o.long_cut == 1.0 && out->n >= 2) extend_low(t, out);
   if (out->n < 2) {
-    vl_error_set(err, "%s: only %zu point(s) of the spectrum in the band q = %g ... %g 1/m: too "
-                 "short a measurement for a PSD", src, out->n, out->q_min_per_m,
-                 out->q_max_per_m);
+    vl_error_set(err,
+                 "%s: only %zu point(s) of the spectrum in the band q = %g ... %g 1/m: too "
+                 "short a measurement for a PSD",
+                 src, out->n, out->q_min_per_m, out->q_max_per_m);
     st = VL_EINPUT;
     goto cleanup;
   }

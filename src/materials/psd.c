@@ -17,8 +17,8 @@ static double power_integral(double p, double a, double b) {
   return pow(a, p + 1.0) * l * ratio;
 }
 
-vl_status vl_psd_init_self_affine(vl_psd *psd, double hurst, double q0, double q1,
-                                  double hrms_m, vl_error *err) {
+vl_status vl_psd_init_self_affine(vl_psd *psd, double hurst, double q0, double q1, double hrms_m,
+                                  vl_error *err) {
   memset(psd, 0, sizeof *psd);
   if (!(isfinite(hurst) && hurst > 0.0 && hurst <= 1.0)) {
     vl_error_set(err, "hurst: H must lie in (0, 1] (got %g)", hurst);
@@ -100,7 +100,10 @@ static size_t segment(const vl_psd *psd, double q) {
   size_t lo = 0, hi = psd->n - 1;
   while (hi - lo > 1) {
     size_t mid = (lo + hi) / 2;
-    if (psd->q[mid] <= q) lo = mid; else hi = mid;
+    if (psd->q[mid] <= q)
+      lo = mid;
+    else
+      hi = mid;
   }
   return lo;
 }

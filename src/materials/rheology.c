@@ -44,7 +44,8 @@ vl_prony vl_prony_single(double e0_pa, double einf_over_e0, double tau_s, double
 
 double vl_prony_sum_A(const vl_prony *prony) {
   double s = 0.0;
-  for (size_t i = 0; i < prony->n_terms; i++) s += prony->A[i];
+  for (size_t i = 0; i < prony->n_terms; i++)
+    s += prony->A[i];
   return s;
 }
 
@@ -73,8 +74,8 @@ double vl_prony_tan_delta(const vl_prony *prony, double omega) {
   return cimag(e) / creal(e);
 }
 
-vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak,
-                             double *tan_delta_peak, vl_error *err) {
+vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak, double *tan_delta_peak,
+                             vl_error *err) {
   double tmin = INFINITY, tmax = 0.0;
   for (size_t i = 0; i < prony->n_terms; i++) {
     if (prony->A[i] <= 0.0) continue;
@@ -111,7 +112,8 @@ vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak,
 }
 
 void vl_prony_shift(vl_prony *prony, double a_T) {
-  for (size_t i = 0; i < prony->n_terms; i++) prony->tau_s[i] *= a_T;
+  for (size_t i = 0; i < prony->n_terms; i++)
+    prony->tau_s[i] *= a_T;
 }
 
 double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c) {
@@ -120,8 +122,8 @@ double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c) {
   return -c1 * (t_c - tref_c) / den;
 }
 
-void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m,
-                       double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H) {
+void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m, double v0_m_s,
+                       double *E_abs_pa, double *a_H_m, double *omega_H) {
   double red = vl_prony_reduced_factor(rubber);
   double lo = log(vl_prony_e0(rubber) * red), hi = log(rubber->e_inf_pa * red);
   double x = lo;
@@ -132,7 +134,10 @@ void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radiu
       double mid = 0.5 * (lo + hi);
       double w = M_PI * v0_m_s / sqrt(4.0 * load_n_per_m * radius_m / (M_PI * exp(mid)));
       double f = log(cabs(vl_prony_modulus(rubber, w)) * red) - mid;
-      if (f > 0.0) lo = mid; else hi = mid;
+      if (f > 0.0)
+        lo = mid;
+      else
+        hi = mid;
     }
     x = 0.5 * (lo + hi);
   }

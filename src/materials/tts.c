@@ -332,8 +332,8 @@ static double poly_sse(size_t n, const double *x, const double *y) {
  * [b_lo, b_hi) of b. Returns 0 when either has too few. */
 typedef struct {
   size_t a_lo, a_hi, b_lo, b_hi;
-  size_t n;        /* points in all */
-  double *x, *y;   /* scratch of n values */
+  size_t n;      /* points in all */
+  double *x, *y; /* scratch of n values */
 } bridge;
 
 static int bridge_init(const curve *a, const curve *b, int side, bridge *br) {

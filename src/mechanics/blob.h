@@ -16,7 +16,7 @@
 
 void vl_blob_put_u64(unsigned char *p, uint64_t v);
 uint64_t vl_blob_get_u64(const unsigned char *p);
-uint64_t vl_blob_bits(double v);  /* the IEEE-754 bits of v */
+uint64_t vl_blob_bits(double v);   /* the IEEE-754 bits of v */
 double vl_blob_double(uint64_t b); /* and back */
 
 /* FNV-1a of n bytes continuing from hash h (VL_BLOB_FNV_OFFSET to start). */

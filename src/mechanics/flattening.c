@@ -32,9 +32,9 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
+#include "gsl_errors.h"
 #include "viscolube/flattening.h"
 #include "viscolube/rheology.h"
-#include "gsl_errors.h"
 
 /* Gauss-Legendre in ln q: 8 nodes on panels of at most a quarter decade.
  * The integrand q^2 C(q) A(T/q^2) turns over within about a decade of q
@@ -65,8 +65,10 @@ struct vl_flattening {
 
 vl_status vl_flattening_response_parse(const char *text, vl_flattening_response *out,
                                        vl_error *err) {
-  if (text && !strcmp(text, "complex")) *out = VL_FLATTENING_COMPLEX;
-  else if (text && !strcmp(text, "modulus")) *out = VL_FLATTENING_MODULUS;
+  if (text && !strcmp(text, "complex"))
+    *out = VL_FLATTENING_COMPLEX;
+  else if (text && !strcmp(text, "modulus"))
+    *out = VL_FLATTENING_MODULUS;
   else {
     vl_error_set(err, "unknown flattening response '%s' (known: complex, modulus)",
                  text ? text : "");
@@ -128,7 +130,8 @@ static vl_status build_quadrature(vl_flattening *f, const vl_psd *psd, vl_error 
     return VL_ENOMEM;
   }
   size_t nb = 0;
-  for (size_t i = 0; i <= nu; i++) b[nb++] = la + (lb - la) * (double)i / (double)nu;
+  for (size_t i = 0; i <= nu; i++)
+    b[nb++] = la + (lb - la) * (double)i / (double)nu;
   if (psd->kind == VL_PSD_TABULATED)
     for (size_t i = 0; i < psd->n; i++) {
       double l = log(psd->q[i]);
@@ -175,7 +178,8 @@ static vl_status build_quadrature(vl_flattening *f, const vl_psd *psd, vl_error 
     vl_error_set(err, "the surface's spectrum has no weight in [q0, q1]");
     return VL_EINPUT;
   }
-  for (k = 0; k < f->nq; k++) f->w[k] /= sum;
+  for (k = 0; k < f->nq; k++)
+    f->w[k] /= sum;
   return VL_OK;
 }
 
@@ -232,8 +236,7 @@ vl_status vl_flattening_create(const vl_flattening_config *cfg, const vl_psd *ps
     return VL_EINPUT;
   }
   if (!(isfinite(cfg->eta_pa_s) && cfg->eta_pa_s >= 0.0)) {
-    vl_error_set(err, "flattening: viscosity must be finite and >= 0 (got %g Pa s)",
-                 cfg->eta_pa_s);
+    vl_error_set(err, "flattening: viscosity must be finite and >= 0 (got %g Pa s)", cfg->eta_pa_s);
     return VL_EINPUT;
   }
   if (cfg->response != VL_FLATTENING_MODULUS && cfg->response != VL_FLATTENING_COMPLEX) {
@@ -244,8 +247,10 @@ vl_status vl_flattening_create(const vl_flattening_config *cfg, const vl_psd *ps
   if (umin == 0.0 && umax == 0.0) umin = DEFAULT_U_MIN_HRMS, umax = DEFAULT_U_MAX_HRMS;
   size_t per = cfg->table_per_decade ? cfg->table_per_decade : DEFAULT_PER_DECADE;
   if (!(isfinite(umin) && isfinite(umax) && umin > 0.0 && umax > umin) || per > 1000) {
-    vl_error_set(err, "flattening: table range needs 0 < u_min < u_max (got %g, %g h_rms) and at "
-                 "most 1000 nodes per decade (got %zu)", umin, umax, per);
+    vl_error_set(err,
+                 "flattening: table range needs 0 < u_min < u_max (got %g, %g h_rms) and at "
+                 "most 1000 nodes per decade (got %zu)",
+                 umin, umax, per);
     return VL_EINPUT;
   }
   if (!psd || !(psd->q0 > 0.0 && psd->q1 > psd->q0 && isfinite(psd->q1)) ||
@@ -352,8 +357,8 @@ double vl_flattening_epsilon(const vl_flattening_config *cfg, const vl_psd *psd,
                              double u_m, double *deps_du, vl_error *err) {
   if (deps_du) *deps_du = NAN;
   if (!isfinite(v0_m_s) || isnan(u_m)) {
-    vl_error_set(err, "flattening: speed and separation must be numbers (got %g m/s, %g m)",
-                 v0_m_s, u_m);
+    vl_error_set(err, "flattening: speed and separation must be numbers (got %g m/s, %g m)", v0_m_s,
+                 u_m);
     return NAN;
   }
   vl_flattening_config c = *cfg;

@@ -381,8 +381,7 @@ void vl_flow_factors_eval(vl_flow_factor_kind kind, double u_m, double hrms_m,
 }
 
 void vl_flow_factors_eval_table(vl_flow_factor_kind kind, const vl_emt_table *table, double u_m,
-                                double hrms_m, vl_flow_factor_values *v,
-                                vl_flow_factor_values *d) {
+                                double hrms_m, vl_flow_factor_values *v, vl_flow_factor_values *d) {
   if (kind != VL_FLOW_FACTORS_PERSSON_EMT) {
     vl_flow_factors_eval(kind, u_m, hrms_m, v, d);
     return;

@@ -85,20 +85,20 @@
 #include "blob.h"
 #include "flow_factors_emt.h"
 
-#define POOL_MASS 1e-9         /* repair 1: lighter components are pooled */
-#define POOL_HR2 (1.0 - 0.075) /* repair 1: ... and those detaching above it */
-#define N_Y 300                /* y intervals from y_pool to y_max */
-#define EXT_DY 0.25            /* quadrature panels below y_pool */
-#define EXT_SPAN 70.0          /* the quadrature starts at y_max - EXT_SPAN */
-#define G_FIRST 1e-8           /* the first bin, [0, G_FIRST] */
-#define G_BODY (VL_EMT_X_MAX + 10.0) /* the bins end here */
-#define N_BINS 1800            /* geometric bins from G_FIRST to G_BODY */
-#define Z_TAIL 8.5             /* normal tails beyond 8.5 sd (1e-17) are dropped */
-#define TAYLOR_EPS 0.05        /* below it (in hr) the density is its Taylor series */
-#define E1_VLO (-20.0)         /* E1(e^v) table: series below */
-#define E1_VHI 4.1             /* ... and 0 above (E1(60) = 1.5e-28) */
-#define TAB_PER_UNIT 256.0     /* nodes per unit of the special-function tables */
-#define X_BELOW_PERC 100.0     /* the table starts at x_perc / 100 */
+#define POOL_MASS 1e-9                     /* repair 1: lighter components are pooled */
+#define POOL_HR2 (1.0 - 0.075)             /* repair 1: ... and those detaching above it */
+#define N_Y 300                            /* y intervals from y_pool to y_max */
+#define EXT_DY 0.25                        /* quadrature panels below y_pool */
+#define EXT_SPAN 70.0                      /* the quadrature starts at y_max - EXT_SPAN */
+#define G_FIRST 1e-8                       /* the first bin, [0, G_FIRST] */
+#define G_BODY (VL_EMT_X_MAX + 10.0)       /* the bins end here */
+#define N_BINS 1800                        /* geometric bins from G_FIRST to G_BODY */
+#define Z_TAIL 8.5                         /* normal tails beyond 8.5 sd (1e-17) are dropped */
+#define TAYLOR_EPS 0.05                    /* below it (in hr) the density is its Taylor series */
+#define E1_VLO (-20.0)                     /* E1(e^v) table: series below */
+#define E1_VHI 4.1                         /* ... and 0 above (E1(60) = 1.5e-28) */
+#define TAB_PER_UNIT 256.0                 /* nodes per unit of the special-function tables */
+#define X_BELOW_PERC 100.0                 /* the table starts at x_perc / 100 */
 #define ERFINV_HALF 0.47693627620446987338 /* erf(z) = 1/2 */
 #define EULER_GAMMA 0.57721566490153286061
 
@@ -177,7 +177,7 @@ static void ftab_free(ftab *t) {
 /* The PSD as power-law pieces C = c (q/q_k)^alpha on [q_k, q_{k+1}], with
  * M at each piece's start: M(q) and its inverse in closed form. */
 typedef struct {
-  size_t n;       /* pieces */
+  size_t n;                  /* pieces */
   double *q, *c, *alpha, *m; /* q, m: n + 1 values (m[n] = M(q1)) */
 } pieces;
 
@@ -252,29 +252,29 @@ typedef struct {
   double hrms, gcut; /* m; the film cut-off in h_rms */
   double y_max, y_pool, m1;
   ftab e1, phi;
-  size_t ny;          /* main intervals */
-  double *yg, *hr2g;  /* ny + 1 nodes; hr^2 at the ny mid-points */
-  double *lnf, *rf;   /* 2 ny: ln(1 - e^{y_i - Y}) and its e^{-1/2} by node offset */
-  size_t ne;          /* panels below y_pool */
-  double *ye, *hr2e;  /* ne + 1 edges (ye[ne] = y_pool); hr^2 at mid-points */
-  size_t nq, q_main;  /* quadrature nodes (ascending in Y), first main one */
+  size_t ny;         /* main intervals */
+  double *yg, *hr2g; /* ny + 1 nodes; hr^2 at the ny mid-points */
+  double *lnf, *rf;  /* 2 ny: ln(1 - e^{y_i - Y}) and its e^{-1/2} by node offset */
+  size_t ne;         /* panels below y_pool */
+  double *ye, *hr2e; /* ne + 1 edges (ye[ne] = y_pool); hr^2 at mid-points */
+  size_t nq, q_main; /* quadrature nodes (ascending in Y), first main one */
   double *Y, *W;
   size_t nb_max;      /* N_BINS + 1 bins, up to G_BODY */
   double dlog, *edge; /* nb_max + 1 edges */
   /* one x */
-  double *A, *Ac, *ub;       /* ny + 1 */
+  double *A, *Ac, *ub; /* ny + 1 */
   size_t ng;
-  double *gw, *gF, *gh2;     /* groups (pooled components): mass, mass u1, mass hr^2 */
-  size_t nb;                 /* bins in use */
-  double *mass, *gap;        /* nb_max */
-  double *t0, *t2;           /* Taylor coefficients by last bin, nb_max */
+  double *gw, *gF, *gh2; /* groups (pooled components): mass, mass u1, mass hr^2 */
+  size_t nb;             /* bins in use */
+  double *mass, *gap;    /* nb_max */
+  double *t0, *t2;       /* Taylor coefficients by last bin, nb_max */
 } ws;
 
 static void ws_free(ws *w) {
   ftab_free(&w->e1);
   ftab_free(&w->phi);
-  double **arrays[] = {&w->yg, &w->hr2g, &w->lnf, &w->rf, &w->ye,   &w->hr2e, &w->Y,
-                       &w->W,  &w->edge, &w->A,   &w->Ac, &w->ub,   &w->gw,   &w->gF,
+  double **arrays[] = {&w->yg,  &w->hr2g, &w->lnf, &w->rf, &w->ye, &w->hr2e, &w->Y,
+                       &w->W,   &w->edge, &w->A,   &w->Ac, &w->ub, &w->gw,   &w->gF,
                        &w->gh2, &w->mass, &w->gap, &w->t0, &w->t2};
   for (size_t i = 0; i < sizeof arrays / sizeof *arrays; i++) {
     free(*arrays[i]);
@@ -362,8 +362,8 @@ static int ws_alloc(ws *w) {
 /* The grids of a usable PSD (hr^2, quadrature, bin edges). */
 static void ws_grids(ws *w, const vl_psd *psd, const pieces *pc, double total1, double y_lo) {
   for (size_t i = 0; i <= w->ny; i++)
-    w->yg[i] = i == w->ny ? w->y_max
-                          : w->y_pool + (w->y_max - w->y_pool) * (double)i / (double)w->ny;
+    w->yg[i] =
+        i == w->ny ? w->y_max : w->y_pool + (w->y_max - w->y_pool) * (double)i / (double)w->ny;
   for (size_t i = 0; i < w->ny; i++)
     w->hr2g[i] = hr2_at(psd, total1, q_of_y(pc, 0.5 * (w->yg[i] + w->yg[i + 1])));
   for (size_t j = 0; j <= w->ne; j++)
@@ -422,8 +422,7 @@ static vl_status ws_init(ws *w, const vl_psd *psd, double film_cutoff_m, vl_erro
       goto cleanup;
     }
   }
-  if (!ftab_fill(&w->e1, E1_VLO, E1_VHI, TAB_E1) ||
-      !ftab_fill(&w->phi, -Z_TAIL, Z_TAIL, TAB_PHI)) {
+  if (!ftab_fill(&w->e1, E1_VLO, E1_VHI, TAB_E1) || !ftab_fill(&w->phi, -Z_TAIL, Z_TAIL, TAB_PHI)) {
     if (!w->e1.f || !w->e1.hd || !w->phi.f || !w->phi.hd) goto nomem;
     vl_error_set(err, "persson-emt: E1 failed while tabulating it");
     st = VL_EINTERNAL;
@@ -943,8 +942,8 @@ vl_status vl_emt_table_build(const vl_psd *psd, double film_cutoff_m, size_t n_p
   *out = NULL;
   if (n_points == 0) n_points = VL_EMT_DEFAULT_N_POINTS;
   if (n_points < VL_EMT_MIN_N_POINTS || n_points > VL_EMT_MAX_N_POINTS) {
-    vl_error_set(err, "persson-emt: the table needs %d to %d points (got %zu)",
-                 VL_EMT_MIN_N_POINTS, VL_EMT_MAX_N_POINTS, n_points);
+    vl_error_set(err, "persson-emt: the table needs %d to %d points (got %zu)", VL_EMT_MIN_N_POINTS,
+                 VL_EMT_MAX_N_POINTS, n_points);
     return VL_EINPUT;
   }
   vl_status st = ws_init(&w, psd, film_cutoff_m, err);
@@ -1109,8 +1108,7 @@ static void blob_arrays(const vl_emt_table *t, double *a[NF + 1]) {
   a[4] = t->area;
 }
 
-vl_status vl_emt_table_serialize(const vl_emt_table *t, void **blob, size_t *len,
-                                 vl_error *err) {
+vl_status vl_emt_table_serialize(const vl_emt_table *t, void **blob, size_t *len, vl_error *err) {
   *blob = NULL;
   *len = 0;
   size_t size = BLOB_SIZE(t->n);

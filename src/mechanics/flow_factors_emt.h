@@ -23,7 +23,6 @@
 #include "viscolube/roughness.h"
 #include "viscolube/status.h"
 
-
 /* The scene's default film cut-off (m): gaps below it are boundary contact
  * and carry no Couette shear (phi_f). */
 #define VL_EMT_DEFAULT_FILM_CUTOFF_M VL_FILM_CUTOFF_DEFAULT_M
@@ -36,13 +35,12 @@
 
 /* The factors at one separation, with what the model knows on the way. */
 typedef struct {
-  double x;       /* u/h_rms */
+  double x; /* u/h_rms */
   double phi_p, phi_s, phi_f, phi_fs, phi_fp;
   double area;    /* A/A0: the contact fraction (the delta at g = 0) */
   double s;       /* pc/|Er| at which Persson's separation is u (NaN for vl_emt_medium) */
   double reflect; /* mean of the binned gaps before the rescale over u (1 for vl_emt_medium) */
 } vl_emt_point;
-
 
 /* The effective medium on a discrete gap distribution: open gaps g[j] > 0
  * with masses m[j] >= 0 (j < n), plus the contact fraction `contact` at
@@ -64,8 +62,6 @@ vl_status vl_emt_medium(size_t n, const double *g, const double *m, double conta
  * repairs, and the medium. About 1-3 ms. VL_EINPUT / VL_ENOMEM. */
 vl_status vl_emt_point_eval(const vl_psd *psd, double film_cutoff_m, double x, vl_emt_point *out,
                             vl_error *err);
-
-
 
 /* Serialises a table into a malloc'd blob (*blob, *len; the caller free()s
  * it): portable little-endian, format VL_EMT_FORMAT, the fingerprint of the

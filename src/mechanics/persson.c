@@ -44,8 +44,8 @@
 #include <gsl/gsl_math.h> /* M_PI, which strict C17 <math.h> lacks */
 #include <gsl/gsl_sf_expint.h>
 
-#include "viscolube/persson.h"
 #include "gsl_errors.h"
+#include "viscolube/persson.h"
 
 #include "blob.h"
 

@@ -70,12 +70,14 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
     c->sf = malloc(2 * n * sizeof *c->sf);
     if (!c->sf) return vl_contact_nomem(c, err);
     c->dsf = c->sf + n;
-    for (size_t i = 0; i < n; i++) c->sf[i] = 1.0, c->dsf[i] = 0.0;
+    for (size_t i = 0; i < n; i++)
+      c->sf[i] = 1.0, c->dsf[i] = 0.0;
   }
   c->dg = c->g + n;
   c->cf = c->g + 2 * n;
   c->dcf = c->g + 3 * n;
-  for (size_t k = 0; k < nt; k++) c->A[k] = c->cfg.rubber.A[k];
+  for (size_t k = 0; k < nt; k++)
+    c->A[k] = c->cfg.rubber.A[k];
   return VL_OK;
 }
 

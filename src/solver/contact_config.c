@@ -67,8 +67,9 @@ static vl_status check_grid(const vl_contact_config *cfg, vl_error *err) {
   if (cfg->grid_growth > 1.0 && !cfg->roughness) {
     /* the smooth film's limited upwinding and its coarse-grid starts are
      * written for a uniform grid */
-    vl_error_set(err, "grid_growth %g: a graded grid needs a rough surface (smooth contacts use "
-                      "a uniform grid; set grid_growth = 1)",
+    vl_error_set(err,
+                 "grid_growth %g: a graded grid needs a rough surface (smooth contacts use "
+                 "a uniform grid; set grid_growth = 1)",
                  cfg->grid_growth);
     return VL_EINPUT;
   }

@@ -24,7 +24,9 @@ static double fb_eps(double a, double b, double eps, double *da, double *db) {
   if (db) *db = 1.0 - b / r;
   return a + b - r;
 }
-static double fb(double a, double b, double *da, double *db) { return fb_eps(a, b, FB_EPS, da, db); }
+static double fb(double a, double b, double *da, double *db) {
+  return fb_eps(a, b, FB_EPS, da, db);
+}
 
 /* Couette film carried across face f (0..n; face f lies between cells f-1
  * and f): returns its value and writes the cells k[q] and the partial
@@ -159,14 +161,16 @@ static void eval_contact_pressure(vl_contact *c, const double *y) {
 static void eval_gap(vl_contact *c, const double *y) {
   size_t n = c->n;
   double h0 = y[c->ih];
-  for (size_t i = 0; i < n; i++) c->F[i] = c->wet ? c->kappa * y[c->of + i] : 0.0;
+  for (size_t i = 0; i < n; i++)
+    c->F[i] = c->wet ? c->kappa * y[c->of + i] : 0.0;
   /* elastic/viscoelastic gap: h0 + xi^2/2 + sum_j M_ij (P_j + F_j); for a
    * rough surface it is stored in D (the residual compares it with U) */
   double *G = c->rough ? c->D : c->U;
   for (size_t i = 0; i < n; i++) {
     const double *row = c->M + i * n;
     double acc = 0.0;
-    for (size_t j = 0; j < n; j++) acc += row[j] * (c->P[j] + c->F[j]);
+    for (size_t j = 0; j < n; j++)
+      acc += row[j] * (c->P[j] + c->F[j]);
     G[i] = h0 + 0.5 * c->xi[i] * c->xi[i] + acc;
   }
   if (c->rough) {
@@ -252,7 +256,8 @@ void vl_contact_eval_state(vl_contact *c, const double *y) {
 
 double vl_contact_load_sum(const vl_contact *c) {
   double s = 0.0;
-  for (size_t i = 0; i < c->n; i++) s += (c->P[i] + c->F[i]) * c->wc[i];
+  for (size_t i = 0; i < c->n; i++)
+    s += (c->P[i] + c->F[i]) * c->wc[i];
   return s / (0.5 * M_PI);
 }
 
@@ -280,7 +285,8 @@ void vl_contact_reynolds_weights(vl_contact *c) {
      * own: a thick inlet film (10^4 u_min five a0 upstream of a soft
      * contact) carries fluxes whose rounding alone left rows above the
      * tolerance, and Newton stalled there */
-    for (size_t i = 0; i < n; i++) c->rw[i] = 1.0 / (c->wc[i] * fmax(1.0 / c->rscale, fabs(c->cf[i])));
+    for (size_t i = 0; i < n; i++)
+      c->rw[i] = 1.0 / (c->wc[i] * fmax(1.0 / c->rscale, fabs(c->cf[i])));
     return;
   }
   double L = c->lambda;
@@ -332,9 +338,11 @@ static void add_dU(vl_contact *c, double *Jd, size_t ld, size_t row, size_t k, d
     return;
   }
   const double *mrow = c->M + k * n;
-  for (size_t j = 0; j < c->nc; j++) Jd[j * ld + row] += w * mrow[j];
+  for (size_t j = 0; j < c->nc; j++)
+    Jd[j * ld + row] += w * mrow[j];
   double wk = w * c->kappa, *col = Jd + c->of * ld + row;
-  for (size_t j = 0; j < c->nf; j++) col[j * ld] += wk * mrow[j];
+  for (size_t j = 0; j < c->nf; j++)
+    col[j * ld] += wk * mrow[j];
   Jd[c->ih * ld + row] += w;
 }
 
@@ -354,15 +362,18 @@ static void jacobian_contact_rows(vl_contact *c, double *Jd) {
         size_t cell = j < n ? j : j - of;
         double dp = j < n ? c->dPdU[j] : c->kappa;
         if (c->span) {
-          for (size_t i = 0; i < n; i++) col[i] = -dp * c->M[i * n + cell];
+          for (size_t i = 0; i < n; i++)
+            col[i] = -dp * c->M[i * n + cell];
         } else {
           const double *t = c->kern.coef + (n - 1 - cell);
           double w = c->kfac * dp;
-          for (size_t i = 0; i < n; i++) col[i] = w * t[i];
+          for (size_t i = 0; i < n; i++)
+            col[i] = w * t[i];
         }
         if (j < n) col[j] += 1.0;
       } else {
-        for (size_t i = 0; i < n; i++) col[i] = -1.0;
+        for (size_t i = 0; i < n; i++)
+          col[i] = -1.0;
       }
       memset(col + n, 0, (ld - n) * sizeof *col);
     }
@@ -412,7 +423,8 @@ static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, si
     double cw[3];
     int m;
     couette_face(c, f, k, cw, &m);
-    for (int q = 0; q < m; q++) du[k[q] + 2 - i] += sg * cw[q] * c->dcf[k[q]];
+    for (int q = 0; q < m; q++)
+      du[k[q] + 2 - i] += sg * cw[q] * c->dcf[k[q]];
   }
   for (int q = 0; q < 3; q++)
     if (dpf[q] != 0.0) Jd[(of + i + (size_t)q - 1) * ld + row] += dpf[q];
@@ -424,11 +436,13 @@ void vl_contact_jacobian(vl_contact *c, const double *y, double *Jd) {
   size_t nc = c->nc, nf = c->nf, of = c->of, ld = c->nunk, ih = c->ih;
   vl_contact_eval_state(c, y);
   jacobian_contact_rows(c, Jd);
-  for (size_t i = 0; i < nf; i++) jacobian_reynolds_row(c, y, Jd, i);
+  for (size_t i = 0; i < nf; i++)
+    jacobian_reynolds_row(c, y, Jd, i);
   /* load balance */
   for (size_t j = 0; j < nc; j++)
     Jd[j * ld + ih] = c->wc[j] / (0.5 * M_PI) * (c->rough ? c->dPdU[j] : 1.0);
-  for (size_t j = 0; j < nf; j++) Jd[(of + j) * ld + ih] = c->wc[j] / (0.5 * M_PI) * c->kappa;
+  for (size_t j = 0; j < nf; j++)
+    Jd[(of + j) * ld + ih] = c->wc[j] / (0.5 * M_PI) * c->kappa;
 }
 
 /* Scales of the fluid unknowns for a solve at v0, from the current state,
@@ -473,11 +487,10 @@ void vl_contact_fluid_scales(vl_contact *c, double v0) {
     kappa = fmin(fmax(kappa, 1e-300), 10.0);
     c->rscale = 1.0 / c->u_ref;
   }
-  for (size_t i = 0; i < c->nf; i++) y[c->of + i] *= c->kappa / kappa;
+  for (size_t i = 0; i < c->nf; i++)
+    y[c->of + i] *= c->kappa / kappa;
   c->kappa = kappa;
   c->lambda = us * us * c->p0 * kappa / (6.0 * eta * v0 * c->a0);
   vl_contact_eval_state(c, y);
   vl_contact_reynolds_weights(c);
 }
-
-

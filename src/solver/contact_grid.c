@@ -38,7 +38,8 @@ static size_t grid_layout(size_t nv, double x_min, double x_max, double growth, 
     size_t tmp = span[i];
     span[i] = span[cells - 1 - i], span[cells - 1 - i] = tmp;
   }
-  for (size_t i = cells; i < cells + nv - ig; i++) span[i] = 1;
+  for (size_t i = cells; i < cells + nv - ig; i++)
+    span[i] = 1;
   *nv_out = covered + (nv - ig);
   return cells + nv - ig;
 }
@@ -65,7 +66,8 @@ static void place_cells(vl_contact *c) {
     }
   }
   c->hf[0] = 0.5 * c->wc[0], c->hf[n] = 0.5 * c->wc[n - 1];
-  for (size_t f = 1; f < n; f++) c->hf[f] = c->xi[f] - c->xi[f - 1];
+  for (size_t f = 1; f < n; f++)
+    c->hf[f] = c->xi[f] - c->xi[f - 1];
 }
 
 vl_status vl_contact_grid_init(vl_contact *c, vl_error *err) {
@@ -78,7 +80,8 @@ vl_status vl_contact_grid_init(vl_contact *c, vl_error *err) {
     c->span = NULL;
   }
   if (c->n > VL_CONTACT_MAX_CELLS) {
-    vl_error_set(err, "grid %zu with growth %g gives %zu cells (at most %d: the matrices are dense)",
+    vl_error_set(err,
+                 "grid %zu with growth %g gives %zu cells (at most %d: the matrices are dense)",
                  cfg->grid, cfg->grid_growth, c->n, VL_CONTACT_MAX_CELLS);
     return VL_EINPUT;
   }
@@ -113,14 +116,16 @@ static void graded_influence(vl_contact *c) {
   size_t n = c->n;
   if (!c->span) {
     for (size_t i = 0; i < n; i++)
-      for (size_t j = 0; j < n; j++) c->M[i * n + j] = -c->kfac * vl_toeplitz_at(&c->kern, i, j);
+      for (size_t j = 0; j < n; j++)
+        c->M[i * n + j] = -c->kfac * vl_toeplitz_at(&c->kern, i, j);
     return;
   }
   size_t nv = c->nv;
   const double *coef = c->kern.coef;
   double *S = c->psum;
   S[0] = 0.0;
-  for (size_t k = 0; k + 1 < 2 * nv; k++) S[k + 1] = S[k] + coef[k];
+  for (size_t k = 0; k + 1 < 2 * nv; k++)
+    S[k + 1] = S[k] + coef[k];
   for (size_t i = 0; i < n; i++) {
     size_t ci = c->first[i] + c->span[i] / 2;
     for (size_t j = 0; j < n; j++) {
@@ -146,7 +151,8 @@ void vl_contact_set_speed(vl_contact *c, double v0) {
   if (nt == 0 && c->kernel_ready) return; /* elastic: one kernel for all speeds */
   double t0 = vl_contact_now_s();
   c->kernel_ready = true;
-  for (size_t k = 0; k < nt; k++) c->beta[k] = v0 * c->cfg.rubber.tau_s[k] / c->a0;
+  for (size_t k = 0; k < nt; k++)
+    c->beta[k] = v0 * c->cfg.rubber.tau_s[k] / c->a0;
   vl_toeplitz_refill(&c->kern, c->A, c->beta, nt);
   graded_influence(c);
   c->timing.t_kernel_s += vl_contact_now_s() - t0;

@@ -52,52 +52,54 @@
 struct vl_contact {
   vl_contact_config cfg;
   bool rough, wet;
-  size_t n;        /* grid nodes */
-  size_t nc;       /* contact unknowns (n; 0 for a smooth wet contact) */
-  size_t nf;       /* fluid unknowns (n when wet, else 0) */
-  size_t nunk;     /* unknowns: nc contact + nf fluid + rigid approach */
-  size_t of, ih;   /* offsets of the fluid unknowns and of the rigid approach */
-  double er_ref;   /* reduced modulus defining a0 (relaxed, or the elastic one) */
-  double er_inf;   /* reduced glassy modulus (kernel prefactor) */
+  size_t n;                         /* grid nodes */
+  size_t nc;                        /* contact unknowns (n; 0 for a smooth wet contact) */
+  size_t nf;                        /* fluid unknowns (n when wet, else 0) */
+  size_t nunk;                      /* unknowns: nc contact + nf fluid + rigid approach */
+  size_t of, ih;                    /* offsets of the fluid unknowns and of the rigid approach */
+  double er_ref;                    /* reduced modulus defining a0 (relaxed, or the elastic one) */
+  double er_inf;                    /* reduced glassy modulus (kernel prefactor) */
   double a0, p0, uscale, dxi, kfac; /* dxi: width of the uniform cells */
-  double hrms;     /* rms roughness (m), 0 when smooth */
-  double *xi;      /* node positions x/a0 (cell centres) */
-  double *wc;      /* cell widths /a0 */
-  double *hf;      /* n + 1 face distances /a0: node to node, half a cell at both ends */
+  double hrms;                      /* rms roughness (m), 0 when smooth */
+  double *xi;                       /* node positions x/a0 (cell centres) */
+  double *wc;                       /* cell widths /a0 */
+  double *hf; /* n + 1 face distances /a0: node to node, half a cell at both ends */
   /* graded grid (vl_contact_config.grid_growth): cell i is uniform cells
    * first[i] .. first[i] + span[i] - 1 of an nv-cell uniform grid (span odd,
    * so its node is uniform node first[i] + span[i]/2); psum: prefix sums of
    * the uniform Toeplitz coefficients. All NULL on a uniform grid (nv = n). */
   size_t nv, *first, *span;
   double *psum;
-  double *A, *beta;/* Prony strengths and v0 tau_k / a0 */
+  double *A, *beta; /* Prony strengths and v0 tau_k / a0 */
   vl_toeplitz kern;
-  double *M;       /* dense influence matrix, row-major: U_i += M[i n + j] P_j */
-  double v0;       /* speed the kernel is built for (NAN: not yet) */
+  double *M; /* dense influence matrix, row-major: U_i += M[i n + j] P_j */
+  double v0; /* speed the kernel is built for (NAN: not yet) */
   bool kernel_ready;
   double e_abs, a_h, omega_h, sfac; /* asperity state; P = sfac * s(u) */
   /* fluid scales of the current solve: pf = kappa p0 Pf; flux in units of
    * v0 us/2 (lambda: its Poiseuille coefficient); rough Reynolds rows per
    * Couette flux v0 u_ref/2 (rscale = 1/u_ref), see vl_contact_reynolds_weights */
   double kappa, lambda, rscale, u_ref;
-  double *rw;         /* weight of Reynolds row i (frozen during a solve) */
-  double v_state;     /* speed at which y was last converged (0: initial guess) */
-  double q_rolling;   /* rolling number (wet, rough, viscoelastic), else 0 */
-  double *P, *dPdU;   /* contact pressure (p0) and dP/dU on the grid */
-  double *F;          /* fluid pressure (p0) */
-  double *U;          /* separation (a0^2/R) */
+  double *rw;                /* weight of Reynolds row i (frozen during a solve) */
+  double v_state;            /* speed at which y was last converged (0: initial guess) */
+  double q_rolling;          /* rolling number (wet, rough, viscoelastic), else 0 */
+  double *P, *dPdU;          /* contact pressure (p0) and dP/dU on the grid */
+  double *F;                 /* fluid pressure (p0) */
+  double *U;                 /* separation (a0^2/R) */
   double *g, *dg, *cf, *dcf; /* conductance u^3 phi_p and Couette film u + h phi_s, /us^3, /us */
-  double *Jf;         /* face fluxes, n + 1 */
-  double *D;          /* rough: elasticity residual U - G */
+  double *Jf;                /* face fluxes, n + 1 */
+  double *D;                 /* rough: elasticity residual U - G */
   vl_flattening *flattening; /* owned; NULL when cfg.flattening is NULL */
-  double *sf, *dsf;   /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
-                       * NULL when off */
-  double *theta;      /* film fraction (report only) */
-  vl_contact *coarse; /* smooth wet: half-size grid for fresh starts (NULL when small) */
-  bool no_fallback;   /* inside the viscosity-continuation fallback of a fresh start */
-  vl_contact *dry;    /* smooth wet viscoelastic, coarsest level: the dry contact on the same
-                       * grid, whose solution starts the wet one (NULL otherwise) */
-  vl_contact_timing timing; /* cost counters (vl_contact_timing_get) */
+  double *sf, *dsf;          /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
+                              * NULL when off */
+  double *theta;             /* film fraction (report only) */
+  vl_contact *coarse;        /* smooth wet: half-size grid for fresh starts (NULL when small);
+                              * rough wet: the smooth film whose solution starts a lifted rough
+                              * film (created on first use, vl_contact_rough_wet_film_start) */
+  bool no_fallback;          /* inside the viscosity-continuation fallback of a fresh start */
+  vl_contact *dry;           /* smooth wet viscoelastic, coarsest level: the dry contact on the same
+                              * grid, whose solution starts the wet one (NULL otherwise) */
+  vl_contact_timing timing;  /* cost counters (vl_contact_timing_get) */
   SUNContext ctx;
   N_Vector y, y_saved, y_outer, ones, fwork;
   SUNMatrix J;
@@ -199,6 +201,21 @@ void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni);
 
 /* Predictor of a continuation step to speed v0 (rough films). */
 void vl_contact_predict_state(vl_contact *c, double v0);
+
+/* Starts a rough wet solve at v0 from the dry contact's solution at v0
+ * (separations and rigid approach; no fluid pressure): the limit of a film
+ * that carries nothing. Solves the dry contact (its helper is created on
+ * first use) and adds its Newton iterations to *nni; false, with c
+ * unchanged, when that fails or the helper cannot be made. */
+bool vl_contact_rough_wet_dry_start(vl_contact *c, double v0, long *nni);
+
+/* Starts a rough wet solve at v0 from the smooth film's solution at v0
+ * (separation and fluid pressure interpolated from a uniform grid over the
+ * same domain; c->coarse, created on first use): the limit of a film that
+ * has lifted the solid off the asperities. Adds the smooth solve's Newton
+ * iterations to *nni; false, with c unchanged, when it fails or the smooth
+ * film's estimate (vl_contact_film_estimate) is thinner than h_rms. */
+bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni);
 
 /* contact_report.c */
 

@@ -4,7 +4,9 @@
  * the Schur complement of the Reynolds rows) wrapped to count their cost,
  * and the solve of one operating point with its fallbacks: a fresh start
  * after a failed continuation, continuation in viscosity for thin smooth
- * films, and the state restored when everything fails. */
+ * films, the dry contact's or the smooth film's solution for a rough film
+ * that Hertz does not start, and the state restored when everything
+ * fails. */
 #include "contact_internal.h"
 
 #include <float.h>
@@ -235,8 +237,9 @@ static vl_status solve_failed(vl_contact *c, double v0_m_s, const solve_scales *
   bool smooth_wet = c->wet && !c->rough;
   bool closed = smooth_wet && (flag == KIN_REPTD_SYSFUNC_ERR || flag == KIN_FIRST_SYSFUNC_ERR);
   char *flag_name = KINGetReturnFlagName(flag); /* malloc'd by SUNDIALS */
-  vl_error_set(err, "no convergence at v0 = %g m/s: KINSOL flag %d (%s), %ld iterations, "
-                    "residual %.3g%s",
+  vl_error_set(err,
+               "no convergence at v0 = %g m/s: KINSOL flag %d (%s), %ld iterations, "
+               "residual %.3g%s",
                v0_m_s, flag, flag_name ? flag_name : "?", nni, fnorm,
                closed ? " (Newton steps kept closing the film: the grid is probably too coarse "
                         "for the inlet and outlet zones of this soft EHL film; refine it or "
@@ -271,18 +274,39 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
   solve_scales saved = {c->kappa, c->lambda, c->rscale, c->u_ref, c->v0};
   vl_contact_set_speed(c, v0_m_s);
   bool smooth_wet = c->wet && !c->rough, fresh = smooth_wet && c->v_state == 0.0;
+  bool rough_fresh = c->wet && c->rough && c->v_state == 0.0;
   long nni = 0;
   int flag;
   double fnorm;
   if (fresh) vl_contact_smooth_wet_start(c, v0_m_s, &nni);
   vl_contact_predict_state(c, v0_m_s);
   bool ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  if (!ok && c->rough && c->wet && c->v_state > 0.0) {
+    /* the predictor scales pf with the speed, as a film of fixed shape
+     * does; fluid trapped between the asperities of a fine surface does
+     * not follow: there (fig05 on paper-0.1um, 0.025-0.16 m/s) Newton from
+     * the scaled state failed steps of 1/64 of 0.2 decade, from the state
+     * as it was it took 30-50 iterations per 0.04 decade */
+    N_VScale(1.0, c->y_saved, c->y);
+    c->kappa = saved.kappa, c->lambda = saved.lambda, c->rscale = saved.rscale;
+    c->u_ref = saved.u_ref;
+    ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  }
   if (!ok && smooth_wet && !fresh) {
     /* continuation from the previous speed failed: start afresh */
     vl_contact_smooth_wet_start(c, v0_m_s, &nni);
     ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
   }
   if (!ok && smooth_wet && !c->no_fallback) ok = viscosity_fallback(c, v0_m_s, &nni, &flag, &fnorm);
+  if (!ok && rough_fresh && vl_contact_rough_wet_dry_start(c, v0_m_s, &nni)) {
+    /* Hertz did not start this rough film: start from the dry contact at
+     * this speed, the closed film (contact_start.c says when that helps) */
+    ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  }
+  if (!ok && rough_fresh && vl_contact_rough_wet_film_start(c, v0_m_s, &nni)) {
+    /* nor the dry contact: start from the smooth film, the lifted one */
+    ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
+  }
   if (!ok) return solve_failed(c, v0_m_s, &saved, flag, nni, fnorm, pt, err);
   pt->iterations = nni;
   pt->residual = fnorm;
@@ -315,8 +339,10 @@ vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa
   memset(pt, 0, sizeof *pt);
   pt->v0_m_s = v0_m_s;
   if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s)) || !(max_ratio > 1.0)) {
-    vl_error_set(err, "viscosity continuation needs a wet contact, eta > 0 and max_ratio > 1 "
-                      "(got eta %g Pa s, max_ratio %g)", eta_pa_s, max_ratio);
+    vl_error_set(err,
+                 "viscosity continuation needs a wet contact, eta > 0 and max_ratio > 1 "
+                 "(got eta %g Pa s, max_ratio %g)",
+                 eta_pa_s, max_ratio);
     return VL_EINPUT;
   }
   double eta = c->cfg.eta_pa_s, lstep = log(max_ratio);

@@ -33,8 +33,8 @@ static void film_fraction(const vl_contact *c, const double *y, double *theta) {
   size_t n = c->n;
   double jcur = c->Jf[0];
   for (size_t i = 0; i < n; i++) {
-    bool cavitated = c->wet && y[c->of + i] <= 1e-12 &&
-                     vl_contact_reynolds_residual(c, i) > c->cfg.tolerance;
+    bool cavitated =
+        c->wet && y[c->of + i] <= 1e-12 && vl_contact_reynolds_residual(c, i) > c->cfg.tolerance;
     if (!cavitated) {
       theta[i] = 1.0;
       jcur = c->Jf[i + 1];
@@ -67,7 +67,8 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   if (c->wet) film_fraction(c, y, theta);
   pt->eps_f_min = c->sf ? INFINITY : 1.0;
   if (c->sf)
-    for (size_t i = 0; i < n; i++) pt->eps_f_min = fmin(pt->eps_f_min, c->sf[i] * c->sf[i]);
+    for (size_t i = 0; i < n; i++)
+      pt->eps_f_min = fmin(pt->eps_f_min, c->sf[i] * c->sf[i]);
   for (size_t i = 0; i < n; i++) {
     double pc = c->P[i] * c->p0, pf = c->F[i] * c->p0, x = c->xi[i] * c->a0;
     double dx = c->wc[i] * c->a0;
@@ -83,7 +84,8 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
       double u = fmax(c->U[i], 0.0) * c->uscale;
       vl_flow_factor_values v;
       /* flattened: the factors of h_rms s (as in vl_contact_eval_state) */
-      vl_flow_factors_eval_table(cfg->flow_factors, cfg->flow_table, u, c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
+      vl_flow_factors_eval_table(cfg->flow_factors, cfg->flow_table, u,
+                                 c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
       /* node gradient: mean of the two face gradients (pf = 0 beyond the ends) */
       double left = (c->F[i] - (i > 0 ? c->F[i - 1] : 0.0)) / (c->hf[i] * c->a0);
       double right = ((i + 1 < n ? c->F[i + 1] : 0.0) - c->F[i]) / (c->hf[i + 1] * c->a0);
@@ -107,15 +109,18 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   /* separation at the pressure centroid (linear interpolation on nodes) */
   double xc = pt->x_centroid_m / c->a0;
   size_t k = 0;
-  while (k + 2 < n && c->xi[k + 1] <= xc) k++;
+  while (k + 2 < n && c->xi[k + 1] <= xc)
+    k++;
   double w = fmin(fmax((xc - c->xi[k]) / c->hf[k + 1], 0.0), 1.0);
   pt->u_central_m = fmax((1 - w) * c->U[k] + w * c->U[k + 1], 0.0) * c->uscale;
   /* contact extent where the total pressure >= 1% of its peak, interpolated */
   double thr = 0.01 * pmax / c->p0;
 #define PTOT(j) (c->P[j] + c->F[j])
   size_t lo = imax, hi = imax;
-  while (lo > 0 && PTOT(lo - 1) >= thr) lo--;
-  while (hi + 1 < n && PTOT(hi + 1) >= thr) hi++;
+  while (lo > 0 && PTOT(lo - 1) >= thr)
+    lo--;
+  while (hi + 1 < n && PTOT(hi + 1) >= thr)
+    hi++;
   double xl = c->xi[lo], xr = c->xi[hi];
   if (lo > 0) xl -= c->hf[lo] * (PTOT(lo) - thr) / (PTOT(lo) - PTOT(lo - 1));
   if (hi + 1 < n) xr += c->hf[hi + 1] * (PTOT(hi) - thr) / (PTOT(hi) - PTOT(hi + 1));

@@ -27,10 +27,12 @@ static bool jacobian_compare(vl_contact *c, double v0_m_s, double worst[3], doub
   }
   vl_contact_jacobian_fn(c->y, c->fwork, J, c, NULL, NULL);
   double *Jd = SUNDenseMatrix_Data(J);
-  for (int b = 0; b < 3; b++) worst[b] = scale[b] = 0.0;
+  for (int b = 0; b < 3; b++)
+    worst[b] = scale[b] = 0.0;
 #define BLOCK(i) ((i) < c->nc ? 0 : (i) < c->ih ? 1 : 2)
   for (size_t j = 0; j < m; j++)
-    for (size_t i = 0; i < m; i++) scale[BLOCK(i)] = fmax(scale[BLOCK(i)], fabs(Jd[j * m + i]));
+    for (size_t i = 0; i < m; i++)
+      scale[BLOCK(i)] = fmax(scale[BLOCK(i)], fabs(Jd[j * m + i]));
   double *y = N_VGetArrayPointer(yp);
   for (size_t j = 0; j < m; j++) {
     N_VScale(1.0, c->y, yp);
@@ -73,7 +75,8 @@ size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap
   vl_contact *mc = (vl_contact *)c; /* work arrays only */
   vl_contact_eval_state(mc, N_VGetArrayPointer(c->y));
   double unit = 0.5 * c->v0 * c->uscale; /* J is stored in units of v0 us/2 */
-  for (size_t f = 0; f <= c->n && f < cap; f++) flux_m2_s[f] = c->Jf[f] * unit;
+  for (size_t f = 0; f <= c->n && f < cap; f++)
+    flux_m2_s[f] = c->Jf[f] * unit;
   return c->n + 1;
 }
 

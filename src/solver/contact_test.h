@@ -49,13 +49,13 @@ double vl_contact_influence(vl_contact *c, double v0_m_s, size_t i, size_t j);
  * owns. Reading the clock costs ~50 ns per call and allocates nothing. */
 typedef struct {
   long residuals, jacobians, setups, solves, kernels, newtons;
-  double t_residual_s;  /* residual evaluations (including KINSOL's line search) */
-  double t_jacobian_s;  /* analytic Jacobian assembly */
-  double t_setup_s;     /* linear solver set-up: the LU factorisation */
-  double t_solve_s;     /* linear solver solves: the triangular solves */
-  double t_kernel_s;    /* influence-matrix builds at a new speed */
-  double t_newton_s;    /* KINSol calls in total (includes the four above) */
-  long linsol_fallbacks;/* VL_LINSOL_SCHUR: set-ups or solves that fell back to the full LU */
+  double t_residual_s;   /* residual evaluations (including KINSOL's line search) */
+  double t_jacobian_s;   /* analytic Jacobian assembly */
+  double t_setup_s;      /* linear solver set-up: the LU factorisation */
+  double t_solve_s;      /* linear solver solves: the triangular solves */
+  double t_kernel_s;     /* influence-matrix builds at a new speed */
+  double t_newton_s;     /* KINSol calls in total (includes the four above) */
+  long linsol_fallbacks; /* VL_LINSOL_SCHUR: set-ups or solves that fell back to the full LU */
 } vl_contact_timing;
 
 /* Sums the counters of c (and its helper contacts) into *t (overwritten). */

@@ -1,9 +1,9 @@
 #include "linsol_lapack.h"
 
+#include <nvector/nvector_serial.h>
 #include <stdlib.h>
 #include <sundials/sundials_nvector.h>
 #include <sunmatrix/sunmatrix_dense.h>
-#include <nvector/nvector_serial.h>
 
 /* LAPACK (Fortran ABI): LU with partial pivoting and its solve. */
 extern void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);

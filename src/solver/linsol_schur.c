@@ -2,10 +2,10 @@
 #include "linsol_schur.h"
 
 #include <math.h>
+#include <nvector/nvector_serial.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
-#include <nvector/nvector_serial.h>
 #include <sundials/sundials_nvector.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
@@ -21,16 +21,16 @@ extern void dgetrs_(const char *trans, const int *n, const int *nrhs, const doub
 #define SCHUR_REFINE 3
 
 typedef struct {
-  int n, of, ih, N;        /* grid, offsets, full size 2n + 1 */
-  double *lo, *up, *sup;   /* Bp = L U: L unit lower (lo), U diag up, super sup */
-  int *c_lo, *c_hi;        /* nonzero rows (within the Reynolds block) of C's columns */
-  double *X;               /* B Bp^{-1}, (n+1) x n column-major */
-  double *S;               /* Schur complement (n+1)^2, then its LU */
+  int n, of, ih, N;      /* grid, offsets, full size 2n + 1 */
+  double *lo, *up, *sup; /* Bp = L U: L unit lower (lo), U diag up, super sup */
+  int *c_lo, *c_hi;      /* nonzero rows (within the Reynolds block) of C's columns */
+  double *X;             /* B Bp^{-1}, (n+1) x n column-major */
+  double *S;             /* Schur complement (n+1)^2, then its LU */
   int *piv;
-  double *r, *w, *res, *dx;/* work vectors */
-  double *full;            /* fallback: LU of the full matrix (allocated on first use) */
+  double *r, *w, *res, *dx; /* work vectors */
+  double *full;             /* fallback: LU of the full matrix (allocated on first use) */
   int *full_piv;
-  bool use_full;           /* this set-up fell back */
+  bool use_full; /* this set-up fell back */
   long fallbacks;
   sunindextype last_flag;
 } schur_content;
@@ -96,9 +96,11 @@ static bool factor_block(schur_content *c, const double *J) {
 /* v <- Bp^{-1} v */
 static void block_solve(const schur_content *c, double *v) {
   int n = c->n;
-  for (int k = 1; k < n; k++) v[k] -= c->lo[k] * v[k - 1];
+  for (int k = 1; k < n; k++)
+    v[k] -= c->lo[k] * v[k - 1];
   v[n - 1] /= c->up[n - 1];
-  for (int k = n - 2; k >= 0; k--) v[k] = (v[k] - c->sup[k] * v[k + 1]) / c->up[k];
+  for (int k = n - 2; k >= 0; k--)
+    v[k] = (v[k] - c->sup[k] * v[k + 1]) / c->up[k];
 }
 
 static int schur_setup(SUNLinearSolver LS, SUNMatrix A) {
@@ -116,21 +118,24 @@ static int schur_setup(SUNLinearSolver LS, SUNMatrix A) {
     const double *bcol = J + (size_t)(of + j) * ld;
     double *x = c->X + (size_t)j * mm, *xp = c->X + (size_t)(j - 1) * mm;
     double s = j > 0 ? c->sup[j - 1] : 0.0, inv = 1.0 / c->up[j];
-    for (int r = 0; r < n; r++) x[r] = (bcol[r] - (j > 0 ? s * xp[r] : 0.0)) * inv;
+    for (int r = 0; r < n; r++)
+      x[r] = (bcol[r] - (j > 0 ? s * xp[r] : 0.0)) * inv;
     x[n] = (bcol[c->ih] - (j > 0 ? s * xp[n] : 0.0)) * inv;
   }
   for (int j = n - 2; j >= 0; j--) {
     double *x = c->X + (size_t)j * mm;
     const double *xn = c->X + (size_t)(j + 1) * mm;
     double l = c->lo[j + 1];
-    for (int r = 0; r < m; r++) x[r] -= l * xn[r];
+    for (int r = 0; r < m; r++)
+      x[r] -= l * xn[r];
   }
   /* S = A - X C, C by the nonzeros of its columns (Reynolds rows of the
    * u and h0 columns of J) */
   for (int j = 0; j < m; j++) {
     const double *jcol = J + (size_t)d_index(c, j) * ld;
     double *scol = c->S + (size_t)j * mm;
-    for (int r = 0; r < n; r++) scol[r] = jcol[r];
+    for (int r = 0; r < n; r++)
+      scol[r] = jcol[r];
     scol[n] = jcol[c->ih];
     const double *ccol = jcol + of;
     int lo = n, hi = -1;
@@ -140,7 +145,8 @@ static int schur_setup(SUNLinearSolver LS, SUNMatrix A) {
       hi = k;
       const double *x = c->X + (size_t)k * mm;
       double ck = ccol[k];
-      for (int r = 0; r < m; r++) scol[r] -= ck * x[r];
+      for (int r = 0; r < m; r++)
+        scol[r] -= ck * x[r];
     }
     c->c_lo[j] = lo, c->c_hi[j] = hi;
   }
@@ -158,24 +164,28 @@ static void schur_apply(schur_content *c, const double *J, const double *b, doub
   double *z = c->w, *r = c->r;
   memcpy(z, b + of, (size_t)n * sizeof *z);
   block_solve(c, z); /* z = Bp^{-1} b_T */
-  for (int i = 0; i < n; i++) r[i] = b[i];
+  for (int i = 0; i < n; i++)
+    r[i] = b[i];
   r[n] = b[c->ih];
   for (int k = 0; k < n; k++) { /* r = b_D - B z */
     const double *bcol = J + (size_t)(of + k) * ld;
     double zk = z[k];
     if (zk == 0.0) continue;
-    for (int i = 0; i < n; i++) r[i] -= zk * bcol[i];
+    for (int i = 0; i < n; i++)
+      r[i] -= zk * bcol[i];
     r[n] -= zk * bcol[c->ih];
   }
   dgetrs_("N", &m, &one, c->S, &m, c->piv, r, &m, &info, 1);
-  for (int j = 0; j < m; j++) x[d_index(c, j)] = r[j];
+  for (int j = 0; j < m; j++)
+    x[d_index(c, j)] = r[j];
   /* x_T = Bp^{-1} (b_T - C x_D) */
   double *t = x + of;
   memcpy(t, b + of, (size_t)n * sizeof *t);
   for (int j = 0; j < m; j++) {
     const double *ccol = J + (size_t)d_index(c, j) * ld + of;
     double xj = r[j];
-    for (int k = c->c_lo[j]; k <= c->c_hi[j]; k++) t[k] -= ccol[k] * xj;
+    for (int k = c->c_lo[j]; k <= c->c_hi[j]; k++)
+      t[k] -= ccol[k] * xj;
   }
   block_solve(c, t);
 }
@@ -189,10 +199,12 @@ static double residual(const schur_content *c, const double *J, const double *b,
     const double *col = J + j * N;
     double xj = x[j];
     if (xj == 0.0) continue;
-    for (size_t i = 0; i < N; i++) res[i] -= col[i] * xj;
+    for (size_t i = 0; i < N; i++)
+      res[i] -= col[i] * xj;
   }
   double mx = 0.0;
-  for (size_t i = 0; i < N; i++) mx = fmax(mx, fabs(res[i]));
+  for (size_t i = 0; i < N; i++)
+    mx = fmax(mx, fabs(res[i]));
   return isfinite(mx) ? mx : INFINITY;
 }
 
@@ -212,14 +224,16 @@ static int schur_solve(SUNLinearSolver LS, SUNMatrix A, N_Vector xv, N_Vector bv
   if (c->use_full) return full_solve(c, b, x);
   size_t N = (size_t)c->N;
   double bmax = 0.0;
-  for (size_t i = 0; i < N; i++) bmax = fmax(bmax, fabs(b[i]));
+  for (size_t i = 0; i < N; i++)
+    bmax = fmax(bmax, fabs(b[i]));
   schur_apply(c, J, b, x);
   for (int it = 0;; it++) {
     double rmax = residual(c, J, b, x, c->res);
     if (rmax <= SCHUR_RESIDUAL * bmax) return SUNLS_SUCCESS;
     if (it == SCHUR_REFINE) break;
     schur_apply(c, J, c->res, c->dx); /* refinement: x += J^{-1} (b - J x) */
-    for (size_t i = 0; i < N; i++) x[i] += c->dx[i];
+    for (size_t i = 0; i < N; i++)
+      x[i] += c->dx[i];
   }
   int st = full_setup(c, J);
   return st == SUNLS_SUCCESS ? full_solve(c, b, x) : st;
@@ -276,8 +290,8 @@ SUNLinearSolver vl_linsol_schur_create(long n, long of, long ih, SUNContext ctx)
   c->w = malloc(un * sizeof *c->w);
   c->res = malloc(N * sizeof *c->res);
   c->dx = malloc(N * sizeof *c->dx);
-  if (!c->lo || !c->up || !c->sup || !c->c_lo || !c->c_hi || !c->X || !c->S || !c->piv ||
-      !c->r || !c->w || !c->res || !c->dx) {
+  if (!c->lo || !c->up || !c->sup || !c->c_lo || !c->c_hi || !c->X || !c->S || !c->piv || !c->r ||
+      !c->w || !c->res || !c->dx) {
     schur_free(S);
     return NULL;
   }

@@ -4,10 +4,10 @@
 #include "edit_distance.h"
 
 #include <ctype.h>
-#include <stdarg.h>
 #include <errno.h>
 #include <ini.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,12 +22,33 @@
  * overriding the first. */
 typedef enum {
   K_TITLE,
-  K_COMPOUND, K_SURFACE, K_FLUID_NAME, K_ELASTIC_MODULUS,
-  K_RADIUS, K_LOAD, K_SIGMA_S,
-  K_QUANTITY, K_FROM, K_TO, K_POINTS, K_FIELDS_AT,
-  K_VISCOELASTIC, K_ROUGHNESS, K_FLUID, K_SOLID_SHEAR, K_VISCOUS_FLATTENING, K_TEMPERATURE,
-  K_FLOW_FACTORS, K_FILM_CUTOFF, K_TEMPERATURE_C,
-  K_GRID, K_GRID_GROWTH, K_DOMAIN, K_TOLERANCE, K_LINEAR_SOLVER, K_PERSSON_TABLE,
+  K_COMPOUND,
+  K_SURFACE,
+  K_FLUID_NAME,
+  K_ELASTIC_MODULUS,
+  K_RADIUS,
+  K_LOAD,
+  K_SIGMA_S,
+  K_QUANTITY,
+  K_FROM,
+  K_TO,
+  K_POINTS,
+  K_FIELDS_AT,
+  K_VISCOELASTIC,
+  K_ROUGHNESS,
+  K_FLUID,
+  K_SOLID_SHEAR,
+  K_VISCOUS_FLATTENING,
+  K_TEMPERATURE,
+  K_FLOW_FACTORS,
+  K_FILM_CUTOFF,
+  K_TEMPERATURE_C,
+  K_GRID,
+  K_GRID_GROWTH,
+  K_DOMAIN,
+  K_TOLERANCE,
+  K_LINEAR_SOLVER,
+  K_PERSSON_TABLE,
   K_COUNT
 } key_id;
 
@@ -91,12 +112,8 @@ static const struct {
   const char *name;
   section_fn set;
 } sections[] = {
-    {"scene", scene_key},
-    {"materials", materials_key},
-    {"contact", contact_key},
-    {"sweep", sweep_key},
-    {"effects", effects_key},
-    {"numerics", numerics_key},
+    {"scene", scene_key}, {"materials", materials_key}, {"contact", contact_key},
+    {"sweep", sweep_key}, {"effects", effects_key},     {"numerics", numerics_key},
 };
 
 const char *vl_sweep_quantity_name(vl_sweep_quantity q) {
@@ -126,7 +143,8 @@ static bool parse_double(const char *v, double *out) {
   char *end;
   errno = 0;
   double d = strtod(v, &end);
-  while (*end == ' ' || *end == '\t') end++;
+  while (*end == ' ' || *end == '\t')
+    end++;
   if (end == v || *end != '\0' || errno == ERANGE || !isfinite(d)) return false;
   *out = d;
   return true;
@@ -136,7 +154,8 @@ static bool parse_size(const char *v, size_t *out) {
   char *end;
   errno = 0;
   long long d = strtoll(v, &end, 10);
-  while (*end == ' ' || *end == '\t') end++;
+  while (*end == ' ' || *end == '\t')
+    end++;
   if (end == v || *end != '\0' || errno == ERANGE || d <= 0) return false;
   *out = (size_t)d;
   return true;
@@ -165,7 +184,8 @@ static int parse_list(const char *v, double *out, int max) {
     memcpy(tok, p, len);
     tok[len] = '\0';
     const char *t = tok;
-    while (*t == ' ' || *t == '\t') t++;
+    while (*t == ' ' || *t == '\t')
+      t++;
     if (!parse_double(t, &out[n])) return -1;
     if (p[len] == '\0') return n + 1;
     p += len + 1;
@@ -204,15 +224,18 @@ static void unknown_section(parse_state *ps, const char *section) {
   for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
     if (edit_distance(section, sections[s].name) <= 2)
       snprintf(hint, sizeof hint, " (did you mean [%s]?)", sections[s].name);
-  vl_error_set(ps->err, "%s:%d: unknown section [%s]%s (known: scene, materials, contact, "
-               "sweep, effects, numerics)", ps->path, ps->line, section, hint);
+  vl_error_set(ps->err,
+               "%s:%d: unknown section [%s]%s (known: scene, materials, contact, "
+               "sweep, effects, numerics)",
+               ps->path, ps->line, section, hint);
   ps->status = VL_EINPUT;
   ps->err_line = ps->line;
 }
 
 static int copy_name(parse_state *ps, const char *section, const char *key, char *dst,
                      const char *value) {
-  if (!*value || strlen(value) >= VL_NAME_MAX) return fail(ps, section, key, "bad name '%s'", value);
+  if (!*value || strlen(value) >= VL_NAME_MAX)
+    return fail(ps, section, key, "bad name '%s'", value);
   snprintf(dst, VL_NAME_MAX, "%s", value);
   return 1;
 }
@@ -220,16 +243,14 @@ static int copy_name(parse_state *ps, const char *section, const char *key, char
 #define POSITIVE(field)                                                                            \
   do {                                                                                             \
     if (!parse_double(value, &sc->field) || !(sc->field > 0.0))                                    \
-      return fail(ps, section, key, "expected a positive number, got '%s'", value);               \
+      return fail(ps, section, key, "expected a positive number, got '%s'", value);                \
     return 1;                                                                                      \
   } while (0)
 
 static int scene_key(parse_state *ps, key_id id, const char *section, const char *key,
                      const char *value) {
   switch (id) {
-  case K_TITLE:
-    snprintf(ps->scene->title, sizeof ps->scene->title, "%s", value);
-    return 1;
+  case K_TITLE: snprintf(ps->scene->title, sizeof ps->scene->title, "%s", value); return 1;
   default: return fail(ps, section, key, "unknown key%s", "");
   }
 }
@@ -242,9 +263,11 @@ static int fluid_names(parse_state *ps, const char *section, const char *key, co
   sc->n_fluids = 0;
   char *save = NULL;
   for (char *tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-    while (*tok == ' ' || *tok == '\t') tok++;
+    while (*tok == ' ' || *tok == '\t')
+      tok++;
     size_t len = strlen(tok);
-    while (len && (tok[len - 1] == ' ' || tok[len - 1] == '\t')) tok[--len] = '\0';
+    while (len && (tok[len - 1] == ' ' || tok[len - 1] == '\t'))
+      tok[--len] = '\0';
     if (sc->n_fluids >= VL_FLUIDS_MAX)
       return fail(ps, section, key, "at most 8 fluids, got '%s'", value);
     if (!copy_name(ps, section, key, sc->fluids[sc->n_fluids], tok)) return 0;
@@ -263,13 +286,14 @@ static int materials_key(parse_state *ps, key_id id, const char *section, const 
   case K_SURFACE: return copy_name(ps, section, key, sc->surface, value);
   case K_FLUID_NAME: return fluid_names(ps, section, key, value);
   case K_ELASTIC_MODULUS:
-    if (!strcmp(value, "relaxed")) sc->elastic = VL_ELASTIC_RELAXED;
-    else if (!strcmp(value, "glassy")) sc->elastic = VL_ELASTIC_GLASSY;
+    if (!strcmp(value, "relaxed"))
+      sc->elastic = VL_ELASTIC_RELAXED;
+    else if (!strcmp(value, "glassy"))
+      sc->elastic = VL_ELASTIC_GLASSY;
     else if (parse_double(value, &sc->elastic_modulus_pa) && sc->elastic_modulus_pa > 0.0)
       sc->elastic = VL_ELASTIC_GIVEN;
     else
-      return fail(ps, section, key, "expected relaxed, glassy or a modulus in Pa, got '%s'",
-                  value);
+      return fail(ps, section, key, "expected relaxed, glassy or a modulus in Pa, got '%s'", value);
     return 1;
   default: return fail(ps, section, key, "unknown key%s", "");
   }
@@ -294,10 +318,14 @@ static int sweep_key(parse_state *ps, key_id id, const char *section, const char
   vl_scene *sc = ps->scene;
   switch (id) {
   case K_QUANTITY:
-    if (!strcmp(value, "v0")) sc->quantity = VL_SWEEP_V0;
-    else if (!strcmp(value, "v0_eta")) sc->quantity = VL_SWEEP_V0_ETA;
-    else if (!strcmp(value, "deborah")) sc->quantity = VL_SWEEP_DEBORAH;
-    else return fail(ps, section, key, "expected v0, v0_eta or deborah, got '%s'", value);
+    if (!strcmp(value, "v0"))
+      sc->quantity = VL_SWEEP_V0;
+    else if (!strcmp(value, "v0_eta"))
+      sc->quantity = VL_SWEEP_V0_ETA;
+    else if (!strcmp(value, "deborah"))
+      sc->quantity = VL_SWEEP_DEBORAH;
+    else
+      return fail(ps, section, key, "expected v0, v0_eta or deborah, got '%s'", value);
     return 1;
   case K_FROM: POSITIVE(from);
   case K_TO: POSITIVE(to);
@@ -310,7 +338,8 @@ static int sweep_key(parse_state *ps, key_id id, const char *section, const char
     if (n < 0)
       return fail(ps, section, key, "expected 1 to 32 comma-separated numbers, got '%s'", value);
     for (int i = 0; i < n; i++)
-      if (!(sc->fields_at[i] > 0.0)) return fail(ps, section, key, "values must be positive: '%s'", value);
+      if (!(sc->fields_at[i] > 0.0))
+        return fail(ps, section, key, "values must be positive: '%s'", value);
     sc->n_fields_at = (size_t)n;
     return 1;
   }
@@ -328,19 +357,19 @@ static int effects_key(parse_state *ps, key_id id, const char *section, const ch
   case K_SOLID_SHEAR:
   case K_VISCOUS_FLATTENING:
   case K_TEMPERATURE: {
-    bool *sw = id == K_VISCOELASTIC ? &sc->effects.viscoelastic
-               : id == K_ROUGHNESS  ? &sc->effects.roughness
-               : id == K_FLUID      ? &sc->effects.fluid
-               : id == K_SOLID_SHEAR ? &sc->effects.solid_shear
+    bool *sw = id == K_VISCOELASTIC         ? &sc->effects.viscoelastic
+               : id == K_ROUGHNESS          ? &sc->effects.roughness
+               : id == K_FLUID              ? &sc->effects.fluid
+               : id == K_SOLID_SHEAR        ? &sc->effects.solid_shear
                : id == K_VISCOUS_FLATTENING ? &sc->effects.viscous_flattening
                                             : &sc->effects.temperature;
-    if (!parse_switch(value, sw)) return fail(ps, section, key, "expected on or off, got '%s'", value);
+    if (!parse_switch(value, sw))
+      return fail(ps, section, key, "expected on or off, got '%s'", value);
     return 1;
   }
   case K_FLOW_FACTORS:
     if (vl_flow_factors_parse(value, &sc->effects.flow_factors, NULL) != VL_OK)
-      return fail(ps, section, key, "expected smooth, patir-cheng or persson-emt, got '%s'",
-                  value);
+      return fail(ps, section, key, "expected smooth, patir-cheng or persson-emt, got '%s'", value);
     return 1;
   case K_FILM_CUTOFF:
     if (!parse_double(value, &sc->effects.film_cutoff_m) ||
@@ -363,8 +392,9 @@ static int numerics_key(parse_state *ps, key_id id, const char *section, const c
   case K_GRID:
     if (!parse_size(value, &sc->grid) || sc->grid < VL_GRID_MIN || sc->grid > VL_GRID_GRADED_MAX)
       return fail(ps, section, key,
-                  "expected a whole number in [" VL_STR(VL_GRID_MIN) ", "
-                  VL_STR(VL_GRID_GRADED_MAX) "], got '%s'", value);
+                  "expected a whole number in [" VL_STR(VL_GRID_MIN) ", " VL_STR(
+                      VL_GRID_GRADED_MAX) "], got '%s'",
+                  value);
     return 1;
   case K_GRID_GROWTH:
     if (!parse_double(value, &sc->grid_growth) ||
@@ -391,13 +421,18 @@ static int numerics_key(parse_state *ps, key_id id, const char *section, const c
       return fail(ps, section, key, "expected a number in (0, 1), got '%s'", value);
     return 1;
   case K_LINEAR_SOLVER:
-    if (!strcmp(value, "lapack")) sc->linear_solver = VL_LINSOL_LAPACK;
-    else if (!strcmp(value, "sundials")) sc->linear_solver = VL_LINSOL_SUNDIALS;
-    else if (!strcmp(value, "schur")) sc->linear_solver = VL_LINSOL_SCHUR;
-    else return fail(ps, section, key, "expected schur, lapack or sundials, got '%s'", value);
+    if (!strcmp(value, "lapack"))
+      sc->linear_solver = VL_LINSOL_LAPACK;
+    else if (!strcmp(value, "sundials"))
+      sc->linear_solver = VL_LINSOL_SUNDIALS;
+    else if (!strcmp(value, "schur"))
+      sc->linear_solver = VL_LINSOL_SCHUR;
+    else
+      return fail(ps, section, key, "expected schur, lapack or sundials, got '%s'", value);
     return 1;
   case K_PERSSON_TABLE:
-    if (!parse_size(value, &sc->persson_table) || sc->persson_table < 64 || sc->persson_table > 100000)
+    if (!parse_size(value, &sc->persson_table) || sc->persson_table < 64 ||
+        sc->persson_table > 100000)
       return fail(ps, section, key, "expected a whole number in [64, 100000], got '%s'", value);
     return 1;
   default: return fail(ps, section, key, "unknown key%s", "");
@@ -456,8 +491,10 @@ static char *reader(char *str, int num, void *stream) {
   ps->cursor += len + (text[len] == '\n');
   ps->line++;
   size_t b = 0, e = len;
-  while (b < e && (text[b] == ' ' || text[b] == '\t')) b++;
-  while (e > b && isspace((unsigned char)text[e - 1])) e--;
+  while (b < e && (text[b] == ' ' || text[b] == '\t'))
+    b++;
+  while (e > b && isspace((unsigned char)text[e - 1]))
+    e--;
   if (b < e && (text[b] == ';' || text[b] == '#')) e = b;
   /* a section header is checked here, at its own line, as inih tells the
    * handler nothing of a section without keys */
@@ -545,17 +582,20 @@ static vl_status scene_check(parse_state *ps) {
   /* the numerics the file does not set follow from its effects */
   vl_scene d = *sc;
   vl_scene_default_numerics(&d);
-  if (!ps->key_line[K_DOMAIN]) sc->domain_min_a0 = d.domain_min_a0, sc->domain_max_a0 = d.domain_max_a0;
+  if (!ps->key_line[K_DOMAIN])
+    sc->domain_min_a0 = d.domain_min_a0, sc->domain_max_a0 = d.domain_max_a0;
   if (!ps->key_line[K_GRID]) sc->grid = d.grid;
   if (!ps->key_line[K_GRID_GROWTH]) sc->grid_growth = d.grid_growth;
   if (!ps->key_line[K_TOLERANCE]) sc->tolerance = d.tolerance;
   if (!(sc->grid_growth > 1.0) && sc->grid > VL_GRID_UNIFORM_MAX)
-    return check_fail(ps, K_GRID, "a uniform grid takes at most %d cells (its dense matrices grow "
-                                  "as the square), got %zu; set grid_growth > 1 for a graded inlet",
+    return check_fail(ps, K_GRID,
+                      "a uniform grid takes at most %d cells (its dense matrices grow "
+                      "as the square), got %zu; set grid_growth > 1 for a graded inlet",
                       VL_GRID_UNIFORM_MAX, sc->grid);
   if (sc->grid_growth > 1.0 && !sc->effects.roughness)
-    return check_fail(ps, K_GRID_GROWTH, "a graded grid needs [effects] roughness = on (smooth "
-                                         "contacts use a uniform grid: remove the key or set 1)");
+    return check_fail(ps, K_GRID_GROWTH,
+                      "a graded grid needs [effects] roughness = on (smooth "
+                      "contacts use a uniform grid: remove the key or set 1)");
   if (sc->effects.roughness && !sc->surface[0])
     return check_fail(ps, K_ROUGHNESS, "roughness = on needs [materials] surface");
   if (sc->effects.fluid && !sc->fluid[0])
@@ -563,7 +603,8 @@ static vl_status scene_check(parse_state *ps) {
   if (sc->quantity == VL_SWEEP_V0_ETA && !sc->effects.fluid)
     return check_fail(ps, K_QUANTITY, "v0_eta needs [effects] fluid = on");
   if (sc->quantity == VL_SWEEP_DEBORAH && !sc->effects.viscoelastic)
-    return check_fail(ps, K_QUANTITY, "deborah needs [effects] viscoelastic = on (line %d sets it off)",
+    return check_fail(ps, K_QUANTITY,
+                      "deborah needs [effects] viscoelastic = on (line %d sets it off)",
                       ps->key_line[K_VISCOELASTIC]);
   if (ps->key_line[K_ELASTIC_MODULUS] && sc->effects.viscoelastic)
     return check_fail(ps, K_ELASTIC_MODULUS,
@@ -675,7 +716,8 @@ vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err) {
   const char *nul = memchr(text, '\0', len);
   if (nul) {
     int line = 1;
-    for (const char *p = text; p < nul; p++) line += *p == '\n';
+    for (const char *p = text; p < nul; p++)
+      line += *p == '\n';
     vl_error_set(err, "%s:%d: not a text file (contains a NUL byte)", path, line);
     st = VL_EINPUT;
     goto done;

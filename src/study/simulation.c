@@ -19,7 +19,7 @@ struct vl_simulation {
   bool have_psd;
   vl_psd psd;
   vl_persson *table;
-  vl_emt_table *flow_table; /* persson-emt only */
+  vl_emt_table *flow_table;        /* persson-emt only */
   vl_flattening_config flattening; /* [effects] viscous_flattening = on: its settings */
   double eta_pa_s;
   double temperature_c; /* [effects] temperature: the scene's; NAN when off */
@@ -60,7 +60,8 @@ static vl_status build_speeds(vl_simulation *sim, vl_error *err) {
     double t = sc->points > 1 ? (double)i / (double)(sc->points - 1) : 0.0;
     sim->v0[i] = speed_of(sim, sc->from * pow(sc->to / sc->from, t));
   }
-  for (size_t k = 0; k < sc->n_fields_at; k++) fv[k] = speed_of(sim, sc->fields_at[k]);
+  for (size_t k = 0; k < sc->n_fields_at; k++)
+    fv[k] = speed_of(sim, sc->fields_at[k]);
   /* merge: a fields_at value within 1e-9 relative of a sweep point uses it */
   size_t m = sc->points;
   for (size_t k = 0; k < sc->n_fields_at; k++) {
@@ -178,7 +179,8 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     goto fail;
   }
   if (scene->quantity == VL_SWEEP_DEBORAH && sim->rubber.n_terms != 1) {
-    vl_error_set(err, "%s: [sweep] quantity = deborah needs a one-term compound; '%s' has %zu terms",
+    vl_error_set(err,
+                 "%s: [sweep] quantity = deborah needs a one-term compound; '%s' has %zu terms",
                  scene->path, scene->compound, sim->rubber.n_terms);
     st = VL_EINPUT;
     goto fail;
@@ -307,8 +309,7 @@ static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
                         const vl_contact *c) {
   run_ctx *r = user;
   vl_point *p = &r->out[i]; /* pt == &out[i]: the sweep fills the caller's array */
-  vl_assumptions_check(&r->sim->cfg, vl_simulation_psd(r->sim), p, p->warnings,
-                       sizeof p->warnings);
+  vl_assumptions_check(&r->sim->cfg, vl_simulation_psd(r->sim), p, p->warnings, sizeof p->warnings);
   (void)pt;
   if (r->cb) r->cb(r->user, i, total, p, c);
 }

@@ -7,17 +7,20 @@
 #include "viscolube/atomic_file.h"
 
 const char *const vl_curve_columns[] = {
-    "v0_m_s", "v0_eta_pa_m", "deborah", "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf", "u_min_m",
-    "u_central_m", "contact_width_m", "fluid_load_fraction", "regime", "E_wH_pa", "a_H_m", "Q",
-    "x_centroid_m", "load_error", "converged", "iterations", "residual", "eps_f_min", "warnings", NULL};
+    "v0_m_s",    "v0_eta_pa_m", "deborah",  "mu",          "mu_Rc",           "mu_Rf",
+    "mu_Sc",     "mu_Sf",       "u_min_m",  "u_central_m", "contact_width_m", "fluid_load_fraction",
+    "regime",    "E_wH_pa",     "a_H_m",    "Q",           "x_centroid_m",    "load_error",
+    "converged", "iterations",  "residual", "eps_f_min",   "warnings",        NULL};
 
 /* -0 (a sum of zeros with a minus sign, e.g. mu_Rf of a dry contact) is
  * written as 0: readers compare text, and "-0" looks like a sign. */
 static double plain_zero(double v) { return v == 0.0 ? 0.0 : v; }
 
 static void cell(FILE *f, double v, int ok) {
-  if (ok && isfinite(v)) fprintf(f, ",%.10g", plain_zero(v));
-  else fputc(',', f);
+  if (ok && isfinite(v))
+    fprintf(f, ",%.10g", plain_zero(v));
+  else
+    fputc(',', f);
 }
 
 /* The comment line that says which flow-factor model made the curve. */
@@ -49,9 +52,11 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->contact_width_m, ok);
     cell(out, p->fluid_load_fraction, ok);
     fprintf(out, ",%s", ok ? vl_regime_name(p->regime) : "");
-    cell(out, p->E_wH_pa, 1);
-    cell(out, p->a_H_m, 1);
-    cell(out, p->Q, 1);
+    /* derived from the solved state: a failed point has none (its struct
+     * holds zeros, which read as values) */
+    cell(out, p->E_wH_pa, ok);
+    cell(out, p->a_H_m, ok);
+    cell(out, p->Q, ok);
     cell(out, p->x_centroid_m, ok);
     cell(out, p->load_error, ok);
     fprintf(out, ",%d,%ld", p->converged ? 1 : 0, p->iterations);
@@ -91,8 +96,10 @@ vl_status vl_write_fields_csv(const char *path, const vl_fields *fl, double a0_m
  * empty (not defined, or the point did not converge). */
 static void member(vl_json *w, const char *key, double v, int ok) {
   vl_json_key(w, key);
-  if (ok) vl_json_number_digits(w, v, 10);
-  else vl_json_null(w);
+  if (ok)
+    vl_json_number_digits(w, v, 10);
+  else
+    vl_json_null(w);
 }
 
 void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *meta) {
@@ -111,9 +118,9 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "contact_width_m", p->contact_width_m, ok);
   member(w, "fluid_load_fraction", p->fluid_load_fraction, ok);
   vl_json_key_string(w, "regime", ok ? vl_regime_name(p->regime) : NULL);
-  member(w, "E_wH_pa", p->E_wH_pa, 1);
-  member(w, "a_H_m", p->a_H_m, 1);
-  member(w, "Q", p->Q, 1);
+  member(w, "E_wH_pa", p->E_wH_pa, ok);
+  member(w, "a_H_m", p->a_H_m, ok);
+  member(w, "Q", p->Q, ok);
   member(w, "x_centroid_m", p->x_centroid_m, ok);
   member(w, "load_error", p->load_error, ok);
   vl_json_key(w, "converged");
@@ -136,6 +143,7 @@ void vl_point_json(vl_json *w, const vl_point *p, const vl_curve_meta *meta) {
 
 void vl_curve_json(vl_json *w, size_t n, const vl_point *pts, const vl_curve_meta *meta) {
   vl_json_array_begin(w, VL_JSON_ROWS);
-  for (size_t i = 0; i < n; i++) vl_point_json(w, &pts[i], meta);
+  for (size_t i = 0; i < n; i++)
+    vl_point_json(w, &pts[i], meta);
   vl_json_end(w);
 }

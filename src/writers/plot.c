@@ -680,9 +680,8 @@ static FILE *plplot_stream(const vl_atomic_file *af) {
 /* Draws one figure into path with the PLplot device dev, through a
  * temporary renamed into place once PLplot has reported no error and the
  * file ends as a complete PNG (png) or SVG does. */
-static vl_status draw_file(const char *path, const char *dev, bool png,
-                           const vl_plot_options *opt, draw_fn draw, const void *ctx, fig *f,
-                           vl_error *err) {
+static vl_status draw_file(const char *path, const char *dev, bool png, const vl_plot_options *opt,
+                           draw_fn draw, const void *ctx, fig *f, vl_error *err) {
   vl_atomic_file af;
   if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
   FILE *fp = plplot_stream(&af);
@@ -752,8 +751,8 @@ static vl_status render(const char *stem, const vl_plot_options *opt_in, draw_fn
     char path[4200];
     snprintf(path, sizeof path, "%s.%s", stem, formats[k].ext);
     fig f = {0};
-    vl_status st = draw_file(path, formats[k].dev, formats[k].flag == VL_PLOT_PNG, &opt, draw,
-                             ctx, &f, err);
+    vl_status st =
+        draw_file(path, formats[k].dev, formats[k].flag == VL_PLOT_PNG, &opt, draw, ctx, &f, err);
     if (st != VL_OK) return st;
     r.series = f.series;
     r.failed_markers = f.failed;
@@ -1584,4 +1583,107 @@ vl_status vl_plot_shifts(const char *stem, size_t n, const double *t_c, const do
     }
   shifts_ctx c = {n, t_c, log10_a_t, tref_c, isfinite(c1) ? c1 : 0, isfinite(c2_k) ? c2_k : 0};
   return render(stem, opt, draw_shifts, &c, report, err);
+}
+
+/* ---- flow factors ------------------------------------------------------ */
+
+/* One series of a flow-factor panel: its values and how it is drawn. */
+typedef struct {
+  const double *v;
+  const char *label;
+  style st;
+} factor_series;
+
+/* The y axis of a panel of k series: linear over their finite values, zero
+ * included. */
+static void factor_y_axis(fig *f, const vl_plot_flow_factor_data *d, size_t k,
+                          const factor_series *s) {
+  double lo = NAN, hi = NAN;
+  for (size_t j = 0; j < k; j++) {
+    double a, b;
+    range_of(d->n, s[j].v, &a, &b);
+    if (!(a >= lo)) lo = a;
+    if (!(b <= hi)) hi = b;
+  }
+  value_y_axis(f, lo, hi, true);
+}
+
+/* A panel of k series against the shared log x axis, with the percolation
+ * line. */
+static void draw_factor_panel(fig *f, const vl_plot_flow_factor_data *d, size_t k,
+                              const factor_series *s, const char *ytitle, bool x_labels, double *wx,
+                              double *wy) {
+  factor_y_axis(f, d, k, s);
+  draw_axes(f, "#<0x11>u#<0x01>/#<0x11>h#<0x01>#drms#u", ytitle, x_labels);
+  use_data_area(f);
+  double xp = to_wx(f, d->x_percolation);
+  if (isfinite(xp) && xp > f->x.lo && xp < f->x.hi) {
+    set_style(f, (style){GREY, 2, 1.0});
+    segment(xp, f->y.lo, xp, f->y.hi);
+  }
+  for (size_t j = 0; j < k; j++) {
+    for (size_t i = 0; i < d->n; i++) {
+      wx[i] = to_wx(f, d->x[i]);
+      wy[i] = to_wy(f, s[j].v[i]);
+    }
+    draw_runs(f, d->n, wx, wy, s[j].st);
+    add_legend(f, s[j].label, true, s[j].st, M_NONE, false, s[j].st.color);
+    f->series++;
+  }
+}
+
+static void draw_flow_factors(fig *f, const void *vctx) {
+  const vl_plot_flow_factor_data *d = vctx;
+  double *wx = malloc(d->n * sizeof *wx), *wy = malloc(d->n * sizeof *wy);
+  if (!wx || !wy) {
+    free(wx), free(wy);
+    return;
+  }
+  factor_series top[4] = {
+      {d->phi_p, "#<0x11>φ#<0x01>#dp#u pressure flow", {PALETTE[0], 1, 2.4}},
+      {d->phi_fp, "#<0x11>φ#<0x01>#dfp#u Poiseuille shear", {PALETTE[1], 3, 2.4}},
+      {d->phi_s, "#<0x11>φ#<0x01>#ds#u shear flow", {PALETTE[2], 1, 2.4}},
+      {d->area_ratio, "#<0x11>A#<0x01>/#<0x11>A#<0x01>#d0#u contact", {PALETTE[3], 1, 2.0}}};
+  factor_series bottom[2] = {
+      {d->phi_f, "#<0x11>φ#<0x01>#df#u Couette shear", {PALETTE[4], 1, 2.4}},
+      {d->phi_fs, "#<0x11>φ#<0x01>#dfs#u roughness shear", {PALETTE[6], 1, 2.4}}};
+  double xlo, xhi;
+  range_of(d->n, d->x, &xlo, &xhi);
+  f->vx0 = 0.105;
+  f->vx1 = 0.69;
+  f->x = log_axis(xlo, xhi, len_x(f), CH_TICK * f->ph, false);
+  /* the lower panel's labels first: both panels get the wider margin */
+  f->vy0 = 0.115;
+  f->vy1 = 0.395;
+  factor_y_axis(f, d, 2, bottom);
+  fit_left_margin(f);
+  f->vy0 = 0.44;
+  f->vy1 = TOP;
+  draw_factor_panel(f, d, d->area_ratio ? 4 : 3, top, "flow factors", false, wx, wy);
+  f->vy0 = 0.115;
+  f->vy1 = 0.395;
+  draw_factor_panel(f, d, 2, bottom, "shear stress factors", true, wx, wy);
+  double xp = to_wx(f, d->x_percolation);
+  if (isfinite(xp) && xp > f->x.lo && xp < f->x.hi) { /* as draw_factor_panel drew it */
+    char v[48], label[TEXT_MAX];
+    vl_plot_format_value(v, sizeof v, d->x_percolation);
+    snprintf(label, sizeof label, "percolation at %s", v);
+    add_legend(f, label, true, (style){GREY, 2, 1.0}, M_NONE, false, GREY);
+  }
+  free(wx);
+  free(wy);
+  draw_legend(f, TOP);
+}
+
+vl_status vl_plot_flow_factors(const char *stem, const vl_plot_flow_factor_data *d,
+                               const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
+  if (!d || d->n < 2 || !d->x || !d->phi_p || !d->phi_s || !d->phi_fp || !d->phi_fs || !d->phi_f) {
+    vl_error_set(err, "plot: no flow factors (at least 2 rows of x and the five factors)");
+    return VL_EINPUT;
+  }
+  if (!positive_finite(d->n, d->x)) {
+    vl_error_set(err, "plot: flow factors: u/h_rms must be positive and finite");
+    return VL_EINPUT;
+  }
+  return render(stem, opt, draw_flow_factors, d, report, err);
 }

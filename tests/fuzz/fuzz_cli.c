@@ -109,12 +109,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   argv[argc] = NULL;
   const char *noun = argv[0];
   int material = !strcmp(noun, "compound") || !strcmp(noun, "surface") || !strcmp(noun, "fluid");
-  int (*entry)(const vl_cli_globals *, int, char **) =
-      material                    ? vl_cli_materials
-      : !strcmp(noun, "run")      ? vl_cli_run
-      : !strcmp(noun, "friction") ? vl_cli_friction
-      : !strcmp(noun, "compare")  ? vl_cli_compare
-                                  : NULL;
+  int (*entry)(const vl_cli_globals *, int, char **) = material               ? vl_cli_materials
+                                                       : !strcmp(noun, "run") ? vl_cli_run
+                                                       : !strcmp(noun, "friction") ? vl_cli_friction
+                                                       : !strcmp(noun, "compare")  ? vl_cli_compare
+                                                                                   : NULL;
   if (!entry) {
     free(buf);
     return 0;

@@ -47,8 +47,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   vl_status st = vl_csv_parse_double(s, &v, &why);
 
   const char *b = s, *e = s + size;
-  while (b < e && (*b == ' ' || *b == '\t')) b++;
-  while (e > b && (e[-1] == ' ' || e[-1] == '\t')) e--;
+  while (b < e && (*b == ' ' || *b == '\t'))
+    b++;
+  while (e > b && (e[-1] == ' ' || e[-1] == '\t'))
+    e--;
   size_t n = (size_t)(e - b);
   int expect = 0;
   double ref = 0.0;

@@ -29,14 +29,13 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   FUZZ_CHECK(isfinite(sc.radius_m) && sc.radius_m > 0.0, "radius %g", sc.radius_m);
   FUZZ_CHECK(isfinite(sc.load_n_per_m) && sc.load_n_per_m > 0.0, "load %g", sc.load_n_per_m);
   FUZZ_CHECK(isfinite(sc.sigma_s_pa) && sc.sigma_s_pa >= 0.0, "sigma_s %g", sc.sigma_s_pa);
-  FUZZ_CHECK(isfinite(sc.from) && sc.from > 0.0 && isfinite(sc.to) && sc.to > 0.0,
-             "sweep [%g, %g]", sc.from, sc.to);
+  FUZZ_CHECK(isfinite(sc.from) && sc.from > 0.0 && isfinite(sc.to) && sc.to > 0.0, "sweep [%g, %g]",
+             sc.from, sc.to);
   FUZZ_CHECK(sc.points >= 1 && sc.points <= 100000, "points %zu", sc.points);
   FUZZ_CHECK(sc.points == 1 || sc.to > sc.from, "to %g <= from %g", sc.to, sc.from);
   FUZZ_CHECK(sc.n_fields_at <= VL_FIELDS_AT_MAX, "n_fields_at %zu", sc.n_fields_at);
   for (size_t i = 0; i < sc.n_fields_at; i++)
-    FUZZ_CHECK(isfinite(sc.fields_at[i]) && sc.fields_at[i] > 0.0, "fields_at %g",
-               sc.fields_at[i]);
+    FUZZ_CHECK(isfinite(sc.fields_at[i]) && sc.fields_at[i] > 0.0, "fields_at %g", sc.fields_at[i]);
   FUZZ_CHECK(sc.grid >= 16 && sc.grid <= 8192, "grid %zu", sc.grid);
   FUZZ_CHECK(sc.domain_min_a0 < 0.0 && sc.domain_max_a0 > 0.0 && isfinite(sc.domain_min_a0) &&
                  isfinite(sc.domain_max_a0),

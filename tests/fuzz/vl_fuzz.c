@@ -65,3 +65,15 @@ char *vl_fuzz_strdup(const uint8_t *data, size_t size) {
   s[size] = '\0';
   return s;
 }
+
+int vl_fuzz_message_clean(const char *msg, const char *path) {
+  size_t lp = strlen(path);
+  for (const char *c = msg; *c; c++) {
+    if (*c == '\n') {
+      if (strncmp(c + 1, path, lp) != 0 && strncmp(c + 1, "  ", 2) != 0) return 0;
+      continue;
+    }
+    if ((unsigned char)*c < 0x20 || *c == 0x7f) return 0;
+  }
+  return 1;
+}

@@ -26,11 +26,16 @@ _Noreturn void vl_fuzz_fail(const char *file, int line, const char *fmt, ...)
     if (!(cond)) vl_fuzz_fail(__FILE__, __LINE__, __VA_ARGS__);                                    \
   } while (0)
 
+/* 1 when msg holds no control byte except newlines that separate the lines
+ * of a message listing several problems, each of which again starts with
+ * path (or continues with two spaces); 0 otherwise. */
+int vl_fuzz_message_clean(const char *msg, const char *path);
+
 /* The contract of a reader refusing the file at path (status st, message
- * msg): VL_EINPUT, a message whose every line starts with the path (a
- * reader lists every offending line of a file, one per line) and holds no
- * other control byte. A macro so that a failure names the caller's line;
- * the caller includes <string.h> and the viscolube header defining
+ * msg): VL_EINPUT, a message that starts with the path and holds no control
+ * byte but the newlines between the lines of a problem list
+ * (vl_fuzz_message_clean). A macro so that a failure names the caller's
+ * line; the caller includes <string.h> and the viscolube header defining
  * VL_EINPUT. */
 #define FUZZ_CHECK_REFUSED(st, path, msg)                                                          \
   do {                                                                                             \
@@ -38,20 +43,13 @@ _Noreturn void vl_fuzz_fail(const char *file, int line, const char *fmt, ...)
     FUZZ_CHECK_LINES((path), (msg));                                                               \
   } while (0)
 
-/* Every line of msg starts with name and holds no control byte but the
- * line breaks. */
+/* msg starts with name, every further line starts with name or continues
+ * with two spaces, and it holds no control byte but the line breaks. */
 #define FUZZ_CHECK_LINES(name, msg)                                                                \
   do {                                                                                             \
     FUZZ_CHECK(!strncmp((msg), (name), strlen(name)), "message does not name the file: %s",        \
                (msg));                                                                             \
-    for (const char *fuzz_c_ = (msg); *fuzz_c_; fuzz_c_++) {                                       \
-      if (*fuzz_c_ == '\n')                                                                        \
-        FUZZ_CHECK(!strncmp(fuzz_c_ + 1, (name), strlen(name)),                                    \
-                   "a line of the message does not name the file: %s", (msg));                     \
-      else                                                                                         \
-        FUZZ_CHECK((unsigned char)*fuzz_c_ >= 0x20 && *fuzz_c_ != 0x7f,                            \
-                   "control byte in message: %s", (msg));                                          \
-    }                                                                                              \
+    FUZZ_CHECK(vl_fuzz_message_clean((msg), (name)), "control byte in message: %s", (msg));        \
   } while (0)
 
 /* A path naming a file whose content is exactly data[0..size): the readers

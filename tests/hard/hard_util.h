@@ -25,8 +25,8 @@
 
 #include "viscolube/assumptions.h"
 #include "viscolube/contact.h"
-#include "viscolube/rheology.h"
 #include "viscolube/persson.h"
+#include "viscolube/rheology.h"
 #include "viscolube/sweep.h"
 
 /* The seed's model rubber and cylinder (docs/CASES.md fig05: E0 = 3.6 MPa,

@@ -227,8 +227,8 @@ static void test_smooth_lhs(void **state) {
     const double *p = u + i * D;
     hard_solid so = hard_decode_solid(p, grids);
     smooth_corner(&fam_smooth_lhs, so.ratio, so.terms, so.decades, so.tau_c, so.load, so.radius,
-                  so.grid, hard_log_between(1e-5, 100.0, p[7]),
-                  -hard_log_between(2.0, 30.0, p[8]), &rng, nv, v);
+                  so.grid, hard_log_between(1e-5, 100.0, p[7]), -hard_log_between(2.0, 30.0, p[8]),
+                  &rng, nv, v);
   }
   hard_assert_rate(&fam_smooth_lhs);
 }
@@ -258,10 +258,10 @@ static void test_summary(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_rough_lhs),       cmocka_unit_test(test_rough_extremes),
-      cmocka_unit_test(test_rough_graded),
-      cmocka_unit_test(test_hrms_scan),       cmocka_unit_test(test_smooth_lhs),
-      cmocka_unit_test(test_smooth_extremes), cmocka_unit_test(test_summary),
+      cmocka_unit_test(test_rough_lhs),    cmocka_unit_test(test_rough_extremes),
+      cmocka_unit_test(test_rough_graded), cmocka_unit_test(test_hrms_scan),
+      cmocka_unit_test(test_smooth_lhs),   cmocka_unit_test(test_smooth_extremes),
+      cmocka_unit_test(test_summary),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

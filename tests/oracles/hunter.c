@@ -54,14 +54,14 @@
 #define HUNTER_WS_LIMIT 2000
 
 typedef struct {
-  double A, De;                  /* A = Einf/E0 - 1, De = v0 tau/a0 */
-  double q, h, c, Chat, kappa;   /* current state (see step 5 above) */
-  int n;                         /* Ib[0..n] valid */
+  double A, De;                /* A = Einf/E0 - 1, De = v0 tau/a0 */
+  double q, h, c, Chat, kappa; /* current state (see step 5 above) */
+  int n;                       /* Ib[0..n] valid */
   int cap;
-  double *Ib;                    /* scaled Bessel I_m(kappa) e^{-kappa} */
-  double *tail;                  /* tail[m] = sum_{k>=m} Ib[k] */
+  double *Ib;   /* scaled Bessel I_m(kappa) e^{-kappa} */
+  double *tail; /* tail[m] = sum_{k>=m} Ib[k] */
   gsl_integration_workspace *ws;
-  int err;                       /* first GSL failure seen in a callback */
+  int err; /* first GSL failure seen in a callback */
 } hunter_ctx;
 
 /* Number of Bessel terms: Ib_m ~ exp(-m^2/(2 kappa))/sqrt(2 pi kappa) for
@@ -69,7 +69,8 @@ typedef struct {
  * kappa (trimmed so nothing underflows). */
 static int bessel_terms(double kappa) {
   int n = 30 + (int)ceil(10.0 * sqrt(kappa));
-  while (n > 4 && (double)n * log(0.5 * kappa) - lgamma((double)n + 1.0) < -600.0) n--;
+  while (n > 4 && (double)n * log(0.5 * kappa) - lgamma((double)n + 1.0) < -600.0)
+    n--;
   return n;
 }
 
@@ -91,14 +92,17 @@ static int ctx_bessel(hunter_ctx *x, double kappa) {
     for (int m = 0; m <= n; m++) {
       gsl_sf_result r;
       int s = gsl_sf_bessel_In_scaled_e(m, kappa, &r);
-      if (s == GSL_EUNDRFLW) r.val = 0.0;
-      else if (s != GSL_SUCCESS) return -1;
+      if (s == GSL_EUNDRFLW)
+        r.val = 0.0;
+      else if (s != GSL_SUCCESS)
+        return -1;
       x->Ib[m] = r.val;
     }
   }
   x->n = n;
   x->tail[n + 1] = 0.0;
-  for (int m = n; m >= 0; m--) x->tail[m] = x->tail[m + 1] + x->Ib[m]; /* small terms first */
+  for (int m = n; m >= 0; m--)
+    x->tail[m] = x->tail[m + 1] + x->Ib[m]; /* small terms first */
   return 0;
 }
 
@@ -151,8 +155,8 @@ static double memory_residual(double q, void *params) {
   const double umax = 2.0 * asinh(sqrt(25.0 / beta));
   gsl_function f = {dh_integrand, x};
   double dH = 0.0, abserr = 0.0;
-  int st = gsl_integration_qag(&f, 0.0, umax, 0.0, 1e-12, HUNTER_WS_LIMIT, GSL_INTEG_GAUSS31,
-                               x->ws, &dH, &abserr);
+  int st = gsl_integration_qag(&f, 0.0, umax, 0.0, 1e-12, HUNTER_WS_LIMIT, GSL_INTEG_GAUSS31, x->ws,
+                               &dH, &abserr);
   if (st != GSL_SUCCESS && st != GSL_EROUND) {
     /* Accept a slightly looser result rather than fail: it is still far
      * below the test tolerances; a real failure shows in abserr. */
@@ -175,7 +179,8 @@ static double clenshaw_u(const double *a, int m, double t) {
 /* U-series coefficients of the pressure: a[0..n-1] (needs Ib[0..n]). */
 static void pressure_coeffs(const hunter_ctx *x, double *a) {
   a[0] = x->h + x->Chat * x->Ib[1];
-  for (int k = 1; k < x->n; k++) a[k] = ((k & 1) ? -1.0 : 1.0) * x->Chat * x->Ib[k + 1];
+  for (int k = 1; k < x->n; k++)
+    a[k] = ((k & 1) ? -1.0 : 1.0) * x->Chat * x->Ib[k + 1];
 }
 
 static double pressure_local(const double *a, int m, double t) {
@@ -230,8 +235,7 @@ static void find_pmax(const hunter_ctx *x, const double *a, double *pmax, double
   gsl_min_fminimizer_free(mz);
 }
 
-int vl_oracle_hunter_solve(double deborah, double einf_over_e0,
-                           vl_oracle_hunter_solution *out) {
+int vl_oracle_hunter_solve(double deborah, double einf_over_e0, vl_oracle_hunter_solution *out) {
   if (!out) return -1;
   *out = (vl_oracle_hunter_solution){0};
   out->deborah = deborah;
@@ -358,13 +362,13 @@ void vl_oracle_hunter_profile_free(vl_oracle_hunter_profile *pr) {
   free(pr);
 }
 
-int vl_oracle_hunter_pressure_array(const vl_oracle_hunter_solution *s,
-                                    size_t n, const double *x_over_a0,
-                                    double *p_over_p0) {
+int vl_oracle_hunter_pressure_array(const vl_oracle_hunter_solution *s, size_t n,
+                                    const double *x_over_a0, double *p_over_p0) {
   if (n > 0 && (!x_over_a0 || !p_over_p0)) return -1;
   vl_oracle_hunter_profile *pr = vl_oracle_hunter_profile_new(s);
   if (!pr) return -1;
-  for (size_t i = 0; i < n; i++) p_over_p0[i] = vl_oracle_hunter_profile_pressure(pr, x_over_a0[i]);
+  for (size_t i = 0; i < n; i++)
+    p_over_p0[i] = vl_oracle_hunter_profile_pressure(pr, x_over_a0[i]);
   vl_oracle_hunter_profile_free(pr);
   return 0;
 }

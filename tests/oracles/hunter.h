@@ -37,8 +37,8 @@ typedef struct {
   double x_pmax_over_a0; /* its position */
   double deborah;        /* inputs, kept so the pressure can be evaluated later */
   double einf_over_e0;
-  int iterations;        /* Brent iterations of the scalar solve */
-  int converged;         /* 1 when the memory condition was solved to tolerance */
+  int iterations; /* Brent iterations of the scalar solve */
+  int converged;  /* 1 when the memory condition was solved to tolerance */
 } vl_oracle_hunter_solution;
 
 /* Solves Hunter's problem for De = v0 tau/a0 > 0 and Einf/E0 > 1.
@@ -48,8 +48,7 @@ typedef struct {
  * -2 if the scalar solve failed (out->converged = 0), -3 on allocation
  * failure. Thread-safe (no global state besides GSL's error handler, which
  * it switches off). */
-int vl_oracle_hunter_solve(double deborah, double einf_over_e0,
-                           vl_oracle_hunter_solution *out);
+int vl_oracle_hunter_solve(double deborah, double einf_over_e0, vl_oracle_hunter_solution *out);
 
 /* Pressure series of a solution, precomputed for fast repeated evaluation. */
 typedef struct vl_oracle_hunter_profile vl_oracle_hunter_profile;
@@ -67,14 +66,12 @@ void vl_oracle_hunter_profile_free(vl_oracle_hunter_profile *pr);
 /* p/p0 at x/a0 for a solution returned by vl_oracle_hunter_solve (0 outside
  * the contact). Rebuilds the profile on each call: use a profile or the
  * array form for many points. Returns NAN on failure. */
-double vl_oracle_hunter_pressure(const vl_oracle_hunter_solution *s,
-                                 double x_over_a0);
+double vl_oracle_hunter_pressure(const vl_oracle_hunter_solution *s, double x_over_a0);
 
 /* p/p0 at n points x_over_a0[i] into p_over_p0[i]. Returns 0, or -1 on
  * failure (allocation, GSL). */
-int vl_oracle_hunter_pressure_array(const vl_oracle_hunter_solution *s,
-                                    size_t n, const double *x_over_a0,
-                                    double *p_over_p0);
+int vl_oracle_hunter_pressure_array(const vl_oracle_hunter_solution *s, size_t n,
+                                    const double *x_over_a0, double *p_over_p0);
 
 /* Hertz line contact (docs/VALIDATION.md §1) with modulus Er0*ratio, in the a0/p0
  * scales: half width 1/sqrt(ratio), p_max sqrt(ratio). ratio = 1: relaxed,
