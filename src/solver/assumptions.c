@@ -161,6 +161,45 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
   return mask;
 }
 
+/* How far w lies outside [lo, hi] as a factor (1 inside). */
+static double beyond(double w, double lo, double hi) {
+  return w < lo ? lo / w : w > hi ? w / hi : 1.0;
+}
+
+unsigned vl_assumptions_check_window(const vl_contact_config *cfg, const vl_psd *psd,
+                                     const vl_point *pt, double omega_min_rad_s,
+                                     double omega_max_rad_s, char *warnings, size_t cap) {
+  double v0 = pt->v0_m_s, lo = omega_min_rad_s, hi = omega_max_rad_s;
+  if (!(v0 > 0.0 && lo > 0.0 && hi > lo && isfinite(hi))) return 0;
+  unsigned mask = 0;
+  char w[160];
+  if (psd && psd->q0 > 0.0 && psd->q1 > psd->q0) {
+    double w0 = v0 * psd->q0, w1 = v0 * psd->q1;
+    if (fmax(beyond(w0, lo, hi), beyond(w1, lo, hi)) > VL_WINDOW_MARGIN) {
+      mask |= VL_ASSUME_MEASURED_WINDOW;
+      snprintf(w, sizeof w,
+               "asperity frequencies v0 q %.2g..%.2g rad/s over a decade outside the measured "
+               "%.2g..%.2g rad/s",
+               w0, w1, lo, hi);
+      append(warnings, cap, w);
+    }
+  }
+  double a = 0.5 * pt->contact_width_m;
+  if (!(pt->converged && a > 0.0)) {
+    double e_h, omega_h;
+    vl_asperity_state(&cfg->rubber, cfg->load_n_per_m, cfg->radius_m, v0, &e_h, &a, &omega_h);
+  }
+  if (a > 0.0 && beyond(v0 / a, lo, hi) > VL_WINDOW_MARGIN) {
+    mask |= VL_ASSUME_MEASURED_WINDOW;
+    snprintf(w, sizeof w,
+             "contact frequency v0/a %.2g rad/s over a decade outside the measured %.2g..%.2g "
+             "rad/s",
+             v0 / a, lo, hi);
+    append(warnings, cap, w);
+  }
+  return mask;
+}
+
 const char *vl_assumption_name(unsigned bit) {
   switch (bit) {
   case VL_ASSUME_RMS_SLOPE: return "rms slope";
@@ -173,6 +212,7 @@ const char *vl_assumption_name(unsigned bit) {
   case VL_ASSUME_THIN_FILM: return "thin film";
   case VL_ASSUME_INERTIA: return "inertia";
   case VL_ASSUME_FLOW_FACTORS: return "flow factors";
+  case VL_ASSUME_MEASURED_WINDOW: return "measured window";
   default: return "unknown";
   }
 }
