@@ -110,6 +110,16 @@ static const char compound_show_help[] =
     "E0, Einf, nu, the loss-tangent peak, the Prony terms and, for a compound fitted\n"
     "to measured data, the fit report (rms and largest relative error of E' and E'',\n"
     "terms, frequency window, WLF constants and the shift of each isotherm).\n"
+    "For a fitted compound the loss peak is the largest tan delta within the\n"
+    "measured window (the master curve's frequencies at tref; 'its upper end: still\n"
+    "rising' when the data stop before the peak); the series' own peak follows as\n"
+    "'model peak' when it lies outside that window: extrapolated, not measured.\n"
+    "'represented' says how well: the fit's rms errors and the WLF residual against\n"
+    "the import's warning thresholds (5 % and 0.2 decades). JSON: loss_peak (the\n"
+    "model's), loss_peak_in_window (with at_edge lower/upper/null) and\n"
+    "loss_peak_outside_decades (0 inside). `run` and `friction` warn at every point\n"
+    "whose asperity frequencies v0 q (q0..q1 of the surface) or contact frequency\n"
+    "v0/a lie over a decade outside the measured window at the scene's temperature.\n"
     "  --json        print one JSON object instead\n"
     "  --curve FILE  also write FILE (CSV, one row per measured point, sorted by\n"
     "                reduced frequency): omega_rad_s, frequency_hz, temperature_c,\n"
@@ -131,7 +141,7 @@ static const char compound_add_help[] =
     "                 [--class CLASS] [--description TEXT] [--nu NU]\n"
     "                 [--freq-unit Hz|rad/s] [--modulus-unit Pa|kPa|MPa|GPa]\n"
     "                 [--temp-unit C|K] [--terms-per-decade N]\n"
-    "                 [--fit-weights relative|modulus]\n"
+    "                 [--fit-weights relative|modulus] [--moduli tensile|shear]\n"
     "\n"
     "Registers a rubber compound by its creep-form Prony series\n"
     "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]  (docs/MODEL.md section 2)\n"
@@ -186,6 +196,13 @@ static const char compound_add_help[] =
     "                 modulus to a relative and tan delta to an absolute accuracy\n"
     "                 (use it when E'' does not superpose, e.g. glassy secondary\n"
     "                 relaxations)\n"
+    "  --moduli tensile|shear  what the moduli are, overriding the column names\n"
+    "                 (G', G'', |G*| are shear, E', E'', |E*| and generic names tensile);\n"
+    "                 shear moduli are converted E = 2 (1 + nu) G with --nu\n"
+    "What the import did (columns ignored, conversions, the dialect, isotherms\n"
+    "bridged across thin overlaps) is printed on stderr as 'note: ' lines, and what\n"
+    "needs attention as 'warning: ' lines (a WLF residual over 0.2 decades, a fit\n"
+    "error over 5 % rms, isotherms that do not join); --quiet drops both.\n"
     "Refused with FILE:LINE and the column: non-numeric, NaN/Inf, zero or negative\n"
     "values, unknown/misspelt/missing columns, wrong or mixed units, E' falling\n"
     "with frequency by over 10 %, isotherms that do not superpose, a master curve\n"
@@ -197,7 +214,8 @@ static const char compound_add_help[] =
 static const char surface_add_help[] =
     "usage: viscolube [--db PATH] surface add NAME --self-affine --hurst H --q0 PER_M\n"
     "                 --q1 PER_M --hrms M [--description TEXT]\n"
-    "       viscolube [--db PATH] surface add NAME --psd FILE [--description TEXT]\n"
+    "       viscolube [--db PATH] surface add NAME --psd FILE [--psd-kind 1d|2d]\n"
+    "                 [--description TEXT]\n"
     "       viscolube [--db PATH] surface add NAME --topography FILE [--description TEXT]\n"
     "\n"
     "Registers an isotropic roughness power spectrum C(q) (m^4), with\n"
@@ -212,7 +230,11 @@ static const char surface_add_help[] =
     "  --psd FILE      tabulated spectrum: CSV with the header line 'q_per_m,C_m4',\n"
     "                  q > 0 strictly increasing, C > 0, at least 2 rows; an optional\n"
     "                  units row '1/m,m^4' may follow the header. Interpolated as a\n"
-    "                  power law between points, zero outside.\n"
+    "                  power law between points, zero outside. Units may be given in\n"
+    "                  the header instead ('q [1/um],C [m^4]'); see docs/FORMATS.md.\n"
+    "  --psd-kind 1d|2d  2d (default): the isotropic C(q), m^4; 1d: a profile's\n"
+    "                  C1(q), m^3, converted to C(q) (inverse Abel transform).\n"
+    "                  What the reading did is printed on stderr as 'note: ' lines.\n"
     "  --topography FILE  measured heights (docs/FORMATS.md), the spectrum estimated\n"
     "                  from them (detrended, Tukey window, FFT, log bins; a line scan's\n"
     "                  1-D spectrum turned 2-D by the inverse Abel transform):\n"
@@ -282,6 +304,16 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
             noun, noun, noun);
   } else if (!strcmp(verb, "show") && kind == NOUN_COMPOUND) {
     fputs(compound_show_help, out);
+  } else if (!strcmp(verb, "show") && kind == NOUN_SURFACE) {
+    fputs("usage: viscolube [--db PATH] surface show NAME [--json] [--plot FILE]\n"
+          "\n"
+          "Prints what is stored about surface NAME and the quantities derived from it.\n"
+          "  --json       print one JSON object instead\n"
+          "  --plot FILE  also draw C(q) against q (log-log) as FILE's stem .png and .svg;\n"
+          "               over a tabulated spectrum the closest self-affine law\n"
+          "               C ~ q^(-2(1+H)), fitted from the largest C on, dashed, with its\n"
+          "               H (printed with the rms misfit in log10 C)\n",
+          out);
   } else if (!strcmp(verb, "show")) {
     fprintf(out,
             "usage: viscolube [--db PATH] %s show NAME [--json]\n"
@@ -440,10 +472,11 @@ static compound_derived compound_derive(const vl_db_compound *c, const vl_db_com
     d.has_window_peak =
         vl_prony_loss_peak_in(&c->prony, f->omega_min_rad_s, f->omega_max_rad_s,
                               &d.omega_window_peak, &d.tan_window_peak, &d.at_edge, NULL) == VL_OK;
+  /* outside by more than the peak search's resolution (0.01 decade) */
   if (d.has_peak && d.has_window_peak) {
-    if (d.omega_peak < f->omega_min_rad_s)
+    if (d.omega_peak < f->omega_min_rad_s / 1.0233)
       d.peak_outside_decades = log10(d.omega_peak / f->omega_min_rad_s);
-    else if (d.omega_peak > f->omega_max_rad_s)
+    else if (d.omega_peak > f->omega_max_rad_s * 1.0233)
       d.peak_outside_decades = log10(d.omega_peak / f->omega_max_rad_s);
   }
   return d;
@@ -587,7 +620,7 @@ static void window_peak_text(FILE *out, const compound_derived *d) {
                            : "");
   if (d->has_peak && d->peak_outside_decades != 0.0)
     fprintf(out,
-            "  model peak    %.6g at %.6g rad/s (%.6g Hz), %.2f decades %s the measured "
+            "  model peak    %.6g at %.6g rad/s (%.6g Hz), %.2g decades %s the measured "
             "window: extrapolated by the Prony series, not measured\n",
             d->tan_peak, d->omega_peak, d->omega_peak / TWO_PI, fabs(d->peak_outside_decades),
             d->peak_outside_decades > 0.0 ? "above" : "below");

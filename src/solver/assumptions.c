@@ -161,9 +161,23 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
   return mask;
 }
 
-/* How far w lies outside [lo, hi] as a factor (1 inside). */
-static double beyond(double w, double lo, double hi) {
-  return w < lo ? lo / w : w > hi ? w / hi : 1.0;
+/* One warning when w (named what) lies over VL_WINDOW_MARGIN above hi
+ * (up) or below lo (!up): that side and that end, one number each (the
+ * console shows the ranges of a kind's numbers over the points). */
+static unsigned window_warn(const char *what, double w, bool up, double lo, double hi,
+                            char *warnings, size_t cap) {
+  char t[160];
+  if (up && w > VL_WINDOW_MARGIN * hi)
+    snprintf(t, sizeof t, "%s %.2g rad/s over a decade above the measured window (top %.2g rad/s)",
+             what, w, hi);
+  else if (!up && w < lo / VL_WINDOW_MARGIN)
+    snprintf(t, sizeof t,
+             "%s %.2g rad/s over a decade below the measured window (bottom %.2g rad/s)", what, w,
+             lo);
+  else
+    return 0;
+  append(warnings, cap, t);
+  return VL_ASSUME_MEASURED_WINDOW;
 }
 
 unsigned vl_assumptions_check_window(const vl_contact_config *cfg, const vl_psd *psd,
@@ -172,30 +186,20 @@ unsigned vl_assumptions_check_window(const vl_contact_config *cfg, const vl_psd 
   double v0 = pt->v0_m_s, lo = omega_min_rad_s, hi = omega_max_rad_s;
   if (!(v0 > 0.0 && lo > 0.0 && hi > lo && isfinite(hi))) return 0;
   unsigned mask = 0;
-  char w[160];
   if (psd && psd->q0 > 0.0 && psd->q1 > psd->q0) {
-    double w0 = v0 * psd->q0, w1 = v0 * psd->q1;
-    if (fmax(beyond(w0, lo, hi), beyond(w1, lo, hi)) > VL_WINDOW_MARGIN) {
-      mask |= VL_ASSUME_MEASURED_WINDOW;
-      snprintf(w, sizeof w,
-               "asperity frequencies v0 q %.2g..%.2g rad/s over a decade outside the measured "
-               "%.2g..%.2g rad/s",
-               w0, w1, lo, hi);
-      append(warnings, cap, w);
-    }
+    /* the band's ends: were the whole band above the window, its top is;
+     * were it below, its bottom is */
+    mask |= window_warn("asperity frequency v0 q1", v0 * psd->q1, true, lo, hi, warnings, cap);
+    mask |= window_warn("asperity frequency v0 q0", v0 * psd->q0, false, lo, hi, warnings, cap);
   }
   double a = 0.5 * pt->contact_width_m;
   if (!(pt->converged && a > 0.0)) {
     double e_h, omega_h;
     vl_asperity_state(&cfg->rubber, cfg->load_n_per_m, cfg->radius_m, v0, &e_h, &a, &omega_h);
   }
-  if (a > 0.0 && beyond(v0 / a, lo, hi) > VL_WINDOW_MARGIN) {
-    mask |= VL_ASSUME_MEASURED_WINDOW;
-    snprintf(w, sizeof w,
-             "contact frequency v0/a %.2g rad/s over a decade outside the measured %.2g..%.2g "
-             "rad/s",
-             v0 / a, lo, hi);
-    append(warnings, cap, w);
+  if (a > 0.0) {
+    mask |= window_warn("contact frequency v0/a", v0 / a, true, lo, hi, warnings, cap);
+    mask |= window_warn("contact frequency v0/a", v0 / a, false, lo, hi, warnings, cap);
   }
   return mask;
 }
