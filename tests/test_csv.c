@@ -278,6 +278,59 @@ static void test_psd_reader(void **state) {
   assert_null(psd.q);
 }
 
+/* The dialects of csv.h: ';' or tab delimiters with or without decimal
+ * commas read the same numbers as commas; the delimiter that fits no line
+ * leaves the ragged line named; two that fit are refused; ignored columns
+ * are listed and not parsed; every bad row is reported at once. */
+static void test_dialects(void **state) {
+  (void)state;
+  const char *texts[] = {"A,tau_s\n9,0.25\n0.5,1e-3\n", "A;tau_s\n9;0,25\n0,5;1e-3\n",
+                         "A\ttau_s\n9\t0,25\n0,5\t1e-3\n", "A;tau_s\n9;0.25\n0.5;1e-3\n",
+                         "\"A\";\"tau_s\"\n1;s\n9;0,25\n0,5;0,001\n"};
+  for (size_t i = 0; i < sizeof texts / sizeof *texts; i++) {
+    vl_csv csv;
+    vl_error err;
+    if (parse(texts[i], prony_cols, &csv, &err) != VL_OK) fail_msg("%s: %s", texts[i], err.msg);
+    assert_int_equal(csv.n_rows, 2);
+    assert_true(vl_csv_value(&csv, 0, 1) == 0.25 && vl_csv_value(&csv, 1, 0) == 0.5);
+    assert_true(vl_csv_value(&csv, 1, 1) == 1e-3);
+    assert_int_equal(csv.decimal_comma, i == 1 || i == 2 || i == 4);
+    assert_int_equal(csv.delimiter, i == 0 ? ',' : i == 2 ? '\t' : ';');
+    vl_csv_free(&csv);
+  }
+  expect_bad("A;tau_s\n9;0,25\n1.5;2\n", prony_cols, "in.csv:3:", "'A'", "thousands separator");
+  expect_bad("A;tau_s\n9;0,25\n1;2;3\n", prony_cols, "in.csv:3:", "semicolon-separated", "found 3");
+  expect_bad("A,tau_s\n9,0,25\n", prony_cols, "in.csv:2:", "found 3", "decimal comma");
+  expect_bad("A;x,tau_s\n9;1,0\n", prony_cols, "in.csv:1:", "cannot tell the delimiter", NULL);
+  /* every bad row, in file order, in one message */
+  expect_bad("A,tau_s\n9,x\n1,2\n-1,2\n3\n", prony_cols, "in.csv:2: column 'tau_s'",
+             "\nin.csv:4: column 'A' (field 1): must be >= 0", "\nin.csv:5: expected 2");
+  /* a spreadsheet */
+  vl_csv csv;
+  vl_error err;
+  assert_int_equal(vl_csv_read_text("PK\x03\x04", 4, "t.csv", prony_cols, 2, &csv, &err),
+                   VL_EINPUT);
+  assert_non_null(strstr(err.msg, "export the sheet as CSV"));
+  /* ignored columns */
+  vl_csv_options o = {.ignore_unknown = 1};
+  const char *extra = "note,A,tau_s,T\n-,1,s,C\nfirst,9,0.1,x\n,2,1e-4,\n";
+  assert_int_equal(
+      vl_csv_read_text_opts(extra, strlen(extra), "e.csv", prony_cols, 2, &o, &csv, &err), VL_OK);
+  assert_int_equal(csv.n_rows, 2);
+  assert_int_equal(csv.n_ignored, 2);
+  assert_string_equal(csv.ignored, "'note', 'T'");
+  assert_true(csv.has_units_row && vl_csv_value(&csv, 1, 0) == 2.0);
+  vl_csv_free(&csv);
+  /* a given delimiter is used as given */
+  vl_csv_options semi = {.delimiter = ';', .decimal_comma = 1};
+  const char *given = "A;tau_s\n1;0,5\n";
+  assert_int_equal(
+      vl_csv_read_text_opts(given, strlen(given), "s.csv", prony_cols, 2, &semi, &csv, &err),
+      VL_OK);
+  assert_true(vl_csv_value(&csv, 0, 1) == 0.5);
+  vl_csv_free(&csv);
+}
+
 /* Random single-byte mutations of a valid file: the reader must never
  * crash or leak (ASan/UBSan build), and every rejection names the file and
  * a line. A fixed seed keeps the test reproducible. */
@@ -326,7 +379,8 @@ int main(void) {
       cmocka_unit_test(test_sign_and_order),    cmocka_unit_test(test_bad_structure),
       cmocka_unit_test(test_units_row),         cmocka_unit_test(test_parse_double),
       cmocka_unit_test(test_read_file_errors),  cmocka_unit_test(test_prony_reader),
-      cmocka_unit_test(test_psd_reader),        cmocka_unit_test(test_mutations),
+      cmocka_unit_test(test_psd_reader),        cmocka_unit_test(test_dialects),
+      cmocka_unit_test(test_mutations),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -301,6 +301,10 @@ static void test_hn_wlf_isotherms(void **state) {
           m.fit.max_rel_storage, m.fit.rms_rel_loss, m.fit.max_rel_loss);
   assert_true(m.fit.rms_rel_storage > 0.007 && m.fit.rms_rel_storage < 0.015);
   assert_true(m.fit.rms_rel_loss > 0.007 && m.fit.rms_rel_loss < 0.015);
+  /* overlaps of 1.5 decades and more: nothing bridged, nothing to warn of */
+  assert_int_equal(m.n_extrapolated, 0);
+  assert_int_equal(m.n_warnings, 0);
+  assert_string_equal(m.notes, "");
   /* the master curve spans the measured 3 decades plus the shifts */
   double span = log10(m.fit.omega_max_rad_s / m.fit.omega_min_rad_s);
   assert_true(fabs(span - (3.0 + wlf(&unfilled, 0.0) - wlf(&unfilled, 100.0))) < 0.1);
@@ -459,8 +463,12 @@ static void test_pyvisco_raw(void **state) {
           m.prony.n_terms, m.fit.rms_rel_storage, m.fit.max_rel_storage, m.fit.rms_rel_loss,
           m.fit.max_rel_loss, m.wlf_c1, m.wlf_c2_k, m.wlf_rms);
   /* E' of the shifted isotherms, which superpose, is fitted to 2 % rms;
-   * E'' of the glassy isotherms does not superpose and stays loose. */
+   * E'' of the glassy isotherms does not superpose and stays loose, and
+   * the glassy shifts follow no WLF law: the import warns of both. */
   assert_true(m.fit.rms_rel_storage < 0.02);
+  fprintf(stderr, "pyvisco raw notes:\n%s", m.notes);
+  assert_non_null(strstr(m.notes, "warning: the WLF equation misses the shifts"));
+  assert_non_null(strstr(m.notes, "warning: the Prony series misses the master curve"));
   vl_measured_free(&m);
 }
 

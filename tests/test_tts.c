@@ -129,6 +129,56 @@ static void test_nonsuperposing_loss(void **state) {
   assert_true(fabs(d + 1.0) > 0.1);
 }
 
+/* Offsets of most of a window (thin overlaps) and beyond it (gaps up to a
+ * decade), deep in the glass where log E' is flat (offsets 6 to 9: the
+ * isotherm sits 1e6 to 1e9 times above the loss peak): the chain bridges
+ * them (vl_tts_chain_info) and finds the offset within 0.005 decade on
+ * exact curves, in both directions; beyond a gap of a decade the pair is
+ * flagged (at_limit, or no_join when the best bridge still fits badly).
+ * Before bridging, the overlap constraint held such shifts at a
+ * quarter-window overlap (2.25 decades here). */
+static void test_bridged_pairs(void **state) {
+  (void)state;
+  unsigned seed = 5;
+  const double steps[] = {2.6, 2.83, 2.95, 3.4, 3.9, 4.4};
+  for (size_t i = 0; i < sizeof steps / sizeof *steps; i++) {
+    isotherm_buf a, b;
+    make_isotherm(&a, 0.0, 9.0, 0.0, 0, &seed);
+    make_isotherm(&b, 5.0, 9.0 - steps[i], 0.0, 0, &seed);
+    vl_tts_isotherm iso[2] = {a.iso, b.iso};
+    double lat[2];
+    vl_tts_pair_info info;
+    vl_error err;
+    for (size_t ref = 0; ref < 2; ref++) {
+      assert_int_equal(vl_tts_chain_info(2, iso, ref, lat, &info, &err), VL_OK);
+      double d = lat[1] - lat[0];
+      fprintf(stderr, "offset %.2f: shift %.4f, overlap %.3f, bridged %d, at limit %d\n", -steps[i],
+              d, info.overlap_decades, info.bridged, info.at_limit);
+      assert_true(fabs(info.shift - d) < 1e-12);
+      if (steps[i] > 3.0 + 1.0) { /* beyond a gap of a decade: flagged either way */
+        fprintf(stderr, "  no join %d\n", info.no_join);
+        assert_true((info.bridged && info.at_limit) || info.no_join);
+        continue;
+      }
+      assert_true(info.bridged && !info.at_limit && !info.no_join);
+      assert_true(info.loss_used);
+      if (steps[i] < 4.0 && fabs(d + steps[i]) > 0.005)
+        fail_msg("offset %.2f: shift %.4f", -steps[i], d);
+    }
+  }
+  /* a pair with ample overlap is not bridged */
+  isotherm_buf a, b;
+  make_isotherm(&a, 0.0, 3.0, 0.0, 0, &seed);
+  make_isotherm(&b, 5.0, 2.0, 0.0, 0, &seed);
+  vl_tts_isotherm iso[2] = {a.iso, b.iso};
+  double lat[2];
+  vl_tts_pair_info info;
+  vl_error err;
+  assert_int_equal(vl_tts_chain_info(2, iso, 0, lat, &info, &err), VL_OK);
+  assert_false(info.bridged);
+  assert_true(fabs(info.overlap_decades - 2.0) < 0.01);
+}
+
 /* WLF on exact WLF shifts: the constants come back (1e-6: golden-section
  * refinement in log C2 to ~1e-9), also about a reference temperature that
  * is not one of the data points, and with a point at Tref itself. */
@@ -169,11 +219,9 @@ static void test_refusals(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_pair_exact),
-      cmocka_unit_test(test_chain_and_wlf),
-      cmocka_unit_test(test_nonsuperposing_loss),
-      cmocka_unit_test(test_wlf_exact),
-      cmocka_unit_test(test_refusals),
+      cmocka_unit_test(test_pair_exact),          cmocka_unit_test(test_chain_and_wlf),
+      cmocka_unit_test(test_nonsuperposing_loss), cmocka_unit_test(test_bridged_pairs),
+      cmocka_unit_test(test_wlf_exact),           cmocka_unit_test(test_refusals),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -51,6 +51,12 @@
  *                             0.5: their fits end there and flow_factors.h
  *                             continues them).
  *
+ *   VL_ASSUME_MEASURED_WINDOW a compound fitted to measured data probed more
+ *                             than a decade outside the frequencies its
+ *                             master curve covers (vl_assumptions_check_window):
+ *                             the modulus there is the Prony series'
+ *                             extrapolation, not a measurement.
+ *
  * A point that did not converge (all zeros, flow quantities unknown) is
  * checked only on what the configuration and speed decide: rms slope,
  * homogenisation and the Prony window. */
@@ -72,7 +78,8 @@ typedef enum {
   VL_ASSUME_CONTINUUM_FILM = 1u << 6,
   VL_ASSUME_THIN_FILM = 1u << 7,
   VL_ASSUME_INERTIA = 1u << 8,
-  VL_ASSUME_FLOW_FACTORS = 1u << 9
+  VL_ASSUME_FLOW_FACTORS = 1u << 9,
+  VL_ASSUME_MEASURED_WINDOW = 1u << 10
 } vl_assumption;
 
 /* Checks the point pt, solved with configuration cfg, against the
@@ -88,6 +95,21 @@ typedef enum {
  * assumptions (vl_assumption bits), including any left out for space. */
 unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, const vl_point *pt,
                               char *warnings, size_t cap);
+
+/* The frequencies at which the sliding point pt excites the rubber against
+ * the measured window [omega_min_rad_s, omega_max_rad_s] of its compound's
+ * master curve, at the temperature the contact uses: the asperity
+ * frequencies v0 q over the surface's wavevectors q0..q1 (psd; none when
+ * NULL) and the contact frequency v0/a, a half the contact width of a
+ * converged point, else the Hertz-like a_H of vl_asperity_state. Each that
+ * lies more than a decade outside the window (a factor VL_WINDOW_MARGIN)
+ * appends one warning as vl_assumptions_check does. Nothing for v0 <= 0 or
+ * an invalid window (a Prony series not fitted to data). Returns
+ * VL_ASSUME_MEASURED_WINDOW when it warned, else 0. */
+#define VL_WINDOW_MARGIN 10.0
+unsigned vl_assumptions_check_window(const vl_contact_config *cfg, const vl_psd *psd,
+                                     const vl_point *pt, double omega_min_rad_s,
+                                     double omega_max_rad_s, char *warnings, size_t cap);
 
 /* "rms slope", "homogenisation", ... : a short name for one bit (for
  * summaries); "unknown" for anything else. */

@@ -8,29 +8,45 @@
  * through the same code.
  *
  * File format (the CSV rules of csv.h: '#' comments, blank lines, LF or
- * CRLF, optional UTF-8 byte-order mark, strict decimal numbers, no NaN/Inf):
+ * CRLF, optional UTF-8 byte-order mark, ',' ';' or tab delimiters and
+ * decimal commas detected, spreadsheets refused, strict decimal numbers,
+ * no NaN/Inf, every offending line reported at once; docs/FORMATS.md
+ * section 4 lists every accepted spelling):
  *
  *   - A header row naming the columns, in any order. Names are matched
- *     without regard to case, blanks, '_' and '-' (single letters exactly):
- *       frequency  f, freq, frequency, omega, w
- *       E'         E', E_stor, E_storage, storage, storage modulus, E1
- *       E''        E'', E_loss, loss, loss modulus, E2
- *       tan delta  tan delta, tan_del, tand, tan(delta), loss factor
+ *     without regard to case, blanks, '_', '-' and '.' (single letters
+ *     exactly; 'δ' reads as delta, 'ω' as omega):
+ *       frequency  f, w, freq, frequency, omega, angular frequency
+ *       E' / G'    E', E_stor, E_storage, E1 / G', G_stor, G_storage, G1;
+ *                  storage, storage modulus (tensile unless moduli = shear)
+ *       E'' / G''  E'', E_loss, E2 / G'', G_loss, G2; loss, loss modulus
+ *       |E*| / |G*| |E*|, E*, E_abs / |G*|, G*, G_abs; complex modulus
+ *       tan delta  tan delta, tan_del, tand, tan(delta), tan δ, loss factor
  *       J', J''    J', J_stor, J_storage, J1 / J'', J_loss, J2 (compliances)
  *       T          T, temp, temperature (optional)
  *       set        set, isotherm (optional: which isotherm a row belongs to)
  *     Required: frequency and one of {E', E''}, {E', tan delta},
- *     {J', J''}. E', E'' and tan delta together are accepted (tan delta
- *     must then equal E''/E' within 2 %). A unit may follow a name in
- *     brackets: "f [Hz]", "E' (MPa)".
- *   - An optional units row right after the header: frequency Hz or rad/s;
- *     moduli Pa, kPa, MPa or GPa (compliances 1/Pa ... 1/GPa or Pa^-1 ...);
- *     temperature C, °C, degC or K; tan delta and set '-', '1' or empty.
- *     E' and E'' (or J' and J'') must have the same unit. Units come from
- *     the header, the units row or the options, which must agree where more
- *     than one is given; a column without any unit is refused (Hz and
- *     rad/s differ by 2 pi, C and K by 273.15).
+ *     {|E*|, tan delta}, {E'', tan delta}, {J', J''}. A redundant column
+ *     (tan delta or |E*| beside E' and E'') must agree within 2 %. Other
+ *     columns are ignored and named in the notes, unless their name is a
+ *     likely misspelling of a known one (then refused with the suggestion).
+ *     Tensile and shear names together are refused. Shear moduli are
+ *     converted: E = 2 (1 + nu) G with opts->nu.
+ *   - Units: after the name in brackets ("f [Hz]", "G' (MPa)"), after a
+ *     '_' or blank ("freq_hz", "G_storage_pa", "temperature_C"), in an
+ *     optional units row right after the header, or from the options; they
+ *     must agree where more than one is given, and a column without any
+ *     unit is refused (Hz and rad/s differ by 2 pi, C and K by 273.15).
+ *     Frequency Hz or rad/s (1/s under an omega name); moduli Pa, kPa, MPa,
+ *     GPa, N/mm^2, N/m^2, dyn/cm^2 (compliances 1/Pa ... 1/GPa or Pa^-1
+ *     ...); temperature C, °C, degC, celsius, K or kelvin; tan delta and set
+ *     '-', '1' or empty. Case and blanks do not matter. All moduli share a
+ *     unit.
  *   - Data rows: frequency, moduli, compliances and tan delta > 0.
+ *   - Plausibility: E' and |E*| (tensile, Pa) within [1e4, 1e12], E''
+ *     within [10, 1e12], temperatures within [-150, 400] C, and not all
+ *     within [200, 400] C under a Celsius unit from the file (kelvin
+ *     numbers under a C header) unless opts->temp_unit confirms it.
  *
  * Isotherms: without a temperature column the file is one master curve at
  * opts->tref_c (which is then required). With one, rows are grouped into
@@ -39,21 +55,29 @@
  * temperatures lie within that tolerance are merged. A single isotherm
  * needs tref_c equal to its temperature (within the tolerance): it cannot
  * be shifted without WLF constants. Several isotherms are shifted (on
- * log E', and log E'' too where E' is flat: see vl_tts_chain) to the isotherm
- * nearest tref_c (default: the measured temperature nearest 20 C), WLF is
- * fitted (3 or more isotherms) and the shifts are re-referred to tref_c
- * exactly through the WLF equation; with 2 isotherms tref_c must be one of
- * their temperatures.
+ * log E', and log E'' too where E' is flat: see vl_tts_chain_info; pairs
+ * too far apart to share a quarter of a window are bridged) to the
+ * isotherm nearest tref_c (default: the measured temperature nearest
+ * 20 C), WLF is fitted (3 or more isotherms) and the shifts are re-referred
+ * to tref_c exactly through the WLF equation; with 2 isotherms tref_c must
+ * be one of their temperatures.
  *
- * Refused, with FILE:LINE: column 'NAME' (field K) where a row is at fault:
- * everything csv.h refuses; unknown, misspelt, duplicate or missing columns;
- * missing, wrong or mixed units; E' decreasing with frequency within an
- * isotherm by more than VL_DMA_DECREASE_TOL of its largest value at lower
- * frequency (a Prony series cannot); tan delta inconsistent with E''/E';
- * temperatures below absolute zero; a set spanning more than
- * 2 VL_DMA_ISOTHERM_TOL_K; an isotherm with one point; isotherms that
- * cannot be superposed; a master curve under one decade; fewer points than
- * Prony terms + 1. */
+ * Notes (vl_measured.notes, one sentence per line, for the caller to
+ * print): the delimiter and decimal comma when not ',' and '.', the
+ * ignored columns, the shear conversion (or a generic name read as
+ * tensile), bridged pairs; lines starting "warning: " for a WLF residual
+ * above VL_DMA_WARN_WLF_RMS, a fit error above VL_DMA_WARN_FIT_RMS in E'
+ * or E'', and isotherms too far apart to join.
+ *
+ * Refused, with FILE:LINE: column 'NAME' (field K) where a row is at fault
+ * (every such row at once): everything csv.h refuses; misspelt, duplicate
+ * or missing columns; missing, wrong or mixed units; implausible moduli or
+ * temperatures; E' decreasing with frequency within an isotherm by more
+ * than VL_DMA_DECREASE_TOL of its largest value at lower frequency (a
+ * Prony series cannot); redundant columns that disagree; temperatures
+ * below absolute zero; a set spanning more than 2 VL_DMA_ISOTHERM_TOL_K;
+ * an isotherm with one point; isotherms that cannot be superposed; a
+ * master curve under one decade; fewer points than Prony terms + 1. */
 #ifndef VISCOLUBE_DMA_H
 #define VISCOLUBE_DMA_H
 

@@ -188,4 +188,21 @@ typedef struct {
 vl_status vl_plot_flow_factors(const char *stem, const vl_plot_flow_factor_data *d,
                                const vl_plot_options *opt, vl_plot_report *report, vl_error *err);
 
+/* A roughness power spectrum and, optionally, a self-affine law over it. */
+typedef struct {
+  size_t n;                     /* points of the spectrum, >= 2 */
+  const double *q_per_m, *c_m4; /* positive and finite */
+  const char *label;            /* NULL = "C(q)" */
+  size_t n_fit;                 /* the law on a q grid; 0 = none */
+  const double *fit_q_per_m, *fit_c_m4;
+  const char *fit_label; /* NULL = "self-affine fit" */
+} vl_plot_psd_data;
+
+/* C(q) against q, log-log: the spectrum as a line (markers too when it has
+ * at most 60 points, as a measured one), the law dashed over it. The axes
+ * span the spectrum. VL_EINPUT: fewer than 2 points, a non-positive or
+ * non-finite value. */
+vl_status vl_plot_psd(const char *stem, const vl_plot_psd_data *d, const vl_plot_options *opt,
+                      vl_plot_report *report, vl_error *err);
+
 #endif

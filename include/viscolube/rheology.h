@@ -51,6 +51,16 @@ double vl_prony_tan_delta(const vl_prony *prony, double omega);
 vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak, double *tan_delta_peak,
                              vl_error *err);
 
+/* The loss-tangent maximum within [omega_min, omega_max] (rad/s), e.g. a
+ * measured window, where the series is backed by data: *omega_peak and
+ * *tan_delta_peak (either may be NULL) as vl_prony_loss_peak, and *at_edge
+ * (may be NULL) -1 or +1 when the maximum sits at the lower or upper end
+ * (tan delta still rising beyond it), else 0. VL_EINPUT for an elastic
+ * material or a window that is not 0 < omega_min < omega_max < inf. */
+vl_status vl_prony_loss_peak_in(const vl_prony *prony, double omega_min, double omega_max,
+                                double *omega_peak, double *tan_delta_peak, int *at_edge,
+                                vl_error *err);
+
 /* Multiplies every tau_i by a_T (time-temperature superposition). */
 void vl_prony_shift(vl_prony *prony, double a_T);
 

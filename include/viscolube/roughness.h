@@ -44,4 +44,14 @@ double vl_psd_moment(const vl_psd *psd, int k, double qa, double qb);
 double vl_psd_hrms(const vl_psd *psd);      /* sqrt(2 pi \int q C dq) */
 double vl_psd_rms_slope(const vl_psd *psd); /* sqrt(<|grad h|^2>) = sqrt(2 pi \int q^3 C dq) */
 
+/* The self-affine law C = c_q0 (q/q0)^(-2(1+H)) closest to a tabulated
+ * spectrum: a least-squares line through (log q, log C) of its points
+ * from the largest C on (a roll-off at small q is not self-affine; all
+ * points when that leaves one), equally weighted. *hurst gets H (any value: outside (0, 1] the
+ * surface is not self-affine), *c_q0 (may be NULL) the line's C at psd->q0 and *rms_log10 (may be
+ * NULL) its rms misfit in log10 C. For a self-affine psd its own H, C0 and 0. VL_EINPUT when fewer
+ * than 2 points. */
+vl_status vl_psd_fit_self_affine(const vl_psd *psd, double *hurst, double *c_q0, double *rms_log10,
+                                 vl_error *err);
+
 #endif

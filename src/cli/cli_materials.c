@@ -110,6 +110,16 @@ static const char compound_show_help[] =
     "E0, Einf, nu, the loss-tangent peak, the Prony terms and, for a compound fitted\n"
     "to measured data, the fit report (rms and largest relative error of E' and E'',\n"
     "terms, frequency window, WLF constants and the shift of each isotherm).\n"
+    "For a fitted compound the loss peak is the largest tan delta within the\n"
+    "measured window (the master curve's frequencies at tref; 'its upper end: still\n"
+    "rising' when the data stop before the peak); the series' own peak follows as\n"
+    "'model peak' when it lies outside that window: extrapolated, not measured.\n"
+    "'represented' says how well: the fit's rms errors and the WLF residual against\n"
+    "the import's warning thresholds (5 % and 0.2 decades). JSON: loss_peak (the\n"
+    "model's), loss_peak_in_window (with at_edge lower/upper/null) and\n"
+    "loss_peak_outside_decades (0 inside). `run` and `friction` warn at every point\n"
+    "whose asperity frequencies v0 q (q0..q1 of the surface) or contact frequency\n"
+    "v0/a lie over a decade outside the measured window at the scene's temperature.\n"
     "  --json        print one JSON object instead\n"
     "  --curve FILE  also write FILE (CSV, one row per measured point, sorted by\n"
     "                reduced frequency): omega_rad_s, frequency_hz, temperature_c,\n"
@@ -131,7 +141,7 @@ static const char compound_add_help[] =
     "                 [--class CLASS] [--description TEXT] [--nu NU]\n"
     "                 [--freq-unit Hz|rad/s] [--modulus-unit Pa|kPa|MPa|GPa]\n"
     "                 [--temp-unit C|K] [--terms-per-decade N]\n"
-    "                 [--fit-weights relative|modulus]\n"
+    "                 [--fit-weights relative|modulus] [--moduli tensile|shear]\n"
     "\n"
     "Registers a rubber compound by its creep-form Prony series\n"
     "  1/E(w) = (1/Einf) [1 + sum_i A_i / (1 - i w tau_i)]  (docs/MODEL.md section 2)\n"
@@ -186,6 +196,13 @@ static const char compound_add_help[] =
     "                 modulus to a relative and tan delta to an absolute accuracy\n"
     "                 (use it when E'' does not superpose, e.g. glassy secondary\n"
     "                 relaxations)\n"
+    "  --moduli tensile|shear  what the moduli are, overriding the column names\n"
+    "                 (G', G'', |G*| are shear, E', E'', |E*| and generic names tensile);\n"
+    "                 shear moduli are converted E = 2 (1 + nu) G with --nu\n"
+    "What the import did (columns ignored, conversions, the dialect, isotherms\n"
+    "bridged across thin overlaps) is printed on stderr as 'note: ' lines, and what\n"
+    "needs attention as 'warning: ' lines (a WLF residual over 0.2 decades, a fit\n"
+    "error over 5 % rms, isotherms that do not join); --quiet drops both.\n"
     "Refused with FILE:LINE and the column: non-numeric, NaN/Inf, zero or negative\n"
     "values, unknown/misspelt/missing columns, wrong or mixed units, E' falling\n"
     "with frequency by over 10 %, isotherms that do not superpose, a master curve\n"
@@ -197,7 +214,8 @@ static const char compound_add_help[] =
 static const char surface_add_help[] =
     "usage: viscolube [--db PATH] surface add NAME --self-affine --hurst H --q0 PER_M\n"
     "                 --q1 PER_M --hrms M [--description TEXT]\n"
-    "       viscolube [--db PATH] surface add NAME --psd FILE [--description TEXT]\n"
+    "       viscolube [--db PATH] surface add NAME --psd FILE [--psd-kind 1d|2d]\n"
+    "                 [--description TEXT]\n"
     "       viscolube [--db PATH] surface add NAME --topography FILE [--description TEXT]\n"
     "\n"
     "Registers an isotropic roughness power spectrum C(q) (m^4), with\n"
@@ -212,7 +230,11 @@ static const char surface_add_help[] =
     "  --psd FILE      tabulated spectrum: CSV with the header line 'q_per_m,C_m4',\n"
     "                  q > 0 strictly increasing, C > 0, at least 2 rows; an optional\n"
     "                  units row '1/m,m^4' may follow the header. Interpolated as a\n"
-    "                  power law between points, zero outside.\n"
+    "                  power law between points, zero outside. Units may be given in\n"
+    "                  the header instead ('q [1/um],C [m^4]'); see docs/FORMATS.md.\n"
+    "  --psd-kind 1d|2d  2d (default): the isotropic C(q), m^4; 1d: a profile's\n"
+    "                  C1(q), m^3, converted to C(q) (inverse Abel transform).\n"
+    "                  What the reading did is printed on stderr as 'note: ' lines.\n"
     "  --topography FILE  measured heights (docs/FORMATS.md), the spectrum estimated\n"
     "                  from them (detrended, Tukey window, FFT, log bins; a line scan's\n"
     "                  1-D spectrum turned 2-D by the inverse Abel transform):\n"
@@ -282,6 +304,16 @@ static void verb_help(noun_kind kind, const char *verb, FILE *out) {
             noun, noun, noun);
   } else if (!strcmp(verb, "show") && kind == NOUN_COMPOUND) {
     fputs(compound_show_help, out);
+  } else if (!strcmp(verb, "show") && kind == NOUN_SURFACE) {
+    fputs("usage: viscolube [--db PATH] surface show NAME [--json] [--plot FILE]\n"
+          "\n"
+          "Prints what is stored about surface NAME and the quantities derived from it.\n"
+          "  --json       print one JSON object instead\n"
+          "  --plot FILE  also draw C(q) against q (log-log) as FILE's stem .png and .svg;\n"
+          "               over a tabulated spectrum the closest self-affine law\n"
+          "               C ~ q^(-2(1+H)), fitted from the largest C on, dashed, with its\n"
+          "               H (printed with the rms misfit in log10 C)\n",
+          out);
   } else if (!strcmp(verb, "show")) {
     fprintf(out,
             "usage: viscolube [--db PATH] %s show NAME [--json]\n"
@@ -425,11 +457,28 @@ typedef struct {
   double e0_pa;
   int has_peak;
   double omega_peak, tan_peak;
+  /* a measured compound: the peak within the master curve's window, where
+   * data back the series (at_edge -1/+1: tan delta still rises beyond that
+   * end), and how many decades the model's own peak lies outside it */
+  int has_window_peak, at_edge;
+  double omega_window_peak, tan_window_peak;
+  double peak_outside_decades; /* < 0 below the window, > 0 above, 0 inside */
 } compound_derived;
 
-static compound_derived compound_derive(const vl_db_compound *c) {
+static compound_derived compound_derive(const vl_db_compound *c, const vl_db_compound_fit *f) {
   compound_derived d = {.e0_pa = vl_prony_e0(&c->prony)};
   d.has_peak = vl_prony_loss_peak(&c->prony, &d.omega_peak, &d.tan_peak, NULL) == VL_OK;
+  if (f && f->has_fit)
+    d.has_window_peak =
+        vl_prony_loss_peak_in(&c->prony, f->omega_min_rad_s, f->omega_max_rad_s,
+                              &d.omega_window_peak, &d.tan_window_peak, &d.at_edge, NULL) == VL_OK;
+  /* outside by more than the peak search's resolution (0.01 decade) */
+  if (d.has_peak && d.has_window_peak) {
+    if (d.omega_peak < f->omega_min_rad_s / 1.0233)
+      d.peak_outside_decades = log10(d.omega_peak / f->omega_min_rad_s);
+    else if (d.omega_peak > f->omega_max_rad_s * 1.0233)
+      d.peak_outside_decades = log10(d.omega_peak / f->omega_max_rad_s);
+  }
   return d;
 }
 
@@ -466,8 +515,25 @@ static void fit_json(vl_json *w, const vl_db_compound_fit *f) {
   vl_json_end(w);
 }
 
+/* The peak within the measured window (null for a Prony series). */
+static void window_peak_json(vl_json *w, const compound_derived *d) {
+  vl_json_key(w, "loss_peak_in_window");
+  if (!d->has_window_peak) {
+    vl_json_null(w);
+    return;
+  }
+  vl_json_object_begin(w, VL_JSON_INLINE);
+  vl_json_key_number(w, "omega_rad_s", d->omega_window_peak);
+  vl_json_key_number(w, "frequency_hz", d->omega_window_peak / TWO_PI);
+  vl_json_key_number(w, "tan_delta", d->tan_window_peak);
+  key_text_or_null(w, "at_edge", d->at_edge < 0 ? "lower" : d->at_edge > 0 ? "upper" : "");
+  vl_json_end(w);
+  /* decades of the model's peak beyond the window (0: inside it) */
+  vl_json_key_number(w, "loss_peak_outside_decades", d->peak_outside_decades);
+}
+
 static void compound_json(vl_json *w, const vl_db_compound *c, const vl_db_compound_fit *f) {
-  compound_derived d = compound_derive(c);
+  compound_derived d = compound_derive(c, f);
   vl_json_object_begin(w, VL_JSON_INLINE);
   vl_json_key_string(w, "name", c->name);
   vl_json_key_string(w, "class", c->class_name);
@@ -485,6 +551,7 @@ static void compound_json(vl_json *w, const vl_db_compound *c, const vl_db_compo
   } else {
     vl_json_null(w);
   }
+  window_peak_json(w, &d);
   vl_json_key_number(w, "tref_c", c->tref_c);
   vl_json_key_number(w, "wlf_c1", c->wlf_c1);
   vl_json_key_number(w, "wlf_c2_k", c->wlf_c2_k);
@@ -505,6 +572,21 @@ static void compound_json(vl_json *w, const vl_db_compound *c, const vl_db_compo
   vl_json_end(w);
 }
 
+/* How well the stored series and shifts represent the data, against the
+ * import's warning thresholds (dma.h). */
+static void quality_text(FILE *out, const vl_db_compound_fit *f) {
+  double fit = fmax(f->rms_rel_storage, f->rms_rel_loss);
+  int fit_ok = fit <= VL_DMA_WARN_FIT_RMS;
+  int wlf_ok = isnan(f->wlf_rms_log10_a_t) || f->wlf_rms_log10_a_t <= VL_DMA_WARN_WLF_RMS;
+  fprintf(out, "  represented   %s: the series within %.3g %% rms of E' and %.3g %% of E''",
+          fit_ok && wlf_ok ? "well" : "roughly", 100.0 * f->rms_rel_storage,
+          100.0 * f->rms_rel_loss);
+  if (!isnan(f->wlf_rms_log10_a_t))
+    fprintf(out, ", WLF within %.3g decades rms of the shifts", f->wlf_rms_log10_a_t);
+  fprintf(out, " (warned above %g %% and %g decades)\n", 100.0 * VL_DMA_WARN_FIT_RMS,
+          VL_DMA_WARN_WLF_RMS);
+}
+
 /* Prints the fit report of a measured compound (add and show). */
 static void fit_report_text(FILE *out, const vl_db_compound *c, const vl_db_compound_fit *f) {
   fprintf(out, "  fit to data   %zu points (%s), %zu isotherm%s, %s weights\n", f->n_points,
@@ -519,6 +601,7 @@ static void fit_report_text(FILE *out, const vl_db_compound *c, const vl_db_comp
           100.0 * f->max_rel_loss);
   if (!isnan(f->wlf_rms_log10_a_t))
     fprintf(out, "  WLF residual  rms %.3g in log10 aT\n", f->wlf_rms_log10_a_t);
+  quality_text(out, f);
   if (f->n_shifts > 1) {
     fprintf(out, "  shifts        %10s %12s\n", "T (C)", "log10 aT");
     for (size_t k = 0; k < f->n_shifts; k++)
@@ -527,14 +610,32 @@ static void fit_report_text(FILE *out, const vl_db_compound *c, const vl_db_comp
   }
 }
 
+/* The loss peak of a measured compound: within the window of the data,
+ * and the model's own when it lies outside (extrapolated). */
+static void window_peak_text(FILE *out, const compound_derived *d) {
+  fprintf(out, "  tan delta max %.6g at %.6g rad/s (%.6g Hz) within the measured window%s\n",
+          d->tan_window_peak, d->omega_window_peak, d->omega_window_peak / TWO_PI,
+          d->at_edge > 0   ? " (its upper end: still rising)"
+          : d->at_edge < 0 ? " (its lower end: still rising)"
+                           : "");
+  if (d->has_peak && d->peak_outside_decades != 0.0)
+    fprintf(out,
+            "  model peak    %.6g at %.6g rad/s (%.6g Hz), %.2g decades %s the measured "
+            "window: extrapolated by the Prony series, not measured\n",
+            d->tan_peak, d->omega_peak, d->omega_peak / TWO_PI, fabs(d->peak_outside_decades),
+            d->peak_outside_decades > 0.0 ? "above" : "below");
+}
+
 static void compound_text(FILE *out, const vl_db_compound *c, const vl_db_compound_fit *f) {
-  compound_derived d = compound_derive(c);
+  compound_derived d = compound_derive(c, f);
   fprintf(out, "compound %s (%s)\n", c->name, c->class_name);
   if (c->description[0]) fprintf(out, "  description   %s\n", c->description);
   fprintf(out, "  E0            %.6g Pa   (relaxed, Einf / (1 + sum A))\n", d.e0_pa);
   fprintf(out, "  Einf          %.6g Pa   (glassy)\n", c->prony.e_inf_pa);
   fprintf(out, "  nu            %.6g\n", c->prony.nu);
-  if (d.has_peak)
+  if (d.has_window_peak)
+    window_peak_text(out, &d);
+  else if (d.has_peak)
     fprintf(out, "  tan delta max %.6g at %.6g rad/s (%.6g Hz)\n", d.tan_peak, d.omega_peak,
             d.omega_peak / TWO_PI);
   else
@@ -554,11 +655,23 @@ static void compound_text(FILE *out, const vl_db_compound *c, const vl_db_compou
 }
 
 static void compound_line(FILE *out, const vl_db_compound *c) {
-  compound_derived d = compound_derive(c);
+  compound_derived d = compound_derive(c, NULL);
   fprintf(out, "%-20s %-8s E0 %-10.4g Pa  Einf %-10.4g Pa  nu %-5.3g terms %-3zu", c->name,
           c->class_name, d.e0_pa, c->prony.e_inf_pa, c->prony.nu, c->prony.n_terms);
   if (d.has_peak) fprintf(out, "  tan delta max %.3g at %.4g rad/s", d.tan_peak, d.omega_peak);
   fputc('\n', out);
+}
+
+/* Prints an import's notes (one sentence per line) on stderr: lines
+ * starting "warning: " as they are, the others as "note: ". Nothing when
+ * quiet. */
+static void print_notes(const vl_cli_globals *g, const char *notes) {
+  if (g->quiet) return;
+  for (const char *l = notes; *l;) {
+    size_t n = strcspn(l, "\n");
+    if (n) fprintf(stderr, "%s%.*s\n", strncmp(l, "warning: ", 9) ? "note: " : "", (int)n, l);
+    l += n + (l[n] == '\n');
+  }
 }
 
 /* `compound add NAME --measured FILE ...`: import, shift, fit, store. */
@@ -579,6 +692,7 @@ static int compound_add_measured(const context *cx, const vl_cli_globals *g, con
          *tu = find_opt(opts, n_opts, "--temp-unit");
   option *tpd = find_opt(opts, n_opts, "--terms-per-decade");
   option *fw = find_opt(opts, n_opts, "--fit-weights");
+  option *mod = find_opt(opts, n_opts, "--moduli");
   vl_dma_options o = vl_dma_options_default();
   int rc;
   if (tref->value) {
@@ -618,6 +732,14 @@ static int compound_add_measured(const context *cx, const vl_cli_globals *g, con
       return failf(cx, VL_EINPUT, "option --fit-weights: '%s' is not relative or modulus",
                    fw->value);
   }
+  if (mod->value) {
+    if (!strcmp(mod->value, "tensile"))
+      o.moduli = VL_DMA_MODULI_TENSILE;
+    else if (!strcmp(mod->value, "shear"))
+      o.moduli = VL_DMA_MODULI_SHEAR;
+    else
+      return failf(cx, VL_EINPUT, "option --moduli: '%s' is not tensile or shear", mod->value);
+  }
   if ((rc = check_compound_texts(cx, cls, desc, file)) >= 0) return rc;
 
   vl_error err;
@@ -649,6 +771,7 @@ static int compound_add_measured(const context *cx, const vl_cli_globals *g, con
       if (!isnan(c->wlf_c1))
         printf("  WLF           C1 %.6g, C2 %.6g K at %.6g C\n", c->wlf_c1, c->wlf_c2_k, c->tref_c);
       fit_report_text(stdout, c, &f);
+      print_notes(g, m.notes);
       rc = 0;
     }
     vl_db_compound_fit_free(&f);
@@ -673,7 +796,8 @@ static int compound_add(const context *cx, const vl_cli_globals *g, int argc, ch
                    {"--modulus-unit", "UNIT", NULL},
                    {"--temp-unit", "UNIT", NULL},
                    {"--terms-per-decade", "N", NULL},
-                   {"--fit-weights", "WEIGHTS", NULL}};
+                   {"--fit-weights", "WEIGHTS", NULL},
+                   {"--moduli", "KIND", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -682,9 +806,9 @@ static int compound_add(const context *cx, const vl_cli_globals *g, int argc, ch
   if ((rc = need_name(cx, pos, n_pos, &name)) >= 0) return rc;
   if (find_opt(opts, n_opts, "--measured")->value)
     return compound_add_measured(cx, g, name, opts, n_opts);
-  const char *measured_only[] = {"--freq-unit", "--modulus-unit", "--temp-unit",
-                                 "--terms-per-decade", "--fit-weights"};
-  for (size_t k = 0; k < 5; k++) {
+  const char *measured_only[] = {"--freq-unit",        "--modulus-unit", "--temp-unit",
+                                 "--terms-per-decade", "--fit-weights",  "--moduli"};
+  for (size_t k = 0; k < 6; k++) {
     option *o = find_opt(opts, n_opts, measured_only[k]);
     if (o->value) return failf(cx, VL_EINPUT, "option %s belongs to --measured FILE", o->name);
   }
@@ -810,7 +934,8 @@ static int surface_add(const context *cx, const vl_cli_globals *g, int argc, cha
   option opts[] = {{"--self-affine", NULL, NULL},   {"--hurst", "H", NULL},
                    {"--q0", "PER_M", NULL},         {"--q1", "PER_M", NULL},
                    {"--hrms", "M", NULL},           {"--psd", "FILE", NULL},
-                   {"--description", "TEXT", NULL}, {"--topography", "FILE", NULL}};
+                   {"--description", "TEXT", NULL}, {"--topography", "FILE", NULL},
+                   {"--psd-kind", "KIND", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
   const char *pos[1], *name = NULL;
   size_t n_pos;
@@ -837,6 +962,12 @@ static int surface_add(const context *cx, const vl_cli_globals *g, int argc, cha
     if (sa->value && !o->value)
       return failf(cx, VL_EINPUT, "--self-affine needs option %s %s", o->name, o->metavar);
   }
+  option *pk = find_opt(opts, n_opts, "--psd-kind");
+  vl_psd_file_kind kind = VL_PSD_FILE_2D;
+  if (pk->value && !psd_opt->value)
+    return fail(cx, VL_EINPUT, "option --psd-kind belongs to --psd FILE");
+  if (pk->value && vl_psd_file_kind_parse(pk->value, &kind) != VL_OK)
+    return failf(cx, VL_EINPUT, "option --psd-kind: '%s' is not 1d or 2d", pk->value);
   if (desc->value && strlen(desc->value) >= VL_DB_TEXT_MAX)
     return failf(cx, VL_EINPUT, "option --description: longer than %d characters",
                  VL_DB_TEXT_MAX - 1);
@@ -844,8 +975,10 @@ static int surface_add(const context *cx, const vl_cli_globals *g, int argc, cha
 
   vl_error err;
   vl_psd psd;
+  vl_psd_read_report rep;
   vl_status st;
   memset(&psd, 0, sizeof psd);
+  memset(&rep, 0, sizeof rep);
   if (sa->value) {
     double v[4];
     for (size_t k = 0; k < 4; k++)
@@ -867,7 +1000,7 @@ static int surface_add(const context *cx, const vl_cli_globals *g, int argc, cha
     if (strlen(psd_opt->value) >= VL_DB_TEXT_MAX)
       return failf(cx, VL_EINPUT, "option --psd: file name longer than %d characters",
                    VL_DB_TEXT_MAX - 1);
-    st = vl_csv_read_psd(psd_opt->value, &psd, &err);
+    st = vl_csv_read_psd_file(psd_opt->value, kind, &psd, &rep, &err);
   }
   if (st != VL_OK) return fail(cx, st, err.msg);
 
@@ -880,6 +1013,7 @@ static int surface_add(const context *cx, const vl_cli_globals *g, int argc, cha
       printf("added surface '%s' to %s: %s, h_rms %.6g m, rms slope %.6g\n", name, vl_db_path(db),
              psd.kind == VL_PSD_TABULATED ? "tabulated" : "self-affine", vl_psd_hrms(&psd),
              vl_psd_rms_slope(&psd));
+      print_notes(g, rep.notes);
       rc = 0;
     }
   }
@@ -1221,12 +1355,70 @@ done:
   return rc;
 }
 
+/* The figure's stem: FILE without its extension ("dir/.hidden" keeps its
+ * name). */
+static void file_stem(char *stem, size_t size, const char *file) {
+  snprintf(stem, size, "%s", file);
+  char *slash = strrchr(stem, '/'), *base = slash ? slash + 1 : stem, *dot = strrchr(base, '.');
+  if (dot && dot > base) *dot = '\0';
+}
+
+/* The spectrum of a self-affine surface on a log grid over its band. */
+enum { PSD_GRID = 200 };
+static void psd_grid(const vl_psd *p, double hurst, double c_q0, double *q, double *c) {
+  for (size_t i = 0; i < PSD_GRID; i++) {
+    q[i] = p->q0 * pow(p->q1 / p->q0, (double)i / (PSD_GRID - 1));
+    c[i] = c_q0 * pow(q[i] / p->q0, -2.0 * (1.0 + hurst));
+  }
+}
+
+/* `surface show NAME --plot FILE`: C(q) of the surface, with the closest
+ * self-affine law over a tabulated one. Returns -1 or the exit code. */
+static int plot_surface(const context *cx, vl_db *db, const char *name, const char *file,
+                        int quiet) {
+  vl_error err;
+  vl_psd p;
+  memset(&p, 0, sizeof p);
+  char stem[4200], label[128], fit_label[128];
+  file_stem(stem, sizeof stem, file);
+  double gq[PSD_GRID], gc[PSD_GRID], h = NAN, c_q0 = NAN, rms = NAN;
+  vl_status st = vl_db_surface_get(db, name, &p, &err);
+  if (st == VL_OK) st = vl_psd_fit_self_affine(&p, &h, &c_q0, &rms, &err);
+  if (st == VL_OK) {
+    int tab = p.kind == VL_PSD_TABULATED;
+    psd_grid(&p, h, c_q0, gq, gc);
+    snprintf(label, sizeof label, tab ? "%s (tabulated)" : "%s (self-affine H = %.3g)", name, h);
+    snprintf(fit_label, sizeof fit_label, "self-affine fit H = %.3g", h);
+    vl_plot_psd_data d = {tab ? p.n : PSD_GRID,
+                          tab ? p.q : gq,
+                          tab ? p.C : gc,
+                          label,
+                          tab ? PSD_GRID : 0,
+                          gq,
+                          gc,
+                          fit_label};
+    vl_plot_options opt;
+    vl_plot_options_defaults(&opt);
+    st = vl_plot_psd(stem, &d, &opt, NULL, &err);
+    if (st == VL_OK && !quiet) {
+      printf("wrote %s.png and %s.svg", stem, stem);
+      if (tab) printf(" (self-affine fit: H %.4g, rms %.3g in log10 C)", h, rms);
+      printf("\n");
+    }
+  }
+  vl_psd_free(&p);
+  return st == VL_OK ? -1 : fail(cx, st, err.msg);
+}
+
 static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
+  /* a compound's --plot writes into --out DIR, a surface's into FILE */
   option opts[] = {{"--json", NULL, NULL},
                    {"--curve", "FILE", NULL},
                    {"--plot", NULL, NULL},
                    {"--out", "DIR", NULL}};
-  size_t n_opts = cx->kind == NOUN_COMPOUND ? 4 : 1;
+  option surface_opts[] = {{"--json", NULL, NULL}, {"--plot", "FILE", NULL}};
+  size_t n_opts = cx->kind == NOUN_COMPOUND ? 4 : cx->kind == NOUN_SURFACE ? 2 : 1;
+  if (cx->kind == NOUN_SURFACE) memcpy(opts, surface_opts, sizeof surface_opts);
   const char *pos[1], *name = NULL;
   size_t n_pos;
   int rc;
@@ -1244,14 +1436,17 @@ static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **
     rc = show_compound(cx, db, name, opts, json);
   } else if (cx->kind == NOUN_SURFACE) {
     vl_db_surface s;
-    if ((st = vl_db_surface_info(db, name, &s, &err)) == VL_OK)
+    if ((st = vl_db_surface_info(db, name, &s, &err)) == VL_OK) {
       json ? surface_json(&w, &s) : surface_text(stdout, &s);
+      if (json) fputc('\n', stdout);
+      if (opts[1].value) rc = plot_surface(cx, db, name, opts[1].value, json);
+    }
   } else {
     vl_db_fluid f;
     if ((st = vl_db_fluid_info(db, name, &f, &err)) == VL_OK)
       json ? fluid_json(&w, &f) : fluid_text(stdout, &f);
   }
-  if (st == VL_OK && json && cx->kind != NOUN_COMPOUND) fputc('\n', stdout);
+  if (st == VL_OK && json && cx->kind == NOUN_FLUID) fputc('\n', stdout);
   if (st != VL_OK) rc = fail(cx, st, err.msg);
   vl_db_close(db);
   return rc >= 0 ? rc : 0;

@@ -61,6 +61,14 @@ static int next_meaningful(const char *text, size_t len, size_t *pos, size_t *li
   return 0;
 }
 
+/* Messages quote header cells and go to a terminal: no control bytes but
+ * the line breaks between the sentences of a problem list. */
+static void sanitise(vl_error *err) {
+  if (!err) return;
+  for (char *c = err->msg; *c; c++)
+    if (((unsigned char)*c < 0x20 && *c != '\n') || *c == 0x7f) *c = '?';
+}
+
 /* Header and units cells may be quoted by spreadsheet exports. */
 static span unquote(span s) {
   s = trim(s);
@@ -179,7 +187,7 @@ static int units_match(span cell, const char *units) {
 #define IGNORED ((size_t)-1)
 
 /* The units row the file would need, in the file's column order and with
- * its delimiter (ignored fields left empty). */
+ * its delimiter (a tab shown as <tab>; ignored fields left empty). */
 static void expected_units(const vl_csv_column *cols, const size_t *map, size_t n_fields,
                            char delimiter, char *buf, size_t size) {
   size_t k = 0;
@@ -187,12 +195,8 @@ static void expected_units(const vl_csv_column *cols, const size_t *map, size_t 
   for (size_t f = 0; f < n_fields && k < size; f++) {
     const char *u = map[f] == IGNORED ? "" : cols[map[f]].units ? cols[map[f]].units : "";
     size_t n = strcspn(u, "|");
-    int w = snprintf(buf + k, size - k, "%s%.*s",
-                     f ? (delimiter == '\t'  ? "\t"
-                          : delimiter == ';' ? ";"
-                                             : ",")
-                       : "",
-                     (int)n, u);
+    const char *sep = !f ? "" : delimiter == '\t' ? "<tab>" : delimiter == ';' ? ";" : ",";
+    int w = snprintf(buf + k, size - k, "%s%.*s", sep, (int)n, u);
     if (w < 0) break;
     k += (size_t)w;
   }
@@ -436,13 +440,8 @@ static vl_status read_data_row(csv_reader *r, int first_row, vl_error *err) {
 static void ragged_row(const csv_reader *r, size_t count, vl_problems *pr) {
   char d = r->opt.delimiter;
   vl_problems_add(pr, r->line_no,
-                  "%s:%zu: expected %zu %s-separated fields like the header, "
-                  "found %zu%s",
-                  r->src, r->line_no, r->n_fields,
-                  d == ','   ? "comma"
-                  : d == ';' ? "semicolon"
-                             : "tab",
-                  count,
+                  "%s:%zu: expected %zu %s-separated fields like the header, found %zu%s", r->src,
+                  r->line_no, r->n_fields, vl_dialect_delimiter_name(d), count,
                   d == ',' && count > r->n_fields
                       ? " (numbers with a decimal comma need ';' or a tab between the fields)"
                       : "");
@@ -567,7 +566,10 @@ cleanup:
   free(r.tp);
   free(r.tn);
   free(r.map);
-  if (st != VL_OK) vl_csv_free(out);
+  if (st != VL_OK) {
+    vl_csv_free(out);
+    sanitise(err);
+  }
   return st;
 }
 
@@ -1117,6 +1119,7 @@ vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
   if (st == VL_OK) st = psd_scan(text, len, &pl, err);
   if (st == VL_OK && pl.q.text[0]) st = psd_dimension(&pl, kind, err);
   if (st != VL_OK) goto cleanup;
+  /* the units row as spelt (then the reader matches it), else any units */
   vl_csv_column cols[2] = {
       {.name = pl.q.text,
        .units = pl.has_units_row ? pl.units_row[0] : "1/m",
@@ -1176,6 +1179,7 @@ vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
 cleanup:
   free(pts);
   vl_csv_free(&csv);
+  if (st != VL_OK) sanitise(err);
   return st;
 }
 

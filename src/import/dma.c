@@ -40,6 +40,7 @@
 #define MODULUS_MAX_PA 1e12
 #define TEMP_MIN_C (-150.0)
 #define TEMP_MAX_C 400.0
+#define KELVIN_LIKE_MIN_C 200.0
 
 typedef enum { R_FREQ, R_STORAGE, R_LOSS, R_ABS, R_TAN, R_J1, R_J2, R_TEMP, R_SET, R_COUNT } role;
 
@@ -1099,17 +1100,56 @@ static vl_status reference_isotherm(const vl_measured *m, double *tref_c, size_t
   return VL_OK;
 }
 
+/* Notes on the pairs that had to be bridged (tts.h): their shift rests on
+ * the curves' trends, not on common points. */
+static void bridge_notes(vl_measured *m, const vl_tts_pair_info *info) {
+  for (size_t g = 0; g + 1 < m->n_isotherms; g++) {
+    const vl_tts_pair_info *p = &info[g];
+    if (p->no_join) {
+      note(m,
+           "warning: the isotherms at %.4g and %.4g C share too little of their windows to "
+           "compare (%.2f decades) and do not join into one smooth curve either: their shift "
+           "of %.2f decades is only a bound (is the material thermorheologically simple "
+           "there?)",
+           m->iso_temperature_c[g], m->iso_temperature_c[g + 1], p->overlap_decades,
+           fabs(p->shift));
+      m->n_warnings++;
+    }
+    if (!p->bridged) continue;
+    m->n_extrapolated++;
+    if (p->at_limit) {
+      note(m,
+           "warning: the isotherms at %.4g and %.4g C lie too far apart to join (their windows "
+           "are at least %.2f decades apart after the %.2f-decade shift found): that shift is "
+           "a lower bound and the master curve beyond it is unreliable; measure isotherms "
+           "closer in temperature or over a wider frequency range",
+           m->iso_temperature_c[g], m->iso_temperature_c[g + 1], -p->overlap_decades,
+           fabs(p->shift));
+      m->n_warnings++;
+    } else {
+      note(m,
+           "the isotherms at %.4g and %.4g C %s %.2f decades after their shift of %.2f decades: "
+           "too little to compare point by point, so the shift joins the two curves' trends "
+           "(a cubic in log frequency across the junction%s)",
+           m->iso_temperature_c[g], m->iso_temperature_c[g + 1],
+           p->overlap_decades >= 0.0 ? "overlap by" : "leave a gap of", fabs(p->overlap_decades),
+           fabs(p->shift), p->loss_used ? ", E' and E''" : ", E' alone");
+    }
+  }
+}
+
 /* lat[g] = log10 a_T of isotherm g relative to isotherm ref, by
- * vl_tts_chain over the points in the order ord (isotherm, frequency). A
- * warmer isotherm that shifts the wrong way is refused. */
-static vl_status chain_shifts(const vl_measured *m, const order_key *ord, size_t ref, double *lat,
+ * vl_tts_chain_info over the points in the order ord (isotherm,
+ * frequency). A warmer isotherm that shifts the wrong way is refused. */
+static vl_status chain_shifts(vl_measured *m, const order_key *ord, size_t ref, double *lat,
                               vl_error *err) {
   size_t ni = m->n_isotherms;
   vl_status st = VL_OK;
   vl_tts_isotherm *iso = calloc(ni, sizeof *iso);
+  vl_tts_pair_info *info = calloc(ni, sizeof *info);
   double *lw = malloc(m->n * sizeof *lw), *l1 = malloc(m->n * sizeof *l1);
   double *l2 = malloc(m->n * sizeof *l2);
-  if (!iso || !lw || !l1 || !l2) {
+  if (!iso || !info || !lw || !l1 || !l2) {
     vl_error_set(err, "%s: out of memory shifting isotherms", m->source);
     st = VL_ENOMEM;
     goto cleanup;
@@ -1124,7 +1164,7 @@ static vl_status chain_shifts(const vl_measured *m, const order_key *ord, size_t
     iso[g] = (vl_tts_isotherm){m->iso_temperature_c[g], m->iso_points[g], lw + i, l1 + i, l2 + i};
     i += m->iso_points[g];
   }
-  if ((st = vl_tts_chain(ni, iso, ref, lat, NULL, err)) != VL_OK) {
+  if ((st = vl_tts_chain_info(ni, iso, ref, lat, info, err)) != VL_OK) {
     vl_error_prefix(err, "%s", m->source);
     goto cleanup;
   }
@@ -1140,9 +1180,11 @@ static vl_status chain_shifts(const vl_measured *m, const order_key *ord, size_t
       goto cleanup;
     }
   }
+  bridge_notes(m, info);
 
 cleanup:
   free(iso);
+  free(info);
   free(lw);
   free(l1);
   free(l2);
@@ -1441,6 +1483,28 @@ static void read_notes(vl_measured *m, const layout *lay, const vl_dma_options *
   }
 }
 
+/* Every temperature between KELVIN_LIKE_MIN_C and TEMP_MAX_C under a
+ * Celsius unit from the file: room-temperature kelvin numbers under a C
+ * header (293 K read as 293 C) fall there, and a rubber's DMA does not
+ * (it degrades). Refused unless the options confirm Celsius. */
+static vl_status kelvin_as_celsius(const vl_measured *m, const layout *lay, const vl_dma_options *o,
+                                   vl_error *err) {
+  if (!m->has_temperature || lay->unit[R_TEMP]->offset != 0.0 || o->temp_unit) return VL_OK;
+  double tmin = INFINITY;
+  size_t first = 0;
+  for (size_t k = 0; k < m->n; k++)
+    if (m->temperature_c[k] < tmin) tmin = m->temperature_c[k], first = k;
+  if (!(tmin >= KELVIN_LIKE_MIN_C)) return VL_OK;
+  int tf = lay->field_of_role[R_TEMP];
+  vl_error_set(err,
+               "%s:%zu: column '%s' (field %d): every temperature lies between %g and %g C "
+               "(%.6g C here), where no rubber is measured: kelvin numbers under a C unit? Give "
+               "the unit K, or confirm Celsius with the temperature unit option (--temp-unit C)",
+               lay->src, m->line[first], lay->fields[tf].text, tf + 1, KELVIN_LIKE_MIN_C,
+               TEMP_MAX_C, tmin);
+  return VL_EINPUT;
+}
+
 /* Reads the numbers of text (dialect in lay) into m's points in SI units,
  * *set (the set column, or NULL) allocated for the caller. Every
  * implausible point is reported at once. */
@@ -1483,6 +1547,8 @@ static vl_status read_points(const char *text, size_t len, layout *lay, const vl
   if (pr.total > 0) {
     vl_problems_finish(&pr, lay->src, err);
     st = VL_EINPUT;
+  } else {
+    st = kelvin_as_celsius(m, lay, o, err);
   }
 
 cleanup:

@@ -147,3 +147,37 @@ double vl_psd_hrms(const vl_psd *psd) {
 double vl_psd_rms_slope(const vl_psd *psd) {
   return sqrt(2.0 * M_PI * vl_psd_moment(psd, 3, psd->q0, psd->q1));
 }
+
+vl_status vl_psd_fit_self_affine(const vl_psd *psd, double *hurst, double *c_q0, double *rms_log10,
+                                 vl_error *err) {
+  if (psd->kind == VL_PSD_SELF_AFFINE) {
+    *hurst = psd->hurst;
+    if (c_q0) *c_q0 = psd->c0;
+    if (rms_log10) *rms_log10 = 0.0;
+    return VL_OK;
+  }
+  /* from the largest C on: a roll-off below it is not self-affine */
+  size_t first = 0;
+  for (size_t i = 1; i < psd->n; i++)
+    if (psd->C[i] > psd->C[first]) first = i;
+  if (psd->n - first < 2) first = 0;
+  if (psd->n < 2) {
+    vl_error_set(err, "a self-affine fit needs at least 2 points");
+    return VL_EINPUT;
+  }
+  /* x = log10(q/q0), y = log10 C: y = b + m x */
+  double n = (double)(psd->n - first), sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  for (size_t i = first; i < psd->n; i++) {
+    double x = log10(psd->q[i] / psd->q0), y = log10(psd->C[i]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  double m = (n * sxy - sx * sy) / (n * sxx - sx * sx), b = (sy - m * sx) / n, ss = 0.0;
+  for (size_t i = first; i < psd->n; i++) {
+    double r = log10(psd->C[i]) - b - m * log10(psd->q[i] / psd->q0);
+    ss += r * r;
+  }
+  *hurst = -0.5 * m - 1.0;
+  if (c_q0) *c_q0 = pow(10.0, b);
+  if (rms_log10) *rms_log10 = sqrt(ss / n);
+  return VL_OK;
+}

@@ -74,6 +74,32 @@ double vl_prony_tan_delta(const vl_prony *prony, double omega) {
   return cimag(e) / creal(e);
 }
 
+/* The tan delta maximum over ln w in [lo, hi]: a 400-point log grid, then
+ * golden section within a cell of the best point (clamped to [lo, hi]). */
+static double peak_between(const vl_prony *prony, double lo, double hi, double *td_peak) {
+  const int n = 400;
+  double best = lo, best_td = -1.0;
+  for (int k = 0; k <= n; k++) {
+    double lw = lo + (hi - lo) * k / n;
+    double td = vl_prony_tan_delta(prony, exp(lw));
+    if (td > best_td) best_td = td, best = lw;
+  }
+  double step = (hi - lo) / n;
+  double a = fmax(lo, best - step), b = fmin(hi, best + step);
+  const double g = 0.5 * (sqrt(5.0) - 1.0);
+  for (int it = 0; it < 100 && b - a > 1e-12; it++) {
+    double c = b - g * (b - a), d = a + g * (b - a);
+    if (vl_prony_tan_delta(prony, exp(c)) > vl_prony_tan_delta(prony, exp(d)))
+      b = d;
+    else
+      a = c;
+  }
+  double lw = 0.5 * (a + b);
+  *td_peak = vl_prony_tan_delta(prony, exp(lw));
+  if (best_td > *td_peak) lw = best, *td_peak = best_td; /* a grid end beats the interior */
+  return lw;
+}
+
 vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak, double *tan_delta_peak,
                              vl_error *err) {
   double tmin = INFINITY, tmax = 0.0;
@@ -87,27 +113,33 @@ vl_status vl_prony_loss_peak(const vl_prony *prony, double *omega_peak, double *
     return VL_EINPUT;
   }
   /* The peak of a sum of Debye terms lies within a few decades of 1/tau. */
-  double lo = log(1.0 / tmax) - 3.0 * M_LN10, hi = log(1.0 / tmin) + 3.0 * M_LN10;
-  const int n = 400;
-  double best = lo, best_td = -1.0;
-  for (int k = 0; k <= n; k++) {
-    double lw = lo + (hi - lo) * k / n;
-    double td = vl_prony_tan_delta(prony, exp(lw));
-    if (td > best_td) best_td = td, best = lw;
-  }
-  double step = (hi - lo) / n;
-  double a = best - step, b = best + step;
-  const double g = 0.5 * (sqrt(5.0) - 1.0);
-  for (int it = 0; it < 100 && b - a > 1e-12; it++) {
-    double c = b - g * (b - a), d = a + g * (b - a);
-    if (vl_prony_tan_delta(prony, exp(c)) > vl_prony_tan_delta(prony, exp(d)))
-      b = d;
-    else
-      a = c;
-  }
-  double lw = 0.5 * (a + b);
+  double td,
+      lw = peak_between(prony, log(1.0 / tmax) - 3.0 * M_LN10, log(1.0 / tmin) + 3.0 * M_LN10, &td);
   if (omega_peak) *omega_peak = exp(lw);
-  if (tan_delta_peak) *tan_delta_peak = vl_prony_tan_delta(prony, exp(lw));
+  if (tan_delta_peak) *tan_delta_peak = td;
+  return VL_OK;
+}
+
+vl_status vl_prony_loss_peak_in(const vl_prony *prony, double omega_min, double omega_max,
+                                double *omega_peak, double *tan_delta_peak, int *at_edge,
+                                vl_error *err) {
+  if (!(omega_min > 0.0 && omega_max > omega_min && isfinite(omega_max))) {
+    vl_error_set(err, "invalid frequency window %g to %g rad/s", omega_min, omega_max);
+    return VL_EINPUT;
+  }
+  if (prony->n_terms == 0) {
+    vl_error_set(err, "an elastic material has no loss-tangent peak");
+    return VL_EINPUT;
+  }
+  double lo = log(omega_min), hi = log(omega_max), td;
+  double lw = peak_between(prony, lo, hi, &td);
+  /* within a thousandth of the window's log width of an end: the curve
+   * still rises there */
+  double tol = 1e-3 * (hi - lo);
+  int edge = lw <= lo + tol ? -1 : lw >= hi - tol ? 1 : 0;
+  if (omega_peak) *omega_peak = exp(lw);
+  if (tan_delta_peak) *tan_delta_peak = td;
+  if (at_edge) *at_edge = edge;
   return VL_OK;
 }
 

@@ -64,6 +64,35 @@ vl_status vl_tts_pair_shift(const vl_tts_isotherm *a, const vl_tts_isotherm *b, 
 vl_status vl_tts_chain(size_t n, const vl_tts_isotherm *iso, size_t ref, double *log10_a_t,
                        double *pair_rms, vl_error *err);
 
+/* How one neighbouring pair was shifted (vl_tts_chain_info). */
+typedef struct {
+  double shift;           /* d(iso[k], iso[k+1]), decades */
+  double rms;             /* rms log10 mismatch at it */
+  double overlap_decades; /* of the two windows at it (negative: a gap) */
+  int loss_used;          /* E'' took part (else E' alone) */
+  int bridged;            /* the overlap was too thin to compare: joined by trends */
+  int at_limit;           /* bridged, and the best shift is the largest gap tried */
+  int no_join;            /* bridging was needed but the curves do not join smoothly: the shift
+                             is the overlap-limited one, a bound */
+} vl_tts_pair_info;
+
+/* As vl_tts_chain, with each pair's info (n - 1 entries, may be NULL).
+ * A pair whose best shift sits at the smallest overlap allowed (a quarter
+ * of the narrower window) is shifted again by bridging: the points of each
+ * curve within 1.5 decades of the junction are fitted together, the
+ * warmer shifted by d, by one cubic in log w per quantity (log E' and
+ * log E'', by the same E''-or-not policy), and d minimises the residual,
+ * from that overlap out to a gap of 1 decade between the windows. The
+ * shift then rests on the curves' trends, not on common points: the caller
+ * should say so (bridged), and more loudly when the best d is the largest
+ * gap tried (at_limit: the isotherms are too far apart in temperature).
+ * When the joint fit is much worse than each curve's own (an F statistic
+ * above 10 for the cubic's extra parameters: the curves do not form one
+ * smooth curve, e.g. glassy E'' that does not superpose), the pair keeps
+ * the overlap-limited shift and no_join says so. */
+vl_status vl_tts_chain_info(size_t n, const vl_tts_isotherm *iso, size_t ref, double *log10_a_t,
+                            vl_tts_pair_info *info, vl_error *err);
+
 /* Least-squares fit of the WLF equation
  *   log10 a_T = -C1 (T - Tref) / (C2 + T - Tref)
  * to n >= 3 shifts at distinct temperatures (Celsius) measured relative to

@@ -161,6 +161,49 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
   return mask;
 }
 
+/* One warning when w (named what) lies over VL_WINDOW_MARGIN above hi
+ * (up) or below lo (!up): that side and that end, one number each (the
+ * console shows the ranges of a kind's numbers over the points). */
+static unsigned window_warn(const char *what, double w, bool up, double lo, double hi,
+                            char *warnings, size_t cap) {
+  char t[160];
+  if (up && w > VL_WINDOW_MARGIN * hi)
+    snprintf(t, sizeof t, "%s %.2g rad/s over a decade above the measured window (top %.2g rad/s)",
+             what, w, hi);
+  else if (!up && w < lo / VL_WINDOW_MARGIN)
+    snprintf(t, sizeof t,
+             "%s %.2g rad/s over a decade below the measured window (bottom %.2g rad/s)", what, w,
+             lo);
+  else
+    return 0;
+  append(warnings, cap, t);
+  return VL_ASSUME_MEASURED_WINDOW;
+}
+
+unsigned vl_assumptions_check_window(const vl_contact_config *cfg, const vl_psd *psd,
+                                     const vl_point *pt, double omega_min_rad_s,
+                                     double omega_max_rad_s, char *warnings, size_t cap) {
+  double v0 = pt->v0_m_s, lo = omega_min_rad_s, hi = omega_max_rad_s;
+  if (!(v0 > 0.0 && lo > 0.0 && hi > lo && isfinite(hi))) return 0;
+  unsigned mask = 0;
+  if (psd && psd->q0 > 0.0 && psd->q1 > psd->q0) {
+    /* the band's ends: were the whole band above the window, its top is;
+     * were it below, its bottom is */
+    mask |= window_warn("asperity frequency v0 q1", v0 * psd->q1, true, lo, hi, warnings, cap);
+    mask |= window_warn("asperity frequency v0 q0", v0 * psd->q0, false, lo, hi, warnings, cap);
+  }
+  double a = 0.5 * pt->contact_width_m;
+  if (!(pt->converged && a > 0.0)) {
+    double e_h, omega_h;
+    vl_asperity_state(&cfg->rubber, cfg->load_n_per_m, cfg->radius_m, v0, &e_h, &a, &omega_h);
+  }
+  if (a > 0.0) {
+    mask |= window_warn("contact frequency v0/a", v0 / a, true, lo, hi, warnings, cap);
+    mask |= window_warn("contact frequency v0/a", v0 / a, false, lo, hi, warnings, cap);
+  }
+  return mask;
+}
+
 const char *vl_assumption_name(unsigned bit) {
   switch (bit) {
   case VL_ASSUME_RMS_SLOPE: return "rms slope";
@@ -173,6 +216,7 @@ const char *vl_assumption_name(unsigned bit) {
   case VL_ASSUME_THIN_FILM: return "thin film";
   case VL_ASSUME_INERTIA: return "inertia";
   case VL_ASSUME_FLOW_FACTORS: return "flow factors";
+  case VL_ASSUME_MEASURED_WINDOW: return "measured window";
   default: return "unknown";
   }
 }

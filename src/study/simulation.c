@@ -25,6 +25,9 @@ struct vl_simulation {
   double eta_pa_s;
   double temperature_c; /* [effects] temperature: the scene's; NAN when off */
   double a_T;           /* WLF shift applied to the compound's times (1 when off) */
+  /* the measured master curve's window at the temperature used (rad/s);
+   * NAN for a compound entered as a Prony series or an elastic scene */
+  double window_min_rad_s, window_max_rad_s;
   vl_contact *contact;
   size_t n;
   double *v0;
@@ -163,6 +166,20 @@ static vl_status apply_temperature(vl_simulation *sim, vl_db *db, vl_error *err)
   return VL_OK;
 }
 
+/* The window of a compound fitted to measured data, moved to the scene's
+ * temperature: a frequency w at T is w a_T on the master curve at Tref. */
+static vl_status measured_window(vl_simulation *sim, vl_db *db, vl_error *err) {
+  vl_db_compound_fit f;
+  memset(&f, 0, sizeof f);
+  vl_status st = vl_db_compound_fit_info(db, sim->scene.compound, &f, err);
+  if (st == VL_OK && f.has_fit) {
+    sim->window_min_rad_s = f.omega_min_rad_s / sim->a_T;
+    sim->window_max_rad_s = f.omega_max_rad_s / sim->a_T;
+  }
+  vl_db_compound_fit_free(&f);
+  return st;
+}
+
 vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation **out,
                                vl_error *err) {
   *out = NULL;
@@ -174,6 +191,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   sim->scene = *scene;
   sim->temperature_c = NAN;
   sim->a_T = 1.0;
+  sim->window_min_rad_s = sim->window_max_rad_s = NAN;
   vl_status st = vl_db_compound_get(db, scene->compound, &sim->rubber, err);
   if (st != VL_OK) {
     if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] compound", scene->path);
@@ -194,6 +212,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     }
   }
   if (scene->effects.temperature && (st = apply_temperature(sim, db, err)) != VL_OK) goto fail;
+  if (scene->effects.viscoelastic && (st = measured_window(sim, db, err)) != VL_OK) goto fail;
   if (scene->effects.roughness) {
     st = vl_db_surface_get(db, scene->surface, &sim->psd, err);
     if (st != VL_OK) {
@@ -311,6 +330,8 @@ static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
   run_ctx *r = user;
   vl_point *p = &r->out[i]; /* pt == &out[i]: the sweep fills the caller's array */
   vl_assumptions_check(&r->sim->cfg, vl_simulation_psd(r->sim), p, p->warnings, sizeof p->warnings);
+  vl_assumptions_check_window(&r->sim->cfg, vl_simulation_psd(r->sim), p, r->sim->window_min_rad_s,
+                              r->sim->window_max_rad_s, p->warnings, sizeof p->warnings);
   (void)pt;
   if (r->cb) r->cb(r->user, i, total, p, c);
 }

@@ -1687,3 +1687,69 @@ vl_status vl_plot_flow_factors(const char *stem, const vl_plot_flow_factor_data 
   }
   return render(stem, opt, draw_flow_factors, d, report, err);
 }
+
+/* ---- power spectra ----------------------------------------------------- */
+
+static void draw_psd(fig *f, const void *vctx) {
+  const vl_plot_psd_data *d = vctx;
+  size_t n = d->n, m = d->n_fit;
+  double qlo, qhi, clo, chi;
+  range_of(n, d->q_per_m, &qlo, &qhi);
+  range_of(n, d->c_m4, &clo, &chi);
+  layout_single(f);
+  f->x = log_axis(qlo, qhi, len_x(f), CH_TICK * f->ph, false);
+  f->y = log_axis(clo, chi, len_y(f), CH_TICK * f->ph, true);
+  fit_left_margin(f);
+  f->x = log_axis(qlo, qhi, len_x(f), CH_TICK * f->ph, false);
+  draw_axes(f, "wavevector #<0x11>q#<0x01> (1/m)", "#<0x11>C#<0x01>(#<0x11>q#<0x01>) (m#u4#d)",
+            true);
+  use_data_area(f);
+  size_t k = n > m ? n : m;
+  double *wx = malloc(k * sizeof *wx), *wy = malloc(k * sizeof *wy);
+  if (!wx || !wy) {
+    free(wx), free(wy);
+    return;
+  }
+  style st = {PALETTE[0], 1, 2.4}, sf = {PALETTE[1], 3, 2.2};
+  bool marks = n <= 60;
+  for (size_t i = 0; i < n; i++) {
+    wx[i] = log10(d->q_per_m[i]);
+    wy[i] = log10(d->c_m4[i]);
+  }
+  draw_runs(f, n, wx, wy, st);
+  for (size_t i = 0; marks && i < n; i++)
+    draw_marker(f, wx[i], wy[i], M_CIRCLE, 2.0, st.color, st.color, true);
+  char t[TEXT_MAX];
+  plain_text(t, sizeof t, d->label ? d->label : "C(q)");
+  add_legend(f, t, true, st, marks ? M_CIRCLE : M_NONE, false, st.color);
+  f->series++;
+  if (m > 0) {
+    /* clipped to the axes: a law steeper than the data leaves the frame */
+    for (size_t i = 0; i < m; i++) {
+      wx[i] = log10(d->fit_q_per_m[i]);
+      double y = log10(d->fit_c_m4[i]);
+      wy[i] = y < f->y.lo || y > f->y.hi ? NAN : y;
+    }
+    draw_runs(f, m, wx, wy, sf);
+    plain_text(t, sizeof t, d->fit_label ? d->fit_label : "self-affine fit");
+    add_legend(f, t, true, sf, M_NONE, false, sf.color);
+    f->series++;
+  }
+  free(wx);
+  free(wy);
+  draw_legend(f, f->vy1);
+}
+
+vl_status vl_plot_psd(const char *stem, const vl_plot_psd_data *d, const vl_plot_options *opt,
+                      vl_plot_report *report, vl_error *err) {
+  if (!d || d->n < 2) {
+    vl_error_set(err, "plot: no spectrum (at least 2 points)");
+    return VL_EINPUT;
+  }
+  if (!positive_finite(d->n, d->q_per_m) || !positive_finite(d->n, d->c_m4) ||
+      !positive_finite(d->n_fit, d->fit_q_per_m) || !positive_finite(d->n_fit, d->fit_c_m4)) {
+    vl_error_set(err, "plot: spectrum: q and C must be positive and finite");
+    return VL_EINPUT;
+  }
+  return render(stem, opt, draw_psd, d, report, err);
+}

@@ -1,8 +1,10 @@
 /* Fuzz target: a tabulated roughness spectrum (`surface add --psd FILE`),
- * read by vl_csv_read_psd as the command line reads it, then the derived
- * quantities the command prints and stores. Properties: a refused file gets
- * one line naming the file and no PSD to free; an accepted one has n >= 2
- * points, q > 0 strictly increasing, C > 0, all finite. */
+ * read by vl_csv_read_psd_file as the command line reads it (2-D, or 1-D
+ * converted, by the input's length), then the derived quantities the
+ * command prints and stores. Properties: a refused file gets lines each
+ * naming the file and no PSD to free; an accepted one has n >= 2 points,
+ * q > 0 strictly increasing, C > 0, all finite, and h_rms and rms slope
+ * within the plausible bounds of csv.h. */
 #include "vl_fuzz.h"
 
 #include <math.h>
@@ -15,7 +17,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   const char *path = vl_fuzz_file(data, size);
   vl_psd psd;
   vl_error err = {{0}};
-  vl_status st = vl_csv_read_psd(path, &psd, &err);
+  /* the length picks the spectrum kind: 1-D files are converted */
+  vl_psd_file_kind kind = size % 2 ? VL_PSD_FILE_1D : VL_PSD_FILE_2D;
+  vl_psd_read_report rep;
+  vl_status st = vl_csv_read_psd_file(path, kind, &psd, &rep, &err);
   if (st != VL_OK) {
     FUZZ_CHECK_REFUSED(st, path, err.msg);
     FUZZ_CHECK(psd.q == NULL && psd.C == NULL, "a refused file left arrays behind");
@@ -29,8 +34,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   }
   FUZZ_CHECK(psd.q0 == psd.q[0] && psd.q1 == psd.q[psd.n - 1], "band is not [q_first, q_last]");
   /* what `surface add` prints and the database derives: no crash, no hang */
-  (void)vl_psd_hrms(&psd);
-  (void)vl_psd_rms_slope(&psd);
+  double h = vl_psd_hrms(&psd), slope = vl_psd_rms_slope(&psd);
+  FUZZ_CHECK(h >= VL_PSD_HRMS_MIN_M && h <= VL_PSD_HRMS_MAX_M && slope <= VL_PSD_SLOPE_MAX,
+             "implausible spectrum accepted: h_rms %g, slope %g", h, slope);
+  FUZZ_CHECK(h == rep.hrms_m && slope == rep.rms_slope, "report disagrees");
   (void)vl_psd_value(&psd, sqrt(psd.q0) * sqrt(psd.q1));
   vl_psd_free(&psd);
   return 0;

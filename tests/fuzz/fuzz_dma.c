@@ -4,11 +4,14 @@
  * options the command line can give (--freq-unit, --modulus-unit,
  * --temp-unit, --tref, --fit-weights); the rest is the file, not
  * NUL-terminated, so ASan sees any read past its end.
+ * The input's length picks tensile or shear moduli for names that say
+ * neither (--moduli), and nu 0.5 or 0.3.
  * Properties: a refused file gets VL_EINPUT or VL_ENOCONV, an emptied
- * result and one line starting with the file name, without control
- * characters; an accepted one has finite positive frequencies and moduli,
- * every point in an isotherm, isotherm temperatures increasing and a Prony
- * series that vl_prony_validate accepts. */
+ * result and lines (one per offending line of the file) each starting with
+ * the file name, without control characters; an accepted one has finite
+ * positive frequencies and moduli, every point in an isotherm, isotherm
+ * temperatures increasing and a Prony series that vl_prony_validate
+ * accepts. */
 #include "vl_fuzz.h"
 
 #include <math.h>
@@ -29,6 +32,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   o.temp_unit = temp[(b >> 4) & 3];
   o.tref_c = (b >> 6) & 1 ? 20.0 : NAN;
   o.weights = (b >> 7) & 1 ? VL_PRONY_WEIGHTS_MODULUS : VL_PRONY_WEIGHTS_RELATIVE;
+  o.moduli = size % 3 == 0   ? VL_DMA_MODULI_AUTO
+             : size % 3 == 1 ? VL_DMA_MODULI_SHEAR
+                             : VL_DMA_MODULI_TENSILE;
+  o.nu = size % 2 ? 0.5 : 0.3;
 
   vl_measured m;
   vl_error err = {{0}};
