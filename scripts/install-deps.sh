@@ -6,7 +6,8 @@ packages=(build-essential cmake pkg-config libsundials-dev libgsl-dev libsqlite3
           libcmocka-dev libinih-dev liblapack-dev libopenblas-dev libfftw3-dev
           libplplot-dev plplot-driver-cairo fonts-dejavu-core
           clang libclang-rt-14-dev # scripts/fuzz.sh: clang 14 and its libFuzzer runtime
-          clang-format)            # scripts/format.sh
+          clang-format             # scripts/format.sh
+          python3-dev python3-numpy) # the Python package (python/)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
