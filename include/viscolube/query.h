@@ -26,6 +26,11 @@
 #define VL_QUERY_LOAD_N_PER_M 117.0
 #define VL_QUERY_RADIUS_M 1e-3
 #define VL_QUERY_SIGMA_S_PA 1e6
+/* The default Stribeck sweep of `compare`: v0*eta (Pa m) from the boundary
+ * regime to full film, log-spaced points. */
+#define VL_QUERY_FROM_PA_M 1e-12
+#define VL_QUERY_TO_PA_M 0.1
+#define VL_QUERY_POINTS 45
 
 /* The conditions of a query. The names are borrowed (the caller keeps them
  * alive while the query is used). */

@@ -124,7 +124,7 @@ static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x
   const char *ff = NULL;
   Py_ssize_t grid = 0;
   vl_query_defaults(q);
-  *x = (query_extra){NAN, 1e-12, 0.1, 45};
+  *x = (query_extra){NAN, VL_QUERY_FROM_PA_M, VL_QUERY_TO_PA_M, VL_QUERY_POINTS};
   if (!PyArg_ParseTupleAndKeywords(args, kw, "sss|ddddzdndddn", kwlist, &q->compound, &q->surface,
                                    &q->fluid, &q->load_n_per_m, &q->radius_m, &q->sigma_s_pa,
                                    &q->temperature_c, &ff, &q->film_cutoff_m, &grid, &x->speed_m_s,

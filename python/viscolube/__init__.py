@@ -229,25 +229,29 @@ class Database:
     # ---- solving -----------------------------------------------------------
 
     @staticmethod
-    def _conditions(load, radius, sigma_s, temperature, flow_factors,
-                    film_cutoff, grid):
-        return dict(load_n_per_m=float(load), radius_m=float(radius),
-                    sigma_s_pa=float(sigma_s), temperature_c=_num(temperature),
-                    flow_factors=flow_factors,
-                    film_cutoff_m=0.0 if film_cutoff is None else float(film_cutoff),
-                    grid=0 if grid is None else int(grid))
+    def _given(**kw):
+        """The keywords given (not None): the library has the defaults."""
+        return {k: v for k, v in kw.items() if v is not None}
 
-    def friction(self, compound, surface, fluid, speed, load=117.0, radius=1e-3,
-                 sigma_s=1e6, temperature=None, flow_factors=None,
+    @classmethod
+    def _conditions(cls, load, radius, sigma_s, temperature, flow_factors,
+                    film_cutoff, grid):
+        return cls._given(load_n_per_m=load, radius_m=radius, sigma_s_pa=sigma_s,
+                          temperature_c=temperature, flow_factors=flow_factors,
+                          film_cutoff_m=film_cutoff, grid=grid)
+
+    def friction(self, compound, surface, fluid, speed, load=None, radius=None,
+                 sigma_s=None, temperature=None, flow_factors=None,
                  film_cutoff=None, grid=None):
-        """One operating point, exactly as `viscolube friction`: speed in
-        m/s, load in N/m, radius in m, sigma_s in Pa, temperature in C (None:
-        every material at its reference temperature), flow_factors
-        'persson-emt' (default), 'patir-cheng' or 'smooth', film_cutoff in m
-        (persson-emt), grid the uniform cells (None: 2928). Returns a Point;
-        a point that does not converge is returned with converged False."""
+        """One operating point, exactly as `viscolube friction`, with its
+        defaults (None): speed in m/s, load in N/m (117), radius in m
+        (1e-3), sigma_s in Pa (1e6), temperature in C (every material at its
+        reference temperature), flow_factors 'persson-emt' (default),
+        'patir-cheng' or 'smooth', film_cutoff in m (persson-emt: 1e-9),
+        grid the uniform cells (2928). Returns a Point; a point that does
+        not converge is returned with converged False."""
         raw = self._db.friction(
-            compound, surface, fluid, speed_m_s=float(speed),
+            compound, surface, fluid, speed_m_s=speed,
             **self._conditions(load, radius, sigma_s, temperature,
                                flow_factors, film_cutoff, grid))
         raw["warnings"] = [w for w in raw["warnings"].split(";") if w]
@@ -266,19 +270,20 @@ class Database:
             return curves[0]
         return {c.info["fluid"]: c for c in curves}
 
-    def compare(self, compounds, surface, fluid, v_from=1e-12, v_to=0.1,
-                points=45, load=117.0, radius=1e-3, sigma_s=1e6,
+    def compare(self, compounds, surface, fluid, v_from=None, v_to=None,
+                points=None, load=None, radius=None, sigma_s=None,
                 temperature=None, flow_factors=None, film_cutoff=None,
                 grid=None):
         """Stribeck curves of several compounds, exactly as `viscolube
-        compare`: v0*eta from v_from to v_to (Pa m), log-spaced points.
+        compare`: v0*eta from v_from (1e-12) to v_to (0.1 Pa m), points (45)
+        log-spaced; the other conditions as friction.
         Every compound is checked before anything is computed. Returns
         {compound: Curve}, each the curve.csv `compare` writes."""
         if isinstance(compounds, str):
             compounds = [compounds]
         cond = self._conditions(load, radius, sigma_s, temperature,
                                 flow_factors, film_cutoff, grid)
-        sweep = dict(v_from=float(v_from), v_to=float(v_to), points=int(points))
+        sweep = self._given(v_from=v_from, v_to=v_to, points=points)
         for c in compounds:
             self._db.check_query(c, surface, fluid, **cond, **sweep)
         return {c: Curve(self._db.run_query(c, surface, fluid, **cond, **sweep))

@@ -629,8 +629,11 @@ static void compare_report(const compare_args *a, const compare_curves *cv) {
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  compare_args a = {
-      .c = conditions_default(g), .from = 1e-12, .to = 0.1, .points = 45, .out_dir = "out/compare"};
+  compare_args a = {.c = conditions_default(g),
+                    .from = VL_QUERY_FROM_PA_M,
+                    .to = VL_QUERY_TO_PA_M,
+                    .points = VL_QUERY_POINTS,
+                    .out_dir = "out/compare"};
   int rc = compare_parse(argc, argv, &a);
   if (rc < 0) rc = compare_check(&a);
   if (rc >= 0) return rc;
