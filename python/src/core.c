@@ -24,15 +24,16 @@ PyObject *vlpy_raise(vl_status st, const vl_error *err) {
   int k = (int)st;
   PyObject *cls = k > 0 && k <= VL_EINTERNAL ? error_by_status[k] : error_base;
   const char *msg = err && err->msg[0] ? err->msg : vl_status_name(st);
-  PyObject *exc = PyObject_CallFunction(cls, "s", msg);
-  if (!exc) return NULL;
-  PyObject *code = PyLong_FromLong(k);
+  /* a file name in the message need not be UTF-8 */
+  PyObject *text = PyUnicode_DecodeUTF8(msg, (Py_ssize_t)strlen(msg), "replace");
+  PyObject *exc = text ? PyObject_CallOneArg(cls, text) : NULL;
+  PyObject *code = exc ? PyLong_FromLong(k) : NULL;
   if (code && PyObject_SetAttrString(exc, "status", code) == 0 &&
-      PyObject_SetAttrString(exc, "message",
-                             PyTuple_GET_ITEM(((PyBaseExceptionObject *)exc)->args, 0)) == 0)
+      PyObject_SetAttrString(exc, "message", text) == 0)
     PyErr_SetObject(cls, exc);
   Py_XDECREF(code);
-  Py_DECREF(exc);
+  Py_XDECREF(exc);
+  Py_XDECREF(text);
   return NULL;
 }
 
