@@ -7,20 +7,26 @@ program of the same build; by hand:
   PYTHONPATH=build/python VL_CLI=build/viscolube VL_SOURCE_DIR=. \
       /usr/bin/python3 -m unittest discover -s tests/python -v
 """
-import csv
-import hashlib
-import json
-import math
 import os
+
+# Identity with the CLI holds for one BLAS thread on both sides: threaded
+# OpenBLAS sums in another order (the last digits of the dense solves move),
+# whoever calls it. Set before numpy and the library load OpenBLAS.
+os.environ["OPENBLAS_NUM_THREADS"] = "1"
+
+import csv  # noqa: E402
+import hashlib  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
 import shutil
 import subprocess
 import sys
 import tempfile
 import unittest
 
-import numpy as np
+import numpy as np  # noqa: E402
 
-import viscolube as vl
+import viscolube as vl  # noqa: E402
 
 CLI = os.environ.get("VL_CLI", "viscolube")
 SRC = os.environ.get("VL_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
@@ -28,8 +34,7 @@ SRC = os.environ.get("VL_SOURCE_DIR", os.path.join(os.path.dirname(__file__), ".
 
 def cli(*args, expect=0):
     """Runs the program; its stdout (the exit status must be expect)."""
-    p = subprocess.run([CLI, *args], capture_output=True, text=True,
-                       env=dict(os.environ, OPENBLAS_NUM_THREADS="1"))
+    p = subprocess.run([CLI, *args], capture_output=True, text=True)
     if p.returncode != expect:
         raise AssertionError("%s %s: exit %d\n%s" % (CLI, " ".join(args), p.returncode,
                                                      p.stderr))
