@@ -43,7 +43,9 @@
  *        vl_simulation_create(&sc, db, &sim, &err);
  *        vl_point *pts = calloc(vl_simulation_points(sim), sizeof *pts);
  *        vl_simulation_run(sim, pts, NULL, NULL, &stats, &err);
- *      A single operating point: vl_contact_solve(contact, v0, &pt, &err).
+ *      A single operating point: vl_contact_solve(contact, v0, &pt, &err);
+ *      the command line's friction query, robustly (continuation when a
+ *      direct solve fails), with its defaults: vl_query_friction (query.h).
  *
  *   4. Read the results (results.h): each vl_point holds mu and its parts
  *      mu_Rc, mu_Rf, mu_Sc, mu_Sf, the film, the regime, and whether the
@@ -86,6 +88,7 @@
 
 /* database, scenes and simulations */
 #include "viscolube/database.h"
+#include "viscolube/query.h"
 #include "viscolube/scene.h"
 #include "viscolube/simulation.h"
 

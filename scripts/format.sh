@@ -4,7 +4,7 @@
 #   scripts/format.sh           reformat every file in place
 #   scripts/format.sh --check   change nothing; list the files that differ from
 #                               the style and exit 1 if there is any
-# The files: every *.c and *.h under src/ include/ tests/ bench/.
+# The files: every *.c and *.h under src/ include/ tests/ bench/ python/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -22,7 +22,7 @@ command -v clang-format >/dev/null || {
   exit 2
 }
 
-mapfile -d '' files < <(find src include tests bench -type f \( -name '*.c' -o -name '*.h' \) \
+mapfile -d '' files < <(find src include tests bench python -type f \( -name '*.c' -o -name '*.h' \) \
   -print0 | sort -z)
 
 if [ $check -eq 0 ]; then

@@ -10,19 +10,16 @@
 
 #define MAX_COMPOUNDS 8
 
-/* The operating conditions shared by both commands. Defaults are the seed's
- * real-rubber scenes (Figs. 15-18): R = 1 mm, fN = 117 N/m, sigma_s = 1 MPa. */
+/* The operating conditions shared by both commands: a query of the library
+ * (query.h, whose defaults are the seed's real-rubber scenes) and how the
+ * answer is shown. */
 typedef struct {
-  const char *surface, *fluid;
-  double load, radius, sigma_s;
-  size_t grid;
-  const char *flow_factors;
-  double film_cutoff_m; /* --film-cutoff; 0: the default */
+  vl_query q;               /* surface, fluid, load, radius, sigma_s, grid, film
+                             * cut-off, temperature; flow_factors from the text below */
+  const char *flow_factors; /* --flow-factors as given (NULL: the default) */
   int json;
   int plot;
-  int quiet;            /* --quiet (or the global one): no warnings, no progress */
-  int have_temperature; /* --temperature: compound (WLF) and fluid (its law) at temperature_c */
-  double temperature_c;
+  int quiet; /* --quiet (or the global one): no warnings, no progress */
 } conditions;
 
 /* The strict decimal syntax of every numeric option and CSV cell
@@ -63,9 +60,9 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
       return -1;
     }
     if (!strcmp(o, "--surface"))
-      c->surface = v;
+      c->q.surface = v;
     else if (!strcmp(o, "--fluid"))
-      c->fluid = v;
+      c->q.fluid = v;
     else
       c->flow_factors = v;
     (*i)++;
@@ -75,18 +72,18 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
       !strcmp(o, "--grid")) {
     if (!parse_number(cmd, o, v, &d, strcmp(o, "--sigma-s") != 0)) return -1;
     if (!strcmp(o, "--load"))
-      c->load = d;
+      c->q.load_n_per_m = d;
     else if (!strcmp(o, "--radius"))
-      c->radius = d;
+      c->q.radius_m = d;
     else if (!strcmp(o, "--sigma-s"))
-      c->sigma_s = d;
+      c->q.sigma_s_pa = d;
     else {
       if (d < VL_GRID_MIN || d > VL_GRID_GRADED_MAX || d != floor(d)) {
         fprintf(stderr, "viscolube %s: option --grid needs a whole number in [%d, %d]\n", cmd,
                 VL_GRID_MIN, VL_GRID_GRADED_MAX);
         return -1;
       }
-      c->grid = (size_t)d;
+      c->q.grid = (size_t)d;
     }
     (*i)++;
     return 1;
@@ -98,7 +95,7 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
               cmd, VL_FILM_CUTOFF_MAX_M, v);
       return -1;
     }
-    c->film_cutoff_m = d;
+    c->q.film_cutoff_m = d;
     (*i)++;
     return 1;
   }
@@ -108,90 +105,63 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
               cmd, v ? v : "");
       return -1;
     }
-    c->have_temperature = 1;
-    c->temperature_c = d;
+    c->q.at_temperature = true;
+    c->q.temperature_c = d;
     (*i)++;
     return 1;
   }
   return 0;
 }
 
-/* The viscosity the run uses: the stored one, or with --temperature the
- * fluid's law at that temperature (fluid.h; the same call the simulation
- * makes, so both agree exactly). */
+/* The viscosity the run uses (vl_query_fluid_eta), the message naming the
+ * option. */
 static vl_status fluid_eta(vl_db *db, const conditions *c, double *eta, vl_error *err) {
-  if (!c->have_temperature) return vl_db_fluid_get(db, c->fluid, eta, err);
-  vl_db_fluid f;
-  vl_status st = vl_db_fluid_info(db, c->fluid, &f, err);
-  if (st == VL_OK)
-    st = vl_fluid_viscosity(&f.law, f.viscosity_pa_s, f.tref_c, c->temperature_c, eta, err);
-  if (st == VL_EINPUT)
-    vl_error_prefix(err, "--temperature %g: fluid '%s'", c->temperature_c, c->fluid);
+  vl_status st = vl_query_fluid_eta(db, &c->q, eta, err);
+  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature %g", c->q.temperature_c);
   return st;
 }
 
-/* With --temperature: VL_OK if compound can be taken there (WLF constants,
- * above the WLF singularity), checked before anything is computed so the
- * message names the option. Without: VL_OK. */
+/* With --temperature: VL_OK if compound can be taken there, checked before
+ * anything is computed so the message names the option. Without: VL_OK. */
 static vl_status compound_at(vl_db *db, const conditions *c, const char *compound, vl_error *err) {
-  if (!c->have_temperature) return VL_OK;
-  vl_db_compound info;
-  vl_prony shifted;
-  double a_T;
-  vl_status st = vl_db_compound_info(db, compound, &info, err);
-  if (st == VL_OK) st = vl_compound_at_temperature(&info, c->temperature_c, &shifted, &a_T, err);
-  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature %g", c->temperature_c);
+  vl_status st = vl_query_check_compound(db, &c->q, compound, err);
+  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature %g", c->q.temperature_c);
   return st;
+}
+
+/* The query of these conditions for compound, --flow-factors parsed. */
+static vl_query query_for(const conditions *c, const char *compound) {
+  vl_query q = c->q;
+  q.compound = compound;
+  if (c->flow_factors) vl_flow_factors_parse(c->flow_factors, &q.flow_factors, NULL);
+  return q;
 }
 
 /* The flow-factor model of these conditions (the user's, else the default)
  * and its film cut-off (persson-emt; else 0), as the scenes get them. */
 static const char *model_of(const conditions *c, double *film_cutoff_m) {
-  vl_flow_factor_kind k = VL_SCENE_ROUGH_FLOW_FACTORS;
-  if (c->flow_factors) vl_flow_factors_parse(c->flow_factors, &k, NULL);
-  *film_cutoff_m = k != VL_FLOW_FACTORS_PERSSON_EMT ? 0.0
-                   : c->film_cutoff_m > 0.0         ? c->film_cutoff_m
-                                                    : VL_FILM_CUTOFF_DEFAULT_M;
-  return vl_flow_factors_name(k);
+  vl_query q = query_for(c, NULL);
+  return vl_query_flow_factors(&q, film_cutoff_m);
 }
 
-/* A wet rough scene for compound at the given conditions. */
+/* The wet rough scene of compound at the given conditions (vl_query_scene);
+ * 0 after the message naming the option when they do not go together. */
 static int make_scene(const char *cmd, const conditions *c, const char *compound, vl_scene *sc) {
-  vl_scene_defaults(sc);
-  snprintf(sc->path, sizeof sc->path, "%s", cmd);
-  snprintf(sc->compound, sizeof sc->compound, "%s", compound);
-  snprintf(sc->surface, sizeof sc->surface, "%s", c->surface);
-  snprintf(sc->fluid, sizeof sc->fluid, "%s", c->fluid);
-  snprintf(sc->fluids[0], sizeof sc->fluids[0], "%s", c->fluid);
-  sc->n_fluids = 1;
-  sc->radius_m = c->radius;
-  sc->load_n_per_m = c->load;
-  sc->sigma_s_pa = c->sigma_s;
-  sc->effects.roughness = true;
-  sc->effects.fluid = true;
-  sc->effects.solid_shear = c->sigma_s > 0.0;
-  sc->effects.flow_factors = VL_SCENE_ROUGH_FLOW_FACTORS;
-  if (c->flow_factors) {
-    vl_error err;
-    if (vl_flow_factors_parse(c->flow_factors, &sc->effects.flow_factors, &err) != VL_OK) {
-      fprintf(stderr, "viscolube %s: --flow-factors: %s\n", cmd, err.msg);
-      return 0;
-    }
+  vl_error err;
+  vl_flow_factor_kind k;
+  if (c->flow_factors && vl_flow_factors_parse(c->flow_factors, &k, &err) != VL_OK) {
+    fprintf(stderr, "viscolube %s: --flow-factors: %s\n", cmd, err.msg);
+    return 0;
   }
-  if (c->film_cutoff_m > 0.0) {
-    if (sc->effects.flow_factors != VL_FLOW_FACTORS_PERSSON_EMT) {
-      fprintf(stderr, "viscolube %s: --film-cutoff applies to --flow-factors persson-emt only\n",
-              cmd);
-      return 0;
-    }
-    sc->effects.film_cutoff_m = c->film_cutoff_m;
+  vl_query q = query_for(c, compound);
+  if (q.film_cutoff_m > 0.0 && q.flow_factors != VL_FLOW_FACTORS_PERSSON_EMT) {
+    fprintf(stderr, "viscolube %s: --film-cutoff applies to --flow-factors persson-emt only\n",
+            cmd);
+    return 0;
   }
-  vl_scene_default_numerics(sc);
-  if (c->grid) sc->grid = c->grid, sc->auto_numerics = false; /* 0: automatic */
-  sc->quantity = VL_SWEEP_V0_ETA;
-  if (c->have_temperature) {
-    sc->effects.temperature = true;
-    sc->effects.temperature_c = c->temperature_c;
+  if (vl_query_scene(&q, cmd, sc, &err) != VL_OK) {
+    fprintf(stderr, "viscolube %s: %s\n", cmd, err.msg);
+    return 0;
   }
   return 1;
 }
@@ -268,84 +238,48 @@ static int friction_args(int argc, char **argv, conditions *c, const char **comp
       return 2;
     }
   }
-  if (!need("friction", "--compound", *compound) || !need("friction", "--surface", c->surface) ||
-      !need("friction", "--fluid", c->fluid) ||
+  if (!need("friction", "--compound", *compound) || !need("friction", "--surface", c->q.surface) ||
+      !need("friction", "--fluid", c->q.fluid) ||
       !need("friction", "--speed", have_speed ? "" : NULL))
     return 2;
   if (!valid_name("friction", "--compound", *compound) ||
-      !valid_name("friction", "--surface", c->surface) ||
-      !valid_name("friction", "--fluid", c->fluid))
+      !valid_name("friction", "--surface", c->q.surface) ||
+      !valid_name("friction", "--fluid", c->q.fluid))
     return 2;
   return -1;
 }
 
-/* The point at v0 = speed: first a direct solve from the Hertz guess; if it
- * fails, continuation from the boundary regime (v0 eta = 1e-12 Pa m), 4
- * points a decade. *sim is the simulation of the last attempt (the caller
- * frees it); stats->converged + failed counts the points solved. */
-static vl_status solve_point(vl_scene *sc, vl_db *db, double speed, double eta, vl_simulation **sim,
-                             vl_point *pt, vl_sweep_stats *stats, vl_error *err) {
-  vl_status st = VL_OK;
-  for (int attempt = 0; st == VL_OK && attempt < 2; attempt++) {
-    sc->to = speed * eta;
-    sc->from = attempt == 0 ? sc->to : fmin(1e-12, 0.1 * sc->to);
-    sc->points = attempt == 0 ? 1 : (size_t)ceil(4.0 * log10(sc->to / sc->from)) + 1;
-    vl_simulation_free(*sim);
-    *sim = NULL;
-    st = vl_simulation_create(sc, db, sim, err);
-    if (st != VL_OK) break;
-    size_t n = vl_simulation_points(*sim);
-    vl_point *pts = calloc(n, sizeof *pts);
-    if (!pts) {
-      st = VL_ENOMEM;
-      vl_error_set(err, "out of memory");
-      break;
-    }
-    vl_sweep_stats one;
-    st = vl_simulation_run(*sim, pts, NULL, NULL, &one, err);
-    stats->converged += one.converged;
-    stats->failed += one.failed;
-    *pt = pts[n - 1];
-    free(pts);
-    if (pt->converged) break;
-  }
-  return st;
-}
-
 /* The point as JSON; with --temperature the temperature, shift and
  * viscosity come first in the same object. */
-static void friction_json(const conditions *c, vl_simulation *sim, double eta, const vl_point *pt,
-                          const vl_curve_meta *meta) {
+static void friction_json(const conditions *c, const vl_query_result *r) {
+  vl_curve_meta meta = {r->eta_pa_s, 0.0, r->a0_m, r->flow_factors, r->film_cutoff_m};
   vl_json w;
   vl_json_init(&w, stdout, 10);
   vl_json_object_begin(&w, VL_JSON_INLINE);
-  if (c->have_temperature) {
-    vl_json_key_number(&w, "temperature_c", c->temperature_c);
-    vl_json_key_number(&w, "a_T", vl_simulation_shift_factor(sim));
-    vl_json_key_number(&w, "eta_pa_s", eta);
+  if (c->q.at_temperature) {
+    vl_json_key_number(&w, "temperature_c", c->q.temperature_c);
+    vl_json_key_number(&w, "a_T", r->shift_factor);
+    vl_json_key_number(&w, "eta_pa_s", r->eta_pa_s);
   }
-  vl_point_json_members(&w, pt, meta);
+  vl_point_json_members(&w, &r->point, &meta);
   vl_json_end(&w);
   fputc('\n', stdout);
 }
 
 static void friction_text(const conditions *c, const char *compound, double speed,
-                          vl_simulation *sim, double eta, const vl_point *pt,
-                          const vl_sweep_stats *stats) {
-  const vl_psd *psd = vl_simulation_psd(sim);
-  double hrms = psd ? psd->hrms_m : 0.0;
+                          const vl_query_result *r) {
+  const vl_point *pt = &r->point;
+  double eta = r->eta_pa_s, hrms = r->hrms_m;
   printf("%s on %s in %s at v0 = %g m/s (v0 eta = %g Pa m), R = %g m, fN = %g N/m\n", compound,
-         c->surface, c->fluid, speed, speed * eta, c->radius, c->load);
-  double cut;
-  const char *model = vl_simulation_flow_factors(sim, &cut);
-  if (model) {
-    printf("  flow factors: %s", model);
-    if (cut > 0.0) printf(" (film cut-off %g m)", cut);
+         c->q.surface, c->q.fluid, speed, speed * eta, c->q.radius_m, c->q.load_n_per_m);
+  if (r->flow_factors) {
+    printf("  flow factors: %s", r->flow_factors);
+    if (r->film_cutoff_m > 0.0) printf(" (film cut-off %g m)", r->film_cutoff_m);
     putchar('\n');
   }
-  if (c->have_temperature)
+  if (c->q.at_temperature)
     printf("  at %g C: compound times x a_T = %.4g (WLF), fluid viscosity %.4g Pa s\n",
-           c->temperature_c, vl_simulation_shift_factor(sim), eta);
+           c->q.temperature_c, r->shift_factor, eta);
   printf("  mu      = %.5g\n  mu_Rc   = %.5g   (hysteresis under the solid contact)\n"
          "  mu_Rf   = %.5g   (asymmetry of the fluid pressure)\n"
          "  mu_Sc   = %.5g   (shear in the real contact area)\n"
@@ -355,8 +289,7 @@ static void friction_text(const conditions *c, const char *compound, double spee
          "regime: %s\n  Q = %.3g; %ld Newton iterations, residual %.2g (%zu continuation "
          "points)\n",
          pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
-         vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual,
-         stats->converged + stats->failed);
+         vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual, r->points_solved);
   if (isfinite(pt->error_estimate))
     printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)\n",
            100.0 * pt->error_estimate);
@@ -364,48 +297,51 @@ static void friction_text(const conditions *c, const char *compound, double spee
     printf("  error estimate of mu: none (the point on coarser cells did not converge)\n");
 }
 
+/* The conditions of both commands before any option: the library's
+ * defaults, the global --quiet. */
+static conditions conditions_default(const vl_cli_globals *g) {
+  conditions c = {.quiet = g->quiet};
+  vl_query_defaults(&c.q);
+  return c;
+}
+
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
-  conditions c = {
-      .load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN, .quiet = g->quiet};
+  conditions c = conditions_default(g);
   const char *compound = NULL;
   double speed = 0.0;
   int rc = friction_args(argc, argv, &c, &compound, &speed);
   if (rc >= 0) return rc;
-  vl_scene sc;
+  vl_scene sc; /* checks the options go together before the database is opened */
   if (!make_scene("friction", &c, compound, &sc)) return 2;
+  vl_query q = query_for(&c, compound);
   vl_error err = {{0}};
   vl_db *db = NULL;
-  vl_simulation *sim = NULL;
   double eta = 0.0;
-  vl_point pt = {0};
-  vl_sweep_stats stats = {0};
+  vl_query_result r;
   vl_status st = vl_db_open(g->db_path, &db, &err);
   if (st == VL_OK) st = compound_at(db, &c, compound, &err);
   if (st == VL_OK) st = fluid_eta(db, &c, &eta, &err);
-  if (st == VL_OK) st = solve_point(&sc, db, speed, eta, &sim, &pt, &stats, &err);
+  if (st == VL_OK) st = vl_query_friction(db, &q, speed, &r, &err);
   rc = 0;
   if (st != VL_OK) {
     fprintf(stderr, "viscolube friction: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
     rc = vl_status_exit_code(st);
     goto done;
   }
-  vl_curve_meta meta = {eta, 0.0, vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
-  meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
   if (c.json)
-    friction_json(&c, sim, eta, &pt, &meta);
-  else if (pt.converged)
-    friction_text(&c, compound, speed, sim, eta, &pt, &stats);
+    friction_json(&c, &r);
+  else if (r.point.converged)
+    friction_text(&c, compound, speed, &r);
   fflush(stdout);
-  if (!c.json && !c.quiet) vl_cli_print_warnings(stderr, NULL, 1, &pt);
-  if (!pt.converged) {
+  if (!c.json && !c.quiet) vl_cli_print_warnings(stderr, NULL, 1, &r.point);
+  if (!r.point.converged) {
     fprintf(stderr,
             "viscolube friction: the solve did not converge at v0 = %g m/s "
             "(%ld iterations, residual %.3g)\n",
-            speed, pt.iterations, pt.residual);
+            speed, r.point.iterations, r.point.residual);
     rc = vl_status_exit_code(VL_ENOCONV);
   }
 done:
-  vl_simulation_free(sim);
   vl_db_close(db);
   return rc;
 }
@@ -504,12 +440,12 @@ static int compare_check(compare_args *a) {
     a->names[a->nc++] = t;
   }
   if (!need("compare", "--compounds", a->nc ? "" : NULL) ||
-      !need("compare", "--surface", a->c.surface) || !need("compare", "--fluid", a->c.fluid))
+      !need("compare", "--surface", a->c.q.surface) || !need("compare", "--fluid", a->c.q.fluid))
     return 2;
   for (size_t k = 0; k < a->nc; k++)
     if (!valid_name("compare", "--compounds", a->names[k])) return 2;
-  if (!valid_name("compare", "--surface", a->c.surface) ||
-      !valid_name("compare", "--fluid", a->c.fluid))
+  if (!valid_name("compare", "--surface", a->c.q.surface) ||
+      !valid_name("compare", "--fluid", a->c.q.fluid))
     return 2;
   if (!(a->to > a->from) || a->points != floor(a->points) || a->points < 2 || a->points > 10000) {
     fprintf(stderr, "viscolube compare: need --from < --to and a whole --points in [2, 10000]\n");
@@ -530,7 +466,7 @@ static vl_status compare_prepare(vl_db *db, const compare_args *a, compare_curve
   }
   for (size_t k = 0; st == VL_OK && k < a->nc; k++)
     st = compound_at(db, &a->c, a->names[k], err);
-  if (st == VL_OK && a->c.have_temperature) st = fluid_eta(db, &a->c, &cv->eta, err);
+  if (st == VL_OK && a->c.q.at_temperature) st = fluid_eta(db, &a->c, &cv->eta, err);
   if (st == VL_OK) st = vl_cli_check_out_dir("--out", a->out_dir, err);
   for (size_t k = 0; st == VL_OK && k < a->nc; k++) {
     char dir[4200];
@@ -595,7 +531,7 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
   }
   /* with --temperature the rows say at which temperature and viscosity
    * (appended: the columns of a reference-temperature run are unchanged) */
-  if (a->c.have_temperature) fputs(",temperature_c,eta_pa_s", f);
+  if (a->c.q.at_temperature) fputs(",temperature_c,eta_pa_s", f);
   fputc('\n', f);
   for (size_t i = 0; i < cv->n; i++) {
     fprintf(f, "%.10g", cv->pts[i].v0_m_s * cv->eta);
@@ -607,7 +543,7 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
       else
         fputs(",,,,,,,0", f);
     }
-    if (a->c.have_temperature) fprintf(f, ",%.10g,%.10g", a->c.temperature_c, cv->eta);
+    if (a->c.q.at_temperature) fprintf(f, ",%.10g,%.10g", a->c.q.temperature_c, cv->eta);
     fputc('\n', f);
   }
   return vl_atomic_file_commit(&af, err);
@@ -619,8 +555,8 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
   printf("flow factors: %s", model_of(&a->c, &cut));
   if (cut > 0.0) printf(" (film cut-off %g m)", cut);
   putchar('\n');
-  if (a->c.have_temperature)
-    printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.temperature_c,
+  if (a->c.q.at_temperature)
+    printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.q.temperature_c,
            cv->eta);
   printf("%12s", "v0_eta_pa_m");
   for (size_t k = 0; k < a->nc; k++)
@@ -645,8 +581,8 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
   vl_json w;
   vl_json_init(&w, stdout, 10);
   vl_json_object_begin(&w, VL_JSON_INLINE);
-  if (a->c.have_temperature) {
-    vl_json_key_number(&w, "temperature_c", a->c.temperature_c);
+  if (a->c.q.at_temperature) {
+    vl_json_key_number(&w, "temperature_c", a->c.q.temperature_c);
     vl_json_key_number(&w, "eta_pa_s", cv->eta);
   }
   vl_json_key(&w, "v0_eta_pa_m");
@@ -698,12 +634,11 @@ static void compare_report(const compare_args *a, const compare_curves *cv) {
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
-  compare_args a = {
-      .c = {.load = 117.0, .radius = 1e-3, .sigma_s = 1e6, .temperature_c = NAN, .quiet = g->quiet},
-      .from = 1e-12,
-      .to = 0.1,
-      .points = 45,
-      .out_dir = "out/compare"};
+  compare_args a = {.c = conditions_default(g),
+                    .from = VL_QUERY_FROM_PA_M,
+                    .to = VL_QUERY_TO_PA_M,
+                    .points = VL_QUERY_POINTS,
+                    .out_dir = "out/compare"};
   int rc = compare_parse(argc, argv, &a);
   if (rc < 0) rc = compare_check(&a);
   if (rc >= 0) return rc;

@@ -1,0 +1,384 @@
+/* viscolube._core: friction at one operating point (vl_query_friction),
+ * scenes and Stribeck sweeps (vl_simulation_run), results as numpy arrays
+ * with the columns of curve.csv. */
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core.h"
+
+/* ---- points and curves ------------------------------------------------- */
+
+/* The columns of curve.csv that hold a number of the solved state: NaN in
+ * numpy where the CSV cell is empty (the point did not converge). */
+static const struct {
+  const char *name;
+  size_t offset;
+} solved_columns[] = {
+    {"mu", offsetof(vl_point, mu)},
+    {"mu_Rc", offsetof(vl_point, mu_Rc)},
+    {"mu_Rf", offsetof(vl_point, mu_Rf)},
+    {"mu_Sc", offsetof(vl_point, mu_Sc)},
+    {"mu_Sf", offsetof(vl_point, mu_Sf)},
+    {"u_min_m", offsetof(vl_point, u_min_m)},
+    {"u_central_m", offsetof(vl_point, u_central_m)},
+    {"contact_width_m", offsetof(vl_point, contact_width_m)},
+    {"fluid_load_fraction", offsetof(vl_point, fluid_load_fraction)},
+    {"E_wH_pa", offsetof(vl_point, E_wH_pa)},
+    {"a_H_m", offsetof(vl_point, a_H_m)},
+    {"Q", offsetof(vl_point, Q)},
+    {"x_centroid_m", offsetof(vl_point, x_centroid_m)},
+    {"load_error", offsetof(vl_point, load_error)},
+    {"eps_f_min", offsetof(vl_point, eps_f_min)},
+};
+
+/* The value of the numeric column `name` at point p, as the CSV cell (NaN
+ * for an empty cell). 0 when name is not a float column. */
+static int column_number(const char *name, const vl_point *p, const vl_curve_meta *m, double *v) {
+  if (!strcmp(name, "v0_m_s") || !strcmp(name, "residual")) {
+    *v = name[0] == 'v' ? p->v0_m_s : p->residual;
+    return 1;
+  }
+  if (!strcmp(name, "v0_eta_pa_m")) {
+    *v = m->eta_pa_s > 0 ? p->v0_m_s * m->eta_pa_s : NAN;
+    return 1;
+  }
+  if (!strcmp(name, "deborah")) {
+    *v = m->tau_s > 0 && m->a0_m > 0 ? p->v0_m_s * m->tau_s / m->a0_m : NAN;
+    return 1;
+  }
+  for (size_t k = 0; k < sizeof solved_columns / sizeof *solved_columns; k++)
+    if (!strcmp(name, solved_columns[k].name)) {
+      *v = p->converged ? *(const double *)((const char *)p + solved_columns[k].offset) : NAN;
+      return 1;
+    }
+  return 0;
+}
+
+/* One column of the curve pts[0..n) as a numpy array or a list of texts;
+ * InternalError for a column the binding does not know (a column added to
+ * the library must be added here too: the tests compare with curve.csv). */
+static PyObject *column(const char *name, size_t n, const vl_point *pts, const vl_curve_meta *m) {
+  npy_intp dims[1] = {(npy_intp)n};
+  double v;
+  if (n && column_number(name, &pts[0], m, &v)) {
+    PyObject *a = PyArray_SimpleNew(1, dims, NPY_DOUBLE);
+    double *d = a ? PyArray_DATA((PyArrayObject *)a) : NULL;
+    for (size_t i = 0; d && i < n; i++)
+      column_number(name, &pts[i], m, &d[i]);
+    return a;
+  }
+  int type = !strcmp(name, "converged") ? NPY_BOOL : !strcmp(name, "iterations") ? NPY_INT64 : -1;
+  if (type >= 0) {
+    PyObject *a = PyArray_SimpleNew(1, dims, type);
+    for (size_t i = 0; a && i < n; i++) {
+      if (type == NPY_BOOL)
+        ((npy_bool *)PyArray_DATA((PyArrayObject *)a))[i] = pts[i].converged;
+      else
+        ((npy_int64 *)PyArray_DATA((PyArrayObject *)a))[i] = pts[i].iterations;
+    }
+    return a;
+  }
+  int regime = !strcmp(name, "regime");
+  if (!regime && strcmp(name, "warnings")) {
+    vl_error err;
+    vl_error_set(&err, "curve column '%s' unknown to the Python binding", name);
+    return vlpy_raise(VL_EINTERNAL, &err);
+  }
+  PyObject *l = PyList_New((Py_ssize_t)n);
+  for (size_t i = 0; l && i < n; i++) {
+    const char *s =
+        regime ? (pts[i].converged ? vl_regime_name(pts[i].regime) : "") : pts[i].warnings;
+    PyObject *t = PyUnicode_FromString(s);
+    if (!t)
+      Py_CLEAR(l);
+    else
+      PyList_SET_ITEM(l, (Py_ssize_t)i, t);
+  }
+  return l;
+}
+
+/* {column: values} of the curve, in the order of curve.csv. */
+static PyObject *curve_dict(size_t n, const vl_point *pts, const vl_curve_meta *m) {
+  PyObject *d = PyDict_New();
+  for (size_t c = 0; d && vl_curve_columns[c]; c++)
+    if (vlpy_set(d, vl_curve_columns[c], column(vl_curve_columns[c], n, pts, m)) < 0) Py_CLEAR(d);
+  return d;
+}
+
+/* ---- queries ------------------------------------------------------------- */
+
+/* The arguments every query takes; the rest go to *extra (speed, or the
+ * sweep from, to, points). -1 with an exception. */
+typedef struct {
+  double speed_m_s, v_from, v_to;
+  Py_ssize_t points;
+} query_extra;
+
+static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x) {
+  static char *kwlist[] = {
+      "compound",   "surface",       "fluid",        "load_n_per_m",  "radius_m",
+      "sigma_s_pa", "temperature_c", "flow_factors", "film_cutoff_m", "grid",
+      "speed_m_s",  "v_from",        "v_to",         "points",        NULL};
+  const char *ff = NULL;
+  Py_ssize_t grid = 0;
+  vl_query_defaults(q);
+  *x = (query_extra){NAN, VL_QUERY_FROM_PA_M, VL_QUERY_TO_PA_M, VL_QUERY_POINTS};
+  if (!PyArg_ParseTupleAndKeywords(args, kw, "sss|ddddzdndddn", kwlist, &q->compound, &q->surface,
+                                   &q->fluid, &q->load_n_per_m, &q->radius_m, &q->sigma_s_pa,
+                                   &q->temperature_c, &ff, &q->film_cutoff_m, &grid, &x->speed_m_s,
+                                   &x->v_from, &x->v_to, &x->points))
+    return -1;
+  vl_error err = {{0}};
+  if (ff && vl_flow_factors_parse(ff, &q->flow_factors, &err) != VL_OK) {
+    vl_error_prefix(&err, "flow_factors");
+    vlpy_raise(VL_EINPUT, &err);
+    return -1;
+  }
+  if (grid < 0 || x->points < 2 || x->points > 10000) {
+    vl_error_set(&err, grid < 0 ? "grid: must not be negative" : "points: needs 2 to 10000");
+    vlpy_raise(VL_EINPUT, &err);
+    return -1;
+  }
+  q->grid = (size_t)grid;
+  q->at_temperature = !isnan(q->temperature_c);
+  return 0;
+}
+
+/* The result of friction: the point's columns and how it was computed. */
+static PyObject *friction_dict(const vl_query *q, const vl_query_result *r) {
+  vl_curve_meta meta = {r->eta_pa_s, 0.0, r->a0_m, r->flow_factors, r->film_cutoff_m};
+  PyObject *d = PyDict_New();
+  for (size_t c = 0; d && vl_curve_columns[c]; c++) {
+    const char *name = vl_curve_columns[c];
+    double v;
+    PyObject *o =
+        column_number(name, &r->point, &meta, &v) ? PyFloat_FromDouble(v)
+        : !strcmp(name, "converged")              ? PyBool_FromLong(r->point.converged)
+        : !strcmp(name, "iterations")             ? PyLong_FromLong(r->point.iterations)
+        : !strcmp(name, "regime")
+            ? PyUnicode_FromString(r->point.converged ? vl_regime_name(r->point.regime) : "")
+            : PyUnicode_FromString(r->point.warnings);
+    if (vlpy_set(d, name, o) < 0) Py_CLEAR(d);
+  }
+  if (d &&
+      (vlpy_set_double(d, "eta_pa_s", r->eta_pa_s) || vlpy_set_double(d, "a_T", r->shift_factor) ||
+       vlpy_set_double(d, "a0_m", r->a0_m) || vlpy_set_double(d, "hrms_m", r->hrms_m) ||
+       vlpy_set_text(d, "flow_factors", r->flow_factors) ||
+       vlpy_set_double(d, "film_cutoff_m", r->film_cutoff_m) ||
+       vlpy_set_double(d, "temperature_c", q->temperature_c) ||
+       vlpy_set(d, "points_solved", PyLong_FromSize_t(r->points_solved))))
+    Py_CLEAR(d);
+  return d;
+}
+
+PyObject *vlpy_friction(DatabaseObject *self, PyObject *args, PyObject *kw) {
+  vl_query q;
+  query_extra x;
+  if (parse_query(args, kw, &q, &x) < 0) return NULL;
+  vl_db *db = vlpy_db(self);
+  if (!db) return NULL;
+  vl_query_result r;
+  vl_error err = {{0}};
+  vl_status st = vl_query_friction(db, &q, x.speed_m_s, &r, &err);
+  return st == VL_OK ? friction_dict(&q, &r) : vlpy_raise(st, &err);
+}
+
+PyObject *vlpy_check_query(DatabaseObject *self, PyObject *args, PyObject *kw) {
+  vl_query q;
+  query_extra x;
+  if (parse_query(args, kw, &q, &x) < 0) return NULL;
+  vl_db *db = vlpy_db(self);
+  if (!db) return NULL;
+  vl_error err = {{0}};
+  vl_scene *sc = malloc(sizeof *sc);
+  vl_db_surface surf;
+  vl_prony probe;
+  double eta;
+  if (!sc) return PyErr_NoMemory();
+  vl_status st = vl_query_scene(&q, "compare", sc, &err);
+  free(sc);
+  if (st == VL_OK) st = vl_db_compound_get(db, q.compound, &probe, &err);
+  if (st == VL_OK) st = vl_db_surface_info(db, q.surface, &surf, &err);
+  if (st == VL_OK) st = vl_query_check_compound(db, &q, q.compound, &err);
+  if (st == VL_OK) st = vl_query_fluid_eta(db, &q, &eta, &err);
+  if (st == VL_EINPUT && q.at_temperature)
+    vl_error_prefix(&err, "temperature %g C", q.temperature_c);
+  if (st != VL_OK) return vlpy_raise(st, &err);
+  Py_RETURN_NONE;
+}
+
+/* ---- scenes -------------------------------------------------------------- */
+
+/* The fields of the points a scene asks them at, kept while it runs (the
+ * callback cannot raise: a failed allocation is remembered). */
+typedef struct {
+  vl_simulation *sim;
+  size_t n, cap;
+  size_t *index;
+  vl_fields *fields;
+  int failed;
+} fields_store;
+
+static void keep_fields(void *user, size_t i, size_t total, const vl_point *pt,
+                        const vl_contact *contact) {
+  fields_store *s = user;
+  (void)total;
+  if (!vl_simulation_wants_fields(s->sim, i) || !pt->converged || s->failed) return;
+  size_t g = vl_contact_grid(contact);
+  double *b = calloc(7 * g, sizeof *b);
+  if (!b || s->n == s->cap) {
+    free(b);
+    s->failed = 1;
+    return;
+  }
+  s->index[s->n] = i;
+  s->fields[s->n++] =
+      (vl_fields){g, b, b + g, b + 2 * g, b + 3 * g, b + 4 * g, b + 5 * g, b + 6 * g};
+  vl_contact_fields(contact, &s->fields[s->n - 1]);
+}
+
+/* The fields kept, as a list of dicts with the columns of fields/NNN.csv. */
+static PyObject *fields_list(const fields_store *s, const vl_point *pts, double a0_m) {
+  PyObject *l = PyList_New(0);
+  for (size_t k = 0; l && k < s->n; k++) {
+    const vl_fields *f = &s->fields[k];
+    PyObject *d = PyDict_New();
+    PyObject *xa = vlpy_array(f->x_m, f->n);
+    for (size_t i = 0; xa && i < f->n; i++)
+      ((double *)PyArray_DATA((PyArrayObject *)xa))[i] /= a0_m;
+    if (!d || vlpy_set(d, "index", PyLong_FromSize_t(s->index[k])) ||
+        vlpy_set_double(d, "v0_m_s", pts[s->index[k]].v0_m_s) ||
+        vlpy_set(d, "x_m", vlpy_array(f->x_m, f->n)) || vlpy_set(d, "x_over_a0", xa) ||
+        vlpy_set(d, "p_f_pa", vlpy_array(f->p_f_pa, f->n)) ||
+        vlpy_set(d, "p_c_pa", vlpy_array(f->p_c_pa, f->n)) ||
+        vlpy_set(d, "u_m", vlpy_array(f->u_m, f->n)) ||
+        vlpy_set(d, "area_ratio", vlpy_array(f->area_ratio, f->n)) ||
+        vlpy_set(d, "film_fraction", vlpy_array(f->film_fraction, f->n)) ||
+        vlpy_set(d, "cell_width_m", vlpy_array(f->width_m, f->n)) || PyList_Append(l, d) < 0)
+      Py_CLEAR(l);
+    Py_XDECREF(d);
+  }
+  return l;
+}
+
+/* What describes a curve besides its points. */
+static PyObject *curve_info(const vl_scene *sc, vl_simulation *sim, const vl_curve_meta *m) {
+  PyObject *d = PyDict_New();
+  const vl_psd *psd = vl_simulation_psd(sim);
+  const vl_contact *c = vl_simulation_contact(sim);
+  if (d &&
+      (vlpy_set_text(d, "compound", sc->compound) || vlpy_set_text(d, "surface", sc->surface) ||
+       vlpy_set_text(d, "fluid", sc->effects.fluid ? sc->fluid : NULL) ||
+       vlpy_set_text(d, "quantity", vl_sweep_quantity_name(sc->quantity)) ||
+       vlpy_set_double(d, "eta_pa_s", m->eta_pa_s) || vlpy_set_double(d, "tau_s", m->tau_s) ||
+       vlpy_set_double(d, "a0_m", m->a0_m) || vlpy_set_double(d, "p0_pa", vl_contact_p0(c)) ||
+       vlpy_set_double(d, "hrms_m", psd ? psd->hrms_m : 0.0) ||
+       vlpy_set_text(d, "flow_factors", m->flow_factors) ||
+       vlpy_set_double(d, "film_cutoff_m", m->film_cutoff_m) ||
+       vlpy_set_double(d, "temperature_c", vl_simulation_temperature_c(sim)) ||
+       vlpy_set_double(d, "a_T", vl_simulation_shift_factor(sim))))
+    Py_CLEAR(d);
+  return d;
+}
+
+static void store_free(fields_store *s) {
+  for (size_t k = 0; k < s->n; k++)
+    free(s->fields[k].x_m);
+  free(s->fields);
+  free(s->index);
+}
+
+/* Runs scene sc (one fluid): {"info": ..., "curve": {column: array},
+ * "fields": [...]}. */
+static PyObject *run_one(vl_db *db, const vl_scene *sc) {
+  vl_error err = {{0}};
+  fields_store s = {0};
+  vl_point *pts = NULL;
+  PyObject *ret = NULL;
+  vl_status st = vl_simulation_create(sc, db, &s.sim, &err);
+  size_t n = st == VL_OK ? vl_simulation_points(s.sim) : 0;
+  if (st == VL_OK) {
+    pts = calloc(n, sizeof *pts);
+    s.cap = n;
+    s.index = calloc(n, sizeof *s.index);
+    s.fields = calloc(n, sizeof *s.fields);
+    if (!pts || !s.index || !s.fields) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
+  }
+  vl_sweep_stats stats;
+  if (st == VL_OK) st = vl_simulation_run(s.sim, pts, keep_fields, &s, &stats, &err);
+  if (st == VL_OK && s.failed) st = VL_ENOMEM, vl_error_set(&err, "out of memory (fields)");
+  if (st != VL_OK) {
+    vlpy_raise(st, &err);
+    goto done;
+  }
+  vl_contact *c = vl_simulation_contact(s.sim);
+  vl_curve_meta m = {vl_simulation_eta(s.sim), vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0};
+  m.flow_factors = vl_simulation_flow_factors(s.sim, &m.film_cutoff_m);
+  ret = PyDict_New();
+  if (ret && (vlpy_set(ret, "info", curve_info(sc, s.sim, &m)) ||
+              vlpy_set(ret, "curve", curve_dict(n, pts, &m)) ||
+              vlpy_set(ret, "fields", fields_list(&s, pts, m.a0_m))))
+    Py_CLEAR(ret);
+done:
+  store_free(&s);
+  free(pts);
+  vl_simulation_free(s.sim);
+  return ret;
+}
+
+/* Every curve of sc: one per fluid of `fluid = a, b, ...`. */
+static PyObject *run_all(vl_db *db, const vl_scene *sc) {
+  size_t nf = sc->n_fluids > 1 ? sc->n_fluids : 1;
+  PyObject *l = PyList_New(0);
+  vl_scene *one = malloc(sizeof *one);
+  if (!one) Py_CLEAR(l);
+  for (size_t k = 0; l && k < nf; k++) {
+    *one = *sc;
+    if (sc->n_fluids > 1) {
+      snprintf(one->fluid, sizeof one->fluid, "%s", sc->fluids[k]);
+      one->n_fluids = 1;
+    }
+    PyObject *r = run_one(db, one);
+    if (!r || PyList_Append(l, r) < 0) Py_CLEAR(l);
+    Py_XDECREF(r);
+  }
+  free(one);
+  return l;
+}
+
+PyObject *vlpy_run_scene(DatabaseObject *self, PyObject *args, PyObject *kw) {
+  static char *kwlist[] = {"text", "path", NULL};
+  const char *text = NULL, *path = NULL;
+  if (!PyArg_ParseTupleAndKeywords(args, kw, "zs", kwlist, &text, &path)) return NULL;
+  vl_db *db = vlpy_db(self);
+  if (!db) return NULL;
+  vl_scene *sc = malloc(sizeof *sc);
+  if (!sc) return PyErr_NoMemory();
+  vl_error err = {{0}};
+  vl_status st = text ? vl_scene_parse(text, path, sc, &err) : vl_scene_load(path, sc, &err);
+  PyObject *ret = st == VL_OK ? run_all(db, sc) : vlpy_raise(st, &err);
+  free(sc);
+  return ret;
+}
+
+PyObject *vlpy_run_query(DatabaseObject *self, PyObject *args, PyObject *kw) {
+  vl_query q;
+  query_extra x;
+  if (parse_query(args, kw, &q, &x) < 0) return NULL;
+  vl_db *db = vlpy_db(self);
+  if (!db) return NULL;
+  vl_scene *sc = malloc(sizeof *sc);
+  if (!sc) return PyErr_NoMemory();
+  vl_error err = {{0}};
+  vl_status st = vl_query_scene(&q, "compare", sc, &err);
+  if (st == VL_OK && !(x.v_to > x.v_from && x.v_from > 0)) {
+    vl_error_set(&err, "v_from, v_to: need 0 < v_from < v_to");
+    st = VL_EINPUT;
+  }
+  sc->from = x.v_from, sc->to = x.v_to, sc->points = (size_t)x.points;
+  PyObject *ret = st == VL_OK ? run_one(db, sc) : vlpy_raise(st, &err);
+  free(sc);
+  return ret;
+}

@@ -1,0 +1,290 @@
+"""viscolube: friction of wet rubber contacts, from first principles.
+
+The Python interface of libviscolube (the same library as the command line
+`viscolube`; nothing is computed here). docs/PYTHON.md describes the API.
+
+    import viscolube as vl
+    db = vl.Database()                    # the default database, as the CLI
+    r = db.friction(compound="sbr-unfilled", surface="paper-0.5um",
+                    fluid="water", speed=0.01)
+    r.mu, r.mu_Rc, r.u_min, r.regime, r.converged, r.warnings
+
+Errors are `viscolube.Error` (subclasses per library status: InputError,
+NotFoundError, ExistsError, DatabaseError, FileError, NoConvergenceError,
+OutOfMemoryError, InternalError) with `.status` (the library's code) and
+`.message` (its sentence). The library prints nothing.
+"""
+
+import math
+import os
+
+import numpy as np
+
+from . import _core
+from ._core import (DatabaseError, Error, ExistsError, FileError, InputError,
+                    InternalError, NoConvergenceError, NotFoundError,
+                    OutOfMemoryError)
+
+__version__ = _core.PROJECT_VERSION
+__all__ = ["Database", "Curve", "Point", "scene_text", "CURVE_COLUMNS", "Error",
+           "InputError", "NotFoundError", "ExistsError", "DatabaseError",
+           "FileError", "NoConvergenceError", "OutOfMemoryError",
+           "InternalError"]
+
+#: The columns of curve.csv, in order (the library's list).
+CURVE_COLUMNS = tuple(_core.curve_columns())
+
+# the library's "not given" for optional numbers
+_ABSENT = math.nan
+
+
+def _input_error(msg):
+    """An InputError raised by the package itself (arguments that do not go
+    together), shaped as the library's."""
+    e = InputError(msg)
+    e.status, e.message = 1, msg
+    return e
+
+
+def _num(v):
+    return _ABSENT if v is None else float(v)
+
+
+def _path(p):
+    return None if p is None else os.fspath(p)
+
+
+class Point(dict):
+    """One operating point: the keys of `viscolube friction --json` (the
+    columns of curve.csv) and how it was computed (eta_pa_s, a_T, a0_m,
+    hrms_m, flow_factors, film_cutoff_m, temperature_c, points_solved).
+    Keys are also attributes; `u_min` is `u_min_m`; `warnings` is a list.
+    A point that did not converge has converged False and NaN physics."""
+
+    def __getattr__(self, key):
+        try:
+            return self[key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+    @property
+    def u_min(self):
+        return self["u_min_m"]
+
+
+class Curve(dict):
+    """A Stribeck curve: {column of curve.csv: numpy array}, one entry per
+    sweep point. Float columns hold NaN where curve.csv has an empty cell
+    (a point that did not converge, a quantity not defined for the scene);
+    `converged` (bool) says which points are solved, `iterations` is int,
+    `regime` and `warnings` are arrays of str ('' for a failed point).
+
+    .info    the curve's context: compound, surface, fluid, quantity,
+             eta_pa_s, tau_s, a0_m, p0_pa, hrms_m, flow_factors,
+             film_cutoff_m, temperature_c, a_T
+    .fields  one dict per point the scene asked fields at (fields_at):
+             index, v0_m_s and the arrays of fields/NNN.csv (x_m,
+             x_over_a0, p_f_pa, p_c_pa, u_m, area_ratio, film_fraction,
+             cell_width_m)
+    """
+
+    def __init__(self, raw):
+        super().__init__()
+        for name, values in raw["curve"].items():
+            if isinstance(values, list):
+                values = np.array(values, dtype=str)
+            self[name] = values
+        self.info = raw["info"]
+        self.fields = raw["fields"]
+
+    def __getattr__(self, key):
+        try:
+            return self[key]
+        except KeyError:
+            raise AttributeError(key) from None
+
+    def structured(self):
+        """The curve as one numpy structured array (a record per point)."""
+        cols = list(self.keys())
+        return np.rec.fromarrays([self[c] for c in cols], names=cols)
+
+
+def _ini_value(v):
+    if isinstance(v, bool):
+        return "on" if v else "off"
+    if isinstance(v, (list, tuple)):
+        return ", ".join(_ini_value(x) for x in v)
+    if isinstance(v, float):
+        return repr(v)
+    text = str(v)
+    if "\n" in text or "\r" in text:
+        raise _input_error("scene value %r: one line only" % text)
+    return text
+
+
+def scene_text(scene):
+    """The INI text of a scene given as {section: {key: value}} (docs/
+    FORMATS.md): booleans become on/off, lists comma-separated, floats
+    their shortest exact form."""
+    lines = []
+    for section, keys in scene.items():
+        lines.append("[%s]" % section)
+        for key, value in keys.items():
+            lines.append("%s = %s" % (key, _ini_value(value)))
+        lines.append("")
+    return "\n".join(lines)
+
+
+class Database:
+    """The material database (SQLite). path None: the default one, as the
+    command line chooses it ($VISCOLUBE_DB, else $XDG_DATA_HOME/viscolube/
+    materials.db, else ~/.local/share/viscolube/materials.db), created on
+    first use with the materials shipped in the library. Use from one
+    thread at a time; `with Database(...) as db:` closes it."""
+
+    def __init__(self, path=None):
+        self._db = _core.Database(_path(path))
+
+    def close(self):
+        self._db.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    @property
+    def path(self):
+        return self._db.path()
+
+    @property
+    def readonly(self):
+        return self._db.readonly()
+
+    # ---- materials ---------------------------------------------------------
+
+    def compounds(self):
+        """Every compound as a dict (name, class, e_inf_pa, e0_pa, nu,
+        tau_s and A arrays, tref_c, wlf_c1, wlf_c2_k, method, ...)."""
+        return self._db.compounds()
+
+    def surfaces(self):
+        """Every surface as a dict (name, kind, hrms_m, rms_slope, q0_per_m,
+        q1_per_m, hurst, c0_m4, n_points, ...)."""
+        return self._db.surfaces()
+
+    def fluids(self):
+        """Every fluid as a dict (name, viscosity_pa_s, tref_c,
+        viscosity_law, vogel_b_k, vogel_c_k, law_tmin_c, law_tmax_c, ...)."""
+        return self._db.fluids()
+
+    def add_compound(self, name, prony=None, measured=None, tau_s=None, A=None,
+                     e_inf_pa=None, nu=None, class_name="other", description="",
+                     tref_c=None, wlf_c1=None, wlf_c2_k=None, freq_unit=None,
+                     modulus_unit=None, temp_unit=None, terms_per_decade=None,
+                     fit_weights=None):
+        """Adds a compound from one of: prony=CSV file of tau_s,A (with
+        e_inf_pa, nu), tau_s=/A= sequences (with e_inf_pa, nu), or
+        measured=DMA file (fitted; freq_unit, modulus_unit, temp_unit,
+        tref_c, nu, terms_per_decade, fit_weights as `compound add
+        --measured`). tref_c defaults to 20 C for a Prony series. Nothing
+        is stored when anything is refused."""
+        self._db.add_compound(
+            name, prony=_path(prony), tau_s=tau_s, A=A, e_inf_pa=_num(e_inf_pa),
+            nu=_num(nu), measured=_path(measured), class_name=class_name,
+            description=description, tref_c=_num(tref_c), wlf_c1=_num(wlf_c1),
+            wlf_c2_k=_num(wlf_c2_k), freq_unit=freq_unit,
+            modulus_unit=modulus_unit, temp_unit=temp_unit,
+            terms_per_decade=0.0 if terms_per_decade is None else float(terms_per_decade),
+            fit_weights=fit_weights)
+
+    def add_surface(self, name, psd=None, hurst=None, q0_per_m=None,
+                    q1_per_m=None, hrms_m=None, description=None):
+        """Adds a surface: psd=CSV file (q, C), or self-affine with hurst,
+        q0_per_m, q1_per_m and hrms_m."""
+        self._db.add_surface(name, psd=_path(psd), hurst=_num(hurst),
+                             q0_per_m=_num(q0_per_m), q1_per_m=_num(q1_per_m),
+                             hrms_m=_num(hrms_m), description=description)
+
+    def add_fluid(self, name, viscosity_pa_s, tref_c=20.0, vogel_b_k=None,
+                  vogel_c_k=None, law_range_c=None, description=""):
+        """Adds a Newtonian fluid; with vogel_b_k, vogel_c_k and law_range_c
+        = (tmin, tmax) also its Vogel viscosity law."""
+        lo, hi = (None, None) if law_range_c is None else law_range_c
+        self._db.add_fluid(name, float(viscosity_pa_s), tref_c=float(tref_c),
+                           vogel_b_k=_num(vogel_b_k), vogel_c_k=_num(vogel_c_k),
+                           law_tmin_c=_num(lo), law_tmax_c=_num(hi),
+                           description=description)
+
+    def remove_compound(self, name):
+        self._db.remove("compound", name)
+
+    def remove_surface(self, name):
+        self._db.remove("surface", name)
+
+    def remove_fluid(self, name):
+        self._db.remove("fluid", name)
+
+    # ---- solving -----------------------------------------------------------
+
+    @staticmethod
+    def _given(**kw):
+        """The keywords given (not None): the library has the defaults."""
+        return {k: v for k, v in kw.items() if v is not None}
+
+    @classmethod
+    def _conditions(cls, load, radius, sigma_s, temperature, flow_factors,
+                    film_cutoff, grid):
+        return cls._given(load_n_per_m=load, radius_m=radius, sigma_s_pa=sigma_s,
+                          temperature_c=temperature, flow_factors=flow_factors,
+                          film_cutoff_m=film_cutoff, grid=grid)
+
+    def friction(self, compound, surface, fluid, speed, load=None, radius=None,
+                 sigma_s=None, temperature=None, flow_factors=None,
+                 film_cutoff=None, grid=None):
+        """One operating point, exactly as `viscolube friction`, with its
+        defaults (None): speed in m/s, load in N/m (117), radius in m
+        (1e-3), sigma_s in Pa (1e6), temperature in C (every material at its
+        reference temperature), flow_factors 'persson-emt' (default),
+        'patir-cheng' or 'smooth', film_cutoff in m (persson-emt: 1e-9),
+        grid the uniform cells (2928). Returns a Point; a point that does
+        not converge is returned with converged False."""
+        raw = self._db.friction(
+            compound, surface, fluid, speed_m_s=speed,
+            **self._conditions(load, radius, sigma_s, temperature,
+                               flow_factors, film_cutoff, grid))
+        raw["warnings"] = [w for w in raw["warnings"].split(";") if w]
+        return Point(raw)
+
+    def run(self, scene):
+        """Runs a scene: a path to an INI file (cases/*.ini) or a dict
+        {section: {key: value}} (see scene_text). Returns a Curve, or for a
+        scene with several fluids {fluid: Curve} in the scene's order."""
+        if isinstance(scene, dict):
+            raw = self._db.run_scene(scene_text(scene), "<scene dict>")
+        else:
+            raw = self._db.run_scene(None, _path(scene))
+        curves = [Curve(r) for r in raw]
+        if len(curves) == 1:
+            return curves[0]
+        return {c.info["fluid"]: c for c in curves}
+
+    def compare(self, compounds, surface, fluid, v_from=None, v_to=None,
+                points=None, load=None, radius=None, sigma_s=None,
+                temperature=None, flow_factors=None, film_cutoff=None,
+                grid=None):
+        """Stribeck curves of several compounds, exactly as `viscolube
+        compare`: v0*eta from v_from (1e-12) to v_to (0.1 Pa m), points (45)
+        log-spaced; the other conditions as friction.
+        Every compound is checked before anything is computed. Returns
+        {compound: Curve}, each the curve.csv `compare` writes."""
+        if isinstance(compounds, str):
+            compounds = [compounds]
+        cond = self._conditions(load, radius, sigma_s, temperature,
+                                flow_factors, film_cutoff, grid)
+        sweep = self._given(v_from=v_from, v_to=v_to, points=points)
+        for c in compounds:
+            self._db.check_query(c, surface, fluid, **cond, **sweep)
+        return {c: Curve(self._db.run_query(c, surface, fluid, **cond, **sweep))
+                for c in compounds}

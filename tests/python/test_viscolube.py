@@ -1,0 +1,317 @@
+"""Tests of the Python package viscolube (ctest label `python`).
+
+The package computes nothing itself: every number must be the command
+line's, to the last digit the CLI prints (10 significant digits, its JSON and
+CSV format). Run by ctest with PYTHONPATH at build/python and VL_CLI, the
+program of the same build; by hand:
+  PYTHONPATH=build/python VL_CLI=build/viscolube VL_SOURCE_DIR=. \
+      /usr/bin/python3 -m unittest discover -s tests/python -v
+"""
+import os
+
+# Identity with the CLI holds for one BLAS thread on both sides: threaded
+# OpenBLAS sums in another order (the last digits of the dense solves move),
+# whoever calls it. Set before numpy and the library load OpenBLAS.
+os.environ["OPENBLAS_NUM_THREADS"] = "1"
+
+import csv  # noqa: E402
+import hashlib  # noqa: E402
+import json  # noqa: E402
+import math  # noqa: E402
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np  # noqa: E402
+
+import viscolube as vl  # noqa: E402
+
+CLI = os.environ.get("VL_CLI", "viscolube")
+SRC = os.environ.get("VL_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def cli(*args, expect=0):
+    """Runs the program; its stdout (the exit status must be expect)."""
+    p = subprocess.run([CLI, *args], capture_output=True, text=True)
+    if p.returncode != expect:
+        raise AssertionError("%s %s: exit %d\n%s" % (CLI, " ".join(args), p.returncode,
+                                                     p.stderr))
+    return p.stdout, p.stderr
+
+
+def text10(v):
+    """A number as the CLI writes it (%.10g, -0 as 0)."""
+    return "%.10g" % (0.0 if v == 0 else v)
+
+
+def read_csv(path):
+    """The rows of a CSV the CLI wrote, as text, its comment line dropped."""
+    with open(path, newline="") as f:
+        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+    return rows[0], rows[1:]
+
+
+class Scratch(unittest.TestCase):
+    """A fresh folder (and database path) per test, in /tmp: the tests may
+    run as root from a checkout nobody else can enter."""
+
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="vl-python-")
+        self.db_path = os.path.join(self.dir, "materials.db")
+
+    def tearDown(self):
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+    def assert_curve_equals_csv(self, curve, path):
+        """Every cell of curve.csv at path equals curve's value to the digit;
+        an empty cell is NaN (float columns) or '' (text)."""
+        header, rows = read_csv(path)
+        self.assertEqual(tuple(header), vl.CURVE_COLUMNS)
+        self.assertEqual(list(curve.keys()), header)
+        self.assertEqual(len(rows), len(curve["mu"]))
+        for i, row in enumerate(rows):
+            for name, cell in zip(header, row):
+                v = curve[name][i]
+                if name == "converged":
+                    self.assertEqual(cell, "1" if v else "0")
+                elif name == "iterations":
+                    self.assertEqual(cell, str(int(v)))
+                elif name in ("regime", "warnings"):
+                    self.assertEqual(cell, v)
+                elif cell == "":
+                    self.assertTrue(math.isnan(v), (name, i, v))
+                else:
+                    self.assertEqual(cell, text10(v), (name, i))
+
+
+class TestFriction(Scratch):
+    def check_point(self, args, **kw):
+        out, _ = cli("--db", self.db_path, "friction", *args, "--json",
+                     expect=0)
+        ref = json.loads(out, parse_float=str, parse_int=str)
+        with vl.Database(self.db_path) as db:
+            r = db.friction(**kw)
+        self.assertTrue(r.converged)
+        compared = 0
+        for key, cell in ref.items():
+            v = r[key]
+            if key == "warnings":
+                self.assertEqual(cell, ";".join(v))
+            elif key == "converged":
+                self.assertIs(cell, v)
+            elif key in ("iterations",):
+                self.assertEqual(cell, str(v))
+            elif key in ("regime", "flow_factors"):
+                self.assertEqual(cell, v)
+            elif cell is None:
+                self.assertTrue(math.isnan(v), key)
+            else:
+                # the CLI's digits exactly; the relative difference to the
+                # full double is then below 5e-10 by construction
+                self.assertEqual(cell, text10(v), key)
+                self.assertLessEqual(abs(float(cell) - v), 5e-10 * abs(v), key)
+                compared += 1
+        self.assertGreater(compared, 15)
+        self.assertEqual(r.u_min, r["u_min_m"])
+        return r
+
+    def test_default_conditions_equal_cli(self):
+        r = self.check_point(
+            ["--compound", "sbr-unfilled", "--surface", "paper-0.5um", "--fluid", "water",
+             "--speed", "1e-2"],
+            compound="sbr-unfilled", surface="paper-0.5um", fluid="water", speed=1e-2)
+        parts = r.mu_Rc + r.mu_Rf + r.mu_Sc + r.mu_Sf
+        self.assertAlmostEqual(r.mu, parts, delta=1e-12 * abs(r.mu))
+        self.assertIn(r.regime, ("boundary", "mixed", "hydrodynamic"))
+
+    def test_other_conditions_equal_cli(self):
+        self.check_point(
+            ["--compound", "sbr-filled", "--surface", "paper-1um", "--fluid", "water",
+             "--speed", "0.3", "--load", "200", "--radius", "2e-3", "--sigma-s", "5e5",
+             "--temperature", "30", "--flow-factors", "patir-cheng"],
+            compound="sbr-filled", surface="paper-1um", fluid="water", speed=0.3, load=200,
+            radius=2e-3, sigma_s=5e5, temperature=30, flow_factors="patir-cheng")
+
+
+class TestScenes(Scratch):
+    def test_run_equals_cli_curve_and_fields(self):
+        scene = os.path.join(SRC, "cases", "fig05.ini")
+        out = os.path.join(self.dir, "out")
+        cli("--db", self.db_path, "run", scene, "--out", out, "--quiet")
+        with vl.Database(self.db_path) as db:
+            curve = db.run(scene)
+        self.assertIsInstance(curve["mu"], np.ndarray)
+        self.assertEqual(curve["mu"].dtype, np.float64)
+        self.assert_curve_equals_csv(curve, os.path.join(out, "curve.csv"))
+        files = sorted(os.listdir(os.path.join(out, "fields")))
+        self.assertEqual(files, ["%03d.csv" % f["index"] for f in curve.fields])
+        for f in curve.fields:
+            header, rows = read_csv(os.path.join(out, "fields", "%03d.csv" % f["index"]))
+            for j, name in enumerate(header):
+                self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
+        rec = curve.structured()
+        self.assertEqual(rec.dtype.names, vl.CURVE_COLUMNS)
+        self.assertEqual(rec["mu"][3], curve["mu"][3])
+
+    def test_dict_scene_equals_file(self):
+        import configparser
+        path = os.path.join(SRC, "cases", "fig19.ini")
+        ini = configparser.ConfigParser(inline_comment_prefixes=(";",))
+        ini.read(path)
+        scene = {s: dict(ini[s]) for s in ini.sections()}
+        with vl.Database(self.db_path) as db:
+            a = db.run(path)
+            b = db.run(scene)
+        for name in vl.CURVE_COLUMNS:
+            np.testing.assert_array_equal(a[name], b[name], name)
+
+    def test_compare_equals_cli(self):
+        out = os.path.join(self.dir, "cmp")
+        cli("--db", self.db_path, "compare", "--compounds", "sbr-unfilled,sbr-filled",
+            "--surface", "paper-0.5um", "--fluid", "water", "--points", "7",
+            "--flow-factors", "smooth", "--out", out, "--quiet")
+        with vl.Database(self.db_path) as db:
+            curves = db.compare(["sbr-unfilled", "sbr-filled"], "paper-0.5um", "water",
+                                points=7, flow_factors="smooth")
+        self.assertEqual(list(curves), ["sbr-unfilled", "sbr-filled"])
+        for name, curve in curves.items():
+            self.assert_curve_equals_csv(curve, os.path.join(out, name, "curve.csv"))
+
+
+class TestErrors(Scratch):
+    def test_unknown_compound_carries_the_library_message(self):
+        _, err = cli("--db", self.db_path, "friction", "--compound", "nope", "--surface",
+                     "paper-0.5um", "--fluid", "water", "--speed", "1", expect=3)
+        with vl.Database(self.db_path) as db:
+            with self.assertRaises(vl.NotFoundError) as cm:
+                db.friction("nope", "paper-0.5um", "water", speed=1)
+            self.assertEqual(cm.exception.status, 3)
+            self.assertIn("nope", cm.exception.message)
+            self.assertEqual(err.strip(), "viscolube friction: " + cm.exception.message)
+            with self.assertRaises(vl.NotFoundError):
+                db.compare(["sbr-unfilled", "nope"], "paper-0.5um", "water")
+
+    def test_bad_input(self):
+        bad = os.path.join(self.dir, "bad.ini")
+        with open(bad, "w") as f:
+            f.write("[materials]\ncompound = sbr-unfilled\n[sweep]\npoints = many\n")
+        with vl.Database(self.db_path) as db:
+            with self.assertRaises(vl.InputError) as cm:
+                db.run(bad)
+            self.assertIn(bad, cm.exception.message)
+            with self.assertRaises(vl.FileError):
+                db.run(os.path.join(self.dir, "missing.ini"))
+            with self.assertRaises(vl.InputError):
+                db.run({"materials": {"compund": "sbr-unfilled"}})
+            with self.assertRaises(vl.FileError):
+                db.add_compound("x", prony=os.path.join(self.dir, "missing.csv"),
+                                e_inf_pa=1e9, nu=0.5)
+            for kw in ({"speed": -1}, {"speed": 1, "flow_factors": "magic"},
+                       {"speed": 1, "load": 0}, {"speed": 1, "flow_factors": "smooth",
+                                                 "film_cutoff": 1e-9}):
+                with self.assertRaises(vl.InputError, msg=kw):
+                    db.friction("sbr-unfilled", "paper-0.5um", "water", **kw)
+            self.assertTrue(issubclass(vl.InputError, vl.Error))
+
+    def test_refused_adds_leave_the_database_unchanged(self):
+        prony = os.path.join(self.dir, "terms.csv")
+        with open(prony, "w") as f:
+            f.write("tau_s,A\n1e-3,0.5\n1e-1,-2\n")  # a negative strength
+        vl.Database(self.db_path).close()
+
+        def digest():
+            with open(self.db_path, "rb") as f:
+                return hashlib.sha256(f.read()).hexdigest()
+        before = digest()
+        with vl.Database(self.db_path) as db:
+            names = [c["name"] for c in db.compounds()]
+            refusals = [
+                (vl.ExistsError, lambda: db.add_compound("sbr-unfilled", tau_s=[1e-3],
+                                                         A=[1.0], e_inf_pa=1e9, nu=0.5)),
+                (vl.InputError, lambda: db.add_compound("neg", prony=prony, e_inf_pa=1e9,
+                                                        nu=0.5)),
+                (vl.InputError, lambda: db.add_compound("both", prony=prony,
+                                                        tau_s=[1.0], A=[1.0])),
+                (vl.InputError, lambda: db.add_surface("s", hurst=1.5, q0_per_m=1e3,
+                                                       q1_per_m=1e6, hrms_m=1e-6)),
+                (vl.InputError, lambda: db.add_fluid("f", -1.0)),
+                (vl.ExistsError, lambda: db.add_fluid("water", 1e-3)),
+                (vl.InputError, lambda: db.add_compound("../x", tau_s=[1e-3], A=[1.0],
+                                                        e_inf_pa=1e9, nu=0.5)),
+            ]
+            for cls, call in refusals:
+                with self.assertRaises(cls):
+                    call()
+            self.assertEqual([c["name"] for c in db.compounds()], names)
+        self.assertEqual(digest(), before)
+
+    def test_accepted_adds(self):
+        dma = os.path.join(SRC, "materials", "sbr-unfilled-synthetic.csv")
+        with vl.Database(self.db_path) as db:
+            db.add_compound("mine", measured=dma, tref_c=20)
+            db.add_compound("terms", tau_s=[1e-3, 1e-1], A=[0.5, 2.0], e_inf_pa=1e9, nu=0.5,
+                            wlf_c1=10, wlf_c2_k=50)
+            db.add_surface("sa", hurst=0.8, q0_per_m=1e3, q1_per_m=1e6, hrms_m=1e-6)
+            db.add_fluid("oil", 0.1, vogel_b_k=700, vogel_c_k=150, law_range_c=(0, 80))
+            c = {c["name"]: c for c in db.compounds()}
+            self.assertEqual(c["mine"]["method"], "dma-fit")
+            np.testing.assert_array_equal(c["terms"]["tau_s"], [1e-3, 1e-1])
+            self.assertIn("sa", [s["name"] for s in db.surfaces()])
+            self.assertEqual({f["name"]: f for f in db.fluids()}["oil"]["viscosity_law"],
+                             "vogel")
+            db.remove_compound("terms")
+            self.assertNotIn("terms", [c["name"] for c in db.compounds()])
+        out, _ = cli("--db", self.db_path, "compound", "show", "mine", "--json")
+        self.assertEqual(json.loads(out)["method"], "dma-fit")
+
+
+class TestProcess(Scratch):
+    def test_default_database_and_silence(self):
+        """Database() opens $VISCOLUBE_DB (created with the shipped
+        materials); the library writes nothing on stdout or stderr, even
+        when it refuses."""
+        script = (
+            "import viscolube as vl\n"
+            "db = vl.Database()\n"
+            "assert db.path == %r, db.path\n"
+            "assert 'sbr-unfilled' in [c['name'] for c in db.compounds()]\n"
+            "db.friction('sbr-unfilled', 'paper-0.5um', 'water', speed=1e-2)\n"
+            "try:\n"
+            "    db.friction('nope', 'paper-0.5um', 'water', speed=1)\n"
+            "except vl.NotFoundError:\n"
+            "    pass\n"
+            "try:\n"
+            "    db.add_fluid('water', 1e-3)\n"
+            "except vl.ExistsError:\n"
+            "    pass\n" % self.db_path)
+        p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                           env=dict(os.environ, VISCOLUBE_DB=self.db_path))
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual((p.stdout, p.stderr), ("", ""))
+
+    @unittest.skipUnless(os.environ.get("VL_BUILD_DIR"), "needs VL_BUILD_DIR (ctest sets it)")
+    def test_install_and_import_from_prefix(self):
+        prefix = os.path.join(self.dir, "prefix")
+        p = subprocess.run([os.environ.get("VL_CMAKE", "cmake"), "--install",
+                            os.environ["VL_BUILD_DIR"], "--prefix", prefix],
+                           capture_output=True, text=True)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        site = os.path.join(prefix, os.environ.get("VL_PYTHON_SITEDIR",
+                                                   "lib/python3/dist-packages"))
+        script = ("import viscolube as vl, sys\n"
+                  "assert vl.__file__.startswith(%r), vl.__file__\n"
+                  "db = vl.Database(%r)\n"
+                  "print(db.friction('sbr-unfilled', 'paper-0.5um', 'water', speed=1e-2).mu)\n"
+                  % (site, self.db_path))
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+        env["PYTHONPATH"] = site
+        p = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                           env=env, cwd=self.dir)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertGreater(float(p.stdout), 0)
+
+
+if __name__ == "__main__":
+    unittest.main()
