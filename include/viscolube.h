@@ -87,9 +87,11 @@
 #include "viscolube/database.h"
 #include "viscolube/scene.h"
 #include "viscolube/simulation.h"
+#include "viscolube/study.h"
 
 /* writers */
 #include "viscolube/output.h"
+#include "viscolube/study_output.h"
 #include "viscolube/plot.h"
 
 #endif
