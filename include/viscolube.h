@@ -91,7 +91,7 @@
 
 /* writers */
 #include "viscolube/output.h"
-#include "viscolube/study_output.h"
 #include "viscolube/plot.h"
+#include "viscolube/study_output.h"
 
 #endif

@@ -67,7 +67,7 @@ vl_status vl_study_check_dir(const vl_study *s, const char *out_dir, vl_error *e
 /* Writes DIR/results.csv and DIR/tasks.csv from the task files (each
  * atomically), and the outcome of every task into outcomes[0..n_tasks)
  * (state VL_TASK_MISSING where there is no file). */
-vl_status vl_study_write_results(const vl_study *s, const char *out_dir,
-                                 vl_study_outcome *outcomes, vl_error *err);
+vl_status vl_study_write_results(const vl_study *s, const char *out_dir, vl_study_outcome *outcomes,
+                                 vl_error *err);
 
 #endif

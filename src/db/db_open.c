@@ -447,8 +447,8 @@ static vl_status db_open(const char *path, bool readonly, vl_db **out, vl_error 
   } else {
     /* Root ignores permission bits, so access() alone would let root write
      * a file its owner marked read-only: honour the bits as well. */
-    db->readonly = readonly || (sb.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 ||
-                   access(path, W_OK) != 0;
+    db->readonly =
+        readonly || (sb.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || access(path, W_OK) != 0;
   }
 
   int flags = db->readonly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE;

@@ -18,9 +18,9 @@
 #include "slurp.h"
 
 enum { F_COMPOUNDS, F_SURFACES, F_FLUIDS, F_LOADS, F_RADII, F_TEMPS, F_CASES, F_TITLE, F_COUNT };
-static const char *const study_keys[F_COUNT] = {
-    "compounds", "surfaces", "fluids", "loads_n_per_m", "radii_m", "temperatures_c", "cases",
-    "title"};
+static const char *const study_keys[F_COUNT] = {"compounds",     "surfaces", "fluids",
+                                                "loads_n_per_m", "radii_m",  "temperatures_c",
+                                                "cases",         "title"};
 
 /* A list of one factor: names or numbers. */
 typedef struct {
@@ -136,7 +136,8 @@ static vl_status parse_factor(vl_study *s, int field, factor_list *l, vl_error *
     } else {
       st = check_number(s, line, key, item, field, &l->values[l->n], err);
       for (size_t k = 0; st == VL_OK && k < l->n; k++)
-        if (l->values[k] == l->values[l->n]) st = fail_at(s, err, line, key, "%s given twice", item);
+        if (l->values[k] == l->values[l->n])
+          st = fail_at(s, err, line, key, "%s given twice", item);
       if (st == VL_OK) l->n++;
     }
     if (!comma) break;
@@ -241,7 +242,8 @@ static vl_status split_sections(vl_study *s, int *temp_line, vl_error *err) {
       *strchr(t, '=') = '\0';
       const char *key = trim(t);
       st = forbidden_key(s, line, section, key, err);
-      if (!strcmp(section, "effects") && (!strcmp(key, "temperature_c") || !strcmp(key, "temperature")))
+      if (!strcmp(section, "effects") &&
+          (!strcmp(key, "temperature_c") || !strcmp(key, "temperature")))
         *temp_line = *temp_line ? *temp_line : line;
     }
     if (!strcmp(section, "study")) memset(p, ' ', len); /* blanked: the line stays */
@@ -254,8 +256,8 @@ static vl_status split_sections(vl_study *s, int *temp_line, vl_error *err) {
 
 static void set_task(vl_study_task *t, size_t id, const char *c, const char *sf, const char *fl,
                      double load, double radius, double temp, int line) {
-  *t = (vl_study_task){.id = id, .load_n_per_m = load, .radius_m = radius, .temperature_c = temp,
-                       .line = line};
+  *t = (vl_study_task){
+      .id = id, .load_n_per_m = load, .radius_m = radius, .temperature_c = temp, .line = line};
   snprintf(t->compound, sizeof t->compound, "%s", c);
   snprintf(t->surface, sizeof t->surface, "%s", sf);
   snprintf(t->fluid, sizeof t->fluid, "%s", fl);
@@ -313,8 +315,8 @@ static vl_status grid_tasks(vl_study *s, vl_error *err) {
 }
 
 static bool same_factors(const vl_study_task *a, const vl_study_task *b) {
-  bool same_t = a->temperature_c == b->temperature_c ||
-                (isnan(a->temperature_c) && isnan(b->temperature_c));
+  bool same_t =
+      a->temperature_c == b->temperature_c || (isnan(a->temperature_c) && isnan(b->temperature_c));
   return !strcmp(a->compound, b->compound) && !strcmp(a->surface, b->surface) &&
          !strcmp(a->fluid, b->fluid) && a->load_n_per_m == b->load_n_per_m &&
          a->radius_m == b->radius_m && same_t;
@@ -328,8 +330,10 @@ static vl_status case_task(vl_study *s, size_t id, char *row, vl_error *err) {
   size_t n = 0;
   char *save = NULL;
   for (char *tok = strtok_r(row, " \t,", &save); tok; tok = strtok_r(NULL, " \t,", &save))
-    if (n < 7) item[n++] = tok;
-    else n++;
+    if (n < 7)
+      item[n++] = tok;
+    else
+      n++;
   if (n != 5 && n != 6)
     return fail_at(s, err, line, "cases",
                    "a row is COMPOUND SURFACE FLUID LOAD_N_PER_M RADIUS_M [TEMPERATURE_C] "
@@ -422,8 +426,9 @@ static vl_status study_parse(vl_study *s, vl_error *err) {
   if (st != VL_OK) return st;
   if (s->key_line[F_TITLE]) snprintf(s->title, sizeof s->title, "%s", s->values[F_TITLE]);
   if (!s->key_line[F_CASES] && !s->key_line[F_COMPOUNDS] && !s->key_line[F_LOADS]) {
-    vl_error_set(err, "%s: no [study] section with compounds, loads_n_per_m and radii_m (or "
-                      "cases): not a study file",
+    vl_error_set(err,
+                 "%s: no [study] section with compounds, loads_n_per_m and radii_m (or "
+                 "cases): not a study file",
                  s->path);
     return VL_EINPUT;
   }
@@ -511,13 +516,14 @@ const char *const *vl_study_materials(const vl_study *s, int kind, size_t *n) {
  * holds the task's doubles exactly). */
 static char *task_text(const vl_study *s, const vl_study_task *t) {
   char tail[1024];
-  int n = snprintf(tail, sizeof tail,
-                   "\n[scene]\ntitle = %s%stask %zu\n[materials]\ncompound = %s\n", s->title,
-                   s->title[0] ? " | " : "", t->id, t->compound);
+  int n =
+      snprintf(tail, sizeof tail, "\n[scene]\ntitle = %s%stask %zu\n[materials]\ncompound = %s\n",
+               s->title, s->title[0] ? " | " : "", t->id, t->compound);
   if (t->surface[0]) n += snprintf(tail + n, sizeof tail - (size_t)n, "surface = %s\n", t->surface);
   if (t->fluid[0]) n += snprintf(tail + n, sizeof tail - (size_t)n, "fluid = %s\n", t->fluid);
-  n += snprintf(tail + n, sizeof tail - (size_t)n, "[contact]\nradius_m = %.17g\nload_n_per_m = %.17g\n",
-                t->radius_m, t->load_n_per_m);
+  n +=
+      snprintf(tail + n, sizeof tail - (size_t)n,
+               "[contact]\nradius_m = %.17g\nload_n_per_m = %.17g\n", t->radius_m, t->load_n_per_m);
   if (!isnan(t->temperature_c))
     snprintf(tail + n, sizeof tail - (size_t)n,
              "[effects]\ntemperature = on\ntemperature_c = %.17g\n", t->temperature_c);

@@ -84,8 +84,8 @@ static double now_s(void) {
 
 /* The sweep of task i: its points in *pts (malloc'd), *n of them. The
  * task's own failures land in o. */
-static vl_status solve_task(const vl_study *s, size_t i, vl_db *db, vl_scene *scene,
-                            vl_point **pts, size_t *n, vl_curve_meta *meta, vl_study_outcome *o) {
+static vl_status solve_task(const vl_study *s, size_t i, vl_db *db, vl_scene *scene, vl_point **pts,
+                            size_t *n, vl_curve_meta *meta, vl_study_outcome *o) {
   vl_simulation *sim = NULL;
   vl_error e = {{0}};
   vl_status st = vl_study_scene(s, i, scene, &e);
@@ -101,8 +101,8 @@ static vl_status solve_task(const vl_study *s, size_t i, vl_db *db, vl_scene *sc
   if (st == VL_OK) st = vl_simulation_run(sim, *pts, NULL, NULL, &stats, &e);
   if (st == VL_OK) {
     const vl_contact *c = vl_simulation_contact(sim);
-    *meta = (vl_curve_meta){vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(c),
-                            NULL, 0.0};
+    *meta = (vl_curve_meta){vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(c), NULL,
+                            0.0};
     meta->flow_factors = vl_simulation_flow_factors(sim, &meta->film_cutoff_m);
     o->points = *n;
     o->converged = stats.converged;
@@ -119,8 +119,8 @@ static vl_status solve_task(const vl_study *s, size_t i, vl_db *db, vl_scene *sc
 
 /* The two comment lines every task file begins with. */
 static void print_head(FILE *f, const vl_study *s, size_t i, const vl_study_outcome *o) {
-  fprintf(f, "# viscolube study task %zu of %zu, study %016" PRIx64 "\n", i,
-          vl_study_n_tasks(s), vl_study_fingerprint(s));
+  fprintf(f, "# viscolube study task %zu of %zu, study %016" PRIx64 "\n", i, vl_study_n_tasks(s),
+          vl_study_fingerprint(s));
   fprintf(f, "# outcome: %s, points %zu, converged %zu, failed %zu, seconds %.6f",
           vl_task_state_name(o->state), o->points, o->converged, o->failed, o->seconds);
   if (o->state == VL_TASK_ERROR) {
@@ -281,8 +281,8 @@ static void csv_text(FILE *f, const char *text) {
 }
 
 static void print_task_row(FILE *f, const vl_study_task *t, const vl_study_outcome *o) {
-  fprintf(f, "%zu,%s,%s,%s,%.15g,%.15g,", t->id, t->compound, t->surface, t->fluid,
-          t->load_n_per_m, t->radius_m);
+  fprintf(f, "%zu,%s,%s,%s,%.15g,%.15g,", t->id, t->compound, t->surface, t->fluid, t->load_n_per_m,
+          t->radius_m);
   if (!isnan(t->temperature_c)) fprintf(f, "%.15g", t->temperature_c);
   fprintf(f, ",%zu,%zu,%zu,", o->points, o->converged, o->failed);
   if (o->state != VL_TASK_MISSING) fprintf(f, "%.3f", o->seconds);
@@ -291,8 +291,8 @@ static void print_task_row(FILE *f, const vl_study_task *t, const vl_study_outco
   fputc('\n', f);
 }
 
-vl_status vl_study_write_results(const vl_study *s, const char *out_dir,
-                                 vl_study_outcome *outcomes, vl_error *err) {
+vl_status vl_study_write_results(const vl_study *s, const char *out_dir, vl_study_outcome *outcomes,
+                                 vl_error *err) {
   char path[PATH_SIZE];
   vl_atomic_file res, tab;
   snprintf(path, sizeof path, "%s/results.csv", out_dir);
