@@ -603,8 +603,15 @@ vl_status vl_study_prepare(const vl_study *s, vl_db *db, vl_error *err) {
     if (seen) continue;
     vl_simulation *sim = NULL;
     st = vl_study_scene(s, i, scene, err);
-    if (st == VL_OK && (st = vl_simulation_create(scene, db, &sim, err)) != VL_OK)
-      vl_error_prefix(err, "task %zu", i);
+    if (st == VL_OK && (st = vl_simulation_create(scene, db, &sim, err)) != VL_OK) {
+      /* what differs between the tasks of one triple: the temperature */
+      int line = s->key_line[F_CASES] ? t->line : s->key_line[F_TEMPS];
+      if (line)
+        vl_error_prefix(err, "%s:%d: [study] %s (task %zu)", s->path, line,
+                        s->key_line[F_CASES] ? "cases" : "temperatures_c", i);
+      else
+        vl_error_prefix(err, "task %zu", i);
+    }
     vl_simulation_free(sim);
   }
   free(scene);
