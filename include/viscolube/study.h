@@ -35,7 +35,7 @@
 
 /* Most tasks a study may hold (a list or case table larger than this is a
  * mistake, not a study). */
-#define VL_STUDY_TASKS_MAX 1000000
+#define VL_STUDY_TASKS_MAX 100000
 
 /* One task: one curve's factors. */
 typedef struct {

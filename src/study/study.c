@@ -1,7 +1,7 @@
 /* Study files (study.h): the [study] section read here, line by line; the
  * rest of the file is a scene's defaults, parsed by the scene parser for
  * every task with the task's factors added as the [materials], [contact]
- * and [effects] keys they stand for. The [study] lines are blanked, not
+ * and [effects] keys they stand for. The [study] lines are emptied, not
  * removed, so the scene parser's messages name the study file's lines. */
 #include "viscolube/study.h"
 
@@ -33,7 +33,8 @@ struct vl_study {
   char path[1024];
   char title[200];
   char *text;       /* the file as read */
-  char *scene_text; /* the file with the [study] lines blanked */
+  char *scene_text; /* the file with the [study] lines emptied (their line
+                     * breaks kept, so the lines keep their numbers) */
   uint64_t fingerprint;
   size_t n_tasks;
   vl_study_task *tasks;
@@ -204,7 +205,7 @@ static vl_status forbidden_key(vl_study *s, int line, const char *section, const
   return VL_EINPUT;
 }
 
-/* Reads the file line by line: [study] keys into s (and blanked in
+/* Reads the file line by line: [study] keys into s (and emptied in
  * scene_text), keys of other sections checked by forbidden_key and the
  * lines of [effects] temperature keys noted in *temp_line. */
 static vl_status split_sections(vl_study *s, int *temp_line, vl_error *err) {
@@ -212,12 +213,18 @@ static vl_status split_sections(vl_study *s, int *temp_line, vl_error *err) {
   int line = 0;
   bool in_cases = false;
   vl_status st = VL_OK;
-  for (char *p = s->scene_text; *p && st == VL_OK; line += 0) {
+  char *out = s->scene_text;
+  for (const char *p = s->text; *p && st == VL_OK;) {
     size_t len = strcspn(p, "\n");
-    char *next = p + len + (p[len] == '\n');
+    const char *next = p + len + (p[len] == '\n');
     line++;
-    char buf[4096];
-    snprintf(buf, sizeof buf, "%.*s", (int)(len < sizeof buf - 1 ? len : sizeof buf - 1), p);
+    char buf[8192];
+    if (len >= sizeof buf) {
+      vl_error_set(err, "%s:%d: line too long (at most %zu characters)", s->path, line,
+                   sizeof buf - 1);
+      return VL_EINPUT;
+    }
+    snprintf(buf, sizeof buf, "%.*s", (int)len, p);
     bool indented = buf[0] == ' ' || buf[0] == '\t';
     char *t = trim(buf);
     bool blank = !*t || *t == ';' || *t == '#';
@@ -246,9 +253,14 @@ static vl_status split_sections(vl_study *s, int *temp_line, vl_error *err) {
           (!strcmp(key, "temperature_c") || !strcmp(key, "temperature")))
         *temp_line = *temp_line ? *temp_line : line;
     }
-    if (!strcmp(section, "study")) memset(p, ' ', len); /* blanked: the line stays */
+    /* a [study] line is emptied: the scene parser reads only the defaults */
+    size_t keep = !strcmp(section, "study") ? 0 : len;
+    memcpy(out, p, keep);
+    out += keep;
+    if (p[len] == '\n') *out++ = '\n';
     p = next;
   }
+  *out = '\0';
   return st;
 }
 
@@ -467,7 +479,7 @@ vl_status vl_study_load(const char *path, vl_study **out, vl_error *err) {
   char *text = NULL;
   size_t len = 0;
   *out = NULL;
-  vl_status st = vl_slurp(path, (size_t)64 << 20, "a study file", &text, &len, err);
+  vl_status st = vl_slurp(path, (size_t)16 << 20, "a study file", &text, &len, err);
   if (st != VL_OK) return st;
   const char *nul = memchr(text, '\0', len);
   if (nul) {
