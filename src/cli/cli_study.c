@@ -114,6 +114,7 @@ vl_status vl_cli_study_setup(vl_cli_study_run *cs, vl_error *err) {
 /* A worker's report of one task, through a pipe (one write, atomic: less
  * than PIPE_BUF) or an MPI message. */
 void vl_cli_study_report(vl_cli_study_run *cs, const vl_cli_study_record *r) {
+  if (r->io_status != VL_OK) cs->io_failed = 1;
   if (r->io_status != VL_OK)
     fprintf(stderr, "%sviscolube study: task %ld not written: %s\n",
             cs->tty && !cs->quiet ? "\n" : "", r->task, r->message);
@@ -337,6 +338,7 @@ int vl_cli_study_finish(vl_cli_study_run *cs, int rc) {
   print_problems(cs, o);
   free(o);
   if (rc) return rc;
+  if (cs->io_failed) return vl_status_exit_code(VL_EIO);
   if (c.state[VL_TASK_MISSING]) return vl_status_exit_code(VL_EINTERNAL);
   if (c.state[VL_TASK_ERROR]) return vl_status_exit_code(c.first_error);
   return c.failed ? vl_status_exit_code(VL_ENOCONV) : 0;

@@ -24,6 +24,7 @@ typedef struct {
   size_t *pending; /* ids of the tasks without a file at the start */
   size_t n_pending, n_skipped;
   size_t done_now; /* tasks reported in this run */
+  int io_failed;   /* a task file could not be written */
   time_t started;
   double t0; /* vl_cli_study_clock() when the tasks started */
 } vl_cli_study_run;

@@ -24,6 +24,7 @@ int vl_cli_study_mpi(vl_cli_study_run *cs) {
 #else
 
 #include <mpi.h>
+#include <stdbool.h>
 #include <time.h>
 
 enum { TAG_RESULT = 1, TAG_TASK = 2 };
@@ -39,9 +40,8 @@ static void wait_for_message(MPI_Status *status) {
 }
 
 /* Rank 0: answers every request with the next task, then with -1 once
- * each rank has asked after the last one. ok = 0 (setup failed): every
- * rank is sent -1 at once. */
-static void coordinate(vl_cli_study_run *cs, int ranks, int ok) {
+ * each rank has asked after the last one. */
+static void coordinate(vl_cli_study_run *cs, int ranks) {
   size_t next = 0;
   int stopped = 0;
   while (stopped < ranks - 1) {
@@ -51,14 +51,11 @@ static void coordinate(vl_cli_study_run *cs, int ranks, int ok) {
     MPI_Recv(&rec, (int)sizeof rec, MPI_BYTE, status.MPI_SOURCE, TAG_RESULT, MPI_COMM_WORLD,
              MPI_STATUS_IGNORE);
     int src = status.MPI_SOURCE;
-    if (rec.task >= 0)
-      vl_cli_study_report(cs, &rec);
-    else if (rec.message[0])
+    bool cannot = rec.task < 0 && rec.message[0]; /* a rank that could not start */
+    if (rec.task >= 0) vl_cli_study_report(cs, &rec);
+    if (cannot)
       fprintf(stderr, "viscolube study: rank %d cannot run tasks: %s\n", src, rec.message);
-    long task = -1;
-    /* a rank that could not start gets no task: the others take them */
-    if (ok && next < cs->n_pending && !(rec.task < 0 && rec.message[0]))
-      task = (long)cs->pending[next++];
+    long task = !cannot && next < cs->n_pending ? (long)cs->pending[next++] : -1;
     MPI_Send(&task, 1, MPI_LONG, src, TAG_TASK, MPI_COMM_WORLD);
     if (task < 0) stopped++;
   }
@@ -91,20 +88,20 @@ int vl_cli_study_mpi(vl_cli_study_run *cs) {
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   cs->mode = "mpi";
   cs->processes = ranks - 1;
-  if (rank == 0) {
-    vl_error err = {{0}};
-    vl_status st = vl_cli_study_setup(cs, &err);
-    /* the other ranks wait for rank 0's setup (the caches filled): their
-     * first request is answered only after it */
-    coordinate(cs, ranks, st == VL_OK);
-    if (st != VL_OK) {
-      fprintf(stderr, "viscolube study: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
-      rc = vl_status_exit_code(st);
-    } else {
-      rc = vl_cli_study_finish(cs, 0);
-    }
-  } else {
-    cs->quiet = 1;
+  /* rank 0 prepares the database (a new file, the tables) and DIR; the
+   * others open the database only once it is ready */
+  int ok = 1;
+  vl_error err = {{0}};
+  vl_status st = VL_OK;
+  if (rank == 0) ok = (st = vl_cli_study_setup(cs, &err)) == VL_OK;
+  MPI_Bcast(&ok, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (rank == 0 && !ok) {
+    fprintf(stderr, "viscolube study: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
+    rc = vl_status_exit_code(st);
+  } else if (rank == 0) {
+    coordinate(cs, ranks);
+    rc = vl_cli_study_finish(cs, 0);
+  } else if (ok) {
     compute(cs);
   }
   MPI_Finalize();
