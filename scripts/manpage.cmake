@@ -45,7 +45,7 @@ ${main}.fi
 .SH COMMANDS
 Each section is the text of \\fBviscolube\\fR \\fICOMMAND\\fR \\fB\\-\\-help\\fR.
 ")
-foreach(cmd "compound" "compound add" "surface" "surface add" "fluid" "fluid add" "run"
+foreach(cmd "compound" "compound add" "surface" "surface add" "fluid" "fluid add" "run" "study"
         "friction" "compare" "flattening")
   separate_arguments(args UNIX_COMMAND "${cmd}")
   vl_help(text ${args} --help)
