@@ -11,7 +11,7 @@
  *   study_scaling [--db PATH] [--curves N] [--ranks R] [STUDY]
  *
  * Defaults: a temporary database created from the embedded materials, N =
- * 3000, R = 64, STUDY = cases/study-example.ini. Prints the figures; the
+ * 3000, R = 64, STUDY = studies/example.ini. Prints the figures; the
  * task files go to a temporary folder, removed at the end. */
 #include <math.h>
 #include <stdio.h>
@@ -83,7 +83,7 @@ static void project(const double *measured, size_t m, size_t curves, size_t rank
 }
 
 int main(int argc, char **argv) {
-  const char *db_path = NULL, *study_path = VL_CASES_DIR "/study-example.ini";
+  const char *db_path = NULL, *study_path = VL_STUDIES_DIR "/example.ini";
   size_t curves = 3000, ranks = 64;
   for (int i = 1; i < argc; i++) {
     if (!strcmp(argv[i], "--db") && i + 1 < argc)

@@ -14,6 +14,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "viscolube.h"
 #include "vl_test_util.h"
 
 #include <dirent.h>
@@ -298,6 +299,27 @@ static void test_other_study_refused(void **state) {
   free(err);
 }
 
+/* The shipped example loads: 2 compounds x 2 surfaces x 1 fluid x 3
+ * loads, compounds outermost, every task's scene with its factors. */
+static void test_shipped_example(void **state) {
+  (void)state;
+  vl_study *s = NULL;
+  vl_error err = {{0}};
+  const char *path = vl_test_source_path("studies/example.ini");
+  if (vl_study_load(path, &s, &err) != VL_OK) fail_msg("%s", err.msg);
+  assert_int_equal(vl_study_n_tasks(s), 12);
+  const vl_study_task *first = vl_study_task_at(s, 0), *last = vl_study_task_at(s, 11);
+  assert_string_equal(first->compound, "sbr-unfilled");
+  assert_string_equal(last->compound, "sbr-filled");
+  assert_true(first->load_n_per_m < vl_study_task_at(s, 1)->load_n_per_m);
+  vl_scene sc;
+  assert_int_equal(vl_study_scene(s, 11, &sc, &err), VL_OK);
+  assert_string_equal(sc.surface, last->surface);
+  assert_true(sc.load_n_per_m == last->load_n_per_m && sc.radius_m == last->radius_m);
+  assert_true(sc.effects.roughness && sc.effects.fluid && sc.points == 12);
+  vl_study_free(s);
+}
+
 /* One database for all the tests: its tables are built by the first study
  * and read by the others, as a second study on a machine would. */
 static char shared_db[1200];
@@ -311,6 +333,7 @@ static int setup(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_shipped_example),
       cmocka_unit_test_setup(test_bad_studies, setup),
       cmocka_unit_test_setup(test_serial_jobs_mpi_agree, setup),
       cmocka_unit_test_setup(test_restart_serial, setup),
