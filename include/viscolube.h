@@ -91,9 +91,11 @@
 #include "viscolube/query.h"
 #include "viscolube/scene.h"
 #include "viscolube/simulation.h"
+#include "viscolube/study.h"
 
 /* writers */
 #include "viscolube/output.h"
 #include "viscolube/plot.h"
+#include "viscolube/study_output.h"
 
 #endif

@@ -99,6 +99,14 @@ typedef struct {
  * create the directory or file), VL_ENOMEM. */
 vl_status vl_db_open(const char *path, vl_db **out, vl_error *err);
 
+/* Opens the existing database at path (NULL = vl_db_default_path)
+ * read-only, whatever its permissions: nothing is created, migrated or
+ * cached (vl_db_persson_table and vl_db_flow_table build what is not
+ * stored and keep it in memory only). For the workers of a study, which
+ * share one file that the coordinating process has filled beforehand.
+ * Errors as vl_db_open; a missing file is VL_EIO, an older schema VL_EDB. */
+vl_status vl_db_open_readonly(const char *path, vl_db **out, vl_error *err);
+
 /* Closes and frees db (NULL is a no-op). */
 void vl_db_close(vl_db *db);
 

@@ -18,6 +18,9 @@ int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv);
 /* `run SCENE [--out DIR] [--json]` (argv[0] is "run"). Returns exit code. */
 int vl_cli_run(const vl_cli_globals *g, int argc, char **argv);
 
+/* `study STUDY --out DIR [--jobs N]` (cli_study.c). */
+int vl_cli_study(const vl_cli_globals *g, int argc, char **argv);
+
 /* `friction --compound C --surface S --fluid F --speed V ...`. */
 int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv);
 

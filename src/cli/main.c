@@ -22,6 +22,8 @@ static void usage(FILE *out) {
       "  surface    roughness power spectra: list, show, add, remove, flow-factors\n"
       "  fluid      lubricants: list, show, add, remove\n"
       "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
+      "  study      many curves from a study file, serially, with --jobs N or under mpirun:\n"
+      "             viscolube study STUDY --out DIR [--jobs N]\n"
       "  friction   one operating point of a stored compound/surface/fluid triple\n"
       "  compare    Stribeck curves of several compounds side by side\n"
       "  flattening viscous flattening of the asperities, epsilon_f vs u/h_rms (seed Figs. 19-20)\n"
@@ -81,6 +83,7 @@ int main(int argc, char **argv) {
   if (!strcmp(noun, "compound") || !strcmp(noun, "surface") || !strcmp(noun, "fluid"))
     return vl_cli_materials(&g, argc - i, argv + i);
   if (!strcmp(noun, "run")) return vl_cli_run(&g, argc - i, argv + i);
+  if (!strcmp(noun, "study")) return vl_cli_study(&g, argc - i, argv + i);
   if (!strcmp(noun, "friction")) return vl_cli_friction(&g, argc - i, argv + i);
   if (!strcmp(noun, "compare")) return vl_cli_compare(&g, argc - i, argv + i);
   if (!strcmp(noun, "flattening")) return vl_cli_flattening(&g, argc - i, argv + i);

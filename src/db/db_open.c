@@ -394,7 +394,9 @@ const char *vl_db_path(const vl_db *db) { return db->path; }
 
 int vl_db_readonly(const vl_db *db) { return db->readonly; }
 
-vl_status vl_db_open(const char *path, vl_db **out, vl_error *err) {
+/* vl_db_open and vl_db_open_readonly: readonly forces a read-only
+ * connection to an existing file (nothing is created or migrated). */
+static vl_status db_open(const char *path, bool readonly, vl_db **out, vl_error *err) {
   char defpath[4096];
   vl_status s = VL_OK;
   int created = 0;
@@ -416,6 +418,11 @@ vl_status vl_db_open(const char *path, vl_db **out, vl_error *err) {
   }
 
   struct stat sb;
+  if (readonly && stat(path, &sb) != 0) {
+    vl_error_set(err, "cannot open database %s read-only: %s", path, strerror(errno));
+    s = VL_EIO;
+    goto fail;
+  }
   if (stat(path, &sb) != 0) {
     if (errno != ENOENT) {
       vl_error_set(err, "cannot access database %s: %s", path, strerror(errno));
@@ -440,7 +447,8 @@ vl_status vl_db_open(const char *path, vl_db **out, vl_error *err) {
   } else {
     /* Root ignores permission bits, so access() alone would let root write
      * a file its owner marked read-only: honour the bits as well. */
-    db->readonly = (sb.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || access(path, W_OK) != 0;
+    db->readonly =
+        readonly || (sb.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0 || access(path, W_OK) != 0;
   }
 
   int flags = db->readonly ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE;
@@ -467,4 +475,12 @@ fail:
     unlink(journal);
   }
   return s;
+}
+
+vl_status vl_db_open(const char *path, vl_db **out, vl_error *err) {
+  return db_open(path, false, out, err);
+}
+
+vl_status vl_db_open_readonly(const char *path, vl_db **out, vl_error *err) {
+  return db_open(path, true, out, err);
 }

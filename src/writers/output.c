@@ -95,12 +95,12 @@ vl_status vl_write_fields_csv(const char *path, const vl_fields *fl, double a0_m
   return vl_atomic_file_commit(&af, err);
 }
 
-/* A number of the point as its CSV cell has it: null where the cell is
- * empty (not defined, or the point did not converge). */
+/* A number of the point, null where its CSV cell is empty (not defined,
+ * or the point did not converge). */
 static void member(vl_json *w, const char *key, double v, int ok) {
   vl_json_key(w, key);
-  if (ok)
-    vl_json_number_digits(w, v, 10);
+  if (ok) /* 17 digits: the double itself, so JSON readers get what the solver gave */
+    vl_json_number_digits(w, v, 17);
   else
     vl_json_null(w);
 }

@@ -1,0 +1,90 @@
+/* viscolube: a study, many Stribeck curves from one file.
+ *
+ * A study file is a scene file (scene.h) whose [materials] and the
+ * operating conditions that vary are replaced by a [study] section:
+ *
+ *   [study]
+ *   title = ...                      (optional)
+ *   compounds = a, b                 (required without cases)
+ *   surfaces = s1, s2                (optional: smooth contacts without)
+ *   fluids = water                   (optional: dry contacts without)
+ *   loads_n_per_m = 117, 234         (required without cases)
+ *   radii_m = 0.001                  (required without cases)
+ *   temperatures_c = 20, 40          (optional: [effects] temperature = on
+ *                                     at each; without, the materials are
+ *                                     taken at their reference temperatures)
+ *   cases = COMPOUND SURFACE FLUID LOAD RADIUS [TEMPERATURE]
+ *           ...                      (instead of the lists: one task per row,
+ *                                     a row per indented line; '-' for no
+ *                                     surface or fluid)
+ *
+ * The other sections ([contact] sigma_s_pa, [sweep], [effects], [numerics])
+ * are the defaults of every curve, with the keys and checks of a scene.
+ * The lists span the full grid, compounds outermost, temperatures
+ * innermost: each combination is one task, a Stribeck sweep as `run` does
+ * it. Errors name "file:line: [section] key: why". */
+#ifndef VISCOLUBE_STUDY_H
+#define VISCOLUBE_STUDY_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "viscolube/database.h"
+#include "viscolube/scene.h"
+#include "viscolube/status.h"
+
+/* Most tasks a study may hold (a list or case table larger than this is a
+ * mistake, not a study). */
+#define VL_STUDY_TASKS_MAX 100000
+
+/* One task: one curve's factors. */
+typedef struct {
+  size_t id; /* 0-based position in the study */
+  char compound[VL_NAME_MAX];
+  char surface[VL_NAME_MAX]; /* "" = smooth */
+  char fluid[VL_NAME_MAX];   /* "" = dry */
+  double load_n_per_m, radius_m;
+  double temperature_c; /* NAN: materials at their reference temperatures */
+  int line;             /* the row of cases (0 for a grid) */
+} vl_study_task;
+
+typedef struct vl_study vl_study;
+
+/* Parses the study file at path (vl_study_parse). On success the caller
+ * owns *out (vl_study_free); on failure *out is NULL. VL_EIO when the file
+ * cannot be read. */
+vl_status vl_study_load(const char *path, vl_study **out, vl_error *err);
+
+/* The same from text (path names it in messages). Every task's scene is
+ * parsed and checked here, so a study that loads has no bad task. */
+vl_status vl_study_parse(const char *text, const char *path, vl_study **out, vl_error *err);
+
+void vl_study_free(vl_study *s);
+
+const char *vl_study_path(const vl_study *s);
+const char *vl_study_title(const vl_study *s); /* "" when none */
+const char *vl_study_text(const vl_study *s);  /* the file as read */
+/* 64-bit FNV-1a of the text: task files carry it, so that a folder holding
+ * the results of another study is recognised. */
+uint64_t vl_study_fingerprint(const vl_study *s);
+
+size_t vl_study_n_tasks(const vl_study *s);
+const vl_study_task *vl_study_task_at(const vl_study *s, size_t i);
+
+/* The scene of task i (titled "TITLE | task I"); VL_EINPUT cannot happen
+ * for a study that loaded, but is checked. */
+vl_status vl_study_scene(const vl_study *s, size_t i, vl_scene *out, vl_error *err);
+
+/* The distinct material names of the study (kind 0 compounds, 1
+ * surfaces, 2 fluids), in order of first use: n names in *names (owned by
+ * s). */
+const char *const *vl_study_materials(const vl_study *s, int kind, size_t *n);
+
+/* Gets db ready for the tasks, before any starts: every material is
+ * looked up (an unknown one is VL_ENOTFOUND naming the [study] line), and
+ * the Persson and flow-factor tables of every (compound, surface, fluid)
+ * in the study are built and stored in the database's caches, so that
+ * workers that open it read-only (vl_db_open_readonly) find them there. */
+vl_status vl_study_prepare(const vl_study *s, vl_db *db, vl_error *err);
+
+#endif

@@ -1,0 +1,447 @@
+/* `viscolube study STUDY --out DIR [--jobs N]`: many curves, serially, in
+ * N worker processes, or under mpirun (cli_study_mpi.c). The library does
+ * the work (study.h, study_output.h); this file schedules the tasks. */
+#include <errno.h>
+#include <signal.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+#include "cli_study.h"
+#include "vl_version.h"
+
+static void study_usage(FILE *out) {
+  fputs("usage: viscolube study STUDY --out DIR [--jobs N] [--quiet]\n"
+        "       mpirun -n N viscolube study STUDY --out DIR [--quiet]\n"
+        "\n"
+        "Runs a study: one Stribeck sweep (as `run` does it) per combination of the\n"
+        "[study] section's compounds, surfaces, fluids, loads_n_per_m, radii_m and\n"
+        "temperatures_c (or per row of its cases), the file's other sections being the\n"
+        "scene defaults of every curve (docs/STUDY.md). Writes\n"
+        "  DIR/tasks/NNNNNN.csv  each task's curve, written whole when the task ends\n"
+        "  DIR/results.csv       every task's rows: compound, surface, fluid, load_n_per_m,\n"
+        "                        radius_m, temperature_c, then the columns of curve.csv\n"
+        "  DIR/tasks.csv         per task: factors, points, converged, failed, seconds,\n"
+        "                        status (ok, not_converged, error, missing), message\n"
+        "  DIR/run.json          the manifest: command, study text, materials, program\n"
+        "                        version, start and end, counts\n"
+        "Restartable: run again with the same --out, the tasks already written are\n"
+        "skipped (a DIR holding another study's tasks is refused).\n"
+        "--jobs N runs N worker processes (default 1), each with its own read-only\n"
+        "connection to the database; tasks are handed out one at a time as workers\n"
+        "free up. Under mpirun (a build with MPI), rank 0 hands out the tasks and\n"
+        "writes the summary files, the other ranks compute. The Persson and flow-factor\n"
+        "tables are built (and stored in the database) before any task starts.\n"
+        "Progress (tasks done, elapsed, remaining) on stderr when it is a terminal,\n"
+        "unless --quiet.\n"
+        "Exit status: 0 every point of every task converged, 7 some points did not,\n"
+        "2 bad study file or option (nothing written) or a task stopped on bad input,\n"
+        "3 unknown material, 5 database error, 6 file error, 70 tasks missing (a worker\n"
+        "died: run the study again with the same --out to finish them).\n",
+        out);
+}
+
+/* OpenBLAS would start its own threads in every worker: one each keeps the
+ * processes from competing for the cores, and the results the same
+ * whatever the number of workers. The symbol is there only when OpenBLAS
+ * provides LAPACK (weak: NULL otherwise). */
+extern void openblas_set_num_threads(int n) __attribute__((weak));
+static void one_blas_thread(void) {
+  setenv("OPENBLAS_NUM_THREADS", "1", 1);
+  if (openblas_set_num_threads) openblas_set_num_threads(1);
+}
+
+double vl_cli_study_clock(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void vl_cli_study_progress(vl_cli_study_run *cs) {
+  cs->done_now++;
+  if (!cs->tty || cs->quiet) return;
+  double el = vl_cli_study_clock() - cs->t0;
+  size_t todo = cs->n_pending - cs->done_now;
+  fprintf(stderr, "\r  tasks %zu/%zu  elapsed %.0f s  remaining ~%.0f s   ",
+          cs->n_skipped + cs->done_now, cs->n_tasks, el, el / (double)cs->done_now * (double)todo);
+  if (!todo) fputc('\n', stderr);
+  fflush(stderr);
+}
+
+/* The test hook of a killed study (tests/test_study.c): with
+ * VL_TEST_STUDY_KILL_AFTER=K the process kills itself after its K-th task,
+ * as a scheduler's time limit would. */
+void vl_cli_study_kill_hook(size_t tasks_done_here) {
+  const char *k = getenv("VL_TEST_STUDY_KILL_AFTER");
+  if (k && *k && tasks_done_here >= (size_t)strtoul(k, NULL, 10)) raise(SIGKILL);
+}
+
+/* Loads the study, fills the database's caches, checks DIR and lists the
+ * tasks still to run. */
+vl_status vl_cli_study_setup(vl_cli_study_run *cs, vl_error *err) {
+  cs->started = time(NULL);
+  cs->t0 = vl_cli_study_clock();
+  vl_status st = vl_study_load(cs->study_path, &cs->study, err);
+  if (st != VL_OK) return st;
+  vl_db *db = NULL;
+  /* the database first (a command that cannot open it leaves no folder),
+   * then --out, still before anything is computed */
+  if ((st = vl_db_open(cs->g->db_path, &db, err)) != VL_OK) return st;
+  snprintf(cs->db_path, sizeof cs->db_path, "%s", vl_db_path(db));
+  st = vl_study_prepare(cs->study, db, err);
+  vl_db_close(db);
+  if (st != VL_OK) return st;
+  if ((st = vl_cli_check_out_dir("--out", cs->out_dir, err)) != VL_OK) return st;
+  if ((st = vl_study_check_dir(cs->study, cs->out_dir, err)) != VL_OK) return st;
+  cs->n_tasks = vl_study_n_tasks(cs->study);
+  if (!(cs->pending = calloc(cs->n_tasks, sizeof *cs->pending))) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  for (size_t i = 0; i < cs->n_tasks; i++)
+    if (!vl_study_task_done(cs->study, i, cs->out_dir, NULL)) cs->pending[cs->n_pending++] = i;
+  cs->n_skipped = cs->n_tasks - cs->n_pending;
+  cs->t0 = vl_cli_study_clock(); /* the tasks' clock */
+  return VL_OK;
+}
+
+/* A worker's report of one task, through a pipe (one write, atomic: less
+ * than PIPE_BUF) or an MPI message. */
+void vl_cli_study_report(vl_cli_study_run *cs, const vl_cli_study_record *r) {
+  if (r->io_status != VL_OK) cs->io_failed = 1;
+  if (r->io_status != VL_OK)
+    fprintf(stderr, "%sviscolube study: task %ld not written: %s\n",
+            cs->tty && !cs->quiet ? "\n" : "", r->task, r->message);
+  vl_cli_study_progress(cs);
+}
+
+/* Runs task i in this process with db; the record of it in *r. */
+void vl_cli_study_run_one(vl_cli_study_run *cs, vl_db *db, size_t i, vl_cli_study_record *r) {
+  vl_study_outcome o;
+  vl_error err = {{0}};
+  memset(r, 0, sizeof *r);
+  r->task = (long)i;
+  r->io_status = vl_study_run_task(cs->study, i, db, cs->out_dir, &o, &err);
+  if (r->io_status != VL_OK) snprintf(r->message, sizeof r->message, "%.500s", err.msg);
+}
+
+static int run_serial(vl_cli_study_run *cs) {
+  vl_db *db = NULL;
+  vl_error err = {{0}};
+  if (vl_db_open_readonly(cs->db_path, &db, &err) != VL_OK) {
+    fprintf(stderr, "viscolube study: %s\n", err.msg);
+    return vl_status_exit_code(VL_EDB);
+  }
+  for (size_t k = 0; k < cs->n_pending; k++) {
+    vl_cli_study_record r;
+    vl_cli_study_run_one(cs, db, cs->pending[k], &r);
+    vl_cli_study_report(cs, &r);
+    vl_cli_study_kill_hook(k + 1);
+  }
+  vl_db_close(db);
+  return 0;
+}
+
+/* One forked worker: its own read-only connection, tasks claimed from the
+ * shared counter until none is left, a record per task into fd. */
+static void worker(vl_cli_study_run *cs, atomic_size_t *next, int fd) {
+  vl_db *db = NULL;
+  vl_error err = {{0}};
+  int code = 0;
+  if (vl_db_open_readonly(cs->db_path, &db, &err) != VL_OK) {
+    fprintf(stderr, "viscolube study: worker %d: %s\n", (int)getpid(), err.msg);
+    _exit(vl_status_exit_code(VL_EDB));
+  }
+  for (size_t here = 1;; here++) {
+    size_t k = atomic_fetch_add(next, 1);
+    if (k >= cs->n_pending) break;
+    vl_cli_study_record r;
+    vl_cli_study_run_one(cs, db, cs->pending[k], &r);
+    if (write(fd, &r, sizeof r) != (ssize_t)sizeof r) code = vl_status_exit_code(VL_EIO);
+    vl_cli_study_kill_hook(here);
+  }
+  vl_db_close(db);
+  _exit(code);
+}
+
+/* --jobs N: N forked workers take tasks as they free up (a counter in
+ * shared memory), each reporting through one pipe the parent reads. */
+static int run_jobs(vl_cli_study_run *cs) {
+  atomic_size_t *next =
+      mmap(NULL, sizeof *next, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
+  int fds[2];
+  if (next == MAP_FAILED || pipe(fds) != 0) {
+    fprintf(stderr, "viscolube study: cannot start workers: %s\n", strerror(errno));
+    return vl_status_exit_code(VL_EINTERNAL);
+  }
+  atomic_init(next, 0);
+  fflush(NULL); /* nothing buffered is written twice */
+  int started = 0;
+  for (int w = 0; w < cs->jobs; w++) {
+    pid_t pid = fork();
+    if (pid == 0) {
+      close(fds[0]);
+      worker(cs, next, fds[1]);
+    }
+    if (pid > 0)
+      started++;
+    else
+      fprintf(stderr, "viscolube study: cannot start worker %d: %s\n", w, strerror(errno));
+  }
+  close(fds[1]);
+  vl_cli_study_record r;
+  while (started && read(fds[0], &r, sizeof r) == (ssize_t)sizeof r)
+    vl_cli_study_report(cs, &r);
+  close(fds[0]);
+  int rc = 0, status;
+  for (pid_t pid; (pid = wait(&status)) > 0;)
+    if (WIFSIGNALED(status)) {
+      fprintf(stderr, "viscolube study: worker %d was killed by signal %d\n", (int)pid,
+              WTERMSIG(status));
+      rc = vl_status_exit_code(VL_EINTERNAL);
+    }
+  munmap(next, sizeof *next);
+  return rc;
+}
+
+static void iso_time(time_t t, char *buf, size_t size) {
+  struct tm tm;
+  gmtime_r(&t, &tm);
+  strftime(buf, size, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
+/* Counts of the outcomes: [state] tasks, and the points. */
+typedef struct {
+  size_t state[VL_TASK_ERROR + 1];
+  size_t converged, failed;
+  vl_status first_error;
+} study_counts;
+
+static study_counts count(const vl_cli_study_run *cs, const vl_study_outcome *o) {
+  study_counts c = {.first_error = VL_OK};
+  for (size_t i = 0; i < cs->n_tasks; i++) {
+    c.state[o[i].state]++;
+    c.converged += o[i].converged;
+    c.failed += o[i].failed;
+    if (o[i].state == VL_TASK_ERROR && c.first_error == VL_OK) c.first_error = o[i].error;
+  }
+  return c;
+}
+
+static void json_names(vl_json *w, const char *key, const vl_study *s, int kind) {
+  size_t n;
+  const char *const *names = vl_study_materials(s, kind, &n);
+  vl_json_key(w, key);
+  vl_json_array_begin(w, VL_JSON_INLINE);
+  for (size_t k = 0; k < n; k++)
+    vl_json_string(w, names[k]);
+  vl_json_end(w);
+}
+
+/* DIR/run.json: what ran, on what, with what, when, and how it went. */
+static vl_status write_manifest(const vl_cli_study_run *cs, const study_counts *c, double seconds,
+                                vl_error *err) {
+  char path[4300], t0[32], t1[32], fp[24];
+  snprintf(path, sizeof path, "%s/run.json", cs->out_dir);
+  iso_time(cs->started, t0, sizeof t0);
+  iso_time(time(NULL), t1, sizeof t1);
+  snprintf(fp, sizeof fp, "%016llx", (unsigned long long)vl_study_fingerprint(cs->study));
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
+  vl_json w;
+  vl_json_init(&w, af.f, 0);
+  vl_json_object_begin(&w, VL_JSON_BLOCKS);
+  vl_json_key(&w, "command");
+  vl_json_array_begin(&w, VL_JSON_INLINE);
+  vl_json_string(&w, "viscolube");
+  for (int i = 0; i < cs->argc; i++)
+    vl_json_string(&w, cs->argv[i]);
+  vl_json_end(&w);
+  vl_json_key_string(&w, "program_version", VL_VERSION);
+  vl_json_key_string(&w, "program_source", VL_SOURCE_COMMIT);
+  vl_json_key_string(&w, "study", cs->study_path);
+  vl_json_key_string(&w, "study_fingerprint", fp);
+  vl_json_key_string(&w, "study_text", vl_study_text(cs->study));
+  vl_json_key_string(&w, "database", cs->db_path);
+  vl_json_key(&w, "materials");
+  vl_json_object_begin(&w, VL_JSON_INLINE);
+  json_names(&w, "compounds", cs->study, 0);
+  json_names(&w, "surfaces", cs->study, 1);
+  json_names(&w, "fluids", cs->study, 2);
+  vl_json_end(&w);
+  vl_json_key_string(&w, "mode", cs->mode);
+  vl_json_key_integer(&w, "processes", cs->processes);
+  vl_json_key_string(&w, "started", t0);
+  vl_json_key_string(&w, "finished", t1);
+  vl_json_key_number(&w, "seconds", seconds);
+  vl_json_key(&w, "tasks");
+  vl_json_object_begin(&w, VL_JSON_INLINE);
+  vl_json_key_integer(&w, "total", (long long)cs->n_tasks);
+  vl_json_key_integer(&w, "run", (long long)cs->done_now);
+  vl_json_key_integer(&w, "skipped", (long long)cs->n_skipped);
+  for (int k = VL_TASK_MISSING; k <= VL_TASK_ERROR; k++)
+    vl_json_key_integer(&w, vl_task_state_name((vl_task_state)k), (long long)c->state[k]);
+  vl_json_end(&w);
+  vl_json_key(&w, "points");
+  vl_json_object_begin(&w, VL_JSON_INLINE);
+  vl_json_key_integer(&w, "converged", (long long)c->converged);
+  vl_json_key_integer(&w, "failed", (long long)c->failed);
+  vl_json_end(&w);
+  vl_json_end(&w);
+  fputc('\n', af.f);
+  return vl_atomic_file_commit(&af, err);
+}
+
+/* The tasks that stopped on an error or are missing, at most ten lines. */
+static void print_problems(const vl_cli_study_run *cs, const vl_study_outcome *o) {
+  size_t shown = 0;
+  for (size_t i = 0; i < cs->n_tasks && shown < 10; i++) {
+    if (o[i].state == VL_TASK_ERROR)
+      fprintf(stderr, "viscolube study: task %zu: error: %s\n", i, o[i].message), shown++;
+    else if (o[i].state == VL_TASK_MISSING)
+      fprintf(stderr, "viscolube study: task %zu: missing (not written)\n", i), shown++;
+  }
+}
+
+int vl_cli_study_finish(vl_cli_study_run *cs, int rc) {
+  double seconds = vl_cli_study_clock() - cs->t0;
+  vl_error err = {{0}};
+  vl_study_outcome *o = calloc(cs->n_tasks ? cs->n_tasks : 1, sizeof *o);
+  vl_status st = o ? vl_study_write_results(cs->study, cs->out_dir, o, &err) : VL_ENOMEM;
+  study_counts c = {0};
+  if (st == VL_OK) {
+    c = count(cs, o);
+    st = write_manifest(cs, &c, seconds, &err);
+  }
+  if (st != VL_OK) {
+    fprintf(stderr, "viscolube study: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
+    free(o);
+    return vl_status_exit_code(st);
+  }
+  printf("study %s: %zu tasks (%zu run now, %zu already done), %s with %d process%s\n",
+         cs->study_path, cs->n_tasks, cs->done_now, cs->n_skipped, cs->mode, cs->processes,
+         cs->processes == 1 ? "" : "es");
+  printf("%zu ok, %zu not converged, %zu error, %zu missing; points: %zu converged, %zu failed\n",
+         c.state[VL_TASK_OK], c.state[VL_TASK_NOT_CONVERGED], c.state[VL_TASK_ERROR],
+         c.state[VL_TASK_MISSING], c.converged, c.failed);
+  if (cs->done_now)
+    printf("%.2f s for %zu tasks: %.3g tasks/s\n", seconds, cs->done_now,
+           (double)cs->done_now / seconds);
+  printf("wrote %s/results.csv, tasks.csv, run.json\n", cs->out_dir);
+  fflush(stdout);
+  print_problems(cs, o);
+  free(o);
+  if (rc) return rc;
+  if (cs->io_failed) return vl_status_exit_code(VL_EIO);
+  if (c.state[VL_TASK_MISSING]) return vl_status_exit_code(VL_EINTERNAL);
+  if (c.state[VL_TASK_ERROR]) return vl_status_exit_code(c.first_error);
+  return c.failed ? vl_status_exit_code(VL_ENOCONV) : 0;
+}
+
+void vl_cli_study_free(vl_cli_study_run *cs) {
+  free(cs->pending);
+  vl_study_free(cs->study);
+}
+
+bool vl_cli_study_launched_by_mpi(void) {
+  static const char *const size_vars[] = {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE",
+                                          "MPI_LOCALNRANKS"};
+  for (size_t k = 0; k < sizeof size_vars / sizeof size_vars[0]; k++) {
+    const char *v = getenv(size_vars[k]);
+    if (v && atoi(v) > 1) return true;
+  }
+  return false;
+}
+
+/* Reads the options; 0 to go on, else the exit status (-1: --help). */
+static int study_options(vl_cli_study_run *cs, int argc, char **argv) {
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i];
+    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+      study_usage(stdout);
+      return -1;
+    } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
+      cs->quiet = 1;
+    } else if (!strcmp(a, "--out") || !strcmp(a, "--jobs")) {
+      if (i + 1 >= argc) {
+        fprintf(stderr, "viscolube study: option %s needs a value\n", a);
+        return 2;
+      }
+      const char *v = argv[++i];
+      if (!strcmp(a, "--out")) {
+        cs->out_dir = v;
+        continue;
+      }
+      char *end;
+      long n = strtol(v, &end, 10);
+      if (end == v || *end || n < 1 || n > 1024) {
+        fprintf(stderr, "viscolube study: --jobs: expected a whole number in [1, 1024], got '%s'\n",
+                v);
+        return 2;
+      }
+      cs->jobs = (int)n;
+    } else if (a[0] == '-') {
+      fprintf(stderr, "viscolube study: unknown option '%s' (see viscolube study --help)\n", a);
+      return 2;
+    } else if (!cs->study_path) {
+      cs->study_path = a;
+    } else {
+      fprintf(stderr, "viscolube study: one study at a time (got '%s' and '%s')\n", cs->study_path,
+              a);
+      return 2;
+    }
+  }
+  if (!cs->study_path || !cs->out_dir) {
+    fprintf(stderr, "viscolube study: %s\n",
+            !cs->study_path ? "which study? (STUDY file)" : "--out DIR is required");
+    return 2;
+  }
+  return 0;
+}
+
+int vl_cli_study(const vl_cli_globals *g, int argc, char **argv) {
+  vl_cli_study_run cs = {.g = g,
+                         .argc = argc,
+                         .argv = argv,
+                         .jobs = 1,
+                         .quiet = g->quiet,
+                         .tty = isatty(STDERR_FILENO),
+                         .mode = "serial",
+                         .processes = 1};
+  int rc = study_options(&cs, argc, argv);
+  if (rc) return rc < 0 ? 0 : rc;
+  one_blas_thread(); /* before any worker (fork, MPI rank) computes */
+  if (vl_cli_study_launched_by_mpi()) {
+    if (cs.jobs > 1) {
+      fputs("viscolube study: --jobs and mpirun: use one or the other\n", stderr);
+      return 2;
+    }
+    rc = vl_cli_study_mpi(&cs);
+    vl_cli_study_free(&cs);
+    return rc;
+  }
+  vl_error err = {{0}};
+  vl_status st = vl_cli_study_setup(&cs, &err);
+  if (st != VL_OK) {
+    fprintf(stderr, "viscolube study: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
+    vl_cli_study_free(&cs);
+    return vl_status_exit_code(st);
+  }
+  if (cs.jobs > 1 && cs.n_pending > 1) {
+    cs.mode = "jobs";
+    cs.processes = cs.jobs < (int)cs.n_pending ? cs.jobs : (int)cs.n_pending;
+    cs.jobs = cs.processes;
+    rc = run_jobs(&cs);
+  } else {
+    rc = run_serial(&cs);
+  }
+  rc = vl_cli_study_finish(&cs, rc);
+  vl_cli_study_free(&cs);
+  return rc;
+}
