@@ -475,7 +475,7 @@ static void test_cli_scene(void **state) {
   assert_non_null(text);
   const char *edits[][2] = {
       {"viscous_flattening = off", "viscous_flattening = on"},
-      {"grid = 2928", "grid = 488"},
+      {"[numerics]\n", "[numerics]\ngrid = 488\ngrid_growth = 1.05\ndomain_a0 = -96, 1.6\n"},
       {"points = 61", "points = 13"},
       {"fields_at = 1e-7, 1e-6, 3e-6, 1e-5, 1e-3, 1e-1, 1", "fields_at = 3e-3"}};
   for (size_t k = 0; k < sizeof edits / sizeof *edits; k++) {

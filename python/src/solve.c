@@ -31,6 +31,7 @@ static const struct {
     {"x_centroid_m", offsetof(vl_point, x_centroid_m)},
     {"load_error", offsetof(vl_point, load_error)},
     {"eps_f_min", offsetof(vl_point, eps_f_min)},
+    {"error_estimate", offsetof(vl_point, error_estimate)},
 };
 
 /* The value of the numeric column `name` at point p, as the CSV cell (NaN
