@@ -49,6 +49,9 @@ int vl_cli_surface_add_topography(const vl_cli_globals *g, const char *name, con
  * errno set). */
 int vl_cli_make_dirs(const char *path);
 
+/* Monotonic wall clock (s), for progress lines and timings. */
+double vl_cli_now_s(void);
+
 /* Checks an output folder before anything is computed: creates it (and
  * its parents) if missing, and makes sure it is a folder the program can
  * write in (a probe file is created and removed). VL_OK, else VL_EIO with

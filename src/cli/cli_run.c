@@ -47,6 +47,7 @@ typedef struct {
   vl_fields fields;
   int tty;
   int quiet;
+  double t_start; /* for the progress line */
   int io_failed;
   vl_error err;
   /* --plot: the fields of the fields_at speeds, kept for the figures */
@@ -60,8 +61,12 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
                      const vl_contact *contact) {
   run_ctx *ctx = user;
   if (ctx->tty && !ctx->quiet) {
-    fprintf(stderr, "\r  point %zu/%zu  v0 = %-10.3g m/s  %s", i + 1, total, pt->v0_m_s,
-            pt->converged ? "ok       " : "FAILED   ");
+    /* elapsed, and the rest at the mean cost so far (points differ, so
+     * "about") */
+    double el = vl_cli_now_s() - ctx->t_start,
+           rest = el / (double)(i + 1) * (double)(total - i - 1);
+    fprintf(stderr, "\r  point %zu/%zu  v0 = %-10.3g m/s  %s  %.1f s, about %.0f s to go   ", i + 1,
+            total, pt->v0_m_s, pt->converged ? "ok    " : "FAILED", el, rest);
     if (i + 1 == total) fputc('\n', stderr);
     fflush(stderr);
   }
@@ -254,6 +259,7 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
   ctx.out_dir = out_dir;
   if (plot && (st = keep_fields(&ctx, n, grid, err)) != VL_OK) goto done;
   ctx.tty = isatty(STDERR_FILENO);
+  ctx.t_start = vl_cli_now_s();
   ctx.quiet = quiet;
   const vl_contact *contact = vl_simulation_contact(sim);
   if (!json) {

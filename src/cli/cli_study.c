@@ -57,16 +57,10 @@ static void one_blas_thread(void) {
   if (openblas_set_num_threads) openblas_set_num_threads(1);
 }
 
-double vl_cli_study_clock(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 void vl_cli_study_progress(vl_cli_study_run *cs) {
   cs->done_now++;
   if (!cs->tty || cs->quiet) return;
-  double el = vl_cli_study_clock() - cs->t0;
+  double el = vl_cli_now_s() - cs->t0;
   size_t todo = cs->n_pending - cs->done_now;
   fprintf(stderr, "\r  tasks %zu/%zu  elapsed %.0f s  remaining ~%.0f s   ",
           cs->n_skipped + cs->done_now, cs->n_tasks, el, el / (double)cs->done_now * (double)todo);
@@ -86,7 +80,7 @@ void vl_cli_study_kill_hook(size_t tasks_done_here) {
  * tasks still to run. */
 vl_status vl_cli_study_setup(vl_cli_study_run *cs, vl_error *err) {
   cs->started = time(NULL);
-  cs->t0 = vl_cli_study_clock();
+  cs->t0 = vl_cli_now_s();
   vl_status st = vl_study_load(cs->study_path, &cs->study, err);
   if (st != VL_OK) return st;
   vl_db *db = NULL;
@@ -107,7 +101,7 @@ vl_status vl_cli_study_setup(vl_cli_study_run *cs, vl_error *err) {
   for (size_t i = 0; i < cs->n_tasks; i++)
     if (!vl_study_task_done(cs->study, i, cs->out_dir, NULL)) cs->pending[cs->n_pending++] = i;
   cs->n_skipped = cs->n_tasks - cs->n_pending;
-  cs->t0 = vl_cli_study_clock(); /* the tasks' clock */
+  cs->t0 = vl_cli_now_s(); /* the tasks' clock */
   return VL_OK;
 }
 
@@ -310,7 +304,7 @@ static void print_problems(const vl_cli_study_run *cs, const vl_study_outcome *o
 }
 
 int vl_cli_study_finish(vl_cli_study_run *cs, int rc) {
-  double seconds = vl_cli_study_clock() - cs->t0;
+  double seconds = vl_cli_now_s() - cs->t0;
   vl_error err = {{0}};
   vl_study_outcome *o = calloc(cs->n_tasks ? cs->n_tasks : 1, sizeof *o);
   vl_status st = o ? vl_study_write_results(cs->study, cs->out_dir, o, &err) : VL_ENOMEM;

@@ -26,7 +26,7 @@ typedef struct {
   size_t done_now; /* tasks reported in this run */
   int io_failed;   /* a task file could not be written */
   time_t started;
-  double t0; /* vl_cli_study_clock() when the tasks started */
+  double t0; /* vl_cli_now_s() when the tasks started */
 } vl_cli_study_run;
 
 /* What a worker reports of one task (the outcome itself is in its file). */
@@ -36,7 +36,6 @@ typedef struct {
   char message[512];
 } vl_cli_study_record;
 
-double vl_cli_study_clock(void);
 vl_status vl_cli_study_setup(vl_cli_study_run *cs, vl_error *err);
 void vl_cli_study_run_one(vl_cli_study_run *cs, vl_db *db, size_t i, vl_cli_study_record *r);
 void vl_cli_study_report(vl_cli_study_run *cs, const vl_cli_study_record *r);

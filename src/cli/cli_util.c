@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli.h"
@@ -238,4 +239,10 @@ vl_status vl_cli_check_out_dir(const char *option, const char *path, vl_error *e
   close(fd);
   unlink(probe);
   return VL_OK;
+}
+
+double vl_cli_now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
