@@ -21,6 +21,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "vl_test_hn.h"
 #include "vl_test_util.h"
 
 #include <complex.h>
@@ -38,45 +39,13 @@
 
 /* ---- an independent model: Havriliak-Negami modulus with WLF ----------- */
 
-typedef struct {
-  double e0, einf, tau, a, b; /* HN: E = Einf + (E0 - Einf)/(1 + (i w tau)^a)^b */
-  double c1, c2, tref;        /* WLF about tref */
-} hn_model;
-
 static const hn_model unfilled = {2e6, 2e9, 2.5e-3, 0.60, 0.35, 17.44 * 51.6 / 71.6, 71.6, 20.0};
-
-static double wlf(const hn_model *m, double t) {
-  return -m->c1 * (t - m->tref) / (m->c2 + t - m->tref);
-}
-
-static double complex hn(const hn_model *m, double w) {
-  return m->einf + (m->e0 - m->einf) / cpow(1.0 + cpow(I * w * m->tau, m->a), m->b);
-}
 
 /* ---- text building ---------------------------------------------------- */
 
-typedef struct {
-  char *s;
-  size_t n, cap;
-} text;
-
-static void add(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void add(text *t, const char *fmt, ...) {
-  va_list ap;
-  for (;;) {
-    va_start(ap, fmt);
-    int w = vsnprintf(t->s ? t->s + t->n : NULL, t->s ? t->cap - t->n : 0, fmt, ap);
-    va_end(ap);
-    if (t->s && (size_t)w < t->cap - t->n) {
-      t->n += (size_t)w;
-      return;
-    }
-    t->cap = 2 * (t->cap + (size_t)w + 64);
-    t->s = realloc(t->s, t->cap);
-    if (!t->s) fail_msg("out of memory");
-    if (t->n == 0) t->s[0] = '\0';
-  }
-}
+/* the growing text of vl_test_util */
+typedef vl_test_text text;
+#define add vl_test_text_add
 
 /* Layouts of the same master-curve data (no temperature). */
 enum { L_HZ_MPA, L_RAD_PA, L_INLINE_GPA, L_TAN_KPA, L_COMPL, L_NO_UNITS, L_ALL_THREE, L_CRLF };

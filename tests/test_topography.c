@@ -481,28 +481,9 @@ static void test_sinusoid_line(void **state) {
 
 /* ---- file layouts ---------------------------------------------------------- */
 
-typedef struct {
-  char *s;
-  size_t n, cap;
-} text;
-
-static void add(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void add(text *t, const char *fmt, ...) {
-  va_list ap;
-  for (;;) {
-    va_start(ap, fmt);
-    int w = vsnprintf(t->s ? t->s + t->n : NULL, t->s ? t->cap - t->n : 0, fmt, ap);
-    va_end(ap);
-    if (t->s && (size_t)w < t->cap - t->n) {
-      t->n += (size_t)w;
-      return;
-    }
-    t->cap = 2 * (t->cap + (size_t)w + 64);
-    t->s = realloc(t->s, t->cap);
-    if (!t->s) fail_msg("out of memory");
-    if (t->n == 0) t->s[0] = '\0';
-  }
-}
+/* the growing text of vl_test_util */
+typedef vl_test_text text;
+#define add vl_test_text_add
 
 /* A number with 17 digits, '.' replaced by ',' when comma is set. */
 static void add_number(text *t, double v, int comma) {

@@ -320,3 +320,20 @@ void vl_test_sql(const char *path, const char *sql) {
   if (sqlite3_exec(h, sql, NULL, NULL, &msg) != SQLITE_OK) fail_msg("%s: %s", sql, msg);
   sqlite3_close(h);
 }
+
+void vl_test_text_add(vl_test_text *t, const char *fmt, ...) {
+  va_list ap;
+  for (;;) {
+    va_start(ap, fmt);
+    int w = vsnprintf(t->s ? t->s + t->n : NULL, t->s ? t->cap - t->n : 0, fmt, ap);
+    va_end(ap);
+    if (t->s && (size_t)w < t->cap - t->n) {
+      t->n += (size_t)w;
+      return;
+    }
+    t->cap = 2 * (t->cap + (size_t)w + 64);
+    t->s = realloc(t->s, t->cap);
+    if (!t->s) fail_msg("out of memory");
+    if (t->n == 0) t->s[0] = '\0';
+  }
+}

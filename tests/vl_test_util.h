@@ -17,6 +17,14 @@ void vl_test_write_file(const char *path, const char *text);
 /* Reads a whole file into a malloc'd NUL-terminated string (NULL if absent). */
 char *vl_test_read_file(const char *path);
 
+/* A growing text (free s when done): vl_test_text_add appends printf-style,
+ * failing the test when out of memory. */
+typedef struct {
+  char *s;
+  size_t n, cap;
+} vl_test_text;
+void vl_test_text_add(vl_test_text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 /* Runs `$VL_CLI <args>` through /bin/sh with the given extra environment
  * assignments prefix (may be NULL, e.g. "VISCOLUBE_DB=/tmp/x.db"), captures
  * stdout and stderr into malloc'd strings (caller frees; pass NULL to drop)
