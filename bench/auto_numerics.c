@@ -6,8 +6,8 @@
  *                                              resolutions R1, R2, ...)
  *
  *   soft   soft EHL: elastic E0 3.6 MPa (nu 0.5), R 1 cm, fN 1 kN/m, eta
- *          0.01 Pa s, smooth; eta v0 = 1e-6 ... 1e-2 Pa m (g_E from about
- *          5000 down to 10). Reference: the planned layout with every width
+ *          0.01 Pa s, smooth; eta v0 = 1e-6 ... 0.1 Pa m (g_E from about
+ *          4600 down to 14). Reference: the planned layout with every width
  *          divided by 4 and by 8, Richardson-extrapolated (second order; the
  *          difference between the two levels is printed as its uncertainty).
  *   rigid  a nearly rigid cylinder (E0 1e13 Pa) under the same load, eta
@@ -79,7 +79,7 @@ static void soft(int quick) {
   printf("%9s %7s | %11s %9s %9s | %11s %10s %10s %9s %8s\n", "eta_v0", "g_E", "h_ref_m", "ref_unc",
          "mu_unc", "h_auto_m", "h_err", "mu_err", "estimate", "time_s");
   double er = 3.6e6 / 0.75;
-  for (int k = 0; k <= 8; k += quick ? 4 : 1) {
+  for (int k = 0; k <= 10; k += quick ? 5 : 1) {
     double ev = pow(10.0, -6.0 + 0.5 * k), v0 = ev / base.eta_pa_s;
     double gE = base.load_n_per_m / sqrt(ev * 0.5 * 2.0 * er * base.radius_m);
     vl_point p4, p8, pa;
