@@ -89,6 +89,7 @@
 #include "viscolube/simulation.h"
 
 /* writers */
+#include "viscolube/manifest.h"
 #include "viscolube/output.h"
 #include "viscolube/plot.h"
 
