@@ -629,9 +629,11 @@ static void draw_title(fig *f, const char *title, const char *subtitle) {
   plvpor(0.03, 0.97, TOP, 0.99);
   plwind(0, 1, 0, 1);
   set_color(f, BLACK);
-  if (has_title) band_line(f, title, has_sub ? 0.66 : 0.45, CH_TITLE);
+  /* two lines: the title high in the band, the subtitle clear of the
+   * top tick label of the y axis */
+  if (has_title) band_line(f, title, has_sub ? 0.80 : 0.45, CH_TITLE);
   set_color(f, GREY);
-  if (has_sub) band_line(f, subtitle, has_title ? 0.18 : 0.45, CH_SUBTITLE);
+  if (has_sub) band_line(f, subtitle, has_title ? 0.40 : 0.45, CH_SUBTITLE);
 }
 
 /* ---- output ------------------------------------------------------------ */
