@@ -29,6 +29,14 @@ static void run_usage(FILE *out) {
         "written to DIR/<fluid>/ (with --json: an object keyed by fluid); with --plot also\n"
         "DIR/stribeck-all (mu of every fluid on one axis) and, for one-term compounds,\n"
         "DIR/rolling-all (mu_Rc + mu_Rf against v0 tau/a0).\n"
+        "Last, DIR/run.json records the run: the command, the scene's text, the materials\n"
+        "with their database fingerprints, the numerics of each contact, the program's\n"
+        "version and commit, start and end times (UTC), the points converged and failed,\n"
+        "the files written and those that could not be (a full disk: the others are kept,\n"
+        "and named on stderr). Files of an earlier run listed in its run.json and not\n"
+        "rewritten are removed; other files in DIR are left alone, named in a warning. A\n"
+        "run that is interrupted leaves no run.json. Every file is written whole: a\n"
+        "temporary renamed into place.\n"
         "DIR defaults to out/<scene name>; it is checked (created, writable, not a file)\n"
         "before anything is computed. Prints a short table, or with --json the curve as a\n"
         "JSON array. After the table, on stderr: one line per kind of model-validity\n"
@@ -37,7 +45,8 @@ static void run_usage(FILE *out) {
         "iterations and residual. --quiet leaves out the warnings and the progress line.\n"
         "Exit status: 0 when every point converged, 7 when some did not (they are still\n"
         "written, flagged converged = 0), 2 bad scene or option, 3 unknown material,\n"
-        "5 database error, 6 file error (e.g. --out not writable).\n",
+        "5 database error, 6 file error (e.g. --out not writable, a file that did not fit,\n"
+        "standard output lost).\n",
         out);
 }
 

@@ -46,7 +46,9 @@ static void usage(FILE *out) {
       "  3   a named compound, surface or fluid is not in the database\n"
       "  4   a name is already taken\n"
       "  5   database error (corrupt, read-only, locked, newer schema)\n"
-      "  6   a file or folder could not be read or written (e.g. --out)\n"
+      "  6   a file or folder could not be read or written (e.g. --out; a full disk:\n"
+      "      the files that fit are kept, those that did not are named), or standard\n"
+      "      output could not be written (e.g. its reader has gone: `| head`)\n"
       "  7   some points did not converge (results written, flagged converged = 0;\n"
       "      stderr lists each with its speed, iterations and residual)\n"
       "  70  out of memory or internal error\n",
