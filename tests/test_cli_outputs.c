@@ -188,6 +188,28 @@ static void test_manifest_interrupted(void **state) {
   free(out), free(err);
 }
 
+/* A run.json of another program is neither replaced nor obeyed: the run
+ * is refused before anything is computed, the folder unchanged. */
+static void test_foreign_manifest(void **state) {
+  (void)state;
+  char dir[1200];
+  snprintf(dir, sizeof dir, "%s/o", vl_test_dir);
+  mkdir(dir, 0777);
+  char *out = NULL, *err = NULL;
+  assert_int_equal(vl_test_run(&out, &err, "fluid list"), 0); /* the database exists */
+  free(out), free(err);
+  const char *foreign = "{\"files\": [\"keep.txt\"]}\n";
+  vl_test_write_file(vl_test_scratch("o/run.json", NULL), foreign);
+  vl_test_write_file(vl_test_scratch("o/keep.txt", NULL), "mine\n");
+  vl_test_expect_fail(6, "run.json exists and is not a viscolube manifest", NULL, "run %s --out %s",
+                      dry_scene("a.ini", 4, ""), dir);
+  char *m = read_in(dir, "run.json");
+  assert_string_equal(m, foreign);
+  free(m);
+  assert_true(exists(dir, "keep.txt"));
+  assert_false(exists(dir, "curve.csv"));
+}
+
 /* ---- fingerprints ------------------------------------------------------ */
 
 static void test_fingerprints(void **state) {
@@ -460,6 +482,7 @@ int main(void) {
       cmocka_unit_test_setup(test_manifest_of_run, vl_test_setup_db),
       cmocka_unit_test_setup(test_manifest_supersedes, vl_test_setup_db),
       cmocka_unit_test_setup(test_manifest_interrupted, vl_test_setup_db),
+      cmocka_unit_test_setup(test_foreign_manifest, vl_test_setup_db),
       cmocka_unit_test_setup(test_fingerprints, vl_test_setup_db),
       cmocka_unit_test_setup(test_compare_reader_gone, vl_test_setup_db),
       cmocka_unit_test_setup(test_two_writers, vl_test_setup_db),

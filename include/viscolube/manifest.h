@@ -44,8 +44,9 @@ typedef struct vl_manifest vl_manifest;
 
 /* Starts the manifest of folder dir (which must exist) for the command
  * argv[0..argc), noting the start time, and moves an earlier DIR/run.json
- * aside (see above). VL_ENOMEM, VL_EIO (the earlier manifest cannot be
- * moved). */
+ * aside (see above). VL_ENOMEM; VL_EIO when the earlier manifest cannot be
+ * moved, or DIR/run.json is not one (another program's file is never
+ * touched). */
 vl_status vl_manifest_begin(const char *dir, int argc, char *const *argv, vl_manifest **out,
                             vl_error *err);
 

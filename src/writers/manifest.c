@@ -103,6 +103,19 @@ static void set_pair(vl_manifest *m, strings *l, const char *key, const char *va
   push(m, l, value);
 }
 
+#define SIGNATURE "{\n\"manifest\": \"viscolube run manifest"
+
+/* True when the file at path begins as the manifests this module writes:
+ * a run.json of another program is never moved, replaced or obeyed. */
+static bool ours(const char *path) {
+  char head[sizeof SIGNATURE] = {0};
+  FILE *f = fopen(path, "rb");
+  if (!f) return false;
+  size_t n = fread(head, 1, sizeof head - 1, f);
+  fclose(f);
+  return n == sizeof head - 1 && !memcmp(head, SIGNATURE, n);
+}
+
 vl_status vl_manifest_begin(const char *dir, int argc, char *const *argv, vl_manifest **out,
                             vl_error *err) {
   *out = NULL;
@@ -127,7 +140,15 @@ vl_status vl_manifest_begin(const char *dir, int argc, char *const *argv, vl_man
   snprintf(cur, sizeof cur, "%s/%s", dir, VL_MANIFEST_NAME);
   snprintf(prev, sizeof prev, "%s/%s", dir, PREVIOUS_NAME);
   struct stat sb;
-  if (lstat(cur, &sb) == 0 && S_ISREG(sb.st_mode) && rename(cur, prev) != 0) {
+  if (lstat(cur, &sb) == 0 && !(S_ISREG(sb.st_mode) && ours(cur))) {
+    vl_error_set(err,
+                 "%s exists and is not a viscolube manifest: remove it or choose another "
+                 "output folder",
+                 cur);
+    vl_manifest_free(m);
+    return VL_EIO;
+  }
+  if (lstat(cur, &sb) == 0 && rename(cur, prev) != 0) {
     vl_error_set(err, "%s: cannot move the earlier manifest aside: %s", cur, strerror(errno));
     vl_manifest_free(m);
     return VL_EIO;
@@ -441,6 +462,7 @@ static void write_json(const vl_manifest *m, FILE *f) {
   vl_json w;
   vl_json_init(&w, f, 10);
   vl_json_object_begin(&w, VL_JSON_BLOCKS);
+  /* first, as written: SIGNATURE recognises the file by it */
   vl_json_key_string(&w, "manifest", "viscolube run manifest, version 1");
   vl_json_key(&w, "program");
   vl_json_object_begin(&w, VL_JSON_INLINE);
