@@ -94,6 +94,7 @@
 #include "viscolube/study.h"
 
 /* writers */
+#include "viscolube/manifest.h"
 #include "viscolube/output.h"
 #include "viscolube/plot.h"
 #include "viscolube/study_output.h"

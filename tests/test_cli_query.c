@@ -135,8 +135,9 @@ static void test_compare_filled_unfilled(void **state) {
   assert_non_null(csv);
   const char *model = "# flow_factors = persson-emt, film_cutoff_m = 1e-09\n";
   assert_memory_equal(csv, model, strlen(model));
-  assert_non_null(strstr(csv, "\nv0_eta_pa_m,mu_sbr-unfilled,"));
-  /* rows: v0eta, then 7 columns per compound */
+  /* the axis: the speed (m/s), the default for one fluid */
+  assert_non_null(strstr(csv, "\nv0_m_s,mu_sbr-unfilled,"));
+  /* rows: v0, then 7 columns per compound */
   int rows = 0, above = 0;
   double filled_umin_before = 0.0;
   char *line = strchr(csv + strlen(model), '\n');
@@ -147,7 +148,8 @@ static void test_compare_filled_unfilled(void **state) {
       v[k] = strtod(p, &p);
       if (*p == ',') p++;
     }
-    assert_true(v[7] == 1.0 && v[14] == 1.0); /* converged */
+    assert_true(v[7] == 1.0 && v[14] == 1.0);                   /* converged */
+    if (rows == 0) assert_true(fabs(v[0] / 1e-8 - 1.0) < 1e-9); /* 1e-11 Pa m in water */
     rows++;
     if (v[1] > v[8]) above++;
     /* Seed Fig. 16: the filled rubber's u_min/h_rms grows monotonically */

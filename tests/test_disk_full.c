@@ -34,6 +34,7 @@
 
 #include "vl_test_util.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <grp.h>
@@ -446,6 +447,126 @@ static void test_tmpfs_full(void **state) {
   assert_int_equal(rc2, 0);
 }
 
+/* ---- a sweep's results on a full disk ------------------------------------ */
+
+/* A dry scene whose fields files (grid 512: about 50 KB each) are much
+ * larger than its curve (7 rows, under 3 KB). */
+static const char *big_fields_scene(void) {
+  static char path[4300];
+  snprintf(path, sizeof path, "%s/fields.ini", dir);
+  FILE *f = fopen(path, "w");
+  assert_non_null(f);
+  fputs("[materials]\ncompound = model-rubber\n[contact]\nradius_m = 0.01\n"
+        "load_n_per_m = 1000\nsigma_s_pa = 0\n[sweep]\nquantity = deborah\nfrom = 1e-3\n"
+        "to = 1e3\npoints = 7\nfields_at = 0.01, 1, 100\n[effects]\nviscoelastic = on\n"
+        "roughness = off\nfluid = off\nsolid_shear = off\n[numerics]\ngrid = 512\n"
+        "domain_a0 = -1.5, 1.5\ntolerance = 1e-9\n",
+        f);
+  fclose(f);
+  return path;
+}
+
+static size_t lines_of(const char *path) {
+  FILE *f = fopen(path, "r");
+  size_t n = 0;
+  for (int c; f && (c = fgetc(f)) != EOF;)
+    n += c == '\n';
+  if (f) fclose(f);
+  return n;
+}
+
+/* The files that fit are complete and recorded; the message names those
+ * that did not; no temporary is left. out: the run's --out. NULL when so,
+ * else what is wrong (static storage): the caller may have a file system
+ * to unmount before it fails. */
+static const char *kept_what_fits(const char *out, int rc, const char *err) {
+  static char why[8192];
+  printf("run on a full disk: exit %d, stderr:\n%s", rc, err);
+  if (rc != EXIT_EIO) return snprintf(why, sizeof why, "exit %d, not %d", rc, EXIT_EIO), why;
+  if (!strstr(err, "3 files could not be written (the others are complete): fields/001.csv, "
+                   "fields/003.csv, fields/005.csv\n"))
+    return snprintf(why, sizeof why, "the files that did not fit are not named: %s", err), why;
+  char path[4400];
+  snprintf(path, sizeof path, "%s/curve.csv", out);
+  if (lines_of(path) != 1 + 7) return "curve.csv is not complete";
+  snprintf(path, sizeof path, "%s/run.json", out);
+  char *m = vl_test_read_file(path);
+  int ok = m && vl_test_json_valid(m) && strstr(m, "\"files\": [\"curve.csv\"]") &&
+           strstr(m, "{\"file\": \"fields/001.csv\", \"error\": ");
+  snprintf(why, sizeof why, "run.json does not record what was written: %s", m ? m : "(none)");
+  free(m);
+  if (!ok) return why;
+  for (int k = 0; k < 2; k++) {
+    snprintf(path, sizeof path, k ? "%s/fields" : "%s", out);
+    DIR *d = opendir(path);
+    for (struct dirent *e; d && (e = readdir(d));)
+      if (strstr(e->d_name, ".tmp.")) {
+        snprintf(why, sizeof why, "temporary left: %s/%s", path, e->d_name);
+        closedir(d);
+        return why;
+      }
+    if (d) closedir(d);
+  }
+  return NULL;
+}
+
+/* File-size limit (EFBIG): the curve and the manifest fit, the fields do
+ * not. Without the limit the same run writes them all. */
+static void test_run_keeps_what_fits(void **state) {
+  (void)state;
+  char out[4300], *err = NULL;
+  snprintf(out, sizeof out, "%s/run", dir);
+  const char *scene = big_fields_scene();
+  limits lim = {16384, 0};
+  int rc = cli(&lim, db, &err, "run", scene, "--out", out, NULL);
+  const char *why = kept_what_fits(out, rc, err);
+  if (why) fail_msg("%s", why);
+  assert_non_null(strstr(err, "File too large"));
+  free(err);
+  rc = cli(NULL, db, &err, "run", scene, "--out", out, NULL);
+  if (rc != 0) fail_msg("without the limit: exit %d: %s", rc, err);
+  free(err);
+  char path[4400];
+  snprintf(path, sizeof path, "%s/fields/003.csv", out);
+  assert_int_equal(lines_of(path), 1 + 512);
+}
+
+/* A real full file system (tmpfs, needs CAP_SYS_ADMIN): the same. */
+static void test_run_tmpfs_full(void **state) {
+  (void)state;
+  char mnt[4200], filler[4300], out[4300];
+  snprintf(mnt, sizeof mnt, "%s/tmpfs-run", dir);
+  assert_int_equal(mkdir(mnt, 0755), 0);
+  if (mount("tmpfs", mnt, "tmpfs", 0, "size=256k,mode=0755") != 0) {
+    int e = errno;
+    rmdir(mnt);
+    if (e != EPERM) fail_msg("tmpfs: mount failed: %s", strerror(e));
+    printf("tmpfs run: skipped, mounting needs CAP_SYS_ADMIN (%s)\n", strerror(e));
+    skip();
+  }
+  snprintf(filler, sizeof filler, "%s/filler", mnt);
+  snprintf(out, sizeof out, "%s/run", mnt);
+  FILE *f = fopen(filler, "wb");
+  char page[4096];
+  memset(page, 0xAB, sizeof page);
+  while (f && fwrite(page, 1, sizeof page, f) == sizeof page && fflush(f) == 0) {
+  }
+  if (f) fclose(f);
+  struct stat sb;
+  stat(filler, &sb);
+  /* room for the folders, the curve and the manifest, not for a fields file */
+  truncate(filler, sb.st_size > 8 * 4096 ? sb.st_size - 8 * 4096 : 0);
+  char *err = NULL;
+  int rc = cli(NULL, db, &err, "run", big_fields_scene(), "--out", out, NULL);
+  const char *why = kept_what_fits(out, rc, err);
+  int nospace = strstr(err, "No space left on device") != NULL;
+  free(err);
+  unmount(mnt); /* before any assertion: teardown removes the directory */
+  rmdir(mnt);
+  if (why) fail_msg("%s", why);
+  assert_true(nospace);
+}
+
 /* ---- read-only directory and read-only file --------------------------- */
 
 /* The file is writable, its directory is not: SQLite cannot create the
@@ -538,6 +659,8 @@ int main(void) {
       cmocka_unit_test_setup_teardown(test_file_size_limit_compound, setup, teardown),
       cmocka_unit_test_setup_teardown(test_file_size_limit_create, setup, teardown),
       cmocka_unit_test_setup_teardown(test_tmpfs_full, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_run_keeps_what_fits, setup, teardown),
+      cmocka_unit_test_setup_teardown(test_run_tmpfs_full, setup, teardown),
       cmocka_unit_test_setup_teardown(test_readonly_directory, setup, teardown),
       cmocka_unit_test_setup_teardown(test_readonly_file_with_hot_journal, setup, teardown),
   };

@@ -5,8 +5,11 @@
  * the same directory, renamed over the final name once it is complete and
  * on disk: a crash, a full disk or a failed write leaves the previous file
  * (or none), never a truncated one. The temporary is named
- * ".NAME.tmp.PID.N" (hidden, and unique to the process and the call, so
- * two writers of one NAME never share it) and created exclusively. A path
+ * ".NAME.tmp.PID.N.RANDOM" (hidden; the pid and the call's number make it
+ * unique on one machine, 32 random bits across machines sharing a folder)
+ * and created exclusively (O_EXCL: a name that exists is never reused, and
+ * another is drawn), so two writers of one NAME never share a temporary;
+ * the last rename wins, whole. A path
  * that is a symbolic link has the file it names replaced; one that exists
  * and is not a regular file (a terminal, a pipe, /dev/null) is written
  * directly, as a rename would replace the device instead of writing to it.

@@ -263,4 +263,17 @@ size_t vl_contact_grid(const vl_contact *c); /* cells (fewer than cfg.grid when 
 double vl_contact_a0(const vl_contact *c);   /* m */
 double vl_contact_p0(const vl_contact *c);   /* Pa */
 
+/* The numerics a contact solves with, as created (defaults resolved): for
+ * the record of a run (a manifest), not to configure another. */
+typedef struct {
+  size_t grid;               /* cells of the uniform grid on the domain (cfg.grid) */
+  size_t cells;              /* solver cells (fewer when graded) */
+  double grid_growth;        /* <= 1: uniform */
+  double x_min_a0, x_max_a0; /* the domain, in a0 */
+  double tolerance;          /* scaled residual norm */
+  int max_iterations;        /* Newton iterations per solve */
+  const char *linear_solver; /* "lapack", "sundials" or "schur" */
+} vl_contact_numerics_used;
+void vl_contact_numerics_of(const vl_contact *c, vl_contact_numerics_used *out);
+
 #endif

@@ -281,4 +281,17 @@ vl_status vl_db_fluid_list(vl_db *db, vl_db_fluid **items, size_t *n, vl_error *
 /* VL_OK if name is a valid material name, else VL_EINPUT saying why. */
 vl_status vl_db_check_name(const char *name, vl_error *err);
 
+/* The fingerprint of a stored material: "fnv1a64:" and 16 hex digits, a
+ * hash of the rows that define it (table "compound": the compound row, its
+ * Prony terms, shift factors, fit report and measured points; "surface":
+ * the surface row and its tabulated points; "fluid": the fluid row), each
+ * column's name, type and value, leaving out row ids and creation times
+ * (and the caches derived from the rows). Two databases holding the same
+ * material give the same fingerprint; any change to what a simulation
+ * reads changes it. out gets "" on failure. VL_EINPUT (unknown table),
+ * VL_ENOTFOUND, VL_EDB. */
+#define VL_DB_FINGERPRINT_MAX 32
+vl_status vl_db_fingerprint(vl_db *db, const char *table, const char *name,
+                            char out[VL_DB_FINGERPRINT_MAX], vl_error *err);
+
 #endif

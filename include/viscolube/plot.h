@@ -43,6 +43,8 @@ typedef struct {
   const char *title;       /* line above the plot; NULL or "" = none */
   bool mark_half_load;     /* curves: mark where the fluid starts to carry half
                               of the load (fluid_load_fraction crosses 0.5) */
+  const char *subtitle;    /* smaller line under the title (the conditions: materials,
+                              load, radius, flow-factor model); NULL or "" = none */
 } vl_plot_options;
 
 /* What a call drew (the same in every format). */
@@ -53,7 +55,7 @@ typedef struct {
   double x_lo, x_hi;     /* the x axis drawn, in data units (fields: x/a0) */
 } vl_plot_report;
 
-/* Both formats, 1000 x 750, no title, no half-load marks. */
+/* Both formats, 1000 x 750, no title or subtitle, no half-load marks. */
 void vl_plot_options_defaults(vl_plot_options *opt);
 
 /* True when PLplot has both cairo drivers; otherwise false and err says

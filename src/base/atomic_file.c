@@ -4,14 +4,34 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <stdatomic.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/random.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 /* Makes the temporary's name unique among the calls of this process (the
- * pid makes it unique among processes). */
+ * pid makes it unique among the processes of one machine). */
 static atomic_ulong counter;
+
+/* 32 random bits for the temporary's name: two machines sharing a folder
+ * (NFS) may run processes with the same pid. getrandom never fails for so
+ * few bytes once the kernel's pool is ready; else the time and the counter
+ * stand in (O_EXCL still refuses a collision, and the caller retries). */
+static unsigned long random_tag(unsigned long n) {
+  uint32_t r = 0;
+  if (getrandom(&r, sizeof r, GRND_NONBLOCK) != (ssize_t)sizeof r) {
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    r = (uint32_t)((unsigned long)ts.tv_nsec * 2654435761u ^ n);
+  }
+  return r;
+}
+
+/* Tries a few names: a collision (EEXIST) draws another. */
+#define TEMP_TRIES 8
 
 /* Opens path itself for writing: the target is not a regular file (a
  * terminal, a pipe, /dev/null), which a rename would replace instead of
@@ -44,15 +64,19 @@ vl_status vl_atomic_file_open(vl_atomic_file *af, const char *path, vl_error *er
     vl_error_set(err, "%s: cannot write: not a file name", af->path);
     return VL_EIO;
   }
-  int dir_len = (int)(name - af->path);
-  int m = snprintf(af->tmp, sizeof af->tmp, "%.*s.%s.tmp.%ld.%lu", dir_len, af->path, name,
-                   (long)getpid(), atomic_fetch_add(&counter, 1));
-  if (n < 0 || (size_t)n >= sizeof af->path || m < 0 || (size_t)m >= sizeof af->tmp) {
-    vl_error_set(err, "%.200s...: cannot write: %s", af->path, strerror(ENAMETOOLONG));
-    af->tmp[0] = '\0';
-    return VL_EIO;
+  int dir_len = (int)(name - af->path), fd = -1;
+  for (int t = 0; t < TEMP_TRIES && fd < 0; t++) {
+    unsigned long k = atomic_fetch_add(&counter, 1);
+    int m = snprintf(af->tmp, sizeof af->tmp, "%.*s.%s.tmp.%ld.%lu.%08lx", dir_len, af->path, name,
+                     (long)getpid(), k, random_tag(k));
+    if (n < 0 || (size_t)n >= sizeof af->path || m < 0 || (size_t)m >= sizeof af->tmp) {
+      vl_error_set(err, "%.200s...: cannot write: %s", af->path, strerror(ENAMETOOLONG));
+      af->tmp[0] = '\0';
+      return VL_EIO;
+    }
+    fd = open(af->tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd < 0 && errno != EEXIST) break;
   }
-  int fd = open(af->tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd >= 0) af->f = fdopen(fd, "w");
   if (!af->f) {
     int e = errno;

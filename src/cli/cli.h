@@ -10,6 +10,8 @@
 typedef struct {
   const char *db_path; /* --db PATH, else $VISCOLUBE_DB, else NULL = default */
   int quiet;           /* --quiet: no warnings or progress on stderr */
+  int argc;            /* the whole command line, for the manifests (run.json) */
+  char **argv;
 } vl_cli_globals;
 
 /* `compound|surface|fluid VERB ...` (argv[0] is the noun). Returns exit code. */
@@ -69,5 +71,35 @@ size_t vl_cli_print_warnings(FILE *out, const char *label, size_t n, const vl_po
  * where (may be NULL) is appended to the first line. Returns the count. */
 size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size_t n,
                              const vl_point *pts, const char *where);
+
+/* ---- output folders and their manifests (cli_manifest.c) ---- */
+
+/* Starts the manifest of folder dir (vl_manifest_begin) with the whole
+ * command line and the program's version; NULL after the message on
+ * stderr ("viscolube CMD: ...") with *rc the exit code. */
+vl_manifest *vl_cli_manifest_begin(const vl_cli_globals *g, const char *cmd, const char *dir,
+                                   int *rc);
+
+/* Records a material with its database fingerprint (role "compound",
+ * "surface", "fluid"); a fingerprint that cannot be read is recorded as
+ * "unknown: REASON". */
+void vl_cli_manifest_material(vl_manifest *m, vl_db *db, const char *role, const char *name);
+
+/* Records the outcome of writing path: a file written (st VL_OK), else a
+ * file that could not be written (with err's message). */
+void vl_cli_manifest_file(vl_manifest *m, const char *path, vl_status st, const vl_error *err);
+
+/* The same for the figure stem.png and stem.svg (both formats). */
+void vl_cli_manifest_figure(vl_manifest *m, const char *stem, vl_status st, const vl_error *err);
+
+/* Writes the manifest (vl_manifest_finish) and frees it; on stderr the
+ * files of the earlier run it removed, the unclaimed ones (unless quiet),
+ * and the files that could not be written. Returns rc, or the I/O exit
+ * code when files could not be written or the manifest failed. */
+int vl_cli_manifest_finish(vl_manifest *m, const char *cmd, int quiet, int rc);
+
+/* Text of a whole (small) file, malloc'd and NUL-terminated; NULL on
+ * failure (errno set). */
+char *vl_cli_read_text(const char *path);
 
 #endif

@@ -475,18 +475,56 @@ static void print_text(const flat_args *a, const flat_curves *fc) {
          a->u_lo, a->u_hi, a->out_dir, a->out_dir);
 }
 
-/* DIR/flattening.csv and DIR/flattening-summary.csv. */
-static vl_status write_files(const flat_args *a, const flat_curves *fc, vl_error *err) {
-  if (vl_cli_make_dirs(a->out_dir) != 0) {
-    vl_error_set(err, "%s: cannot create: %s", a->out_dir, strerror(errno));
-    return VL_EIO;
+/* The record of DIR/run.json: the options (resolved) and the materials. */
+static void flat_manifest(vl_manifest *m, vl_db *db, const flat_args *a) {
+  char v[64];
+  vl_cli_manifest_material(m, db, "compound", a->compound);
+  vl_cli_manifest_material(m, db, "surface", a->surface);
+  vl_cli_manifest_material(m, db, "fluid", a->fluid);
+  if (a->case_path) vl_manifest_add_option(m, "case", a->case_path);
+  vl_manifest_add_option(m, "compound", a->compound);
+  vl_manifest_add_option(m, "surface", a->surface);
+  vl_manifest_add_option(m, "fluid", a->fluid);
+  char list[MAX_SPEEDS * 24] = "";
+  for (size_t k = 0; k < a->n_speeds; k++)
+    snprintf(list + strlen(list), sizeof list - strlen(list), "%s%.10g", k ? "," : "",
+             a->speeds[k]);
+  vl_manifest_add_option(m, "speeds_m_s", list);
+  list[0] = '\0';
+  for (size_t k = 0; k < a->n_hurst; k++)
+    snprintf(list + strlen(list), sizeof list - strlen(list), "%s%.10g", k ? "," : "",
+             a->hursts[k]);
+  if (a->n_hurst) vl_manifest_add_option(m, "hurst", list);
+  const struct {
+    const char *key;
+    double value;
+  } nums[] = {{"load_n_per_m", a->load},
+              {"radius_m", a->radius},
+              {"u_min_over_hrms", a->u_lo},
+              {"u_max_over_hrms", a->u_hi},
+              {"per_decade", a->per_decade}};
+  for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
+    snprintf(v, sizeof v, "%.10g", nums[k].value);
+    vl_manifest_add_option(m, nums[k].key, v);
   }
+  vl_manifest_add_option(m, "response", vl_flattening_response_name(a->response));
+}
+
+/* DIR/flattening.csv and DIR/flattening-summary.csv, then DIR/run.json.
+ * Returns the exit code (0 when all were written). */
+static int write_files(const vl_cli_globals *g, vl_db *db, const flat_args *a,
+                       const flat_curves *fc) {
+  int rc = 0;
+  vl_manifest *m = vl_cli_manifest_begin(g, "flattening", a->out_dir, &rc);
+  if (!m) return rc;
+  flat_manifest(m, db, a);
   char path[4300];
+  vl_error err = {{0}};
   snprintf(path, sizeof path, "%s/flattening.csv", a->out_dir);
-  vl_status st = write_curves_csv(path, fc, err);
-  if (st != VL_OK) return st;
+  vl_cli_manifest_file(m, path, write_curves_csv(path, fc, &err), &err);
   snprintf(path, sizeof path, "%s/flattening-summary.csv", a->out_dir);
-  return write_summary_csv(path, fc, err);
+  vl_cli_manifest_file(m, path, write_summary_csv(path, fc, &err), &err);
+  return vl_cli_manifest_finish(m, "flattening", g->quiet, 0);
 }
 
 int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
@@ -515,10 +553,12 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv) {
   vl_flattening_config_defaults(&cfg);
   rc = 0;
   vl_status st = vl_db_open(g->db_path, &db, &err);
+  /* --out before anything is computed */
+  if (st == VL_OK) st = vl_cli_check_out_dir("--out", a.out_dir, &err);
   if (st == VL_OK) st = flat_load(db, &a, &cfg, &fc, &err);
   if (st == VL_OK) st = flat_grid(&a, &fc, &err);
   if (st == VL_OK) st = flat_compute(&a, &cfg, &fc, &err);
-  if (st == VL_OK) st = write_files(&a, &fc, &err);
+  if (st == VL_OK) rc = write_files(g, db, &a, &fc);
   if (st == VL_OK) {
     if (a.json)
       print_json(&a, &fc);

@@ -349,17 +349,27 @@ done:
 static void compare_usage(FILE *out) {
   fputs("usage: viscolube compare --compounds A,B[,...] --surface S --fluid F\n"
         "                         [--from V0ETA] [--to V0ETA] [--points N] [--out DIR]\n"
-        "                         [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
-        "                         [--flow-factors persson-emt|patir-cheng|smooth]\n"
+        "                         [--axis speed|v0eta] [--load N_PER_M] [--radius M]\n"
+        "                         [--sigma-s PA] [--flow-factors persson-emt|patir-cheng|smooth]\n"
         "                         [--film-cutoff M] [--grid N] [--json] [--plot]\n"
         "                         [--temperature C] [--quiet]\n"
         "\n"
-        "Stribeck curves (mu vs v0*eta, Pa m) of several compounds on one surface in one\n"
-        "fluid, side by side: mu and u_min/h_rms per compound. Writes DIR/compare.csv\n"
-        "(one row per v0*eta; mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf, u_min_over_hrms, converged\n"
-        "per compound) and DIR/<compound>/curve.csv. DIR defaults to out/compare.\n"
+        "Stribeck curves of several compounds on one surface in one fluid, side by side:\n"
+        "mu and u_min/h_rms per compound. The sweep runs over v0*eta from --from to --to\n"
+        "(Pa m, whatever the axis: in water, 1e-12 .. 0.1 Pa m is 1 nm/s .. 100 m/s).\n"
+        "--axis: the first column of the table and of compare.csv, the JSON's axis and the\n"
+        "figures' x axis: speed (v0_m_s, m/s; the default) or v0eta (v0_eta_pa_m, Pa m).\n"
+        "Writes DIR/compare.csv (one row per speed; the axis, then mu, mu_Rc, mu_Rf, mu_Sc,\n"
+        "mu_Sf, u_min_over_hrms, converged per compound), DIR/<compound>/curve.csv (every\n"
+        "column, both v0_m_s and v0_eta_pa_m) and, last, DIR/run.json: the command, the\n"
+        "options, the materials with their database fingerprints, the numerics, the\n"
+        "program version, start and end times, the points converged and the files written.\n"
+        "Files of an earlier run listed in its run.json and not rewritten are removed; other\n"
+        "files in DIR are left alone, named in a warning. Every file is written whole (a\n"
+        "temporary renamed into place) before the table is printed. DIR defaults to\n"
+        "out/compare.\n"
         "With --plot also DIR/compare-mu.{png,svg} and DIR/compare-umin.{png,svg}: the\n"
-        "compounds' curves on one axis.\n"
+        "compounds' curves on one axis, titled with the compounds and the conditions.\n"
         "--temperature C: every compound and the fluid at C, as for `viscolube friction`\n"
         "(v0*eta then uses the fluid's viscosity at C); compare.csv gets the columns\n"
         "temperature_c and eta_pa_s, the JSON the keys of the same names.\n"
@@ -370,8 +380,10 @@ static void compare_usage(FILE *out) {
         "points that did not converge (speed, iterations, residual). --quiet leaves out\n"
         "the warnings and the progress lines.\n"
         "Exit status: 0 every point converged, 7 some did not (written with converged = 0),\n"
-        "2 bad option or name, 3 unknown material, 5 database error, 6 file error.\n"
-        "Defaults: --from 1e-12 --to 0.1 --points 45, and those of `viscolube friction`.\n",
+        "2 bad option or name, 3 unknown material, 5 database error, 6 file error (a file\n"
+        "that did not fit is named; the others are kept) or standard output lost.\n"
+        "Defaults: --from 1e-12 --to 0.1 --points 45 --axis speed, and those of\n"
+        "`viscolube friction`.\n",
         out);
 }
 
@@ -383,6 +395,7 @@ typedef struct {
   size_t nc;
   double from, to, points;
   const char *out_dir;
+  int axis_v0eta; /* --axis v0eta; else speed (one fluid: the speed reads directly) */
 } compare_args;
 
 /* The curves of the compounds, side by side: compound k's point i is
@@ -412,6 +425,14 @@ static int compare_parse(int argc, char **argv, compare_args *a) {
       i++;
     } else if (!strcmp(argv[i], "--out") && v) {
       a->out_dir = v;
+      i++;
+    } else if (!strcmp(argv[i], "--axis")) {
+      if (!v || (strcmp(v, "speed") && strcmp(v, "v0eta"))) {
+        fprintf(stderr, "viscolube compare: option --axis needs speed or v0eta (got '%s')\n",
+                v ? v : "");
+        return 2;
+      }
+      a->axis_v0eta = !strcmp(v, "v0eta");
       i++;
     } else if (!strcmp(argv[i], "--from") || !strcmp(argv[i], "--to") ||
                !strcmp(argv[i], "--points")) {
@@ -480,7 +501,7 @@ static vl_status compare_prepare(vl_db *db, const compare_args *a, compare_curve
  * Returns 2 after the message when the scene cannot be made, else -1 with
  * *st the status. */
 static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curves *cv,
-                       vl_status *st, vl_error *err) {
+                       vl_manifest *man, vl_status *st, vl_error *err) {
   vl_scene sc;
   if (!make_scene("compare", &a->c, a->names[k], &sc)) return 2;
   sc.from = a->from, sc.to = a->to, sc.points = cv->n;
@@ -490,11 +511,16 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   cv->eta = vl_simulation_eta(sim);
   const vl_psd *psd = vl_simulation_psd(sim);
   cv->hrms[k] = psd ? psd->hrms_m : 1.0;
+  const vl_contact *contact = vl_simulation_contact(sim);
+  vl_contact_numerics_used nu;
+  vl_contact_numerics_of(contact, &nu);
+  vl_manifest_add_numerics(man, a->names[k], &nu, vl_contact_a0(contact), vl_contact_p0(contact));
   vl_sweep_stats stats;
   if (!a->c.json && !a->c.quiet) fprintf(stderr, "compare: %s ...\n", a->names[k]);
   vl_point *pts = cv->pts + k * cv->n;
   *st = vl_simulation_run(sim, pts, NULL, NULL, &stats, err);
   cv->failed += stats.failed;
+  if (*st == VL_OK) vl_manifest_add_counts(man, stats.converged, stats.failed);
   char dir[4200], path[4300];
   snprintf(dir, sizeof dir, "%s/%s", a->out_dir, a->names[k]);
   if (*st == VL_OK && vl_cli_make_dirs(dir) != 0) {
@@ -506,13 +532,24 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
                           vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
     meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
     snprintf(path, sizeof path, "%s/curve.csv", dir);
-    *st = vl_write_curve_csv(path, cv->n, pts, &meta, err);
+    /* a file that does not fit is noted and the others still written */
+    vl_error werr = {{0}};
+    vl_cli_manifest_file(man, path, vl_write_curve_csv(path, cv->n, pts, &meta, &werr), &werr);
   }
   vl_simulation_free(sim);
   return -1;
 }
 
-/* DIR/compare.csv: one row per v0*eta, the compounds side by side. */
+/* The axis of the table, compare.csv, the JSON and the figures: v0 (m/s)
+ * or v0*eta (Pa m), with the name of its column. */
+static double axis_value(const compare_args *a, const compare_curves *cv, size_t i) {
+  return a->axis_v0eta ? cv->pts[i].v0_m_s * cv->eta : cv->pts[i].v0_m_s;
+}
+static const char *axis_column(const compare_args *a) {
+  return a->axis_v0eta ? "v0_eta_pa_m" : "v0_m_s";
+}
+
+/* DIR/compare.csv: one row per speed, the compounds side by side. */
 static vl_status write_compare_csv(const char *path, const compare_args *a,
                                    const compare_curves *cv, vl_error *err) {
   vl_atomic_file af;
@@ -523,7 +560,7 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
   fprintf(f, "# flow_factors = %s", model);
   if (cut > 0.0) fprintf(f, ", film_cutoff_m = %.6g", cut);
   fputc('\n', f);
-  fputs("v0_eta_pa_m", f);
+  fputs(axis_column(a), f);
   for (size_t k = 0; k < a->nc; k++) {
     const char *m = a->names[k];
     fprintf(f, ",mu_%s,mu_Rc_%s,mu_Rf_%s,mu_Sc_%s,mu_Sf_%s,u_min_over_hrms_%s,converged_%s", m, m,
@@ -534,7 +571,7 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
   if (a->c.q.at_temperature) fputs(",temperature_c,eta_pa_s", f);
   fputc('\n', f);
   for (size_t i = 0; i < cv->n; i++) {
-    fprintf(f, "%.10g", cv->pts[i].v0_m_s * cv->eta);
+    fprintf(f, "%.10g", axis_value(a, cv, i));
     for (size_t k = 0; k < a->nc; k++) {
       const vl_point *p = &cv->pts[k * cv->n + i];
       if (p->converged)
@@ -558,12 +595,12 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
   if (a->c.q.at_temperature)
     printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.q.temperature_c,
            cv->eta);
-  printf("%12s", "v0_eta_pa_m");
+  printf("%12s", axis_column(a));
   for (size_t k = 0; k < a->nc; k++)
     printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
   printf("\n");
   for (size_t i = 0; i < cv->n; i++) {
-    printf("%12.4g", cv->pts[i].v0_m_s * cv->eta);
+    printf("%12.4g", axis_value(a, cv, i));
     for (size_t k = 0; k < a->nc; k++) {
       const vl_point *p = &cv->pts[k * cv->n + i];
       if (p->converged)
@@ -575,8 +612,8 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
   }
 }
 
-/* One object: [temperature_c, eta_pa_s,] v0_eta_pa_m, and each compound's
- * curve under its name. */
+/* One object: [temperature_c, eta_pa_s,] the axis (v0_m_s or v0_eta_pa_m),
+ * and each compound's curve under its name. */
 static void compare_json(const compare_args *a, const compare_curves *cv) {
   vl_json w;
   vl_json_init(&w, stdout, 10);
@@ -585,10 +622,10 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
     vl_json_key_number(&w, "temperature_c", a->c.q.temperature_c);
     vl_json_key_number(&w, "eta_pa_s", cv->eta);
   }
-  vl_json_key(&w, "v0_eta_pa_m");
+  vl_json_key(&w, axis_column(a));
   vl_json_array_begin(&w, VL_JSON_INLINE);
   for (size_t i = 0; i < cv->n; i++)
-    vl_json_number_digits(&w, cv->pts[i].v0_m_s * cv->eta, 6);
+    vl_json_number_digits(&w, axis_value(a, cv, i), 6);
   vl_json_end(&w);
   for (size_t k = 0; k < a->nc; k++) {
     vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0};
@@ -600,24 +637,88 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
   fputc('\n', stdout);
 }
 
-/* --plot: DIR/compare-mu and DIR/compare-umin. */
-static vl_status compare_plots(const compare_args *a, const compare_curves *cv, vl_error *err) {
+/* The conditions of the figures' subtitle: surface, fluid, load, radius,
+ * flow-factor model (and temperature). */
+static void compare_subtitle(const compare_args *a, const compare_curves *cv, char *buf,
+                             size_t size) {
+  char eta[48], load[48], radius[48], cut_text[64] = "";
+  vl_plot_format_value(eta, sizeof eta, cv->eta);
+  vl_plot_format_value(load, sizeof load, a->c.q.load_n_per_m);
+  vl_plot_format_value(radius, sizeof radius, a->c.q.radius_m * 1e3);
+  double cut;
+  const char *model = model_of(&a->c, &cut);
+  if (cut > 0.0) snprintf(cut_text, sizeof cut_text, ", film cut-off %g nm", cut * 1e9);
+  int n =
+      snprintf(buf, size, "on %s in %s (η = %s Pa s) · fN = %s N/m · R = %s mm · flow factors %s%s",
+               a->c.q.surface, a->c.q.fluid, eta, load, radius, model, cut_text);
+  if (a->c.q.at_temperature && n >= 0 && (size_t)n < size)
+    snprintf(buf + n, size - (size_t)n, " · %g °C", a->c.q.temperature_c);
+}
+
+/* --plot: DIR/compare-mu and DIR/compare-umin, each recorded in man
+ * (written, or not written with the reason). VL_OK unless PLplot failed
+ * otherwise than on a file. */
+static vl_status compare_plots(const compare_args *a, const compare_curves *cv, vl_manifest *man,
+                               vl_error *err) {
   vl_plot_curve curves[MAX_COMPOUNDS];
   for (size_t k = 0; k < a->nc; k++)
     curves[k] = (vl_plot_curve){
         a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
+  char title[MAX_COMPOUNDS * 80 + 32], subtitle[1024];
+  int len = snprintf(title, sizeof title, "Stribeck curves: ");
+  for (size_t k = 0; k < a->nc && len > 0 && (size_t)len < sizeof title; k++)
+    len += snprintf(title + len, sizeof title - (size_t)len, "%s%s", k ? " vs " : "", a->names[k]);
+  compare_subtitle(a, cv, subtitle, sizeof subtitle);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.mark_half_load = true;
-  char stem[4300];
-  snprintf(stem, sizeof stem, "%s/compare-mu", a->out_dir);
-  vl_status st =
-      vl_plot_compare(stem, a->nc, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_MU, &opt, NULL, err);
-  if (st == VL_OK) {
-    snprintf(stem, sizeof stem, "%s/compare-umin", a->out_dir);
-    st = vl_plot_compare(stem, a->nc, curves, VL_SWEEP_V0_ETA, VL_PLOT_Y_U_MIN, &opt, NULL, err);
+  opt.title = title;
+  opt.subtitle = subtitle;
+  vl_sweep_quantity x = a->axis_v0eta ? VL_SWEEP_V0_ETA : VL_SWEEP_V0;
+  static const struct {
+    const char *name;
+    vl_plot_y y;
+  } figs[] = {{"compare-mu", VL_PLOT_Y_MU}, {"compare-umin", VL_PLOT_Y_U_MIN}};
+  for (size_t k = 0; k < 2; k++) {
+    char stem[4300];
+    snprintf(stem, sizeof stem, "%s/%s", a->out_dir, figs[k].name);
+    vl_status st = vl_plot_compare(stem, a->nc, curves, x, figs[k].y, &opt, NULL, err);
+    vl_cli_manifest_figure(man, stem, st, err);
+    if (st != VL_OK && st != VL_EIO) return st;
   }
-  return st;
+  return VL_OK;
+}
+
+/* The run's record: the options (defaults resolved) and the materials. */
+static void compare_manifest(vl_manifest *m, vl_db *db, const compare_args *a) {
+  char v[64], list[sizeof a->list + MAX_COMPOUNDS] = "";
+  for (size_t k = 0; k < a->nc; k++) {
+    snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? "," : "", a->names[k]);
+    vl_cli_manifest_material(m, db, "compound", a->names[k]);
+  }
+  vl_cli_manifest_material(m, db, "surface", a->c.q.surface);
+  vl_cli_manifest_material(m, db, "fluid", a->c.q.fluid);
+  vl_manifest_add_option(m, "compounds", list);
+  vl_manifest_add_option(m, "surface", a->c.q.surface);
+  vl_manifest_add_option(m, "fluid", a->c.q.fluid);
+  const struct {
+    const char *key;
+    double value;
+  } nums[] = {{"from_v0_eta_pa_m", a->from}, {"to_v0_eta_pa_m", a->to},
+              {"points", a->points},         {"load_n_per_m", a->c.q.load_n_per_m},
+              {"radius_m", a->c.q.radius_m}, {"sigma_s_pa", a->c.q.sigma_s_pa}};
+  for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
+    snprintf(v, sizeof v, "%.10g", nums[k].value);
+    vl_manifest_add_option(m, nums[k].key, v);
+  }
+  double cut;
+  vl_manifest_add_option(m, "flow_factors", model_of(&a->c, &cut));
+  if (cut > 0.0) snprintf(v, sizeof v, "%.6g", cut), vl_manifest_add_option(m, "film_cutoff_m", v);
+  if (a->c.q.grid) snprintf(v, sizeof v, "%zu", a->c.q.grid), vl_manifest_add_option(m, "grid", v);
+  if (a->c.q.at_temperature)
+    snprintf(v, sizeof v, "%.10g", a->c.q.temperature_c),
+        vl_manifest_add_option(m, "temperature_c", v);
+  vl_manifest_add_option(m, "axis", a->axis_v0eta ? "v0eta" : "speed");
 }
 
 /* After the table, on stderr: each compound's warnings and failed points. */
@@ -644,6 +745,7 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   if (rc >= 0) return rc;
   vl_error err = {{0}};
   vl_db *db = NULL;
+  vl_manifest *man = NULL;
   vl_status st = vl_db_open(g->db_path, &db, &err);
   compare_curves cv = {.n = (size_t)a.points};
   cv.pts = calloc(cv.n * a.nc, sizeof *cv.pts);
@@ -651,28 +753,37 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   rc = 0;
   if (!cv.pts || !cv.hrms) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
   if (st == VL_OK) st = compare_prepare(db, &a, &cv, &err);
+  if (st == VL_OK && !(man = vl_cli_manifest_begin(g, "compare", a.out_dir, &rc))) goto done;
+  if (st == VL_OK) compare_manifest(man, db, &a);
   for (size_t k = 0; st == VL_OK && k < a.nc; k++)
-    if ((rc = compare_one(db, &a, k, &cv, &st, &err)) >= 0) goto done;
+    if ((rc = compare_one(db, &a, k, &cv, man, &st, &err)) >= 0) goto done;
   rc = 0;
   char path[4300];
   snprintf(path, sizeof path, "%s/compare.csv", a.out_dir);
-  if (st == VL_OK) st = write_compare_csv(path, &a, &cv, &err);
+  if (st == VL_OK) {
+    vl_error werr = {{0}};
+    vl_cli_manifest_file(man, path, write_compare_csv(path, &a, &cv, &werr), &werr);
+  }
+  /* every file before the table: a reader of stdout that goes away
+   * (`| head`) cannot cut them short */
+  if (st == VL_OK && a.c.plot) st = compare_plots(&a, &cv, man, &err);
   if (st != VL_OK) goto done;
+  rc = vl_cli_manifest_finish(man, "compare", a.c.quiet, cv.failed ? 7 : 0);
+  man = NULL;
   if (a.c.json)
     compare_json(&a, &cv);
   else
     compare_table(&a, &cv);
-  if (a.c.plot && (st = compare_plots(&a, &cv, &err)) != VL_OK) goto done;
   if (!a.c.json)
-    printf("wrote %s and %s/<compound>/curve.csv%s\n", path, a.out_dir,
-           a.c.plot ? " and compare-mu/compare-umin figures" : "");
+    printf("wrote %s and %s/<compound>/curve.csv%s, %s/%s\n", path, a.out_dir,
+           a.c.plot ? " and compare-mu/compare-umin figures" : "", a.out_dir, VL_MANIFEST_NAME);
   compare_report(&a, &cv);
-  if (cv.failed) rc = vl_status_exit_code(VL_ENOCONV);
 done:
   if (st != VL_OK) {
     fprintf(stderr, "viscolube compare: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
     rc = vl_status_exit_code(st);
   }
+  vl_manifest_free(man); /* a failed run leaves no manifest: the folder is incomplete */
   free(cv.pts);
   free(cv.hrms);
   vl_db_close(db);

@@ -29,6 +29,14 @@ static void run_usage(FILE *out) {
         "written to DIR/<fluid>/ (with --json: an object keyed by fluid); with --plot also\n"
         "DIR/stribeck-all (mu of every fluid on one axis) and, for one-term compounds,\n"
         "DIR/rolling-all (mu_Rc + mu_Rf against v0 tau/a0).\n"
+        "Last, DIR/run.json records the run: the command, the scene's text, the materials\n"
+        "with their database fingerprints, the numerics of each contact, the program's\n"
+        "version and commit, start and end times (UTC), the points converged and failed,\n"
+        "the files written and those that could not be (a full disk: the others are kept,\n"
+        "and named on stderr). Files of an earlier run listed in its run.json and not\n"
+        "rewritten are removed; other files in DIR are left alone, named in a warning. A\n"
+        "run that is interrupted leaves no run.json. Every file is written whole: a\n"
+        "temporary renamed into place.\n"
         "DIR defaults to out/<scene name>; it is checked (created, writable, not a file)\n"
         "before anything is computed. Prints a short table, or with --json the curve as a\n"
         "JSON array. After the table, on stderr: one line per kind of model-validity\n"
@@ -37,19 +45,19 @@ static void run_usage(FILE *out) {
         "iterations and residual. --quiet leaves out the warnings and the progress line.\n"
         "Exit status: 0 when every point converged, 7 when some did not (they are still\n"
         "written, flagged converged = 0), 2 bad scene or option, 3 unknown material,\n"
-        "5 database error, 6 file error (e.g. --out not writable).\n",
+        "5 database error, 6 file error (e.g. --out not writable, a file that did not fit,\n"
+        "standard output lost).\n",
         out);
 }
 
 typedef struct {
   vl_simulation *sim;
   const char *out_dir;
+  vl_manifest *man; /* the files written, and those that could not be */
   vl_fields fields;
   int tty;
   int quiet;
   double t_start; /* for the progress line */
-  int io_failed;
-  vl_error err;
   /* --plot: the fields of the fields_at speeds, kept for the figures */
   size_t n_kept;
   size_t *kept_index; /* point index of each kept slot */
@@ -70,7 +78,7 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
     if (i + 1 == total) fputc('\n', stderr);
     fflush(stderr);
   }
-  if (!vl_simulation_wants_fields(ctx->sim, i) || !pt->converged || ctx->io_failed) return;
+  if (!vl_simulation_wants_fields(ctx->sim, i) || !pt->converged) return;
   vl_fields *f = &ctx->fields;
   for (size_t k = 0; k < ctx->n_kept; k++)
     if (ctx->kept_index[k] == i) f = &ctx->kept[k];
@@ -80,7 +88,11 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
   vl_contact_fields(contact, f);
   char path[4200];
   snprintf(path, sizeof path, "%s/fields/%03zu.csv", ctx->out_dir, i);
-  if (vl_write_fields_csv(path, f, vl_contact_a0(contact), &ctx->err) != VL_OK) ctx->io_failed = 1;
+  /* a file that does not fit (a full disk) is noted; the sweep goes on and
+   * the files after it are still tried: smaller ones may fit */
+  vl_error err = {{0}};
+  vl_status st = vl_write_fields_csv(path, f, vl_contact_a0(contact), &err);
+  vl_cli_manifest_file(ctx->man, path, st, &err);
 }
 
 /* Sets aside the fields of the fields_at speeds for the figures. */
@@ -113,17 +125,41 @@ static double sweep_value(vl_sweep_quantity q, const vl_point *p, const vl_curve
                                 : p->v0_m_s * m->tau_s / m->a0_m;
 }
 
+/* The figures' subtitle: the materials and the conditions (compound,
+ * surface, fluid or fluids, load, radius, flow-factor model). */
+static void scene_subtitle(const vl_scene *scene, vl_simulation *sim, const vl_curve_meta *meta,
+                           char *buf, size_t size) {
+  char load[48], radius[48], fluids[512] = "";
+  vl_plot_format_value(load, sizeof load, scene->load_n_per_m);
+  vl_plot_format_value(radius, sizeof radius, scene->radius_m * 1e3);
+  if (scene->effects.fluid && scene->n_fluids > 1) /* the legend names them */
+    snprintf(fluids, sizeof fluids, " in %zu fluids", scene->n_fluids);
+  else if (scene->effects.fluid) {
+    char eta[48] = "";
+    if (sim) vl_plot_format_value(eta, sizeof eta, vl_simulation_eta(sim));
+    snprintf(fluids, sizeof fluids, " in %s%s%s%s", scene->fluid, eta[0] ? " (η = " : "", eta,
+             eta[0] ? " Pa s)" : "");
+  }
+  int n = snprintf(buf, size, "%s on %s%s · fN = %s N/m · R = %s mm", scene->compound,
+                   scene->effects.roughness ? scene->surface : "a smooth surface", fluids, load,
+                   radius);
+  if (meta && meta->flow_factors && n >= 0 && (size_t)n < size)
+    snprintf(buf + n, size - (size_t)n, " · flow factors %s", meta->flow_factors);
+}
+
 /* Writes the figures of one curve (see run_usage); names them in *list. */
 static vl_status write_plots(const char *out_dir, const vl_scene *scene, const char *fluid_key,
                              vl_simulation *sim, size_t n, const vl_point *pts,
                              const vl_curve_meta *meta, const run_ctx *ctx, char *list,
                              size_t list_size, vl_error *err) {
-  char title[1536], stem[4200];
+  char title[1536], subtitle[1024], stem[4200];
   snprintf(title, sizeof title, "%s%s%s", scene->title[0] ? scene->title : scene->path,
            fluid_key ? " | fluid " : "", fluid_key ? fluid_key : "");
+  scene_subtitle(scene, sim, meta, subtitle, sizeof subtitle);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.title = title;
+  opt.subtitle = subtitle;
   opt.mark_half_load = scene->effects.fluid;
   const vl_psd *psd = vl_simulation_psd(sim);
   double h_rms = psd ? vl_psd_hrms(psd) : 0;
@@ -150,13 +186,16 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
              post[scene->quantity]);
     label_ptrs[k] = labels[k];
   }
+  /* a figure that does not fit is noted and the next still tried */
   snprintf(stem, sizeof stem, "%s/stribeck", out_dir);
   st = vl_plot_stribeck(stem, n, pts, meta, scene->quantity, ctx->n_kept, marks, &opt, NULL, err);
-  if (st != VL_OK) goto done;
+  vl_cli_manifest_figure(ctx->man, stem, st, err);
+  if (st != VL_OK && st != VL_EIO) goto done;
   snprintf(stem, sizeof stem, "%s/separation", out_dir);
   st = vl_plot_separation(stem, n, pts, meta, scene->quantity, h_rms, ctx->n_kept, marks, &opt,
                           NULL, err);
-  if (st != VL_OK) goto done;
+  vl_cli_manifest_figure(ctx->man, stem, st, err);
+  if (st != VL_OK && st != VL_EIO) goto done;
   size_t len = (size_t)snprintf(list, list_size, "stribeck, separation");
   if (ctx->n_kept) {
     const vl_contact *c = vl_simulation_contact(sim);
@@ -172,11 +211,13 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
       snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
       st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, &opt, NULL,
                           err);
-      if (st != VL_OK) goto done;
+      vl_cli_manifest_figure(ctx->man, stem, st, err);
+      if (st != VL_OK && st != VL_EIO) goto done;
       if (len < list_size)
         len += (size_t)snprintf(list + len, list_size - len, ", %s", figs[k].name);
     }
   }
+  st = VL_OK; /* the files that did not fit are in the manifest */
 done:
   free(label_ptrs);
   free(labels);
@@ -230,7 +271,8 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
  * this curve's fluid (its key in the JSON object, in the figures' title). */
 static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *db,
                          const char *out_dir, vl_json *json, const char *fluid_key, int plot,
-                         int quiet, kept_curve *keep, size_t *failed, vl_error *err) {
+                         int quiet, vl_manifest *man, kept_curve *keep, size_t *failed,
+                         vl_error *err) {
   vl_simulation *sim = NULL;
   vl_point *pts = NULL;
   double *buf = NULL;
@@ -257,11 +299,20 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
       buf + 5 * grid, buf + 6 * grid};
   ctx.sim = sim;
   ctx.out_dir = out_dir;
+  ctx.man = man;
   if (plot && (st = keep_fields(&ctx, n, grid, err)) != VL_OK) goto done;
   ctx.tty = isatty(STDERR_FILENO);
   ctx.t_start = vl_cli_now_s();
   ctx.quiet = quiet;
   const vl_contact *contact = vl_simulation_contact(sim);
+  vl_contact_numerics_used nu;
+  vl_contact_numerics_of(contact, &nu);
+  vl_manifest_add_numerics(man, fluid_key, &nu, vl_contact_a0(contact), vl_contact_p0(contact));
+  if (scene->auto_numerics) { /* the base the automatic numerics start from, and their target */
+    char target[64];
+    snprintf(target, sizeof target, "automatic, target error %g", scene->target_error);
+    vl_manifest_add_option(man, "numerics", target);
+  }
   if (!json) {
     char numerics[160];
     if (scene->auto_numerics)
@@ -286,15 +337,12 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
   vl_sweep_stats stats;
   st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, err);
   if (st != VL_OK) goto done;
-  if (ctx.io_failed) {
-    *err = ctx.err;
-    st = VL_EIO;
-    goto done;
-  }
+  vl_manifest_add_counts(man, stats.converged, stats.failed);
   char curve_path[4200];
   snprintf(curve_path, sizeof curve_path, "%s/curve.csv", out_dir);
-  st = vl_write_curve_csv(curve_path, n, pts, &meta, err);
-  if (st != VL_OK) goto done;
+  vl_error werr = {{0}};
+  vl_status cst = vl_write_curve_csv(curve_path, n, pts, &meta, &werr);
+  vl_cli_manifest_file(man, curve_path, cst, &werr);
   *failed += stats.failed;
   char plots[256] = "";
   if (plot) {
@@ -306,7 +354,7 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
     vl_curve_json(json, n, pts, &meta);
   } else {
     print_table(scene, n, pts, &meta, &stats);
-    printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
+    if (cst == VL_OK) printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
     if (plot) printf("plots (png, svg) in %s: %s\n", out_dir, plots);
   }
   /* stdout first, so that the lines follow the table in a shared log */
@@ -333,7 +381,8 @@ done:
 /* The figures with one curve per fluid: DIR/stribeck-all and, when the
  * Deborah number is defined (one-term compound), DIR/rolling-all. */
 static vl_status plot_all_fluids(const vl_scene *scene, const char *out_dir,
-                                 const kept_curve *curves, int json, vl_error *err) {
+                                 const kept_curve *curves, int json, vl_manifest *man,
+                                 vl_error *err) {
   vl_plot_curve pc[VL_FLUIDS_MAX];
   char labels[VL_FLUIDS_MAX][VL_NAME_MAX + 64];
   bool deborah = true;
@@ -352,15 +401,20 @@ static vl_status plot_all_fluids(const vl_scene *scene, const char *out_dir,
   opt.mark_half_load = scene->effects.fluid;
   char stem[4200];
   snprintf(stem, sizeof stem, "%s/stribeck-all", out_dir);
+  char subtitle[1024];
+  scene_subtitle(scene, NULL, &curves[0].meta, subtitle, sizeof subtitle);
+  opt.subtitle = subtitle;
   vl_status st =
       vl_plot_compare(stem, scene->n_fluids, pc, scene->quantity, VL_PLOT_Y_MU, &opt, NULL, err);
-  if (st != VL_OK) return st;
+  vl_cli_manifest_figure(man, stem, st, err);
+  if (st != VL_OK && st != VL_EIO) return st;
   if (deborah) {
     snprintf(stem, sizeof stem, "%s/rolling-all", out_dir);
     opt.mark_half_load = false;
     st = vl_plot_compare(stem, scene->n_fluids, pc, VL_SWEEP_DEBORAH, VL_PLOT_Y_MU_ROLLING, &opt,
                          NULL, err);
-    if (st != VL_OK) return st;
+    vl_cli_manifest_figure(man, stem, st, err);
+    if (st != VL_OK && st != VL_EIO) return st;
   }
   if (!json)
     printf("plots (png, svg) in %s: stribeck-all%s\n", out_dir, deborah ? ", rolling-all" : "");
@@ -401,6 +455,19 @@ static vl_status check_outputs(const vl_scene *scene, const char *out_dir, vl_er
     if (st == VL_OK && scene->n_fields_at) st = vl_cli_check_out_dir("--out", fields, err);
   }
   return st;
+}
+
+/* The run's record: the scene (its path and text) and its materials. */
+static void run_manifest(vl_manifest *m, vl_db *db, const vl_scene *scene, const char *text) {
+  vl_manifest_add_text(m, "scene_path", scene->path);
+  vl_manifest_add_text(m, "scene", text);
+  vl_cli_manifest_material(m, db, "compound", scene->compound);
+  if (scene->effects.roughness && scene->surface[0])
+    vl_cli_manifest_material(m, db, "surface", scene->surface);
+  for (size_t k = 0; scene->effects.fluid && k < scene->n_fluids; k++)
+    vl_cli_manifest_material(m, db, "fluid", scene->fluids[k]);
+  if (scene->effects.fluid && scene->n_fluids == 0 && scene->fluid[0])
+    vl_cli_manifest_material(m, db, "fluid", scene->fluid);
 }
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -454,6 +521,8 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   vl_error err = {{0}};
   vl_scene scene;
   vl_db *db = NULL;
+  vl_manifest *man = NULL;
+  char *scene_text = NULL;
   int rc = 0;
   size_t failed = 0;
   char default_dir[2048];
@@ -482,10 +551,18 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   if (st != VL_OK) goto fail;
   st = check_outputs(&scene, out_dir, &err);
   if (st != VL_OK) goto fail;
+  /* the text the scene was loaded from, for the manifest */
+  if (!(scene_text = vl_cli_read_text(scene_path))) {
+    vl_error_set(&err, "%s: cannot read: %s", scene_path, strerror(errno));
+    st = VL_EIO;
+    goto fail;
+  }
+  if (!(man = vl_cli_manifest_begin(g, "run", out_dir, &rc))) goto done;
+  run_manifest(man, db, &scene, scene_text);
   vl_json w, *jw = json ? &w : NULL;
   vl_json_init(&w, stdout, 10);
   if (scene.n_fluids <= 1) {
-    st = run_one(scene_path, &scene, db, out_dir, jw, NULL, plot, quiet, NULL, &failed, &err);
+    st = run_one(scene_path, &scene, db, out_dir, jw, NULL, plot, quiet, man, NULL, &failed, &err);
     if (st != VL_OK) goto fail;
   } else {
     /* one curve per fluid, each in DIR/<fluid>/ */
@@ -496,8 +573,8 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
       one.n_fluids = 1;
       char dir[4200];
       snprintf(dir, sizeof dir, "%s/%s", out_dir, one.fluid);
-      st = run_one(scene_path, &one, db, dir, jw, one.fluid, plot, quiet, plot ? &curves[k] : NULL,
-                   &failed, &err);
+      st = run_one(scene_path, &one, db, dir, jw, one.fluid, plot, quiet, man,
+                   plot ? &curves[k] : NULL, &failed, &err);
       if (st != VL_OK) goto fail;
     }
     if (jw) {
@@ -505,16 +582,21 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
       fputc('\n', stdout);
     }
     if (plot) {
-      st = plot_all_fluids(&scene, out_dir, curves, json, &err);
+      st = plot_all_fluids(&scene, out_dir, curves, json, man, &err);
       if (st != VL_OK) goto fail;
     }
   }
   if (failed) rc = vl_status_exit_code(VL_ENOCONV);
+  /* last: the manifest, once every file is in place */
+  rc = vl_cli_manifest_finish(man, "run", quiet, rc);
+  man = NULL;
   goto done;
 fail:
   fprintf(stderr, "viscolube run: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
   rc = vl_status_exit_code(st);
 done:
+  vl_manifest_free(man); /* a failed run leaves no manifest: the folder is incomplete */
+  free(scene_text);
   for (size_t k = 0; k < VL_FLUIDS_MAX; k++)
     free(curves[k].pts);
   vl_db_close(db);

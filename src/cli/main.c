@@ -1,4 +1,7 @@
 /* viscolube: the command line, a thin layer over libviscolube. */
+#include <errno.h>
+#include <poll.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,15 +48,17 @@ static void usage(FILE *out) {
       "  3   a named compound, surface or fluid is not in the database\n"
       "  4   a name is already taken\n"
       "  5   database error (corrupt, read-only, locked, newer schema)\n"
-      "  6   a file or folder could not be read or written (e.g. --out)\n"
+      "  6   a file or folder could not be read or written (e.g. --out; a full disk:\n"
+      "      the files that fit are kept, those that did not are named), or standard\n"
+      "      output could not be written (e.g. its reader has gone: `| head`)\n"
       "  7   some points did not converge (results written, flagged converged = 0;\n"
       "      stderr lists each with its speed, iterations and residual)\n"
       "  70  out of memory or internal error\n",
       out);
 }
 
-int main(int argc, char **argv) {
-  vl_cli_globals g = {.db_path = getenv("VISCOLUBE_DB")};
+static int dispatch(int argc, char **argv) {
+  vl_cli_globals g = {.db_path = getenv("VISCOLUBE_DB"), .argc = argc, .argv = argv};
   int i = 1;
   for (; i < argc && argv[i][0] == '-'; i++) {
     if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
@@ -89,4 +94,28 @@ int main(int argc, char **argv) {
   if (!strcmp(noun, "flattening")) return vl_cli_flattening(&g, argc - i, argv + i);
   fprintf(stderr, "viscolube: unknown noun '%s' (see viscolube --help)\n", noun);
   return 2;
+}
+
+/* Standard output that could not be written (a closed pipe: `| head`, a
+ * full disk): a message and the I/O exit status rather than silence. The
+ * files a command writes do not depend on it: SIGPIPE is ignored, so a
+ * reader that goes away cannot kill the program half-way through its
+ * files; they are completed (or not written at all) as if it had stayed. */
+static int check_stdout(int rc) {
+  errno = 0;
+  int flushed = fflush(stdout) == 0;
+  int e = flushed ? 0 : errno;
+  if (flushed && !ferror(stdout)) return rc;
+  /* an earlier write failed, leaving no errno to trust: a pipe whose
+   * reader has gone says so */
+  struct pollfd p = {fileno(stdout), POLLOUT, 0};
+  if (!e && poll(&p, 1, 0) == 1 && (p.revents & POLLERR)) e = EPIPE;
+  fprintf(stderr, "viscolube: cannot write to standard output%s%s\n", e ? ": " : "",
+          e ? strerror(e) : "");
+  return rc == 0 || rc == 7 ? 6 : rc;
+}
+
+int main(int argc, char **argv) {
+  signal(SIGPIPE, SIG_IGN);
+  return check_stdout(dispatch(argc, argv));
 }

@@ -202,3 +202,17 @@ void vl_contact_free(vl_contact *c) {
 size_t vl_contact_grid(const vl_contact *c) { return c->n; }
 double vl_contact_a0(const vl_contact *c) { return c->a0; }
 double vl_contact_p0(const vl_contact *c) { return c->p0; }
+
+void vl_contact_numerics_of(const vl_contact *c, vl_contact_numerics_used *out) {
+  const vl_contact_config *cfg = &c->cfg;
+  static const char *const solvers[] = {"lapack", "sundials", "schur"};
+  *out = (vl_contact_numerics_used){
+      cfg->grid,
+      c->n,
+      cfg->grid_growth,
+      cfg->x_min_a0,
+      cfg->x_max_a0,
+      cfg->tolerance,
+      cfg->max_iterations > 0 ? cfg->max_iterations : VL_NEWTON_MAX_ITERATIONS,
+      (unsigned)cfg->linear_solver < 3 ? solvers[cfg->linear_solver] : "unknown"};
+}

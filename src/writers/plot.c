@@ -34,6 +34,7 @@
  * wide (see text_width_ch). */
 #define CH_TICK 0.0190
 #define CH_TITLE 0.0210
+#define CH_SUBTITLE 0.0165 /* the conditions under the title */
 #define CH_LEGEND 0.0162
 #define DIGIT_W 0.88 /* width of a digit in character heights */
 
@@ -603,15 +604,13 @@ static void draw_legend(fig *f, double top) {
   f->scratch = lf.scratch;
 }
 
-static void draw_title(fig *f, const char *title) {
-  if (!title || !title[0]) return;
+/* One line of text centred at height y of the band above the plot area,
+ * cut (at a character boundary) to the width of the page. */
+static void band_line(fig *f, const char *text, double y, double ch) {
   char t[TEXT_MAX];
-  plain_text(t, sizeof t, title);
-  plvpor(0.03, 0.97, TOP, 0.99);
-  plwind(0, 1, 0, 1);
-  set_ch(f, CH_TITLE);
-  set_color(f, BLACK);
-  double room = 0.94 * f->pw / (CH_TITLE * f->ph);
+  plain_text(t, sizeof t, text);
+  set_ch(f, ch);
+  double room = 0.94 * f->pw / (ch * f->ph);
   while (text_width_ch(t) > room && strlen(t) > 4) {
     size_t len = strlen(t);
     do
@@ -619,7 +618,22 @@ static void draw_title(fig *f, const char *title) {
     while (len > 0 && ((unsigned char)t[len] & 0xC0) == 0x80);
     t[len] = '\0';
   }
-  plptex(0.5, 0.45, 1, 0, 0.5, t);
+  plptex(0.5, y, 1, 0, 0.5, t);
+}
+
+/* The title, and under it the subtitle (the conditions) in smaller grey
+ * type; either may be absent. */
+static void draw_title(fig *f, const char *title, const char *subtitle) {
+  bool has_title = title && title[0], has_sub = subtitle && subtitle[0];
+  if (!has_title && !has_sub) return;
+  plvpor(0.03, 0.97, TOP, 0.99);
+  plwind(0, 1, 0, 1);
+  set_color(f, BLACK);
+  /* two lines: the title high in the band, the subtitle clear of the
+   * top tick label of the y axis */
+  if (has_title) band_line(f, title, has_sub ? 0.80 : 0.45, CH_TITLE);
+  set_color(f, GREY);
+  if (has_sub) band_line(f, subtitle, has_title ? 0.40 : 0.45, CH_SUBTITLE);
 }
 
 /* ---- output ------------------------------------------------------------ */
@@ -648,7 +662,8 @@ bool vl_plot_available(vl_error *err) {
 }
 
 void vl_plot_options_defaults(vl_plot_options *opt) {
-  *opt = (vl_plot_options){VL_PLOT_PNG | VL_PLOT_SVG, PAGE_W_DEFAULT, PAGE_H_DEFAULT, NULL, false};
+  *opt = (vl_plot_options){
+      VL_PLOT_PNG | VL_PLOT_SVG, PAGE_W_DEFAULT, PAGE_H_DEFAULT, NULL, false, NULL};
 }
 
 /* True when the file ends as a complete PNG (IEND chunk) or SVG does. */
@@ -706,7 +721,7 @@ static vl_status draw_file(const char *path, const char *dev, bool png, const vl
   f->ph = y1 - y0;
   f->scratch = 14;
   draw(f, ctx);
-  draw_title(f, opt->title);
+  draw_title(f, opt->title, opt->subtitle);
   plend1();
   plsabort(NULL);
   if (abort_msg[0]) {
