@@ -30,14 +30,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#if defined(__SANITIZE_ADDRESS__)
-/* fontconfig (below PLplot's cairo drivers) keeps caches it never frees. */
-const char *__lsan_default_suppressions(void);
-const char *__lsan_default_suppressions(void) { return "leak:libfontconfig.so\n"; }
-const char *__lsan_default_options(void);
-const char *__lsan_default_options(void) { return "print_suppressions=0"; }
-#endif
-
 /* ---- reading the files back --------------------------------------------- */
 
 static int file_exists(const char *path) {

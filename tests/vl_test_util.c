@@ -337,3 +337,13 @@ void vl_test_text_add(vl_test_text *t, const char *fmt, ...) {
     if (t->n == 0) t->s[0] = '\0';
   }
 }
+
+#if defined(__SANITIZE_ADDRESS__)
+/* Every test that draws a figure in its own process (test_plot,
+ * test_cli_outputs): fontconfig, below PLplot's cairo drivers, keeps caches
+ * it never frees. */
+const char *__lsan_default_suppressions(void);
+const char *__lsan_default_suppressions(void) { return "leak:libfontconfig.so\n"; }
+const char *__lsan_default_options(void);
+const char *__lsan_default_options(void) { return "print_suppressions=0"; }
+#endif
