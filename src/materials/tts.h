@@ -70,6 +70,7 @@ typedef struct {
   double rms;             /* rms log10 mismatch at it */
   double overlap_decades; /* of the two windows at it (negative: a gap) */
   int loss_used;          /* E'' took part (else E' alone) */
+  double loss_weight;     /* its weight against E' (0: E' alone) */
   int bridged;            /* the overlap was too thin to compare: joined by trends */
   int at_limit;           /* bridged, and the best shift is the largest gap tried */
   int no_join;            /* bridging was needed but the curves do not join smoothly: the shift
