@@ -393,12 +393,13 @@ static const char *pyvisco(const char *file) {
  * numbers as freq_user_raw.csv with t = 1/f, shifted on E alone, reference
  * 3 C) against ours about the same isotherm. Agreement expected: where E'
  * rises steeply through the transition (10 to 47 C) both methods see the
- * same overlap: 0.2 decade (measured 0.17; the shifts chain, so small
- * per-pair differences add up); on the rubbery side (55 to 100 C, where
- * ours also uses E'') 0.4 decade (measured 0.30); in the glass (-50 to
- * -5 C) the isotherms do not superpose at all (E' at -42 C lies above E'
- * at -50 C at 0.1 Hz), there is no true shift and only the order of
- * magnitude can agree: 1.5 decades (measured 1.25). */
+ * same overlap: 0.1 decade (measured 0.04; 0.17 before E'' was weighted by
+ * its misfit, tts.c; the shifts chain, so small per-pair differences add
+ * up); on the rubbery side (55 to 100 C, where ours also uses E'') 0.3
+ * decade (measured 0.19); in the glass (-50 to -5 C) E' changes by 1-2 %
+ * per decade and the first isotherm's 0.1 Hz point is 5 % low, so the
+ * chained shifts drift: 0.8 decade (measured 0.60, before 1.25 with E''
+ * pulling the -50 C step to 0.1 decade; per step see test_tts_pyvisco). */
 static void test_pyvisco_raw(void **state) {
   (void)state;
   const char *raw = pyvisco("freq_user_raw.csv");
@@ -425,7 +426,7 @@ static void test_pyvisco_raw(void **state) {
   }
   fprintf(stderr, "pyvisco raw: |log aT - pyvisco| glass %.3f, transition %.3f, rubbery %.3f\n",
           worst[0], worst[1], worst[2]);
-  assert_true(worst[1] < 0.2 && worst[2] < 0.4 && worst[0] < 1.5);
+  assert_true(worst[1] < 0.1 && worst[2] < 0.3 && worst[0] < 0.8);
   fprintf(stderr,
           "pyvisco raw fit (modulus weights): %zu terms, E' rms %.4f max %.4f, E'' rms "
           "%.4f max %.4f; WLF C1 %.4g C2 %.4g rms %.3f\n",

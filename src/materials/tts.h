@@ -31,9 +31,10 @@ typedef struct {
 /* The horizontal shift d (decades) that lays isotherm b onto isotherm a:
  * b's point at log w sits on a's curve at log w + d. Minimises the mean
  * squared difference of log E' (plus loss_weight times that of log E'')
- * between each curve's points and the other curve's piecewise-linear
- * interpolant, over the overlap of the two frequency ranges (each curve is
- * compared where the other is defined, so neither is favoured). The
+ * between the two curves' interpolants (cubic Hermite with three-point
+ * slopes) over the overlap interval of the two frequency ranges (48
+ * midpoints, so the objective does not jump as points enter or leave the
+ * overlap, and has no spurious minima at whole point spacings). The
  * overlap must hold at least 3 points of the two curves together and a
  * quarter of the narrower window; among such shifts the global minimum is
  * found by a scan (0.05 decade, then 0.005 decade around its best) and
@@ -50,15 +51,22 @@ vl_status vl_tts_pair_shift(const vl_tts_isotherm *a, const vl_tts_isotherm *b, 
  * isotherm ref: log10_a_t[ref] = 0 and
  *   log10_a_t[k+1] = log10_a_t[k] + d(iso[k], iso[k+1]).
  * Each pair is shifted on log E' and log E'' together (E' alone is flat on
- * the rubbery and glassy plateaus, where E'' still varies) unless, at that
- * shift, log E' alone mismatches by more than 1.5 times (+ 0.001) the
+ * the rubbery and glassy plateaus, where E'' still varies), each weighted
+ * by the inverse square of its own misfit (its rms mismatch at its own best
+ * shift, at least its scatter about a quadratic and 0.002), unless the two
+ * quantities' own shifts disagree by more than 3 standard errors (rms
+ * misfit / (trend slope sqrt(points compared)), + 0.02 decade), or an own
+ * shift held by the overlap constraint is ruled out by a free E' whose
+ * trend changes by more than twice its misfit between the two; or unless,
+ * at the joint shift, log E' alone mismatches by more than 1.5 times (+ 0.001) the
  * larger of its mismatch at its own best shift and the mismatch its
  * scatter explains (rms residuals of quadratic fits of log E' against
  * log w, added in quadrature for the two isotherms): then E'' does not obey
  * superposition - below the glass transition secondary relaxations
  * dominate it (on the pyvisco data a shift on E'' puts glassy isotherms
- * ~10 decades off) - and log E', monotonic and still superposable there,
- * decides alone.
+ * ~10 decades off, and weighted equally E'' pulled glassy steps of 0.8 to
+ * 2.3 decades to 0.1) - and log E', monotonic and still superposable there,
+ * decides alone. See tts.c, "weighing E' against E''".
  * pair_rms (n - 1 values, may be NULL) gets each pair's rms mismatch.
  * Errors as vl_tts_pair_shift. */
 vl_status vl_tts_chain(size_t n, const vl_tts_isotherm *iso, size_t ref, double *log10_a_t,
@@ -70,6 +78,7 @@ typedef struct {
   double rms;             /* rms log10 mismatch at it */
   double overlap_decades; /* of the two windows at it (negative: a gap) */
   int loss_used;          /* E'' took part (else E' alone) */
+  double loss_weight;     /* its weight against E' (0: E' alone) */
   int bridged;            /* the overlap was too thin to compare: joined by trends */
   int at_limit;           /* bridged, and the best shift is the largest gap tried */
   int no_join;            /* bridging was needed but the curves do not join smoothly: the shift
