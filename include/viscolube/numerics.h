@@ -96,8 +96,8 @@ typedef struct {
  * (vl_contact_estimate_error); above the target the numerics are refined
  * (every width halved; a uniform or graded grid: twice the cells) and the
  * point solved again (from the coarser solution), up to max_refinements
- * times and as long as the cells stay within VL_AUTO_MAX_CELLS (and made
- * coarser again once a point's estimate is below a tenth of the target),
+ * times and as long as the cells stay within VL_AUTO_MAX_CELLS (the next
+ * point starts from the standard cells again),
  * and a pressure that reaches the domain's ends doubles the inlet (up to
  * 8x) and moves the outlet by sqrt(2). A point still above its
  * target carries the warning "error estimate X % above the target Y %".

@@ -648,9 +648,8 @@ static void compare_subtitle(const compare_args *a, const compare_curves *cv, ch
   double cut;
   const char *model = model_of(&a->c, &cut);
   if (cut > 0.0) snprintf(cut_text, sizeof cut_text, " (cut-off %g nm)", cut * 1e9);
-  int n =
-      snprintf(buf, size, "on %s in %s (η = %s Pa s) · fN = %s N/m · R = %s mm · %s%s",
-               a->c.q.surface, a->c.q.fluid, eta, load, radius, model, cut_text);
+  int n = snprintf(buf, size, "on %s in %s (η = %s Pa s) · fN = %s N/m · R = %s mm · %s%s",
+                   a->c.q.surface, a->c.q.fluid, eta, load, radius, model, cut_text);
   if (a->c.q.at_temperature && n >= 0 && (size_t)n < size)
     snprintf(buf + n, size - (size_t)n, " · %g °C", a->c.q.temperature_c);
 }
