@@ -25,26 +25,6 @@
 
 #define PI 3.14159265358979323846
 
-/* The number after the n-th (0-based) occurrence of "key" (NAN for null). */
-static double json_get(const char *json, const char *key, int nth) {
-  char pat[128];
-  snprintf(pat, sizeof pat, "\"%s\"", key);
-  const char *p = json;
-  for (int i = 0; p && i <= nth; i++) {
-    p = strstr(p, pat);
-    if (p && i < nth) p += strlen(pat);
-  }
-  if (!p) fail_msg("no key %s (#%d) in %s", key, nth, json);
-  p += strlen(pat);
-  while (*p == ' ' || *p == ':')
-    p++;
-  if (!strncmp(p, "null", 4)) return NAN;
-  char *end;
-  double v = strtod(p, &end);
-  if (end == p) fail_msg("key %s is not a number in %s", key, json);
-  return v;
-}
-
 static size_t count_of(const char *s, const char *needle) {
   size_t n = 0;
   for (const char *p = s; (p = strstr(p, needle)); p += strlen(needle))
@@ -158,11 +138,11 @@ static void test_show_model_rubber(void **state) {
   char *out = run_ok("compound show model-rubber --json%s", "");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   /* Fig. 5 caption: E0 = 3.6 MPa, Einf/E0 = 10, nu = 0.5, tau = 0.1 s */
-  assert_true(vl_test_rel(json_get(out, "e0_pa", 0), 3.6e6) < 1e-14);
-  assert_true(vl_test_rel(json_get(out, "e_inf_pa", 0), 36e6) < 1e-14);
-  assert_true(json_get(out, "nu", 0) == 0.5);
-  assert_true(json_get(out, "A", 0) == 9.0);
-  assert_true(json_get(out, "tau_s", 0) == 0.1);
+  assert_true(vl_test_rel(vl_test_json_number(out, "e0_pa", 0), 3.6e6) < 1e-14);
+  assert_true(vl_test_rel(vl_test_json_number(out, "e_inf_pa", 0), 36e6) < 1e-14);
+  assert_true(vl_test_json_number(out, "nu", 0) == 0.5);
+  assert_true(vl_test_json_number(out, "A", 0) == 9.0);
+  assert_true(vl_test_json_number(out, "tau_s", 0) == 0.1);
   assert_non_null(strstr(out, "\"class\": \"model\""));
   free(out);
   out = run_ok("compound show model-rubber%s", "");
@@ -186,10 +166,11 @@ static void test_show_loss_peak(void **state) {
   char *out = run_ok("compound show model-rubber --json%s", "");
   const double A = 9.0, tau = 0.1;
   double w = sqrt(1.0 + A) / tau, td = A / (2.0 * sqrt(1.0 + A));
-  double w_got = json_get(out, "omega_rad_s", 0), td_got = json_get(out, "tan_delta", 0);
+  double w_got = vl_test_json_number(out, "omega_rad_s", 0),
+         td_got = vl_test_json_number(out, "tan_delta", 0);
   if (!(vl_test_rel(w_got, w) < 1e-6 && vl_test_rel(td_got, td) < 1e-9))
     fail_msg("loss peak %g at %g rad/s; closed form %.10g at %.10g rad/s", td_got, w_got, td, w);
-  assert_true(vl_test_rel(json_get(out, "frequency_hz", 0), w / (2.0 * PI)) < 1e-6);
+  assert_true(vl_test_rel(vl_test_json_number(out, "frequency_hz", 0), w / (2.0 * PI)) < 1e-6);
   free(out);
 }
 
@@ -197,12 +178,14 @@ static void test_show_surface_and_fluid(void **state) {
   (void)state;
   char *out = run_ok("surface show %s --json", "paper-3um");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
-  assert_true(vl_test_rel(json_get(out, "hrms_m", 0), 3e-6) < 1e-12);
-  assert_true(vl_test_rel(json_get(out, "c0_m4", 0), closed_c0(0.8, 2e5, 7.8e9, 3e-6)) < 1e-12);
-  assert_true(vl_test_rel(json_get(out, "rms_slope", 0), closed_slope(0.8, 2e5, 7.8e9, 3e-6)) <
+  assert_true(vl_test_rel(vl_test_json_number(out, "hrms_m", 0), 3e-6) < 1e-12);
+  assert_true(vl_test_rel(vl_test_json_number(out, "c0_m4", 0), closed_c0(0.8, 2e5, 7.8e9, 3e-6)) <
               1e-12);
-  assert_true(json_get(out, "hurst", 0) == 0.8);
-  assert_true(json_get(out, "q0_per_m", 0) == 2e5 && json_get(out, "q1_per_m", 0) == 7.8e9);
+  assert_true(vl_test_rel(vl_test_json_number(out, "rms_slope", 0),
+                          closed_slope(0.8, 2e5, 7.8e9, 3e-6)) < 1e-12);
+  assert_true(vl_test_json_number(out, "hurst", 0) == 0.8);
+  assert_true(vl_test_json_number(out, "q0_per_m", 0) == 2e5 &&
+              vl_test_json_number(out, "q1_per_m", 0) == 7.8e9);
   free(out);
   out = run_ok("surface show %s", "paper-0.5um");
   assert_non_null(strstr(out, "h_rms"));
@@ -211,8 +194,8 @@ static void test_show_surface_and_fluid(void **state) {
   free(out);
   out = run_ok("fluid show %s --json", "water");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
-  assert_true(json_get(out, "viscosity_pa_s", 0) == 1e-3);
-  assert_true(json_get(out, "tref_c", 0) == 20.0);
+  assert_true(vl_test_json_number(out, "viscosity_pa_s", 0) == 1e-3);
+  assert_true(vl_test_json_number(out, "tref_c", 0) == 20.0);
   free(out);
   out = run_ok("fluid show %s", "glycerol");
   assert_non_null(strstr(out, "1.41 Pa s at 20 C"));
@@ -236,9 +219,11 @@ static void test_compound_add_show_remove(void **state) {
   out = run_ok("compound show %s --json", "sbr-1");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   /* E0 = Einf / (1 + sum A) = 1e9 / 11 */
-  assert_true(vl_test_rel(json_get(out, "e0_pa", 0), 1e9 / 11.0) < 1e-14);
-  assert_true(json_get(out, "A", 1) == 7.5 && json_get(out, "tau_s", 1) == 0.02);
-  assert_true(json_get(out, "wlf_c1", 0) == 8.86 && json_get(out, "tref_c", 0) == 25.0);
+  assert_true(vl_test_rel(vl_test_json_number(out, "e0_pa", 0), 1e9 / 11.0) < 1e-14);
+  assert_true(vl_test_json_number(out, "A", 1) == 7.5 &&
+              vl_test_json_number(out, "tau_s", 1) == 0.02);
+  assert_true(vl_test_json_number(out, "wlf_c1", 0) == 8.86 &&
+              vl_test_json_number(out, "tref_c", 0) == 25.0);
   assert_non_null(strstr(out, "\"class\": \"filled\""));
   assert_non_null(strstr(out, "lab \\\"B\\\" \\\\ 2024")); /* escaped in JSON */
   assert_non_null(strstr(out, "terms.csv"));
@@ -258,9 +243,10 @@ static void test_surface_add_show_remove(void **state) {
   free(run_ok("surface add %s --self-affine --hurst 0.7 --q0 1e4 --q1 1e9 --hrms 2e-6", "road"));
   char *out = run_ok("surface show %s --json", "road");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
-  assert_true(vl_test_rel(json_get(out, "c0_m4", 0), closed_c0(0.7, 1e4, 1e9, 2e-6)) < 1e-12);
-  assert_true(vl_test_rel(json_get(out, "rms_slope", 0), closed_slope(0.7, 1e4, 1e9, 2e-6)) <
+  assert_true(vl_test_rel(vl_test_json_number(out, "c0_m4", 0), closed_c0(0.7, 1e4, 1e9, 2e-6)) <
               1e-12);
+  assert_true(vl_test_rel(vl_test_json_number(out, "rms_slope", 0),
+                          closed_slope(0.7, 1e4, 1e9, 2e-6)) < 1e-12);
   free(out);
 
   /* A two-point table is an exact power law C = Cs (q/qa)^(-2(1+H)), so
@@ -276,9 +262,10 @@ static void test_surface_add_show_remove(void **state) {
   out = run_ok("surface show %s --json", "measured");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   double h2 = PI * Cs * qa * qa / H * (1.0 - pow(qa / qb, 2.0 * H));
-  assert_true(vl_test_rel(json_get(out, "hrms_m", 0), sqrt(h2)) < 1e-12);
-  assert_true(json_get(out, "n_points", 0) == 2.0);
-  assert_true(isnan(json_get(out, "c0_m4", 0)) && isnan(json_get(out, "hurst", 0)));
+  assert_true(vl_test_rel(vl_test_json_number(out, "hrms_m", 0), sqrt(h2)) < 1e-12);
+  assert_true(vl_test_json_number(out, "n_points", 0) == 2.0);
+  assert_true(isnan(vl_test_json_number(out, "c0_m4", 0)) &&
+              isnan(vl_test_json_number(out, "hurst", 0)));
   assert_non_null(strstr(out, "\"kind\": \"tabulated\""));
   free(out);
   out = run_ok("surface show %s", "measured");
@@ -296,8 +283,8 @@ static void test_fluid_add_show_remove(void **state) {
   free(run_ok("fluid add %s --viscosity 0.35 --tref 40 --description 'PAO 40'", "pao-40"));
   char *out = run_ok("fluid show %s --json", "pao-40");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
-  assert_true(json_get(out, "viscosity_pa_s", 0) == 0.35);
-  assert_true(json_get(out, "tref_c", 0) == 40.0);
+  assert_true(vl_test_json_number(out, "viscosity_pa_s", 0) == 0.35);
+  assert_true(vl_test_json_number(out, "tref_c", 0) == 40.0);
   free(out);
   free(run_ok("fluid remove %s", "pao-40"));
   vl_test_expect_fail(3, "pao-40", NULL, "fluid show pao-40");

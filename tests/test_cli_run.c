@@ -51,26 +51,6 @@ static const char *const COLUMNS[] = {
 static const char *const FIELD_COLUMNS =
     "x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction,cell_width_m";
 
-/* The number after the n-th (0-based) occurrence of "key" (NAN for null). */
-static double json_get(const char *json, const char *key, size_t nth) {
-  char pat[128];
-  snprintf(pat, sizeof pat, "\"%s\":", key);
-  const char *p = json;
-  for (size_t i = 0; p && i <= nth; i++) {
-    p = strstr(p, pat);
-    if (p && i < nth) p += strlen(pat);
-  }
-  if (!p) fail_msg("no key %s (#%zu) in the JSON", key, nth);
-  p += strlen(pat);
-  while (*p == ' ')
-    p++;
-  if (!strncmp(p, "null", 4)) return NAN;
-  char *end;
-  double v = strtod(p, &end);
-  if (end == p) fail_msg("key %s is not a number", key);
-  return v;
-}
-
 /* No value written as nan, inf or -0: every token between separators of
  * CSV or JSON is checked (words of a warning cannot match). */
 static void no_bad_numbers(const char *what, const char *text) {
@@ -435,10 +415,10 @@ static void test_json(void **state) {
                           "x_centroid_m", "contact_width_m", "eps_f_min"};
     for (size_t k = 0; k < sizeof keys / sizeof *keys; k++)
       /* the JSON's 17 digits against the CSV's 10 */
-      if (vl_test_rel(json_get(out, keys[k], r), num(&t, r, keys[k])) > 1e-9)
-        fail_msg("row %zu %s: JSON %.12g, CSV %.12g", r, keys[k], json_get(out, keys[k], r),
-                 num(&t, r, keys[k]));
-    assert_true(isnan(json_get(out, "v0_eta_pa_m", r))); /* null: no fluid */
+      if (vl_test_rel(vl_test_json_number(out, keys[k], r), num(&t, r, keys[k])) > 1e-9)
+        fail_msg("row %zu %s: JSON %.12g, CSV %.12g", r, keys[k],
+                 vl_test_json_number(out, keys[k], r), num(&t, r, keys[k]));
+    assert_true(isnan(vl_test_json_number(out, "v0_eta_pa_m", r))); /* null: no fluid */
   }
   assert_int_equal(strstr(out, "\"converged\": true") != NULL, 1);
   assert_null(strstr(out, "\"converged\": false"));

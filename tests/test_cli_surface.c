@@ -49,26 +49,6 @@ static char *run_ok(const char *fmt, ...) {
 
 static void create_db(void) { free(run_ok("surface list")); }
 
-/* The number after the n-th (0-based) "key": in json (NAN for null). */
-static double json_get(const char *json, const char *key, int nth) {
-  char pat[128];
-  snprintf(pat, sizeof pat, "\"%s\":", key);
-  const char *p = json;
-  for (int i = 0; p && i <= nth; i++) {
-    p = strstr(p, pat);
-    if (p && i < nth) p += strlen(pat);
-  }
-  if (!p) fail_msg("no key %s (#%d) in JSON", key, nth);
-  p += strlen(pat);
-  while (*p == ' ')
-    p++;
-  if (!strncmp(p, "null", 4)) return NAN;
-  char *end;
-  double v = strtod(p, &end);
-  if (end == p) fail_msg("key %s is not a number", key);
-  return v;
-}
-
 /* A flow-factor CSV: its '#' line, and rows x N_COLS numbers. */
 typedef struct {
   char comment[512];
@@ -160,8 +140,8 @@ static void test_flow_factors_persson_emt(void **state) {
   assert_true(fabs(at(&t, t.n - 1, 6) - 1.0) < 0.01);
   /* the documented value at x = 1 (docs/FLOW_FACTORS.md: phi_p 0.4258) */
   out = run_ok("surface flow-factors paper-0.5um --u-range 1,2 --points 2 --json");
-  assert_true(fabs(json_get(out, "phi_p", 0) - 0.4258) < 1e-3);
-  assert_true(fabs(json_get(out, "phi_s", 0) - 0.6087) < 1e-3);
+  assert_true(fabs(vl_test_json_number(out, "phi_p", 0) - 0.4258) < 1e-3);
+  assert_true(fabs(vl_test_json_number(out, "phi_s", 0) - 0.6087) < 1e-3);
   free(out);
 
   /* --json: the same numbers as the CSV, bit for bit (the table now comes
@@ -170,12 +150,12 @@ static void test_flow_factors_persson_emt(void **state) {
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %.300s", out);
   assert_non_null(strstr(out, "\"surface\": \"paper-0.5um\""));
   assert_non_null(strstr(out, "\"model\": \"persson-emt\""));
-  assert_true(json_get(out, "hrms_m", 0) == 5e-7);
-  assert_true(json_get(out, "film_cutoff_m", 0) == 1e-9);
-  assert_true(vl_test_rel(json_get(out, "percolation_u_over_hrms", 0), xp) < 1e-9);
+  assert_true(vl_test_json_number(out, "hrms_m", 0) == 5e-7);
+  assert_true(vl_test_json_number(out, "film_cutoff_m", 0) == 1e-9);
+  assert_true(vl_test_rel(vl_test_json_number(out, "percolation_u_over_hrms", 0), xp) < 1e-9);
   for (size_t i = 0; i < t.n; i++)
     for (size_t k = 0; k < N_COLS; k++) {
-      double j = json_get(out, cols[k], (int)i);
+      double j = vl_test_json_number(out, cols[k], i);
       if (j != at(&t, i, k))
         fail_msg("row %zu %s: JSON %.17g, CSV %.17g", i + 1, cols[k], j, at(&t, i, k));
     }
@@ -199,7 +179,7 @@ static void test_flow_factors_other_models(void **state) {
   /* A/A0 is the contact law's, whatever the flow model */
   out = run_ok("surface flow-factors paper-0.5um --points 7 --json");
   for (size_t i = 0; i < t.n; i++)
-    assert_true(json_get(out, "contact_fraction", (int)i) == at(&t, i, 1));
+    assert_true(vl_test_json_number(out, "contact_fraction", i) == at(&t, i, 1));
   free(out);
   free(t.v);
 
@@ -207,11 +187,11 @@ static void test_flow_factors_other_models(void **state) {
   out = run_ok("surface flow-factors paper-0.5um --model patir-cheng --u-range 0.1,10 --points 30 "
                "--json");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %.300s", out);
-  assert_true(isnan(json_get(out, "film_cutoff_m", 0)));
-  double xp = json_get(out, "percolation_u_over_hrms", 0);
+  assert_true(isnan(vl_test_json_number(out, "film_cutoff_m", 0)));
+  double xp = vl_test_json_number(out, "percolation_u_over_hrms", 0);
   assert_true(fabs(xp - 1.0 / sqrt(2.0 * PI)) < 1e-12);
   for (int i = 0; i < 30; i++) {
-    double x = json_get(out, "u_over_hrms", i), p = json_get(out, "phi_p", i);
+    double x = vl_test_json_number(out, "u_over_hrms", i), p = vl_test_json_number(out, "phi_p", i);
     assert_true(x < xp ? p == 0.0 : p > 0.0);
   }
   free(out);
@@ -390,7 +370,7 @@ static double write_map(const char *path, size_t n, int ragged) {
 static char *check_registered(const char *name, double rms) {
   char *out = run_ok("surface show %s --json", name);
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
-  double h = json_get(out, "hrms_m", 0);
+  double h = vl_test_json_number(out, "hrms_m", 0);
   fprintf(stderr, "%s: h_rms %.4g m, topography rms %.4g m, ratio %.4f\n", name, h, rms, h / rms);
   assert_true(fabs(h / rms - 1.0) < 0.05);
   assert_non_null(strstr(out, "\"kind\": \"tabulated\""));

@@ -392,20 +392,25 @@ static void unmount(const char *mnt) {
     fprintf(stderr, "cannot unmount %s: %s\n", mnt, strerror(errno));
 }
 
+/* A 256 KiB tmpfs at dir/name (into mnt). Only a missing privilege
+ * excuses the test that asked (the file-size limits of the other tests
+ * still run): it is then skipped, saying so; any other mount failure fails
+ * it. */
+static void mount_small_tmpfs(char *mnt, size_t size, const char *name) {
+  snprintf(mnt, size, "%s/%s", dir, name);
+  assert_int_equal(mkdir(mnt, 0755), 0);
+  if (mount("tmpfs", mnt, "tmpfs", 0, "size=256k,mode=0755") == 0) return;
+  int e = errno;
+  rmdir(mnt);
+  if (e != EPERM) fail_msg("%s: mount failed: %s", name, strerror(e));
+  printf("%s: skipped, mounting needs CAP_SYS_ADMIN (%s)\n", name, strerror(e));
+  skip();
+}
+
 static void test_tmpfs_full(void **state) {
   (void)state;
   char mnt[4200], small[4300], filler[4300];
-  snprintf(mnt, sizeof mnt, "%s/tmpfs", dir);
-  assert_int_equal(mkdir(mnt, 0755), 0);
-  if (mount("tmpfs", mnt, "tmpfs", 0, "size=256k,mode=0755") != 0) {
-    int e = errno;
-    rmdir(mnt);
-    /* only a missing privilege excuses the test (the file-size limits of the
-     * other tests still run); any other mount failure is a failure */
-    if (e != EPERM) fail_msg("tmpfs: mount failed: %s", strerror(e));
-    printf("tmpfs: skipped, mounting needs CAP_SYS_ADMIN (%s)\n", strerror(e));
-    skip();
-  }
+  mount_small_tmpfs(mnt, sizeof mnt, "tmpfs");
   snprintf(small, sizeof small, "%s/materials.db", mnt);
   snprintf(filler, sizeof filler, "%s/filler", mnt);
   vl_test_snapshot orig = vl_test_take(db);
@@ -535,15 +540,7 @@ static void test_run_keeps_what_fits(void **state) {
 static void test_run_tmpfs_full(void **state) {
   (void)state;
   char mnt[4200], filler[4300], out[4300];
-  snprintf(mnt, sizeof mnt, "%s/tmpfs-run", dir);
-  assert_int_equal(mkdir(mnt, 0755), 0);
-  if (mount("tmpfs", mnt, "tmpfs", 0, "size=256k,mode=0755") != 0) {
-    int e = errno;
-    rmdir(mnt);
-    if (e != EPERM) fail_msg("tmpfs: mount failed: %s", strerror(e));
-    printf("tmpfs run: skipped, mounting needs CAP_SYS_ADMIN (%s)\n", strerror(e));
-    skip();
-  }
+  mount_small_tmpfs(mnt, sizeof mnt, "tmpfs-run");
   snprintf(filler, sizeof filler, "%s/filler", mnt);
   snprintf(out, sizeof out, "%s/run", mnt);
   FILE *f = fopen(filler, "wb");

@@ -347,3 +347,22 @@ const char *__lsan_default_suppressions(void) { return "leak:libfontconfig.so\n"
 const char *__lsan_default_options(void);
 const char *__lsan_default_options(void) { return "print_suppressions=0"; }
 #endif
+
+double vl_test_json_number(const char *json, const char *key, size_t nth) {
+  char pat[128];
+  snprintf(pat, sizeof pat, "\"%s\":", key);
+  const char *p = json;
+  for (size_t i = 0; p && i <= nth; i++) {
+    p = strstr(p, pat);
+    if (p && i < nth) p += strlen(pat);
+  }
+  if (!p) fail_msg("no key %s (#%zu) in the JSON", key, nth);
+  p += strlen(pat);
+  while (*p == ' ')
+    p++;
+  if (!strncmp(p, "null", 4)) return NAN;
+  char *end;
+  double v = strtod(p, &end);
+  if (end == p) fail_msg("key %s is not a number", key);
+  return v;
+}

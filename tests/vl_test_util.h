@@ -17,6 +17,11 @@ void vl_test_write_file(const char *path, const char *text);
 /* Reads a whole file into a malloc'd NUL-terminated string (NULL if absent). */
 char *vl_test_read_file(const char *path);
 
+/* The number after the nth (0-based) occurrence of the key "key": in the
+ * JSON text (NAN for null); fails the test when the key is missing or its
+ * value is not a number. */
+double vl_test_json_number(const char *json, const char *key, size_t nth);
+
 /* A growing text (free s when done): vl_test_text_add appends printf-style,
  * failing the test when out of memory. */
 typedef struct {
