@@ -146,18 +146,6 @@ static vl_measured import_ok(const char *txt, const char *source, const vl_dma_o
   return m;
 }
 
-/* Largest relative difference of E' and E'' of two series over a window. */
-static double series_diff(const vl_prony *p, const vl_prony *q, double wlo, double whi) {
-  double d = 0.0;
-  for (int k = 0; k <= 60; k++) {
-    double w = wlo * pow(whi / wlo, k / 60.0);
-    double complex a = vl_prony_modulus(p, w), b = vl_prony_modulus(q, w);
-    d = fmax(d, fabs(creal(a) / creal(b) - 1.0));
-    d = fmax(d, fabs(cimag(a) / cimag(b) - 1.0));
-  }
-  return d;
-}
-
 /* Every layout gives the reference's points (the conversions differ from
  * it by rounding: 1e-12) and fit (1e-7, the NNLS solution being
  * continuous in the data), and says what it did. */

@@ -6,6 +6,9 @@
 #define VL_TEST_HN_H
 
 #include <complex.h>
+#include <math.h>
+
+#include "viscolube/rheology.h"
 
 typedef struct {
   double e0, einf, tau, a, b; /* HN: E = Einf + (E0 - Einf)/(1 + (i w tau)^a)^b */
@@ -20,6 +23,20 @@ static inline double wlf(const hn_model *m, double t) {
 /* The complex modulus at angular frequency w at tref. */
 static inline double complex hn(const hn_model *m, double w) {
   return m->einf + (m->e0 - m->einf) / cpow(1.0 + cpow(I * w * m->tau, m->a), m->b);
+}
+
+/* Largest relative difference of E' and E'' of two Prony series over
+ * [wlo, whi] (61 log-spaced frequencies): how far two imports of the same
+ * data disagree. */
+static inline double series_diff(const vl_prony *p, const vl_prony *q, double wlo, double whi) {
+  double d = 0.0;
+  for (int k = 0; k <= 60; k++) {
+    double w = wlo * pow(whi / wlo, k / 60.0);
+    double complex a = vl_prony_modulus(p, w), b = vl_prony_modulus(q, w);
+    d = fmax(d, fabs(creal(a) / creal(b) - 1.0));
+    d = fmax(d, fabs(cimag(a) / cimag(b) - 1.0));
+  }
+  return d;
 }
 
 #endif

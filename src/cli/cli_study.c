@@ -61,10 +61,10 @@ void vl_cli_study_progress(vl_cli_study_run *cs) {
   cs->done_now++;
   if (!cs->tty || cs->quiet) return;
   double el = vl_cli_now_s() - cs->t0;
-  size_t todo = cs->n_pending - cs->done_now;
+  size_t left = cs->n_pending - cs->done_now;
   fprintf(stderr, "\r  tasks %zu/%zu  elapsed %.0f s  remaining ~%.0f s   ",
-          cs->n_skipped + cs->done_now, cs->n_tasks, el, el / (double)cs->done_now * (double)todo);
-  if (!todo) fputc('\n', stderr);
+          cs->n_skipped + cs->done_now, cs->n_tasks, el, el / (double)cs->done_now * (double)left);
+  if (!left) fputc('\n', stderr);
   fflush(stderr);
 }
 
