@@ -77,9 +77,9 @@ static void test_csv_failed_point(void **state) {
   fclose(f);
   char *header = buf, *row0 = strchr(header, '\n') + 1, *row1 = strchr(row0, '\n') + 1;
   char cell[64];
-  static const char *const empty[] = {"mu",           "mu_Rc",      "mu_Rf",    "mu_Sc", "mu_Sf",
-                                      "u_min_m",      "regime",     "E_wH_pa",  "a_H_m", "Q",
-                                      "x_centroid_m", "load_error", "eps_f_min"};
+  static const char *const empty[] = {
+      "mu",      "mu_Rc", "mu_Rf", "mu_Sc",        "mu_Sf",      "u_min_m",   "regime",
+      "E_wH_pa", "a_H_m", "Q",     "x_centroid_m", "load_error", "eps_f_min", "error_estimate"};
   for (size_t k = 0; k < sizeof empty / sizeof empty[0]; k++) {
     csv_cell(header, row1, empty[k], cell, sizeof cell);
     if (cell[0]) fail_msg("failed point: column %s is '%s', not empty", empty[k], cell);

@@ -975,15 +975,10 @@ static vl_status psd_dimension(const psd_layout *pl, vl_psd_file_kind kind, vl_e
 static void psd_note(vl_psd_read_report *rep, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 static void psd_note(vl_psd_read_report *rep, const char *fmt, ...) {
-  size_t len = strlen(rep->notes);
-  if (len + 2 >= sizeof rep->notes) return;
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(rep->notes + len, sizeof rep->notes - len - 1, fmt, ap);
+  vl_import_note_v(rep->notes, sizeof rep->notes, fmt, ap);
   va_end(ap);
-  len = strlen(rep->notes);
-  rep->notes[len] = '\n';
-  rep->notes[len + 1] = '\0';
 }
 
 typedef struct {

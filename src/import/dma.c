@@ -282,15 +282,10 @@ void vl_measured_free(vl_measured *m) {
 /* Appends one sentence (a line) to m->notes; silently cut when full. */
 static void note(vl_measured *m, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void note(vl_measured *m, const char *fmt, ...) {
-  size_t len = strlen(m->notes);
-  if (len + 2 >= sizeof m->notes) return;
   va_list ap;
   va_start(ap, fmt);
-  vsnprintf(m->notes + len, sizeof m->notes - len - 1, fmt, ap);
+  vl_import_note_v(m->notes, sizeof m->notes, fmt, ap);
   va_end(ap);
-  len = strlen(m->notes);
-  m->notes[len] = '\n';
-  m->notes[len + 1] = '\0';
 }
 
 /* ---- header recognition ----------------------------------------------- */

@@ -275,3 +275,12 @@ void vl_problems_finish(const vl_problems *p, const char *source, vl_error *err)
                p->text, source ? source : "<text>", more, more == 1 ? "" : "s", p->lines,
                p->lines == 1 ? "" : "s");
 }
+
+void vl_import_note_v(char *notes, size_t size, const char *fmt, va_list ap) {
+  size_t len = strlen(notes);
+  if (len + 2 >= size) return;
+  vsnprintf(notes + len, size - len - 1, fmt, ap);
+  len = strlen(notes);
+  notes[len] = '\n';
+  notes[len + 1] = '\0';
+}

@@ -5,6 +5,7 @@
 #ifndef VL_IMPORT_TEXT_H
 #define VL_IMPORT_TEXT_H
 
+#include <stdarg.h>
 #include <stddef.h>
 
 #include "viscolube/status.h"
@@ -73,5 +74,10 @@ void vl_problems_add(vl_problems *p, size_t line, const char *fmt, ...)
 /* Writes the gathered sentences into err, one per line, with "and N more
  * problems on M lines" when some did not fit. No-op without problems. */
 void vl_problems_finish(const vl_problems *p, const char *source, vl_error *err);
+
+/* Appends one sentence, as a line, to the notes buffer notes[size] of an
+ * import report; silently cut when the buffer is full. */
+void vl_import_note_v(char *notes, size_t size, const char *fmt, va_list ap)
+    __attribute__((format(printf, 3, 0)));
 
 #endif
