@@ -56,3 +56,13 @@ cleanup:
   fclose(f);
   return st;
 }
+
+vl_status vl_text_refuse_nul(const char *text, size_t len, const char *path, vl_error *err) {
+  const char *nul = memchr(text, '\0', len);
+  if (!nul) return VL_OK;
+  int line = 1;
+  for (const char *p = text; p < nul; p++)
+    line += *p == '\n';
+  vl_error_set(err, "%s:%d: not a text file (contains a NUL byte)", path, line);
+  return VL_EINPUT;
+}

@@ -14,4 +14,9 @@
 vl_status vl_slurp(const char *path, size_t max_bytes, const char *what, char **buf, size_t *len,
                    vl_error *err);
 
+/* VL_EINPUT "PATH:LINE: not a text file (contains a NUL byte)" when
+ * text[0..len) holds a NUL byte (LINE is where the first one is), else
+ * VL_OK. */
+vl_status vl_text_refuse_nul(const char *text, size_t len, const char *path, vl_error *err);
+
 #endif

@@ -1,6 +1,8 @@
 /* Scene files: INI parsed by libinih, with line numbers for every error. */
 #include "viscolube/scene.h"
 
+#include "slurp.h"
+
 #include "edit_distance.h"
 
 #include <ctype.h>
@@ -725,15 +727,7 @@ vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err) {
     goto done;
   }
   text[len] = '\0';
-  const char *nul = memchr(text, '\0', len);
-  if (nul) {
-    int line = 1;
-    for (const char *p = text; p < nul; p++)
-      line += *p == '\n';
-    vl_error_set(err, "%s:%d: not a text file (contains a NUL byte)", path, line);
-    st = VL_EINPUT;
-    goto done;
-  }
+  if ((st = vl_text_refuse_nul(text, len, path, err)) != VL_OK) goto done;
   st = scene_parse(text, path, scene, err);
 done:
   if (st == VL_ENOMEM) vl_error_set(err, "%s: out of memory", path);

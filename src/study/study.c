@@ -481,16 +481,8 @@ vl_status vl_study_load(const char *path, vl_study **out, vl_error *err) {
   *out = NULL;
   vl_status st = vl_slurp(path, (size_t)16 << 20, "a study file", &text, &len, err);
   if (st != VL_OK) return st;
-  const char *nul = memchr(text, '\0', len);
-  if (nul) {
-    int line = 1;
-    for (const char *p = text; p < nul; p++)
-      line += *p == '\n';
-    vl_error_set(err, "%s:%d: not a text file (contains a NUL byte)", path, line);
-    st = VL_EINPUT;
-  } else {
-    st = vl_study_parse(text, path, out, err);
-  }
+  st = vl_text_refuse_nul(text, len, path, err);
+  if (st == VL_OK) st = vl_study_parse(text, path, out, err);
   free(text);
   return st;
 }
