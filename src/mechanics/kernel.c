@@ -46,7 +46,9 @@
 #include "gsl_errors.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_sf_expint.h>
@@ -246,46 +248,175 @@ double vl_kernel_viscoelastic(double d, double delta, double b) {
   return delta * (log(delta) + kve);
 }
 
-void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t n_terms) {
-  size_t n = t->n, m = 2 * n - 1;
-  double delta = t->delta, ld = log(delta);
-  double *coef = t->coef;
-  vl_gsl_errors_off();
+/* ---------- The Toeplitz coefficients of a Prony series ----------
+ *
+ * Per offset x, the terms fall in three groups by their memory length beta
+ * against the cell's distance from the load (amin = min|a+-|, amax =
+ * max|a+-|):
+ *  - relaxed, beta <= amin / RELAXED_Z: g's asymptotic series,
+ *    kve - k = -beta log|a+/a-| + sum_j j! beta^(j+2) (a+^-(j+1) - a-^-(j+1));
+ *  - frozen, beta >= FROZEN_Z amax (|z+-| <= 1/FROZEN_Z): form (II) with
+ *    m's power series, kve = log beta + sum_n beta^-n [alpha_n (Lg_n -
+ *    log(beta) P_n) + b_n P_n], P_n and Lg_n the cell averages of y^n and
+ *    y^n log|y|;
+ *  - the window between: evaluated term by term as vl_kernel_viscoelastic.
+ * In the first two, x and the terms separate: each group is a few sums over
+ * its terms (recomputed when a term changes group, at most twice a term),
+ * and a short series per offset. A 28-term rubber then costs a handful of
+ * exponential integrals per offset instead of 28 (the window spans
+ * RELAXED_Z FROZEN_Z in beta: about two decades). Truncation: the relaxed
+ * series' first omitted term is RELAXED_J!/RELAXED_Z^(RELAXED_J+1) = 4e-18
+ * of beta; the frozen series' is (1/2)^FROZEN_N / FROZEN_N! = 4e-25. */
+#define RELAXED_Z 64.0
+#define RELAXED_J 16
+#define FROZEN_Z 2.0
+#define FROZEN_N 20
 
-  /* total = delta [ (1 + sum A) (log delta + k) + sum_k A_k (kve_k - k) ].
-   * In branch (I), kve - k = -beta (log|a+/a-| + g(z+) - g(z-)): the log part
-   * is common to all those terms, so it is applied once with S = sum A beta. */
-  double sum_a = 0.0, s_small = 0.0;
+enum term_group { TERM_RELAXED, TERM_WINDOW, TERM_FROZEN };
+
+/* The group of a term of memory beta at offset |x| = ax. */
+static enum term_group group_of(double beta, double ax) {
+  double amin = ax >= 1.0 ? ax - 0.5 : 0.5, amax = ax + 0.5;
+  if (RELAXED_Z * beta <= amin) return TERM_RELAXED;
+  if (beta >= FROZEN_Z * amax) return TERM_FROZEN;
+  return TERM_WINDOW;
+}
+
+/* The sums of the relaxed and frozen groups at one offset. Groups only grow
+ * (relaxed) or shrink (frozen) with |x|, so their sizes say when they
+ * changed. */
+typedef struct {
+  size_t n_relaxed, n_frozen;
+  double t;                                     /* sum A beta (relaxed) */
+  double s[RELAXED_J];                          /* j! sum A beta^(j+2) (relaxed) */
+  double a_f, c_f;                              /* sum A, sum A (log beta - gamma) (frozen) */
+  double u[FROZEN_N + 1];                       /* sum A beta^-n (frozen) */
+  double v[FROZEN_N + 1];                       /* sum A beta^-n log beta (frozen) */
+  double alpha[FROZEN_N + 1], bc[FROZEN_N + 1]; /* m's coefficients */
+} term_sums;
+
+static bool term_active(double A, double beta) { return A != 0.0 && beta >= BETA_NEGLIGIBLE; }
+
+static void sums_regroup(term_sums *g, const double *A, const double *beta, size_t n_terms,
+                         double ax) {
+  memset(g->s, 0, sizeof g->s);
+  memset(g->u, 0, sizeof g->u);
+  memset(g->v, 0, sizeof g->v);
+  g->t = g->a_f = g->c_f = 0.0;
+  g->n_relaxed = g->n_frozen = 0;
   for (size_t k = 0; k < n_terms; k++) {
-    sum_a += A[k];
-    double beta = b[k] / delta;
-    if (beta >= BETA_NEGLIGIBLE && beta <= VL_KERNEL_BETA_SWITCH) s_small += A[k] * beta;
-  }
-  for (size_t i = 0; i < m; i++) {
-    double x = (double)i - (double)(n - 1);
-    double dl = x != 0.0 ? dlog_fn(x) : 0.0; /* log|a+/a-| = 0 at x = 0 */
-    coef[i] = delta * ((1.0 + sum_a) * (ld + cell_log(x)) - s_small * dl);
-  }
-  for (size_t k = 0; k < n_terms; k++) {
-    double beta = b[k] / delta;
-    if (A[k] == 0.0 || beta < BETA_NEGLIGIBLE) continue;
-    if (beta <= VL_KERNEL_BETA_SWITCH) {
-      /* Neighbouring offsets share a half-integer point: one g per offset. */
-      double fac = delta * A[k] * beta;
-      double g_lo = g_fn((-(double)(n - 1) - 0.5) / beta);
-      for (size_t i = 0; i < m; i++) {
-        double x = (double)i - (double)(n - 1);
-        double g_hi = g_fn((x + 0.5) / beta);
-        coef[i] -= fac * (g_hi - g_lo);
-        g_lo = g_hi;
+    if (!term_active(A[k], beta[k])) continue;
+    enum term_group grp = group_of(beta[k], ax);
+    if (grp == TERM_RELAXED) {
+      g->n_relaxed++;
+      g->t += A[k] * beta[k];
+      double p = A[k] * beta[k] * beta[k], fact = 1.0;
+      for (int j = 0; j < RELAXED_J; j++) {
+        g->s[j] += fact * p;
+        p *= beta[k];
+        fact *= (double)(j + 1);
       }
-    } else {
-      double fac = delta * A[k];
-      for (size_t i = 0; i < m; i++) {
-        double x = (double)i - (double)(n - 1);
-        coef[i] += fac * (kve_large(x, beta) - cell_log(x));
+    } else if (grp == TERM_FROZEN) {
+      g->n_frozen++;
+      double lb = log(beta[k]), p = A[k];
+      g->a_f += A[k];
+      g->c_f += A[k] * (lb - EULER_GAMMA);
+      for (int n = 1; n <= FROZEN_N; n++) {
+        p /= beta[k];
+        g->u[n] += p;
+        g->v[n] += p * lb;
       }
     }
+  }
+}
+
+/* Whether the groups at |x| = ax differ from those summed in g. */
+static bool sums_stale(const term_sums *g, const double *A, const double *beta, size_t n_terms,
+                       double ax) {
+  size_t nr = 0, nf = 0;
+  for (size_t k = 0; k < n_terms; k++) {
+    if (!term_active(A[k], beta[k])) continue;
+    enum term_group grp = group_of(beta[k], ax);
+    nr += grp == TERM_RELAXED;
+    nf += grp == TERM_FROZEN;
+  }
+  return nr != g->n_relaxed || nf != g->n_frozen;
+}
+
+/* sum over the relaxed terms of A (kve - k) at x. */
+static double relaxed_part(const term_sums *g, double x) {
+  if (g->n_relaxed == 0) return 0.0;
+  double ip = 1.0 / (x + 0.5), im = 1.0 / (x - 0.5), pp = ip, pm = im;
+  double sum = x != 0.0 ? -g->t * dlog_fn(x) : 0.0;
+  for (int j = 0; j < RELAXED_J; j++) {
+    sum += g->s[j] * (pp - pm);
+    pp *= ip;
+    pm *= im;
+  }
+  return sum;
+}
+
+/* sum over the frozen terms of A (kve - log beta + gamma) at x: the n >= 1
+ * terms of m's series, cell-averaged (P_n = s_n/(n+1), s_n = sum_j a+^j
+ * a-^(n-j), free of the cancellation of a+^(n+1) - a-^(n+1)). */
+static double frozen_part(const term_sums *g, double x) {
+  if (g->n_frozen == 0) return 0.0;
+  double ap = x + 0.5, am = x - 0.5;
+  bool same_sign = fabs(x) > 0.5;
+  double lp = log(fabs(ap)), lm = log(fabs(am)), dl = same_sign ? dlog_fn(x) : 0.0;
+  double s = 1.0, amn = 1.0, ap1 = ap, am1 = am, sum = 0.0;
+  for (int n = 1; n <= FROZEN_N; n++) {
+    amn *= am;
+    s = ap * s + amn;
+    ap1 *= ap;
+    am1 *= am;
+    double np1 = (double)(n + 1);
+    double lg = same_sign ? (lp * s + am1 * dl) / np1 - s / (np1 * np1)
+                          : (ap1 * (lp - 1.0 / np1) - am1 * (lm - 1.0 / np1)) / np1;
+    sum += g->alpha[n] * (lg * g->u[n] - g->v[n] * s / np1) + g->bc[n] * g->u[n] * s / np1;
+  }
+  return sum;
+}
+
+/* kve(x, beta) - k(x) of one term, as vl_kernel_viscoelastic evaluates it. */
+static double kve_minus_k(double x, double beta) {
+  if (beta <= VL_KERNEL_BETA_SWITCH) return kve_minus_k_small(x, beta);
+  return kve_large(x, beta) - cell_log(x);
+}
+
+/* coef / delta at offset x: (1 + sum A)(log delta + k) + sum A (kve - k). */
+static double offset_total(const term_sums *g, const double *A, const double *beta, size_t n_terms,
+                           double sum_a, double ld, double x) {
+  double k = cell_log(x), ax = fabs(x);
+  double w = 0.0;
+  for (size_t j = 0; j < n_terms; j++)
+    if (term_active(A[j], beta[j]) && group_of(beta[j], ax) == TERM_WINDOW)
+      w += A[j] * kve_minus_k(x, beta[j]);
+  return (1.0 + sum_a) * ld + (1.0 + sum_a - g->a_f) * k + g->c_f + frozen_part(g, x) +
+         relaxed_part(g, x) + w;
+}
+
+void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t n_terms) {
+  size_t n = t->n;
+  double delta = t->delta, ld = log(delta), sum_a = 0.0;
+  vl_gsl_errors_off();
+  double beta[VL_KERNEL_MAX_TERMS];
+  for (size_t k = 0; k < n_terms; k++) {
+    sum_a += A[k];
+    beta[k] = b[k] / delta;
+  }
+  term_sums g;
+  m_coef mc = {0, 1.0, 0.0};
+  for (int i = 0; i <= FROZEN_N; i++, m_next(&mc)) {
+    g.alpha[i] = m_alpha(&mc);
+    g.bc[i] = m_b(&mc);
+  }
+  sums_regroup(&g, A, beta, n_terms, 0.0);
+  for (size_t i = 0; i < n; i++) {
+    double ax = (double)i;
+    if (sums_stale(&g, A, beta, n_terms, ax)) sums_regroup(&g, A, beta, n_terms, ax);
+    t->coef[n - 1 + i] = delta * offset_total(&g, A, beta, n_terms, sum_a, ld, ax);
+    if (i > 0) t->coef[n - 1 - i] = delta * offset_total(&g, A, beta, n_terms, sum_a, ld, -ax);
   }
 }
 
@@ -300,6 +431,10 @@ vl_status vl_toeplitz_build(vl_toeplitz *t, size_t n, double delta, const double
   }
   if (!(isfinite(delta) && delta > 0.0)) {
     vl_error_set(err, "grid spacing must be positive and finite (got %g)", delta);
+    return VL_EINPUT;
+  }
+  if (n_terms > VL_KERNEL_MAX_TERMS) {
+    vl_error_set(err, "%zu Prony terms: at most %d", n_terms, VL_KERNEL_MAX_TERMS);
     return VL_EINPUT;
   }
   for (size_t k = 0; k < n_terms; k++) {

@@ -30,6 +30,9 @@
 #define VL_KERNEL_BETA_SWITCH 8.0
 #define VL_KERNEL_X_SWITCH 8.0
 
+/* The most Prony terms a Toeplitz matrix takes (VL_PRONY_MAX_TERMS). */
+#define VL_KERNEL_MAX_TERMS 128
+
 /* Ke(d): elastic coefficient of a cell of width delta > 0 at offset d (any
  * finite d, including the cell edges d = +-delta/2). NaN if delta <= 0. */
 double vl_kernel_elastic(double d, double delta);
@@ -53,8 +56,10 @@ typedef struct {
  * terms (A[k] finite, b[k] = v0 tau_k >= 0 finite, same length unit as delta).
  * Frees nothing on entry; on failure t->coef == NULL and err says why
  * (VL_EINPUT, VL_ENOMEM). The caller releases t with vl_toeplitz_free.
- * Cost: about one exponential-integral evaluation per offset and term
- * (~2e7 per second). Turns GSL's abort handler off. */
+ * n_terms <= VL_KERNEL_MAX_TERMS. Cost: per offset, exponential integrals for
+ * the terms whose memory length b is within about two decades of the
+ * offset, and two short series for all the others (kernel.c). Turns GSL's
+ * abort handler off. */
 vl_status vl_toeplitz_build(vl_toeplitz *t, size_t n, double delta, const double *A,
                             const double *b, size_t n_terms, vl_error *err);
 
