@@ -54,7 +54,10 @@ typedef enum {
   VL_LINSOL_SCHUR       /* rough wet contacts: the Reynolds rows (a tridiagonal block in pf)
                          * eliminated first, LAPACK LU of the (N+1)^2 Schur complement, the
                          * residual checked against the full matrix (plain LAPACK when that
-                         * fails, and for every other contact). The default. */
+                         * fails). On a dry smooth contact: the cells out of contact solved
+                         * row by row, LAPACK LU of the cells in contact only (the reduced,
+                         * active-set system). Plain LAPACK on every other contact. The
+                         * default. */
 } vl_linear_solver;
 
 /* Numerics: every default and limit of the grid, the domain and the

@@ -55,6 +55,7 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
   c->beta = calloc(nt ? nt : 1, sizeof *c->beta);
   c->M = calloc(n * n, sizeof *c->M);
   c->P = calloc(n, sizeof *c->P);
+  c->q = calloc(n, sizeof *c->q);
   c->U = calloc(n, sizeof *c->U);
   c->dPdU = calloc(n, sizeof *c->dPdU);
   c->F = calloc(n, sizeof *c->F);
@@ -63,8 +64,8 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
   c->g = calloc(4 * n, sizeof *c->g);
   c->Jf = calloc(n + 1, sizeof *c->Jf);
   c->rw = calloc(n, sizeof *c->rw);
-  if (!c->A || !c->beta || !c->M || !c->P || !c->U || !c->dPdU || !c->F || !c->D || !c->theta ||
-      !c->g || !c->Jf || !c->rw)
+  if (!c->A || !c->beta || !c->M || !c->P || !c->q || !c->U || !c->dPdU || !c->F || !c->D ||
+      !c->theta || !c->g || !c->Jf || !c->rw)
     return vl_contact_nomem(c, err);
   if (c->flattening) {
     c->sf = malloc(2 * n * sizeof *c->sf);
@@ -187,6 +188,7 @@ void vl_contact_free(vl_contact *c) {
   free(c->beta);
   free(c->M);
   free(c->P);
+  free(c->q);
   free(c->U);
   free(c->dPdU);
   free(c->F);

@@ -16,6 +16,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "lapack_abi.h"
+
 /* Fischer-Burmeister complementarity a >= 0, b >= 0, a b = eps/2 (smoothed),
  * with its partial derivatives. */
 static double fb_eps(double a, double b, double eps, double *da, double *db) {
@@ -166,13 +168,16 @@ static void eval_gap(vl_contact *c, const double *y) {
   /* elastic/viscoelastic gap: h0 + xi^2/2 + sum_j M_ij (P_j + F_j); for a
    * rough surface it is stored in D (the residual compares it with U) */
   double *G = c->rough ? c->D : c->U;
-  for (size_t i = 0; i < n; i++) {
-    const double *row = c->M + i * n;
-    double acc = 0.0;
-    for (size_t j = 0; j < n; j++)
-      acc += row[j] * (c->P[j] + c->F[j]);
-    G[i] = h0 + 0.5 * c->xi[i] * c->xi[i] + acc;
-  }
+  for (size_t j = 0; j < n; j++)
+    c->q[j] = c->P[j] + c->F[j];
+  /* M is row-major: the column-major n x n matrix M^T, transposed (BLAS:
+   * a plain loop is bound by the latency of its one running sum, about
+   * 4x slower at n = 400, where it was a third of a dry point's time) */
+  int ni = (int)n, one = 1;
+  double w1 = 1.0, w0 = 0.0;
+  dgemv_("T", &ni, &ni, &w1, c->M, &ni, c->q, &one, &w0, G, &one, 1);
+  for (size_t i = 0; i < n; i++)
+    G[i] += h0 + 0.5 * c->xi[i] * c->xi[i];
   if (c->rough) {
     for (size_t i = 0; i < n; i++) {
       c->U[i] = y[i];

@@ -85,6 +85,7 @@ struct vl_contact {
   double v_state;            /* speed at which y was last converged (0: initial guess) */
   double q_rolling;          /* rolling number (wet, rough, viscoelastic), else 0 */
   double *P, *dPdU;          /* contact pressure (p0) and dP/dU on the grid */
+  double *q;                 /* P + F, the load on the grid (gap work vector) */
   double *F;                 /* fluid pressure (p0) */
   double *U;                 /* separation (a0^2/R) */
   double *g, *dg, *cf, *dcf; /* conductance u^3 phi_p and Couette film u + h phi_s, /us^3, /us */

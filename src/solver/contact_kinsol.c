@@ -18,6 +18,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "linsol_lapack.h"
+#include "linsol_reduced.h"
 #include "linsol_schur.h"
 
 /* A SUNLinearSolver that forwards to an inner one and times its set-up
@@ -148,6 +149,10 @@ vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err) {
     inner = SUNLinSol_Dense(c->y, c->J, c->ctx);
   } else if (cfg->linear_solver == VL_LINSOL_SCHUR && c->rough && c->wet) {
     inner = c->schur = vl_linsol_schur_create((long)c->n, (long)c->of, (long)c->ih, c->ctx);
+  } else if (cfg->linear_solver == VL_LINSOL_SCHUR && !c->rough && !c->wet) {
+    /* the default on a dry smooth contact: only the cells in contact are
+     * coupled (linsol_reduced.h) */
+    inner = vl_linsol_reduced_create((long)c->nunk, c->ctx);
   } else {
     inner = vl_linsol_lapack_create((long)c->nunk, c->ctx);
   }

@@ -1,15 +1,10 @@
 #include "linsol_lapack.h"
+#include "lapack_abi.h"
 
 #include <nvector/nvector_serial.h>
 #include <stdlib.h>
 #include <sundials/sundials_nvector.h>
 #include <sunmatrix/sunmatrix_dense.h>
-
-/* LAPACK (Fortran ABI): LU with partial pivoting and its solve. */
-extern void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
-extern void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a,
-                    const int *lda, const int *ipiv, double *b, const int *ldb, int *info,
-                    size_t trans_len);
 
 typedef struct {
   int n;

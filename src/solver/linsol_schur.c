@@ -1,5 +1,6 @@
 /* Schur-complement solver of the rough wet Jacobian (linsol_schur.h). */
 #include "linsol_schur.h"
+#include "lapack_abi.h"
 
 #include <math.h>
 #include <nvector/nvector_serial.h>
@@ -8,11 +9,6 @@
 #include <string.h>
 #include <sundials/sundials_nvector.h>
 #include <sunmatrix/sunmatrix_dense.h>
-
-extern void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
-extern void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a,
-                    const int *lda, const int *ipiv, double *b, const int *ldb, int *info,
-                    size_t trans_len);
 
 /* Relative residual a solve must reach (after refinement) before its
  * result is used; Newton needs far less, the check guards the elimination

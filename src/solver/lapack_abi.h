@@ -1,0 +1,20 @@
+/* The BLAS and LAPACK routines the solver calls, by their Fortran ABI
+ * (Debian's libblas/liblapack alternatives: OpenBLAS or the reference
+ * implementation). Private to the library. */
+#ifndef VL_LAPACK_ABI_H
+#define VL_LAPACK_ABI_H
+
+#include <stddef.h>
+
+/* LU with partial pivoting, and its solve. */
+extern void dgetrf_(const int *m, const int *n, double *a, const int *lda, int *ipiv, int *info);
+extern void dgetrs_(const char *trans, const int *n, const int *nrhs, const double *a,
+                    const int *lda, const int *ipiv, double *b, const int *ldb, int *info,
+                    size_t trans_len);
+
+/* y = alpha op(A) x + beta y. */
+extern void dgemv_(const char *trans, const int *m, const int *n, const double *alpha,
+                   const double *a, const int *lda, const double *x, const int *incx,
+                   const double *beta, double *y, const int *incy, size_t trans_len);
+
+#endif
