@@ -17,6 +17,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "blas_threads.h"
 #include "linsol_lapack.h"
 #include "linsol_reduced.h"
 #include "linsol_schur.h"
@@ -269,7 +270,7 @@ static vl_status solve_failed(vl_contact *c, double v0_m_s, const solve_scales *
   return VL_ENOCONV;
 }
 
-vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
+static vl_status solve_point(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
   memset(pt, 0, sizeof *pt);
   pt->error_estimate = NAN;
   pt->v0_m_s = v0_m_s;
@@ -321,6 +322,13 @@ vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error 
   c->v_state = v0_m_s;
   vl_contact_report(c, pt);
   return VL_OK;
+}
+
+vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
+  int threads = vl_blas_pin_one_thread(); /* the same rounding at any OPENBLAS_NUM_THREADS */
+  vl_status s = solve_point(c, v0_m_s, pt, err);
+  vl_blas_restore_threads(threads);
+  return s;
 }
 
 vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err) {
