@@ -208,6 +208,7 @@ typedef struct {
   size_t corners, points, converged, flagged, failed;
   size_t corners_with_failures;
   size_t subnm_points, subnm_converged; /* a priori film scale below 1 nm */
+  size_t real_points, real_converged;   /* realistic operating points (hard_realistic) */
   size_t bit_count[HARD_NBITS];         /* points flagged per assumption */
   size_t solver_warned;                 /* points with the solver's own warnings */
   double worst_load_error, worst_jump, worst_pf_neg, worst_rc_neg;
@@ -468,6 +469,16 @@ static inline double hard_film_scale(const vl_contact_config *cfg, double v0) {
   return cfg->roughness ? fmax(h, vl_persson_hrms(cfg->roughness)) : h;
 }
 
+/* A realistic operating point (README, "Hard cases"): speed 1e-9 ... 10 m/s,
+ * viscosity 2e-4 ... 10 Pa s (a wet contact), h_rms >= 10 nm (a rough one)
+ * and a relaxed Hertz half-width a0 <= 0.2 R (the half-space of the model). */
+static inline bool hard_realistic(const vl_contact_config *cfg, const vl_psd *psd, double a0,
+                                  double v0) {
+  if (v0 < 1e-9 || v0 > 10.0 || a0 > 0.2 * cfg->radius_m) return false;
+  if (cfg->eta_pa_s > 0.0 && (cfg->eta_pa_s < 2e-4 || cfg->eta_pa_s > 10.0)) return false;
+  return !(cfg->roughness && psd && psd->hrms_m < 1e-8);
+}
+
 /* Runs one corner: create, sweep over v[0..n-1], check every point and
  * neighbouring pairs. Stores the points in out (n) when out != NULL. The
  * label names every parameter (printed with any failure). */
@@ -512,6 +523,10 @@ static inline void hard_run_corner(hard_family *fam, const char *label,
       fam->converged++;
     else
       fam->failed++, nfail++;
+    if (hard_realistic(cfg, psd, x->a0, v[i])) {
+      fam->real_points++;
+      if (pt[i].converged) fam->real_converged++;
+    }
     if (hard_film_scale(cfg, v[i]) < 1e-9) {
       fam->subnm_points++;
       if (pt[i].converged) fam->subnm_converged++;
@@ -589,6 +604,8 @@ static inline void hard_print_family(const hard_family *f) {
          "%.0f %%), %.1f %% of %zu below 1 nm (minimum %.0f %%)\n",
          "", 100.0 * hard_rate(f), f->points - f->subnm_points, 100.0 * f->min_rate,
          100.0 * hard_rate_subnm(f), f->subnm_points, 100.0 * f->min_rate_subnm);
+  printf("  %-22s realistic points (README): %zu of %zu converged\n", "", f->real_converged,
+         f->real_points);
   printf("  %-22s worst load error %.1e, worst jump %.2f of its bound (%zu regime changes "
          "skipped), worst pf/pc < 0: %.1e p_ref, worst dry mu_Rc < 0: %.2f dx/R; solver "
          "warnings on %zu points; u = 0 (Persson wall) on %zu\n",
@@ -618,11 +635,14 @@ static inline void hard_print_summary(const char *title, hard_family *const *fam
     t.corners += fam[i]->corners, t.points += fam[i]->points;
     t.converged += fam[i]->converged, t.flagged += fam[i]->flagged, t.failed += fam[i]->failed;
     t.corners_with_failures += fam[i]->corners_with_failures;
+    t.real_points += fam[i]->real_points, t.real_converged += fam[i]->real_converged;
     t.seconds += fam[i]->seconds;
   }
   printf("  TOTAL: corners tried %zu (%zu with a failed point), points %zu, converged %zu, "
          "flagged %zu, failed %zu; %.1f s in sweeps\n",
          t.corners, t.corners_with_failures, t.points, t.converged, t.flagged, t.failed, t.seconds);
+  printf("  TOTAL realistic points (README): %zu of %zu converged\n", t.real_converged,
+         t.real_points);
 }
 
 /* No invariant violated, and the family's stated minimum convergence rate. */
@@ -632,6 +652,9 @@ static inline void hard_assert_rate(const hard_family *f) {
   if (hard_rate(f) < f->min_rate)
     fail_msg("%s: %.1f %% of points (film >= 1 nm) converged, below the stated %.0f %%", f->name,
              100.0 * hard_rate(f), 100.0 * f->min_rate);
+  if (f->real_converged < f->real_points) /* issue 19: every realistic point */
+    fail_msg("%s: %zu of %zu realistic points converged (all are required)", f->name,
+             f->real_converged, f->real_points);
   if (hard_rate_subnm(f) < f->min_rate_subnm)
     fail_msg("%s: %.1f %% of points (film < 1 nm) converged, below the stated %.0f %%", f->name,
              100.0 * hard_rate_subnm(f), 100.0 * f->min_rate_subnm);
