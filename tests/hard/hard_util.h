@@ -209,8 +209,10 @@ typedef struct {
   size_t corners_with_failures;
   size_t subnm_points, subnm_converged; /* a priori film scale below 1 nm */
   size_t real_points, real_converged;   /* realistic operating points (hard_realistic) */
-  size_t bit_count[HARD_NBITS];         /* points flagged per assumption */
-  size_t solver_warned;                 /* points with the solver's own warnings */
+  bool edge_numerics;           /* deliberately broken numerics (test_hard_inputs): realistic
+                                 * points are counted, not required */
+  size_t bit_count[HARD_NBITS]; /* points flagged per assumption */
+  size_t solver_warned;         /* points with the solver's own warnings */
   double worst_load_error, worst_jump, worst_pf_neg, worst_rc_neg;
   size_t jumps_skipped; /* neighbour pairs with a regime change */
   double seconds;
@@ -652,7 +654,7 @@ static inline void hard_assert_rate(const hard_family *f) {
   if (hard_rate(f) < f->min_rate)
     fail_msg("%s: %.1f %% of points (film >= 1 nm) converged, below the stated %.0f %%", f->name,
              100.0 * hard_rate(f), 100.0 * f->min_rate);
-  if (f->real_converged < f->real_points) /* issue 19: every realistic point */
+  if (!f->edge_numerics && f->real_converged < f->real_points) /* issue 19: every one */
     fail_msg("%s: %zu of %zu realistic points converged (all are required)", f->name,
              f->real_converged, f->real_points);
   if (hard_rate_subnm(f) < f->min_rate_subnm)

@@ -15,8 +15,10 @@
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
-static hard_family fam_domain = {.name = "short domains", .min_rate = 0.0, .min_rate_subnm = 0.0};
-static hard_family fam_scales = {.name = "extreme scales", .min_rate = 0.0, .min_rate_subnm = 0.0};
+static hard_family fam_domain = {
+    .name = "short domains", .min_rate = 0.0, .min_rate_subnm = 0.0, .edge_numerics = true};
+static hard_family fam_scales = {
+    .name = "extreme scales", .min_rate = 0.0, .min_rate_subnm = 0.0, .edge_numerics = true};
 static hard_family fam_enum = {
     .name = "garbage enumerations", .min_rate = 0.0, .min_rate_subnm = 0.0};
 static hard_family fam_grids = {.name = "grids 8-127 (edges)", .min_rate = 1.0};
