@@ -422,7 +422,7 @@ for ((i = 0; i < nb; i++)); do
       dir="${BDIR[$i]}/runs/start-$c-descending"; lb="$lg/start-$c-descending"
       rm -rf -- "$dir"
       run_vl "$lb" run "$sc" --out "$dir" --quiet
-      read -r _ tt _ < <(count_curves "$dir")
+      read -r _ _ nf < <(count_curves "$dir")
       if ((nf == 0 && RC == 2)); then
         csv_row "$i" A "$fam" "$item" "" "" "$RC" "$SECS" "" "" "" "" "" "skipped: the scene format refuses from > to: $(first_line "$lb.err")"
         log "  [$fam] $item: skipped, refused (exit 2)"
