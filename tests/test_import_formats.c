@@ -525,6 +525,10 @@ static void test_psd_plausibility(void **state) {
                      "q [1/m]");
   expect_psd_refused("q [1/m],k [1/m],C [m^4]\n1,2,3\n", "a second q column", NULL);
   expect_psd_refused("q [1/m],h [m]\n1,2\n", "lacks the spectrum (C) column", NULL);
+  /* a q that overflows once converted to SI (1e308 1/um): refused by line (the fuzzer's
+   * heap overflow of 2026-11-24: an infinite q stalled the merge of repeated q) */
+  expect_psd_refused("q (1/um),C (um^4)\n0.01,1000\n1.03,6.3e-05\n01e308,1.6e-08\n",
+                     "bad.csv:4: q = 1e+308", "out of the range of double");
   expect_psd_refused("q [1/m],C [m^4]\n1e4,x\n1e5,-1\n1e6,1e-26\n1e7,\n",
                      "bad.csv:2: column 'C [m^4]' (field 2): not a number", "bad.csv:5:");
   expect_psd_refused("q [1/m],C [m^4]\n1e4,1e-20\n1e4,2e-20\n", "at least 2 points of distinct q",

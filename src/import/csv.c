@@ -1010,8 +1010,11 @@ static size_t psd_order(psd_point *p, size_t n, vl_psd_read_report *rep) {
   qsort(p, n, sizeof *p, cmp_psd_point);
   size_t out = 0, first_merge = 0;
   for (size_t k = 0; k < n;) {
-    size_t j = k;
-    double sum = 0.0;
+    /* p[k] itself always counts: a q that does not compare equal to itself
+     * must not stall the walk (the reader refuses non-finite values, but
+     * this loop writes by it) */
+    size_t j = k + 1;
+    double sum = p[k].c;
     while (j < n && fabs(p[j].q - p[k].q) <= 1e-9 * p[k].q)
       sum += p[j++].c;
     if (j - k > 1 && rep->n_merged == 0) first_merge = p[k + 1].line;
@@ -1134,9 +1137,16 @@ vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
     st = VL_ENOMEM;
     goto cleanup;
   }
-  for (size_t k = 0; k < csv.n_rows; k++)
+  for (size_t k = 0; k < csv.n_rows && st == VL_OK; k++) {
     pts[k] = (psd_point){vl_csv_value(&csv, k, 0) * pl.q.factor,
                          vl_csv_value(&csv, k, 1) * pl.c.factor, csv.lines[k]};
+    if (!isfinite(pts[k].q) || !isfinite(pts[k].c) || !(pts[k].q > 0.0) || !(pts[k].c > 0.0)) {
+      vl_error_set(err, "%s:%zu: q = %g, C = %g: out of the range of double in SI units", pl.src,
+                   csv.lines[k], vl_csv_value(&csv, k, 0), vl_csv_value(&csv, k, 1));
+      st = VL_EINPUT;
+    }
+  }
+  if (st != VL_OK) goto cleanup;
   if (pl.d.delimiter != ',' || pl.d.decimal_comma)
     psd_note(rep, "read as %s-separated%s", vl_dialect_delimiter_name(pl.d.delimiter),
              pl.d.decimal_comma ? " with decimal commas" : "");
