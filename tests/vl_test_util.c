@@ -9,17 +9,51 @@
 
 #include <sqlite3.h>
 
+#include <ftw.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+/* Every directory of a test process lives under one root, removed when the
+ * process exits (a test run made ~500 directories in /tmp and left them):
+ * only by the process that made it, since tests fork children that exit
+ * normally; VL_TEST_KEEP=1 keeps it for a look after a failure. */
+static char tmp_root[4096];
+static pid_t tmp_root_owner;
+
+static int remove_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
+  (void)sb, (void)flag, (void)ftw;
+  remove(path);
+  return 0;
+}
+
+static void remove_tmp_root(void) {
+  if (getpid() != tmp_root_owner || getenv("VL_TEST_KEEP")) return;
+  /* read-only directories (test_disk_full) must be writable to be emptied */
+  char cmd[4200];
+  snprintf(cmd, sizeof cmd, "chmod -R u+rwx '%s' 2>/dev/null", tmp_root);
+  if (system(cmd) != 0) { /* best effort: what is left stays under one root */
+  }
+  nftw(tmp_root, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
 const char *vl_test_tmpdir(void) {
-  static char path[4096];
-  const char *base = getenv("TMPDIR");
-  snprintf(path, sizeof path, "%s/vltest.XXXXXX", base && *base ? base : "/tmp");
+  static char path[4096 + 16];
+  if (!tmp_root[0] || tmp_root_owner != getpid()) {
+    const char *base = getenv("TMPDIR");
+    snprintf(tmp_root, sizeof tmp_root, "%s/vltest.XXXXXX", base && *base ? base : "/tmp");
+    if (!mkdtemp(tmp_root)) fail_msg("mkdtemp failed");
+    /* traversable (not listable) by others: tests run the program as
+     * another user on a directory of their own below */
+    if (chmod(tmp_root, 0711) != 0) fail_msg("chmod %s failed", tmp_root);
+    tmp_root_owner = getpid();
+    atexit(remove_tmp_root);
+  }
+  snprintf(path, sizeof path, "%s/d.XXXXXX", tmp_root);
   if (!mkdtemp(path)) fail_msg("mkdtemp failed");
   return path;
 }
