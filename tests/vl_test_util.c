@@ -25,6 +25,13 @@
 static char tmp_root[4096];
 static pid_t tmp_root_owner;
 
+/* Directories made read-only by a test (test_disk_full) are opened up on the
+ * way down, then everything is removed on the way up. */
+static int open_up(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
+  (void)ftw;
+  if (flag == FTW_D || flag == FTW_DNR) chmod(path, (sb->st_mode & 07777) | S_IRWXU);
+  return 0;
+}
 static int remove_entry(const char *path, const struct stat *sb, int flag, struct FTW *ftw) {
   (void)sb, (void)flag, (void)ftw;
   remove(path);
@@ -33,19 +40,25 @@ static int remove_entry(const char *path, const struct stat *sb, int flag, struc
 
 static void remove_tmp_root(void) {
   if (getpid() != tmp_root_owner || getenv("VL_TEST_KEEP")) return;
-  /* read-only directories (test_disk_full) must be writable to be emptied */
-  char cmd[4200];
-  snprintf(cmd, sizeof cmd, "chmod -R u+rwx '%s' 2>/dev/null", tmp_root);
-  if (system(cmd) != 0) { /* best effort: what is left stays under one root */
-  }
+  nftw(tmp_root, open_up, 16, FTW_PHYS);
   nftw(tmp_root, remove_entry, 16, FTW_DEPTH | FTW_PHYS);
+}
+
+/* A mkdtemp template: prefix followed by the six placeholder characters. */
+static void temp_template(char *buf, size_t cap, const char *prefix) {
+  int n = snprintf(buf, cap, "%s", prefix);
+  if (n < 0 || (size_t)n + 7 > cap) fail_msg("temporary path too long: %s", prefix);
+  memset(buf + n, 'X', 6);
+  buf[n + 6] = '\0';
 }
 
 const char *vl_test_tmpdir(void) {
   static char path[4096 + 16];
+  char prefix[4096 + 8];
   if (!tmp_root[0] || tmp_root_owner != getpid()) {
     const char *base = getenv("TMPDIR");
-    snprintf(tmp_root, sizeof tmp_root, "%s/vltest.XXXXXX", base && *base ? base : "/tmp");
+    snprintf(prefix, sizeof tmp_root - 8, "%s/vltest.", base && *base ? base : "/tmp");
+    temp_template(tmp_root, sizeof tmp_root, prefix);
     if (!mkdtemp(tmp_root)) fail_msg("mkdtemp failed");
     /* traversable (not listable) by others: tests run the program as
      * another user on a directory of their own below */
@@ -53,9 +66,19 @@ const char *vl_test_tmpdir(void) {
     tmp_root_owner = getpid();
     atexit(remove_tmp_root);
   }
-  snprintf(path, sizeof path, "%s/d.XXXXXX", tmp_root);
+  snprintf(prefix, sizeof prefix, "%s/d.", tmp_root);
+  temp_template(path, sizeof path, prefix);
   if (!mkdtemp(path)) fail_msg("mkdtemp failed");
   return path;
+}
+
+double vl_test_max_rel_diff(const double *x, const double *ref, size_t n) {
+  double dmax = 0.0, rmax = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    dmax = fmax(dmax, fabs(x[i] - ref[i]));
+    rmax = fmax(rmax, fabs(ref[i]));
+  }
+  return dmax / rmax;
 }
 
 void vl_test_write_file(const char *path, const char *text) {
