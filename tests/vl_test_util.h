@@ -11,6 +11,9 @@
  * storage overwritten by the next call. Aborts the test on failure. */
 const char *vl_test_tmpdir(void);
 
+/* max |x - ref| / max |ref| over n values (a solve against a reference). */
+double vl_test_max_rel_diff(const double *x, const double *ref, size_t n);
+
 /* Writes text to path (aborts the test on failure). */
 void vl_test_write_file(const char *path, const char *text);
 

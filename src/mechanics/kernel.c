@@ -282,9 +282,7 @@ static enum term_group group_of(double beta, double ax) {
   return TERM_WINDOW;
 }
 
-/* The sums of the relaxed and frozen groups at one offset. Groups only grow
- * (relaxed) or shrink (frozen) with |x|, so their sizes say when they
- * changed. */
+/* The sums of the relaxed and frozen groups at one offset. */
 typedef struct {
   size_t n_relaxed, n_frozen;
   double t;                                     /* sum A beta (relaxed) */
@@ -330,17 +328,25 @@ static void sums_regroup(term_sums *g, const double *A, const double *beta, size
   }
 }
 
-/* Whether the groups at |x| = ax differ from those summed in g. */
-static bool sums_stale(const term_sums *g, const double *A, const double *beta, size_t n_terms,
-                       double ax) {
-  size_t nr = 0, nf = 0;
+/* The window's terms at |x| = ax (their indices into win, returned count)
+ * and the sizes of the other two groups, in one pass: the groups only grow
+ * (relaxed) or shrink (frozen) with |x|, so the sizes say when the sums of
+ * g must be redone. */
+static size_t classify(const double *A, const double *beta, size_t n_terms, double ax, size_t *win,
+                       size_t *n_relaxed, size_t *n_frozen) {
+  size_t nw = 0;
+  *n_relaxed = *n_frozen = 0;
   for (size_t k = 0; k < n_terms; k++) {
     if (!term_active(A[k], beta[k])) continue;
     enum term_group grp = group_of(beta[k], ax);
-    nr += grp == TERM_RELAXED;
-    nf += grp == TERM_FROZEN;
+    if (grp == TERM_RELAXED)
+      ++*n_relaxed;
+    else if (grp == TERM_FROZEN)
+      ++*n_frozen;
+    else
+      win[nw++] = k;
   }
-  return nr != g->n_relaxed || nf != g->n_frozen;
+  return nw;
 }
 
 /* sum over the relaxed terms of A (kve - k) at x. */
@@ -384,14 +390,13 @@ static double kve_minus_k(double x, double beta) {
   return kve_large(x, beta) - cell_log(x);
 }
 
-/* coef / delta at offset x: (1 + sum A)(log delta + k) + sum A (kve - k). */
-static double offset_total(const term_sums *g, const double *A, const double *beta, size_t n_terms,
-                           double sum_a, double ld, double x) {
-  double k = cell_log(x), ax = fabs(x);
-  double w = 0.0;
-  for (size_t j = 0; j < n_terms; j++)
-    if (term_active(A[j], beta[j]) && group_of(beta[j], ax) == TERM_WINDOW)
-      w += A[j] * kve_minus_k(x, beta[j]);
+/* coef / delta at offset x: (1 + sum A)(log delta + k) + sum A (kve - k),
+ * the window's nw terms listed in win. */
+static double offset_total(const term_sums *g, const double *A, const double *beta,
+                           const size_t *win, size_t nw, double sum_a, double ld, double x) {
+  double k = cell_log(x), w = 0.0;
+  for (size_t j = 0; j < nw; j++)
+    w += A[win[j]] * kve_minus_k(x, beta[win[j]]);
   return (1.0 + sum_a) * ld + (1.0 + sum_a - g->a_f) * k + g->c_f + frozen_part(g, x) +
          relaxed_part(g, x) + w;
 }
@@ -412,11 +417,13 @@ void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t
     g.bc[i] = m_b(&mc);
   }
   sums_regroup(&g, A, beta, n_terms, 0.0);
+  size_t win[VL_KERNEL_MAX_TERMS];
   for (size_t i = 0; i < n; i++) {
     double ax = (double)i;
-    if (sums_stale(&g, A, beta, n_terms, ax)) sums_regroup(&g, A, beta, n_terms, ax);
-    t->coef[n - 1 + i] = delta * offset_total(&g, A, beta, n_terms, sum_a, ld, ax);
-    if (i > 0) t->coef[n - 1 - i] = delta * offset_total(&g, A, beta, n_terms, sum_a, ld, -ax);
+    size_t nr, nf, nw = classify(A, beta, n_terms, ax, win, &nr, &nf);
+    if (nr != g.n_relaxed || nf != g.n_frozen) sums_regroup(&g, A, beta, n_terms, ax);
+    t->coef[n - 1 + i] = delta * offset_total(&g, A, beta, win, nw, sum_a, ld, ax);
+    if (i > 0) t->coef[n - 1 - i] = delta * offset_total(&g, A, beta, win, nw, sum_a, ld, -ax);
   }
 }
 
