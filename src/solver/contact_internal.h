@@ -251,6 +251,10 @@ bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni);
  * roughness or fluid, or a rough dst reaches beyond src's domain. */
 bool vl_contact_start_from(vl_contact *dst, const vl_contact *src, double v0);
 
+/* Caps the Newton iterations of c's later solves at n (> 0; the
+ * configuration's max_iterations otherwise). */
+void vl_contact_set_max_iterations(vl_contact *c, int n);
+
 /* contact_report.c */
 
 /* Fills the derived quantities of pt from the current (converged) state. */

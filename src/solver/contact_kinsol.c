@@ -356,6 +356,11 @@ vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err
 
 double vl_contact_viscosity(const vl_contact *c) { return c->cfg.eta_pa_s; }
 
+void vl_contact_set_max_iterations(vl_contact *c, int n) {
+  c->cfg.max_iterations = n;
+  KINSetNumMaxIters(c->kmem, n);
+}
+
 /* Log-spaced steps from the current viscosity to the target; a failed step
  * is halved (in log eta) up to 6 times, each from the last converged state. */
 vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa_s,
