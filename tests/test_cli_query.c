@@ -93,7 +93,7 @@ static void test_friction_bad_input(void **state) {
       {"compare --compounds model-rubber,nope --surface paper-3um --fluid water --points 3 "
        "--grid 64 --from 1e-12 --to 1e-10",
        3, "nope"},
-      {"compare --compounds model-rubber --surface paper-3um --fluid water --from 1 --to 0.1", 2,
+      {"compare --compounds model-rubber --surface paper-3um --fluid water --from 0.1 --to 0.1", 2,
        "--from"},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
@@ -177,11 +177,39 @@ static void test_compare_filled_unfilled(void **state) {
   free(err);
 }
 
+/* --from and --to given high to low: the same speeds, swept upward from the
+ * boundary regime, so the same compare.csv byte for byte (rows in
+ * increasing speed) as the range given low to high. */
+static void test_compare_range_either_way(void **state) {
+  (void)state;
+  char *csv[2];
+  const char *range[2] = {"--from 1e-12 --to 1e-9", "--from 1e-9 --to 1e-12"};
+  for (int k = 0; k < 2; k++) {
+    char dir[2048], args[8192], path[4400], *out = NULL, *err = NULL;
+    snprintf(dir, sizeof dir, "%s/range%d", vl_test_tmpdir(), k);
+    snprintf(args, sizeof args,
+             "--db %s compare --compounds model-rubber --surface paper-3um --fluid water %s "
+             "--points 4 --grid 64 --out %s --quiet",
+             g_db, range[k], dir);
+    int rc = vl_test_cli(NULL, args, &out, &err);
+    if (rc != 0) fail_msg("%s: exit %d: %s", range[k], rc, err);
+    snprintf(path, sizeof path, "%s/compare.csv", dir);
+    csv[k] = vl_test_read_file(path);
+    assert_non_null(csv[k]);
+    free(out);
+    free(err);
+  }
+  assert_string_equal(csv[0], csv[1]);
+  free(csv[0]);
+  free(csv[1]);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_friction_point),
       cmocka_unit_test(test_friction_bad_input),
       cmocka_unit_test(test_compare_filled_unfilled),
+      cmocka_unit_test(test_compare_range_either_way),
   };
   return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -485,9 +485,17 @@ static void test_bad_switches_and_lists(void **state) {
               "[sweep] fields_at", "1000");
   parse_fails(edit(BASE, "points = 7", "points = 7\nfields_at = 0.001"), 14, "[sweep] fields_at",
               "outside [from, to]");
-  /* to must exceed from */
-  parse_fails(edit(BASE, "to = 1e2", "to = 1e-2"), 12, "[sweep] to", "must exceed from");
-  parse_fails(edit(BASE, "to = 1e2", "to = 1e-3"), 12, "[sweep] to", NULL);
+  /* a sweep needs two different ends */
+  parse_fails(edit(BASE, "to = 1e2", "to = 1e-2"), 12, "[sweep] to", "must differ from from");
+  /* given high to low, the same speeds swept upward (from the boundary
+   * regime); fields_at is checked against the range either way */
+  parse_ok(edit(BASE, "to = 1e2", "to = 1e-3"));
+  assert_true(g_scene.from == 1e-3 && g_scene.to == 1e-2);
+  parse_ok(edit(edit(BASE, "from = 1e-2", "from = 1e2"), "to = 1e2", "to = 1e-2"));
+  assert_true(g_scene.from == 1e-2 && g_scene.to == 1e2);
+  parse_fails(edit(edit(edit(BASE, "from = 1e-2", "from = 1e2"), "to = 1e2", "to = 1e-2"),
+                   "points = 7", "points = 7\nfields_at = 1000"),
+              14, "[sweep] fields_at", "1000");
 }
 
 /* A line that is neither a section, a key = value nor a comment. */

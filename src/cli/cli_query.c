@@ -356,7 +356,8 @@ static void compare_usage(FILE *out) {
         "\n"
         "Stribeck curves of several compounds on one surface in one fluid, side by side:\n"
         "mu and u_min/h_rms per compound. The sweep runs over v0*eta from --from to --to\n"
-        "(Pa m, whatever the axis: in water, 1e-12 .. 0.1 Pa m is 1 nm/s .. 100 m/s).\n"
+        "(Pa m, whatever the axis: in water, 1e-12 .. 0.1 Pa m is 1 nm/s .. 100 m/s);\n"
+        "given either way round, it runs upward, from the boundary regime.\n"
         "--axis: the first column of the table and of compare.csv, the JSON's axis and the\n"
         "figures' x axis: speed (v0_m_s, m/s; the default) or v0eta (v0_eta_pa_m, Pa m).\n"
         "Writes DIR/compare.csv (one row per speed; the axis, then mu, mu_Rc, mu_Rf, mu_Sc,\n"
@@ -468,8 +469,13 @@ static int compare_check(compare_args *a) {
   if (!valid_name("compare", "--surface", a->c.q.surface) ||
       !valid_name("compare", "--fluid", a->c.q.fluid))
     return 2;
+  if (a->to < a->from) { /* the same speeds, swept upward (the scene's rule) */
+    double high = a->from;
+    a->from = a->to, a->to = high;
+  }
   if (!(a->to > a->from) || a->points != floor(a->points) || a->points < 2 || a->points > 10000) {
-    fprintf(stderr, "viscolube compare: need --from < --to and a whole --points in [2, 10000]\n");
+    fprintf(stderr, "viscolube compare: need --from and --to apart and a whole --points in [2, "
+                    "10000]\n");
     return 2;
   }
   return -1;

@@ -629,8 +629,16 @@ static vl_status scene_check(parse_state *ps) {
   if (sc->effects.flow_factors != VL_FLOW_FACTORS_SMOOTH && !sc->effects.roughness)
     return check_fail(ps, K_FLOW_FACTORS, "%s needs [effects] roughness = on",
                       vl_flow_factors_name(sc->effects.flow_factors));
+  /* a range given high to low is the same set of speeds: the sweep still
+   * runs upward, from the boundary regime, where its first solve is the
+   * easiest (docs/NUMERICS.md section 8) */
+  if (sc->points > 1 && sc->to < sc->from) {
+    double high = sc->from;
+    sc->from = sc->to, sc->to = high;
+  }
   if (sc->points > 1 && !(sc->to > sc->from))
-    return check_fail(ps, K_TO, "to (%g) must exceed from (%g)", sc->to, sc->from);
+    return check_fail(ps, K_TO, "to (%g) must differ from from (%g) when points > 1", sc->to,
+                      sc->from);
   for (size_t i = 0; i < sc->n_fields_at; i++) {
     if (sc->fields_at[i] < sc->from * (1 - 1e-9) || sc->fields_at[i] > sc->to * (1 + 1e-9))
       return check_fail(ps, K_FIELDS_AT, "%g lies outside [from, to] = [%g, %g]", sc->fields_at[i],
