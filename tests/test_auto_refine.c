@@ -57,24 +57,37 @@ static size_t run(const vl_contact_config *cfg, int max_refinements, size_t n, c
   return p.grid;
 }
 
-static void config(vl_contact_config *cfg, vl_persson *tab) {
-  vl_test_fig05_config(cfg, tab, ETA, VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0);
-  cfg->grid_growth = VL_WET_GRID_GROWTH;
-  cfg->tolerance = VL_WET_TOLERANCE;
+/* The contact of every test, with the surface it points to. */
+typedef struct {
+  vl_psd psd;
+  vl_persson *tab;
+  vl_contact_config cfg;
+} fixture;
+
+static int setup(void **state) {
+  static fixture f;
+  f.tab = vl_test_paper_surface(HRMS, &f.psd);
+  vl_test_fig05_config(&f.cfg, f.tab, ETA, VL_WET_ROUGH_GRID, VL_WET_ROUGH_DOMAIN_MIN_A0);
+  f.cfg.grid_growth = VL_WET_GRID_GROWTH;
+  f.cfg.tolerance = VL_WET_TOLERANCE;
+  *state = &f;
+  return 0;
+}
+
+static int teardown(void **state) {
+  fixture *f = *state;
+  vl_persson_free(f->tab);
+  vl_psd_free(&f->psd);
+  return 0;
 }
 
 /* 1e-6 m/s (boundary, estimate flat with the cells) and 6.3e-4 m/s (mixed,
  * the estimate falls by 2 and 30 with the two refinements). */
 static void test_refinement_stops_when_estimate_flat(void **state) {
-  (void)state;
-  vl_psd psd;
-  vl_persson *tab = vl_test_paper_surface(HRMS, &psd);
-  vl_contact_config cfg;
-  config(&cfg, tab);
+  const vl_contact_config *cfg = &((fixture *)*state)->cfg;
   double v = 1e-6;
   vl_point p0, p1, p2;
-  size_t n0 = run(&cfg, 0, 1, &v, &p0), n1 = run(&cfg, 1, 1, &v, &p1),
-         n2 = run(&cfg, 2, 1, &v, &p2);
+  size_t n0 = run(cfg, 0, 1, &v, &p0), n1 = run(cfg, 1, 1, &v, &p1), n2 = run(cfg, 2, 1, &v, &p2);
   print_message("%g m/s: estimate %.3g at %zu cells, %.3g at %zu; default: %.3g at %zu cells, "
                 "warnings \"%s\"\n",
                 v, p0.error_estimate, n0, p1.error_estimate, n1, p2.error_estimate, n2,
@@ -87,14 +100,12 @@ static void test_refinement_stops_when_estimate_flat(void **state) {
   assert_non_null(strstr(p2.warnings, "estimate not falling with refinement"));
 
   v = 6.31e-4;
-  n0 = run(&cfg, 0, 1, &v, &p0), n1 = run(&cfg, 1, 1, &v, &p1), n2 = run(&cfg, 2, 1, &v, &p2);
+  n0 = run(cfg, 0, 1, &v, &p0), n1 = run(cfg, 1, 1, &v, &p1), n2 = run(cfg, 2, 1, &v, &p2);
   print_message("%g m/s: estimate %.3g at %zu cells, %.3g at %zu, %.3g at %zu\n", v,
                 p0.error_estimate, n0, p1.error_estimate, n1, p2.error_estimate, n2);
   assert_true(p1.error_estimate < 0.7 * p0.error_estimate);
   assert_true(n2 > n1);
   assert_null(strstr(p2.warnings, "not falling"));
-  vl_persson_free(tab);
-  vl_psd_free(&psd);
 }
 
 /* Mixed points just below the lift-off (2.5 and 4 m/s, continued from 1.6
@@ -102,15 +113,11 @@ static void test_refinement_stops_when_estimate_flat(void **state) {
  * point is the 330-cell one, converged, with its estimate and the warning
  * "refinement did not converge". */
 static void test_failed_refinement_keeps_point(void **state) {
-  (void)state;
-  vl_psd psd;
-  vl_persson *tab = vl_test_paper_surface(HRMS, &psd);
-  vl_contact_config cfg;
-  config(&cfg, tab);
+  const vl_contact_config *cfg = &((fixture *)*state)->cfg;
   double v[] = {1.585, 2.512, 3.981};
   vl_point pt[3], p1[3];
-  run(&cfg, 2, 3, v, pt);
-  run(&cfg, 1, 3, v, p1);
+  run(cfg, 2, 3, v, pt);
+  run(cfg, 1, 3, v, p1);
   size_t kept = 0;
   for (size_t i = 0; i < 3; i++) {
     print_message("%g m/s: mu %.6g estimate %.3g warnings \"%s\"\n", v[i], pt[i].mu,
@@ -121,8 +128,6 @@ static void test_failed_refinement_keeps_point(void **state) {
     assert_true(isfinite(pt[i].error_estimate));
   }
   assert_true(kept > 0);
-  vl_persson_free(tab);
-  vl_psd_free(&psd);
 }
 
 int main(void) {
@@ -130,5 +135,5 @@ int main(void) {
       cmocka_unit_test(test_refinement_stops_when_estimate_flat),
       cmocka_unit_test(test_failed_refinement_keeps_point),
   };
-  return cmocka_run_group_tests(tests, NULL, NULL);
+  return cmocka_run_group_tests(tests, setup, teardown);
 }

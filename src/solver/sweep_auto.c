@@ -107,35 +107,36 @@ static void append_warning(vl_point *pt, const char *w) {
   snprintf(pt->warnings + len, sizeof pt->warnings - len, "%s%s", len ? ";" : "", w);
 }
 
-/* Solves v again on finer cells or a longer domain (a's resolution and
- * inlet_scale already changed), from the point pt converged on a's
- * contact. On success the new contact becomes a's and pt its point; when
- * the new cells do not converge, a keeps its contact, resolution and
- * domain, pt stays as it was, and *kept is set: a refinement is an
- * improvement of a converged point, never the reason it fails. Continued
- * from pt's state, the refined Newton gets REFINE_MAX_ITERATIONS (fig05 on
- * a 30 nm surface at 0.16-0.63 m/s: the 560-cell contact took 20 s to
- * minutes over every path of vl_sweep_solve_point, to a film its estimate
- * put 100-275 % off); from a fresh start (a longer domain) every path. */
+/* Solves v again with the given resolution and inlet scale, from the point
+ * pt converged on a's contact. VL_OK: the new contact is a's and pt its
+ * point. VL_ENOCONV: the new cells did not converge, and a (contact,
+ * resolution, domain) and pt are as they were: a refinement improves a
+ * converged point, it is never the reason the point fails. Continued from
+ * pt's state, the refined Newton gets REFINE_MAX_ITERATIONS (fig05 on a 30
+ * nm surface at 0.16-0.63 m/s: the 560-cell contact took 20 s to minutes
+ * over every path of vl_sweep_solve_point, to a film its estimate put
+ * 100-275 % off); from a fresh start (a longer domain) every path. */
 #define REFINE_MAX_ITERATIONS 50
-static vl_status refine(auto_state *a, double v, double old_resolution, double old_inlet,
-                        vl_point *pt, vl_sweep_stats *st, bool *kept, vl_error *err) {
+static vl_status refine(auto_state *a, double v, double resolution, double inlet_scale,
+                        vl_point *pt, vl_sweep_stats *st, vl_error *err) {
+  double old_resolution = a->resolution, old_inlet = a->inlet_scale;
+  a->resolution = resolution, a->inlet_scale = inlet_scale;
   vl_contact *c;
   vl_plan plan;
   double film = 0.0;
   bool continued;
-  *kept = false;
   vl_status s = build(a, v, pt, &c, &plan, &film, &continued, err);
-  if (s != VL_OK) return s;
   vl_point np;
-  if (continued) {
-    int cap = c->cfg.max_iterations < REFINE_MAX_ITERATIONS ? c->cfg.max_iterations
-                                                            : REFINE_MAX_ITERATIONS;
-    vl_contact_set_max_iterations(c, cap);
+  if (s == VL_OK && continued) {
+    vl_contact_set_max_iterations(c, c->cfg.max_iterations < REFINE_MAX_ITERATIONS
+                                         ? c->cfg.max_iterations
+                                         : REFINE_MAX_ITERATIONS);
     s = vl_contact_solve(c, v, &np, err);
     st->newton_iterations += np.iterations;
-  } else {
+  } else if (s == VL_OK) {
     s = vl_sweep_solve_point(c, 0.0, v, 6, &np, st, err);
+  } else {
+    return s; /* nothing built */
   }
   if (s == VL_OK) {
     install(a, c, &plan, film, continued);
@@ -146,9 +147,7 @@ static vl_status refine(auto_state *a, double v, double old_resolution, double o
   vl_contact_free(c);
   vl_plan_free(&plan);
   a->resolution = old_resolution, a->inlet_scale = old_inlet;
-  if (s != VL_ENOCONV) return s;
-  *kept = true;
-  return VL_OK;
+  return s;
 }
 
 /* An estimate that a refinement did not lower below this fraction of the
@@ -182,16 +181,14 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
     bool edge = !o->keep_numerics && a->inlet_scale < 8.0 && strstr(pt->warnings, "domain edge");
     bool coarse = pt->error_estimate > o->target_error && can_refine(a);
     if (!edge && !coarse) break;
-    double old_resolution = a->resolution, old_inlet = a->inlet_scale;
     double old_estimate = pt->error_estimate;
-    if (edge) a->inlet_scale *= 2.0;
-    if (coarse) a->resolution *= 0.5;
-    bool kept;
-    if ((s = refine(a, v, old_resolution, old_inlet, pt, st, &kept, err)) != VL_OK) return s;
-    if (kept) {
+    s = refine(a, v, coarse ? 0.5 * a->resolution : a->resolution,
+               edge ? 2.0 * a->inlet_scale : a->inlet_scale, pt, st, err);
+    if (s == VL_ENOCONV) {
       stop = "refinement did not converge (coarser cells kept)";
       break;
     }
+    if (s != VL_OK) return s;
     vl_contact_estimate_error(a->c, pt);
     if (coarse && !edge && !(pt->error_estimate < REFINE_MIN_GAIN * old_estimate))
       stop = "estimate not falling with refinement";
