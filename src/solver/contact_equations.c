@@ -232,10 +232,17 @@ static void eval_flow(vl_contact *c) {
   }
 }
 
+double vl_contact_face_poiseuille(const vl_contact *c, size_t f) {
+  size_t n = c->n;
+  double dl, dr;
+  double g = f == 0 ? c->g[0] : f == n ? c->g[n - 1] : face_g(c, f, &dl, &dr);
+  return c->lambda * g / c->hf[f];
+}
+
 /* Face fluxes J/(v0 us/2): -lambda g dPf/dxi + Couette film at the face
  * (couette_face); pf = 0 beyond both ends of the domain (half-cell
  * distance). */
-static void eval_fluxes(vl_contact *c, const double *y) {
+void vl_contact_eval_fluxes(vl_contact *c, const double *y) {
   size_t n = c->n;
   const double *pf = y + c->of, *hf = c->hf;
   double L = c->lambda;
@@ -256,7 +263,7 @@ void vl_contact_eval_state(vl_contact *c, const double *y) {
   eval_gap(c, y);
   if (!c->wet) return;
   eval_flow(c);
-  eval_fluxes(c, y);
+  vl_contact_eval_fluxes(c, y);
 }
 
 double vl_contact_load_sum(const vl_contact *c) {
@@ -313,14 +320,19 @@ void vl_contact_reynolds_weights(vl_contact *c) {
   }
 }
 
+double vl_contact_reynolds_row(const vl_contact *c, const double *y, size_t i, double *da,
+                               double *db) {
+  return fb_eps(y[c->of + i], vl_contact_reynolds_residual(c, i), c->rough ? FB_EPS : FB_EPS_FILM,
+                da, db);
+}
+
 int vl_contact_residual(vl_contact *c, const double *y, double *f) {
   size_t nc = c->nc, nf = c->nf, of = c->of;
   vl_contact_eval_state(c, y);
   for (size_t i = 0; i < nc; i++)
     f[i] = c->rough ? c->D[i] : fb(c->P[i], c->U[i], NULL, NULL);
-  double eps = c->rough ? FB_EPS : FB_EPS_FILM;
   for (size_t i = 0; i < nf; i++)
-    f[of + i] = fb_eps(y[of + i], vl_contact_reynolds_residual(c, i), eps, NULL, NULL);
+    f[of + i] = vl_contact_reynolds_row(c, y, i, NULL, NULL);
   f[c->ih] = vl_contact_load_sum(c) - 1.0;
   for (size_t i = 0; i < c->nunk; i++)
     if (!isfinite(f[i])) return 1; /* recoverable: KINSOL shortens the step */
@@ -401,7 +413,7 @@ static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, si
   double L = c->lambda;
   size_t row = of + i;
   double da, db;
-  fb_eps(pf[i], vl_contact_reynolds_residual(c, i), c->rough ? FB_EPS : FB_EPS_FILM, &da, &db);
+  vl_contact_reynolds_row(c, y, i, &da, &db);
   Jd[row * ld + row] += da;
   double s = db * c->rw[i]; /* d(row)/d(J_{i+1}) = s, d(row)/d(J_i) = -s */
   if (s == 0.0) return;

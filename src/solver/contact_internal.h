@@ -103,6 +103,9 @@ struct vl_contact {
   double *sf, *dsf;          /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
                               * NULL when off */
   double *theta;             /* film fraction (report only) */
+  double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */
+  bool film_correct;         /* Newton's steps get the film pressure of contact_film.c (set
+                              * for the continuation of a converged rough film) */
   vl_contact *coarse;        /* smooth wet: half-size grid for fresh starts (NULL when small);
                               * rough wet: the smooth film whose solution starts a lifted rough
                               * film (created on first use, vl_contact_rough_wet_film_start) */
@@ -191,6 +194,21 @@ double vl_contact_load_sum(const vl_contact *c);
 /* Reynolds row i before complementarity (needs vl_contact_eval_state). */
 double vl_contact_reynolds_residual(const vl_contact *c, size_t i);
 
+/* Reynolds row i after complementarity, Fischer-Burmeister of pf_i and the
+ * row above, with its partial derivatives in *da (by pf_i) and *db (by the
+ * row) when not NULL (needs the fluxes of y). */
+double vl_contact_reynolds_row(const vl_contact *c, const double *y, size_t i, double *da,
+                               double *db);
+
+/* The face fluxes of y (vl_contact_eval_state does this too), from the flow
+ * quantities already evaluated. */
+void vl_contact_eval_fluxes(vl_contact *c, const double *y);
+
+/* d(face flux f)/d(pf) across face f (0..n), lambda g_f / hf_f: the flux
+ * through an interior face is -that times pf[f] - pf[f-1]; pf = 0 beyond
+ * the ends. */
+double vl_contact_face_poiseuille(const vl_contact *c, size_t f);
+
 /* Weights of the Reynolds rows for the next solve, from the current state
  * (needs vl_contact_eval_state). */
 void vl_contact_reynolds_weights(vl_contact *c);
@@ -207,6 +225,19 @@ int vl_contact_residual(vl_contact *c, const double *y, double *f);
 /* The analytic Jacobian at y into the column-major nunk x nunk matrix Jd,
  * every entry written. */
 void vl_contact_jacobian(vl_contact *c, const double *y, double *Jd);
+
+/* contact_film.c */
+
+/* Nonlinear elimination of the fluid pressure from the Newton step `step`
+ * at y (whose residual has the 2-norm fnorm), for a rough film: keeps the
+ * step's gap and rigid approach and replaces its pf by the one that
+ * satisfies the Reynolds rows at that gap. Returns false (step unchanged)
+ * when c->film_correct is off, the fluid carries more than half the load,
+ * the inner solve does not converge, or the full corrected step lands on a
+ * residual above the plain full step's or too large for KINSOL's
+ * sufficient decrease. Leaves c's state evaluated at an arbitrary point:
+ * the caller evaluates again. */
+bool vl_contact_film_correct(vl_contact *c, const double *y, double fnorm, double *step);
 
 /* contact_kinsol.c */
 

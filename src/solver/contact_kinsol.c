@@ -26,7 +26,7 @@
  * (factorisation) and solves: the cost split of vl_contact_timing. */
 typedef struct {
   SUNLinearSolver inner;
-  vl_contact_timing *timing;
+  vl_contact *c;
 } timed_ls;
 
 static SUNLinearSolver_Type timed_gettype(SUNLinearSolver S) {
@@ -42,16 +42,21 @@ static int timed_setup(SUNLinearSolver S, SUNMatrix A) {
   timed_ls *t = S->content;
   double t0 = vl_contact_now_s();
   int r = SUNLinSolSetup(t->inner, A);
-  t->timing->t_setup_s += vl_contact_now_s() - t0;
-  t->timing->setups++;
+  t->c->timing.t_setup_s += vl_contact_now_s() - t0;
+  t->c->timing.setups++;
   return r;
 }
 static int timed_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realtype tol) {
   timed_ls *t = S->content;
   double t0 = vl_contact_now_s();
   int r = SUNLinSolSolve(t->inner, A, x, b, tol);
-  t->timing->t_solve_s += vl_contact_now_s() - t0;
-  t->timing->solves++;
+  /* KINSOL iterates on c->y in place: the step is taken from there. A rough
+   * film's step gets the pf that balances its flow (contact_film.c) */
+  if (r == SUNLS_SUCCESS && t->c->film_correct)
+    vl_contact_film_correct(t->c, N_VGetArrayPointer(t->c->y), sqrt(N_VDotProd(b, b)),
+                            N_VGetArrayPointer(x));
+  t->c->timing.t_solve_s += vl_contact_now_s() - t0;
+  t->c->timing.solves++;
   return r;
 }
 static sunindextype timed_lastflag(SUNLinearSolver S) {
@@ -72,8 +77,7 @@ static int timed_free(SUNLinearSolver S) {
 }
 
 /* Wraps inner (owned from here on, freed with the wrapper, also on failure). */
-static SUNLinearSolver timed_ls_create(SUNLinearSolver inner, vl_contact_timing *timing,
-                                       SUNContext ctx) {
+static SUNLinearSolver timed_ls_create(SUNLinearSolver inner, vl_contact *c, SUNContext ctx) {
   if (!inner) return NULL;
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   timed_ls *t = S ? malloc(sizeof *t) : NULL;
@@ -82,7 +86,7 @@ static SUNLinearSolver timed_ls_create(SUNLinearSolver inner, vl_contact_timing 
     SUNLinSolFree(inner);
     return NULL;
   }
-  t->inner = inner, t->timing = timing;
+  t->inner = inner, t->c = c;
   S->content = t;
   S->ops->gettype = timed_gettype;
   S->ops->getid = timed_getid;
@@ -157,7 +161,7 @@ vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err) {
   } else {
     inner = vl_linsol_lapack_create((long)c->nunk, c->ctx);
   }
-  c->LS = timed_ls_create(inner, &c->timing, c->ctx);
+  c->LS = timed_ls_create(inner, c, c->ctx);
   if (!c->LS) return vl_contact_nomem(c, err);
   c->kmem = KINCreate(c->ctx);
   if (!c->kmem) return vl_contact_nomem(c, err);
@@ -300,6 +304,10 @@ static vl_status solve_point(vl_contact *c, double v0_m_s, vl_point *pt, vl_erro
     KINSetNumMaxIters(c->kmem, c->cfg.max_iterations < VL_FRESH_HERTZ_ITERATIONS
                                    ? c->cfg.max_iterations
                                    : VL_FRESH_HERTZ_ITERATIONS);
+  /* continuation from a converged film: the film pressure of every step
+   * balances its flow (contact_film.c). A fresh start from Hertz is far from
+   * any balance, and the plain steps found their way more often */
+  c->film_correct = rough_wet && c->v_state > 0.0;
   bool ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
   if (rough_wet) KINSetNumMaxIters(c->kmem, c->cfg.max_iterations);
   if (!ok && c->rough && c->wet && c->v_state > 0.0) {
@@ -328,6 +336,7 @@ static vl_status solve_point(vl_contact *c, double v0_m_s, vl_point *pt, vl_erro
     /* nor the dry contact: start from the smooth film, the lifted one */
     ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
   }
+  c->film_correct = false;
   if (!ok) return solve_failed(c, v0_m_s, &saved, flag, nni, fnorm, pt, err);
   pt->iterations = nni;
   pt->residual = fnorm;

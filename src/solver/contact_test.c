@@ -5,9 +5,11 @@
 #include "contact_internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "lapack_abi.h"
 #include "linsol_schur.h"
 
 /* The finite-difference comparison of vl_contact_jacobian_check, per block
@@ -68,6 +70,94 @@ double vl_contact_jacobian_check_blocks(vl_contact *c, double v0_m_s, double rel
     r = fmax(r, rel[b]);
   }
   return r;
+}
+
+/* The state the next solve of a sweep starts from (solve_point in
+ * contact_kinsol.c): kernel, predicted pf and fluid scales at v0. */
+static void start_next_solve(vl_contact *c, double v0_m_s) {
+  vl_contact_set_speed(c, v0_m_s);
+  vl_contact_predict_state(c, v0_m_s);
+  vl_contact_fluid_scales(c, v0_m_s);
+}
+
+/* The plain Newton step at c->y into step (dense LU); false on failure. */
+static bool plain_step(vl_contact *c, double *step) {
+  int N = (int)c->nunk, one = 1, info = 0;
+  double *A = malloc((size_t)N * (size_t)N * sizeof *A);
+  int *piv = malloc((size_t)N * sizeof *piv);
+  bool ok = A && piv;
+  if (ok) {
+    const double *y = N_VGetArrayPointer(c->y);
+    vl_contact_jacobian(c, y, A);
+    vl_contact_residual(c, y, step);
+    for (int i = 0; i < N; i++)
+      step[i] = -step[i];
+    dgetrf_(&N, &N, A, &N, piv, &info);
+    if (info == 0) dgetrs_("N", &N, &one, A, &N, piv, step, &N, &info, 1);
+    ok = info == 0;
+  }
+  free(A);
+  free(piv);
+  return ok;
+}
+
+/* The 2-norm of the residual at y + step and its max Reynolds row. */
+static double stepped_norm(vl_contact *c, const double *step, double *work, double *reynolds) {
+  const double *y = N_VGetArrayPointer(c->y);
+  size_t N = c->nunk;
+  double *yt = work, *f = work + N, s = 0.0;
+  for (size_t i = 0; i < N; i++)
+    yt[i] = y[i] + step[i];
+  if (vl_contact_residual(c, yt, f) != 0) return INFINITY;
+  *reynolds = 0.0;
+  for (size_t i = 0; i < N; i++) {
+    s += f[i] * f[i];
+    if (i >= c->of && i < c->ih) *reynolds = fmax(*reynolds, fabs(f[i]));
+  }
+  return sqrt(s);
+}
+
+bool vl_contact_film_check(vl_contact *c, double v0_m_s, vl_contact_film_check_result *r) {
+  memset(r, 0, sizeof *r);
+  size_t N = c->nunk;
+  double *plain = malloc(4 * N * sizeof *plain), *corr = plain ? plain + N : NULL;
+  if (!plain) return false;
+  N_VScale(1.0, c->y, c->y_saved);
+  double kappa = c->kappa, lambda = c->lambda, rscale = c->rscale, u_ref = c->u_ref;
+  double v_old = c->v0;
+  start_next_solve(c, v0_m_s);
+  bool ok = plain_step(c, plain);
+  if (ok) {
+    memcpy(corr, plain, N * sizeof *corr);
+    const double *y = N_VGetArrayPointer(c->y);
+    bool was = c->film_correct;
+    c->film_correct = true;
+    double *f = corr + N, fnorm = 0.0;
+    vl_contact_residual(c, y, f);
+    for (size_t i = 0; i < N; i++)
+      fnorm += f[i] * f[i];
+    r->applied = vl_contact_film_correct(c, y, sqrt(fnorm), corr);
+    c->film_correct = was;
+    double rey;
+    r->plain_norm = stepped_norm(c, plain, corr + N, &rey);
+    r->corr_norm = stepped_norm(c, corr, corr + N, &r->reynolds_max);
+    for (size_t i = 0; i < N; i++) {
+      double d = fabs(corr[i] - plain[i]);
+      bool fluid = i >= c->of && i < c->ih;
+      if (fluid)
+        r->pf_diff = fmax(r->pf_diff, d), r->pf_step = fmax(r->pf_step, fabs(plain[i]));
+      else
+        r->gap_change = fmax(r->gap_change, d);
+    }
+  }
+  /* back to the state, speed and scales as they were */
+  N_VScale(1.0, c->y_saved, c->y);
+  vl_contact_set_speed(c, v_old);
+  c->kappa = kappa, c->lambda = lambda, c->rscale = rscale, c->u_ref = u_ref;
+  vl_contact_eval_state(c, N_VGetArrayPointer(c->y));
+  vl_contact_reynolds_weights(c);
+  free(plain);
+  return ok;
 }
 
 size_t vl_contact_face_fluxes(const vl_contact *c, double *flux_m2_s, size_t cap) {

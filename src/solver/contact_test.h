@@ -6,6 +6,7 @@
 #ifndef VISCOLUBE_CONTACT_TEST_H
 #define VISCOLUBE_CONTACT_TEST_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "viscolube/contact.h"
@@ -23,6 +24,24 @@ double vl_contact_jacobian_check(vl_contact *c, double v0_m_s);
  * for an empty block). Returns the largest, or a negative value on
  * allocation failure. Leaves the state unchanged. */
 double vl_contact_jacobian_check_blocks(vl_contact *c, double v0_m_s, double rel[3]);
+
+/* The film-pressure correction of a Newton step (contact_film.c), tried
+ * where a sweep's next solve starts: the state converged at its last speed,
+ * moved to speed v0 as the solve does (kernel, predicted pf, fluid scales).
+ * There the plain Newton step (LU of the analytic Jacobian) and the
+ * corrected one are compared. Leaves the state unchanged. */
+typedef struct {
+  bool applied;        /* the correction was taken (else the two steps are equal) */
+  double plain_norm;   /* 2-norm of the residual after the full plain step */
+  double corr_norm;    /* ... after the full corrected step */
+  double reynolds_max; /* max |Reynolds row| after the full corrected step */
+  double gap_change;   /* max |corrected - plain| over the gap and approach unknowns */
+  double pf_step;      /* max |pf part| of the plain step */
+  double pf_diff;      /* max |corrected - plain| over the pf unknowns */
+} vl_contact_film_check_result;
+
+/* Fills *r; false on allocation failure or a failed factorisation. */
+bool vl_contact_film_check(vl_contact *c, double v0_m_s, vl_contact_film_check_result *r);
 
 /* The fluid flux per unit length J (m^2/s) through the n + 1 cell faces of
  * the current state, as discretised by the solver (face 0 is the inlet end
