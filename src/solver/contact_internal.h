@@ -52,7 +52,8 @@
  * (the dry and smooth-film starts that follow keep the scene's cap). In
  * the hard-case matrix the same 1772 of 1845 wet points converged with 50
  * as with 200, the sweeps took 40.6 s instead of 52.2 s; a cap of 30 on
- * every fresh start lost 33 points. */
+ * every fresh start lost 33 points. The Newton from Hertz also stops
+ * earlier when it crawls (newton_from_hertz in contact_kinsol.c). */
 #define VL_FRESH_HERTZ_ITERATIONS 50
 
 /* Smallest grid of the coarse levels used to start smooth wet solves. */
