@@ -1,7 +1,9 @@
 /* KINSOL glue and the solve: the Newton iteration on the residual and
  * Jacobian of contact_equations.c (with line search, and the step refused
  * where a smooth film would close), the linear solvers (LAPACK, SUNDIALS,
- * the Schur complement of the Reynolds rows) wrapped to count their cost,
+ * the Schur complement of the Reynolds rows) wrapped to count their cost
+ * and to give a continued rough film's steps the balanced film pressure of
+ * contact_film.c,
  * and the solve of one operating point with its fallbacks: a fresh start
  * after a failed continuation, continuation in viscosity for thin smooth
  * films, the dry contact's or the smooth film's solution for a rough film
@@ -181,12 +183,11 @@ vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err) {
   return VL_OK;
 }
 
-/* Newton (KINSOL) from the current y at speed v0; scales set here. Adds
- * the iterations to *nni; returns whether our own residual check passed
+/* One KINSol call from the current y with the scales as they are: adds the
+ * iterations to *nni; returns whether our own residual check passed
  * (KINSOL also returns success when the step, not the residual, became
  * small). */
-static bool newton(vl_contact *c, double v0, long *nni, int *flag, double *fnorm) {
-  vl_contact_fluid_scales(c, v0);
+static bool kinsol_run(vl_contact *c, long *nni, int *flag, double *fnorm) {
   double t0 = vl_contact_now_s();
   *flag = KINSol(c->kmem, c->y, KIN_LINESEARCH, c->ones, c->ones);
   c->timing.t_newton_s += vl_contact_now_s() - t0;
@@ -197,6 +198,12 @@ static bool newton(vl_contact *c, double v0, long *nni, int *flag, double *fnorm
   *fnorm = INFINITY;
   if (vl_contact_residual_fn(c->y, c->fwork, c) == 0) *fnorm = N_VMaxNorm(c->fwork);
   return *flag >= 0 && *fnorm <= c->cfg.tolerance;
+}
+
+/* Newton (KINSOL) from the current y at speed v0; scales set here. */
+static bool newton(vl_contact *c, double v0, long *nni, int *flag, double *fnorm) {
+  vl_contact_fluid_scales(c, v0);
+  return kinsol_run(c, nni, flag, fnorm);
 }
 
 /* A rough film's Newton from Hertz, given up early when it crawls: run in
@@ -215,25 +222,18 @@ static bool newton_from_hertz(vl_contact *c, double v0, int max_iterations, long
   *flag = KIN_MAXITER_REACHED, *fnorm = INFINITY;
   double start = INFINITY;
   if (vl_contact_residual_fn(c->y, c->fwork, c) == 0) start = N_VMaxNorm(c->fwork);
-  for (int done = 0; done < max_iterations;) {
-    int chunk = max_iterations - done < HERTZ_CHUNK ? max_iterations - done : HERTZ_CHUNK;
+  bool ok = false;
+  for (long done = 0; done < max_iterations && !ok;) {
+    long before = *nni;
+    int chunk = max_iterations - done < HERTZ_CHUNK ? (int)(max_iterations - done) : HERTZ_CHUNK;
     KINSetNumMaxIters(c->kmem, chunk);
-    double t0 = vl_contact_now_s();
-    *flag = KINSol(c->kmem, c->y, KIN_LINESEARCH, c->ones, c->ones);
-    c->timing.t_newton_s += vl_contact_now_s() - t0;
-    c->timing.newtons++;
-    long it = 0;
-    KINGetNumNonlinSolvIters(c->kmem, &it);
-    *nni += it;
-    done += (int)it;
-    *fnorm = INFINITY;
-    if (vl_contact_residual_fn(c->y, c->fwork, c) == 0) *fnorm = N_VMaxNorm(c->fwork);
-    if (*flag >= 0 && *fnorm <= c->cfg.tolerance) break;
+    ok = kinsol_run(c, nni, flag, fnorm);
+    done += *nni - before;
     if (*flag != KIN_MAXITER_REACHED || !(*fnorm < HERTZ_MIN_DROP * start)) break;
     start = *fnorm;
   }
   KINSetNumMaxIters(c->kmem, c->cfg.max_iterations);
-  return *flag >= 0 && *fnorm <= c->cfg.tolerance;
+  return ok;
 }
 
 /* The scales a failed solve restores with its state. */
