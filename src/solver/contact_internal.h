@@ -283,6 +283,25 @@ bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni);
  * roughness or fluid, or a rough dst reaches beyond src's domain. */
 bool vl_contact_start_from(vl_contact *dst, const vl_contact *src, double v0);
 
+/* The speed and fluid scales of c's state: what a solve changes besides y,
+ * and restores with it when it fails. */
+typedef struct {
+  double kappa, lambda, rscale, u_ref, v0;
+} vl_contact_scales;
+
+static inline vl_contact_scales vl_contact_scales_get(const vl_contact *c) {
+  return (vl_contact_scales){c->kappa, c->lambda, c->rscale, c->u_ref, c->v0};
+}
+
+/* The fluid scales of s back in c (not the speed). */
+static inline void vl_contact_scales_put(vl_contact *c, const vl_contact_scales *s) {
+  c->kappa = s->kappa, c->lambda = s->lambda, c->rscale = s->rscale, c->u_ref = s->u_ref;
+}
+
+/* y back from y_saved, with the speed (unless NaN: none yet) and scales of
+ * s, and the state evaluated there. */
+void vl_contact_restore_saved(vl_contact *c, const vl_contact_scales *s);
+
 /* Caps the Newton iterations of c's later solves at n (> 0; the
  * configuration's max_iterations otherwise). */
 void vl_contact_set_max_iterations(vl_contact *c, int n);

@@ -25,7 +25,8 @@
 #include "linsol_schur.h"
 
 /* A SUNLinearSolver that forwards to an inner one and times its set-up
- * (factorisation) and solves: the cost split of vl_contact_timing. */
+ * (factorisation) and solves: the cost split of vl_contact_timing. It
+ * holds the contact, whose film_correct has each step corrected. */
 typedef struct {
   SUNLinearSolver inner;
   vl_contact *c;
@@ -236,10 +237,15 @@ static bool newton_from_hertz(vl_contact *c, double v0, int max_iterations, long
   return ok;
 }
 
-/* The scales a failed solve restores with its state. */
-typedef struct {
-  double kappa, lambda, rscale, u_ref, v0;
-} solve_scales;
+void vl_contact_restore_saved(vl_contact *c, const vl_contact_scales *s) {
+  N_VScale(1.0, c->y_saved, c->y);
+  if (s->v0 == s->v0) vl_contact_set_speed(c, s->v0);
+  vl_contact_scales_put(c, s);
+  if (c->wet) {
+    vl_contact_eval_state(c, N_VGetArrayPointer(c->y));
+    vl_contact_reynolds_weights(c);
+  }
+}
 
 /* A thin smooth film that a fresh start misses: starts afresh at a
  * viscosity 10, 100, ... times larger (thicker film, wider inlet and outlet
@@ -279,8 +285,8 @@ static bool viscosity_fallback(vl_contact *c, double v0_m_s, long *nni, int *fla
 /* A solve that failed: says why in err, goes back to the last converged
  * state, its speed and scales, and reports the point as not converged
  * (never NaN). */
-static vl_status solve_failed(vl_contact *c, double v0_m_s, const solve_scales *saved, int flag,
-                              long nni, double fnorm, vl_point *pt, vl_error *err) {
+static vl_status solve_failed(vl_contact *c, double v0_m_s, const vl_contact_scales *saved,
+                              int flag, long nni, double fnorm, vl_point *pt, vl_error *err) {
   bool smooth_wet = c->wet && !c->rough;
   bool closed = smooth_wet && (flag == KIN_REPTD_SYSFUNC_ERR || flag == KIN_FIRST_SYSFUNC_ERR);
   char *flag_name = KINGetReturnFlagName(flag); /* malloc'd by SUNDIALS */
@@ -293,14 +299,7 @@ static vl_status solve_failed(vl_contact *c, double v0_m_s, const solve_scales *
                         "narrow the domain)"
                       : "");
   free(flag_name);
-  N_VScale(1.0, c->y_saved, c->y);
-  if (saved->v0 == saved->v0) vl_contact_set_speed(c, saved->v0);
-  c->kappa = saved->kappa, c->lambda = saved->lambda, c->rscale = saved->rscale;
-  c->u_ref = saved->u_ref;
-  if (c->wet) {
-    vl_contact_eval_state(c, N_VGetArrayPointer(c->y));
-    vl_contact_reynolds_weights(c);
-  }
+  vl_contact_restore_saved(c, saved);
   memset(pt, 0, sizeof *pt);
   pt->error_estimate = NAN;
   pt->v0_m_s = v0_m_s;
@@ -320,42 +319,40 @@ static vl_status solve_point(vl_contact *c, double v0_m_s, vl_point *pt, vl_erro
     return VL_EINPUT;
   }
   N_VScale(1.0, c->y, c->y_saved);
-  solve_scales saved = {c->kappa, c->lambda, c->rscale, c->u_ref, c->v0};
+  vl_contact_scales saved = vl_contact_scales_get(c);
   vl_contact_set_speed(c, v0_m_s);
   bool smooth_wet = c->wet && !c->rough, fresh = smooth_wet && c->v_state == 0.0;
   bool rough_fresh = c->wet && c->rough && c->v_state == 0.0;
+  bool rough_continued = c->wet && c->rough && c->v_state > 0.0;
   long nni = 0;
   int flag;
   double fnorm;
   if (fresh) vl_contact_smooth_wet_start(c, v0_m_s, &nni);
   vl_contact_predict_state(c, v0_m_s);
-  /* a rough film's Newton from Hertz either converges soon or crawls to
-   * the cap (sbr-unfilled on paper-0.5um at 1e-4 ... 0.1 m/s: 200
-   * iterations lost, then the dry start below converged in 20): capped
-   * lower, the starts below come sooner */
-  bool rough_wet = c->wet && c->rough;
-  /* likewise the Newton from the predicted state of a rough film, which
-   * has the unscaled state to fall back on (fig05 on a 30 nm surface: 60 of
-   * 285 crawled to the 200-iteration cap, 12 converged after 50) */
+  /* a rough film's Newton, from Hertz or from the predicted state, either
+   * converges soon or crawls to the cap, and has starts to fall back on:
+   * capped lower, they come sooner (sbr-unfilled on paper-0.5um at 1e-4
+   * ... 0.1 m/s: 200 iterations lost from Hertz, then the dry start below
+   * converged in 20; fig05 on a 30 nm surface: 60 of 285 continued solves
+   * crawled to the 200-iteration cap, 12 converged after 50) */
   int capped = c->cfg.max_iterations < VL_FRESH_HERTZ_ITERATIONS ? c->cfg.max_iterations
                                                                  : VL_FRESH_HERTZ_ITERATIONS;
-  if (rough_wet && c->v_state > 0.0) KINSetNumMaxIters(c->kmem, capped);
+  if (rough_continued) KINSetNumMaxIters(c->kmem, capped);
   /* continuation from a converged film: the film pressure of every step
    * balances its flow (contact_film.c). A fresh start from Hertz is far from
    * any balance, and the plain steps found their way more often */
-  c->film_correct = rough_wet && c->v_state > 0.0;
+  c->film_correct = rough_continued;
   bool ok = rough_fresh ? newton_from_hertz(c, v0_m_s, capped, &nni, &flag, &fnorm)
                         : newton(c, v0_m_s, &nni, &flag, &fnorm);
-  if (rough_wet) KINSetNumMaxIters(c->kmem, c->cfg.max_iterations);
-  if (!ok && c->rough && c->wet && c->v_state > 0.0) {
+  if (rough_continued) KINSetNumMaxIters(c->kmem, c->cfg.max_iterations);
+  if (!ok && rough_continued) {
     /* the predictor scales pf with the speed, as a film of fixed shape
      * does; fluid trapped between the asperities of a fine surface does
      * not follow: there (fig05 on paper-0.1um, 0.025-0.16 m/s) Newton from
      * the scaled state failed steps of 1/64 of 0.2 decade, from the state
      * as it was it took 30-50 iterations per 0.04 decade */
     N_VScale(1.0, c->y_saved, c->y);
-    c->kappa = saved.kappa, c->lambda = saved.lambda, c->rscale = saved.rscale;
-    c->u_ref = saved.u_ref;
+    vl_contact_scales_put(c, &saved);
     ok = newton(c, v0_m_s, &nni, &flag, &fnorm);
   }
   if (!ok && smooth_wet && !fresh) {

@@ -123,8 +123,7 @@ bool vl_contact_film_check(vl_contact *c, double v0_m_s, vl_contact_film_check_r
   double *plain = malloc(4 * N * sizeof *plain), *corr = plain ? plain + N : NULL;
   if (!plain) return false;
   N_VScale(1.0, c->y, c->y_saved);
-  double kappa = c->kappa, lambda = c->lambda, rscale = c->rscale, u_ref = c->u_ref;
-  double v_old = c->v0;
+  vl_contact_scales saved = vl_contact_scales_get(c);
   start_next_solve(c, v0_m_s);
   bool ok = plain_step(c, plain);
   if (ok) {
@@ -150,12 +149,7 @@ bool vl_contact_film_check(vl_contact *c, double v0_m_s, vl_contact_film_check_r
         r->gap_change = fmax(r->gap_change, d);
     }
   }
-  /* back to the state, speed and scales as they were */
-  N_VScale(1.0, c->y_saved, c->y);
-  vl_contact_set_speed(c, v_old);
-  c->kappa = kappa, c->lambda = lambda, c->rscale = rscale, c->u_ref = u_ref;
-  vl_contact_eval_state(c, N_VGetArrayPointer(c->y));
-  vl_contact_reynolds_weights(c);
+  vl_contact_restore_saved(c, &saved); /* the state, speed and scales as they were */
   free(plain);
   return ok;
 }

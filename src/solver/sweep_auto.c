@@ -126,17 +126,16 @@ static vl_status refine(auto_state *a, double v, double resolution, double inlet
   double film = 0.0;
   bool continued;
   vl_status s = build(a, v, pt, &c, &plan, &film, &continued, err);
+  if (s != VL_OK) return s; /* nothing built */
   vl_point np;
-  if (s == VL_OK && continued) {
+  if (continued) {
     vl_contact_set_max_iterations(c, c->cfg.max_iterations < REFINE_MAX_ITERATIONS
                                          ? c->cfg.max_iterations
                                          : REFINE_MAX_ITERATIONS);
     s = vl_contact_solve(c, v, &np, err);
     st->newton_iterations += np.iterations;
-  } else if (s == VL_OK) {
-    s = vl_sweep_solve_point(c, 0.0, v, 6, &np, st, err);
   } else {
-    return s; /* nothing built */
+    s = vl_sweep_solve_point(c, 0.0, v, 6, &np, st, err);
   }
   if (s == VL_OK) {
     install(a, c, &plan, film, continued);
