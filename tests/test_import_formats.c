@@ -473,6 +473,25 @@ static void test_psd_1d(void **state) {
   fprintf(stderr, "1-D power law H %.1f -> 2-D: worst relative error %.2e\n", H, worst);
   assert_true(worst < 5e-3);
   vl_psd_free(&p);
+  /* a band of q wider than the range of double (the fuzzer's input of 2026-11-24:
+   * 5.6e-299 1/m among 1e3 ... 1e14) converts without undefined behaviour (the
+   * sanitizer build runs this: the quadrature's panel count came from an infinite
+   * interval), to positive finite values where it keeps a point */
+  const char *wide = "q [1/m],C1D [m^3]\n1008,2.51189e-17\n31622.8,6.30957e-18\n"
+                     "56e-300,1.58489e-18\n100000,6618378e-23\n1e+14,6.30957e-24\n";
+  vl_psd w;
+  vl_error werr;
+  vl_status ws = vl_csv_read_psd_text(wide, strlen(wide), "w.csv", VL_PSD_FILE_1D, &w, &rep, &werr);
+  fprintf(stderr, "q from 5.6e-299 to 1e14 (1-D): status %d, %zu points kept\n", (int)ws,
+          ws == VL_OK ? w.n : 0);
+  if (ws == VL_OK) {
+    for (size_t k = 0; k < w.n; k++)
+      assert_true(w.C[k] > 0.0 && isfinite(w.C[k]));
+    vl_psd_free(&w);
+  } else {
+    assert_int_equal(ws, VL_EINPUT);
+    assert_non_null(strstr(werr.msg, "w.csv"));
+  }
   /* given where a 2-D one is expected, by unit or by name, it is refused */
   vl_psd q;
   vl_error err;

@@ -925,9 +925,14 @@ static const double gl_x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664
 static const double gl_w[4] = {0.3626837833783620, 0.3137066053114875, 0.2223810344533745,
                                0.1012285362903763};
 
-/* \int_{ta}^{tb} (cosh t)^-(s+1) dt by Gauss-Legendre panels. */
+/* \int_{ta}^{tb} (cosh t)^-(s+1) dt (s >= 0) by Gauss-Legendre panels,
+ * ended where the integrand has fallen by e^-TAIL_DECAY from ta, as the
+ * tail is: beyond that it adds nothing, and a band of q spanning more
+ * than the range of double (a 1-D q of 5.6e-299 1/m next to 1e14, found by
+ * the fuzzer) made tb infinite and the panel count undefined. */
 static double cosh_power_integral(double s, double ta, double tb) {
-  if (!(tb > ta)) return 0.0;
+  tb = fmin(tb, ta + TAIL_DECAY / (s + 1.0));
+  if (!(tb > ta)) return 0.0; /* also ta infinite */
   size_t panels = (size_t)ceil((tb - ta) / ABEL_PANEL);
   double h = (tb - ta) / (double)panels, sum = 0.0;
   for (size_t p = 0; p < panels; p++) {
