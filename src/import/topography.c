@@ -26,7 +26,8 @@
 #define NUMBER_MAX_CHARS 127
 #define SHOW_MAX_CHARS 40
 /* Inverse Abel quadrature: panels at most this wide in t (q = Q cosh t),
- * and the tail integrated until cosh(t)^-(s+1) has fallen by e^-TAIL_DECAY. */
+ * and every piece (the tail too) integrated until cosh(t)^-(s+1) has
+ * fallen by e^-TAIL_DECAY. */
 #define ABEL_PANEL 0.25
 #define TAIL_DECAY 40.0
 /* The tail slope of C1 is fitted over the last half decade of bins. */
