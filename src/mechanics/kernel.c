@@ -44,14 +44,12 @@
  *    converges like (2|x|)^{-2k} (the only singularity of L is at a = 0). */
 #include "kernel.h"
 #include "gsl_errors.h"
+#include "kernel_expint.h"
 
 #include <math.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_sf_expint.h>
 
 #define EULER_GAMMA 0.57721566490153286060651209008240243
 
@@ -59,18 +57,8 @@
  * Ke, and (x +- 1/2)/beta could overflow: treat the term as relaxed. */
 #define BETA_NEGLIGIBLE 1e-200
 
-/* g(z) = -e^{-z} Ei(z) for z != 0 (log-singular at 0). NaN if GSL fails,
- * which cannot happen for finite nonzero z; the error handler must be off. */
-static double g_fn(double z) {
-  gsl_sf_result r;
-  int st;
-  if (z < 0.0) {
-    st = gsl_sf_expint_E1_scaled_e(-z, &r);
-    return st == GSL_SUCCESS ? r.val : NAN;
-  }
-  st = gsl_sf_expint_Ei_scaled_e(z, &r);
-  return st == GSL_SUCCESS ? -r.val : NAN;
-}
+/* g(z) = -e^{-z} Ei(z) for z != 0 (log-singular at 0): kernel_expint.h. */
+static double g_fn(double z) { return vl_expint_g(z); }
 
 /* log|a+/a-| for |x| > 1/2. For large |x|, 2 atanh(1/(2x)) avoids the
  * cancellation of two close logs; near the cell edge atanh(u -> 1) would
@@ -202,17 +190,19 @@ static double kve_series(double x, double beta) {
   return log(beta) + sum;
 }
 
-/* Branch (II), |x| large: midpoint Taylor series of the cell average of L. */
+/* Branch (II), |x| large: midpoint Taylor series of the cell average of L.
+ * The recurrences multiply by 1/beta and 1/x: a division in the chain of
+ * t would set the pace of the loop, the most frequent in a refill. */
 static double kve_far(double x, double beta) {
-  double z = x / beta;
+  double z = x / beta, ib = 1.0 / beta, ix = 1.0 / x;
   double gz = g_fn(z);
   double sum = fabs(z) < 0.5 ? log(beta) + m_series(z) : log(fabs(x)) + gz;
-  double t = gz / beta; /* T_1 = L'(x) */
-  double r = 1.0 / x;   /* (n-1)!/x^n at n = 1 */
-  double c = 1.0;       /* 1/(4^k (2k+1)!) */
+  double t = gz * ib; /* T_1 = L'(x) */
+  double r = ix;      /* (n-1)!/x^n at n = 1 */
+  double c = 1.0;     /* 1/(4^k (2k+1)!) */
   for (int n = 1; n < 40; n++) {
-    t = (t + r) / beta; /* T_{n+1} = L^{(n+1)}(x) (-1)^{n+1} */
-    r *= (double)n / x;
+    t = (t + r) * ib; /* T_{n+1} = L^{(n+1)}(x) (-1)^{n+1} */
+    r *= (double)n * ix;
     if ((n + 1) % 2 == 0) {
       int kk = (n + 1) / 2;
       c /= 4.0 * (double)(2 * kk) * (double)(2 * kk + 1);
@@ -291,6 +281,8 @@ typedef struct {
   double u[FROZEN_N + 1];                       /* sum A beta^-n (frozen) */
   double v[FROZEN_N + 1];                       /* sum A beta^-n log beta (frozen) */
   double alpha[FROZEN_N + 1], bc[FROZEN_N + 1]; /* m's coefficients */
+  double inv[FROZEN_N + 1];                     /* 1/(n+1) */
+  double fa[FROZEN_N + 1], fb[FROZEN_N + 1];    /* alpha u, bc u - alpha v */
 } term_sums;
 
 static bool term_active(double A, double beta) { return A != 0.0 && beta >= BETA_NEGLIGIBLE; }
@@ -325,6 +317,10 @@ static void sums_regroup(term_sums *g, const double *A, const double *beta, size
         g->v[n] += p * lb;
       }
     }
+  }
+  for (int n = 0; n <= FROZEN_N; n++) {
+    g->fa[n] = g->alpha[n] * g->u[n];
+    g->fb[n] = g->bc[n] * g->u[n] - g->alpha[n] * g->v[n];
   }
 }
 
@@ -364,22 +360,31 @@ static double relaxed_part(const term_sums *g, double x) {
 
 /* sum over the frozen terms of A (kve - log beta + gamma) at x: the n >= 1
  * terms of m's series, cell-averaged (P_n = s_n/(n+1), s_n = sum_j a+^j
- * a-^(n-j), free of the cancellation of a+^(n+1) - a-^(n+1)). */
+ * a-^(n-j), free of the cancellation of a+^(n+1) - a-^(n+1)). In terms of
+ * Lg_n (the average of y^n log|y|): sum_n fa_n Lg_n + fb_n P_n. */
 static double frozen_part(const term_sums *g, double x) {
   if (g->n_frozen == 0) return 0.0;
   double ap = x + 0.5, am = x - 0.5;
-  bool same_sign = fabs(x) > 0.5;
-  double lp = log(fabs(ap)), lm = log(fabs(am)), dl = same_sign ? dlog_fn(x) : 0.0;
+  double lp = log(fabs(ap)), lm = log(fabs(am));
   double s = 1.0, amn = 1.0, ap1 = ap, am1 = am, sum = 0.0;
+  if (fabs(x) > 0.5) { /* both edges on one side of 0: log|a+/a-| */
+    double dl = dlog_fn(x);
+    for (int n = 1; n <= FROZEN_N; n++) {
+      amn *= am;
+      s = ap * s + amn;
+      am1 *= am;
+      double r = g->inv[n], pn = s * r;
+      sum += g->fa[n] * ((lp * s + am1 * dl) * r - pn * r) + g->fb[n] * pn;
+    }
+    return sum;
+  }
   for (int n = 1; n <= FROZEN_N; n++) {
     amn *= am;
     s = ap * s + amn;
     ap1 *= ap;
     am1 *= am;
-    double np1 = (double)(n + 1);
-    double lg = same_sign ? (lp * s + am1 * dl) / np1 - s / (np1 * np1)
-                          : (ap1 * (lp - 1.0 / np1) - am1 * (lm - 1.0 / np1)) / np1;
-    sum += g->alpha[n] * (lg * g->u[n] - g->v[n] * s / np1) + g->bc[n] * g->u[n] * s / np1;
+    double r = g->inv[n];
+    sum += g->fa[n] * (ap1 * (lp - r) - am1 * (lm - r)) * r + g->fb[n] * s * r;
   }
   return sum;
 }
@@ -401,29 +406,117 @@ static double offset_total(const term_sums *g, const double *A, const double *be
          relaxed_part(g, x) + w;
 }
 
+/* ---------- Far offsets by interpolation ----------
+ *
+ * Each term's coefficient is an analytic function of the offset x except at
+ * the cell edges x = +-1/2 (L(a) is singular only at a = 0), and so is their
+ * sum. From offset INTERP_FROM on, each octave [2^k, 2^(k+1)) is cut into
+ * INTERP_PIECES pieces; on a piece [x0, x0 (1 + 1/4)] the distance from the
+ * centre to the nearest singularity is at least 9 half-widths (less 4/x0), so
+ * the Chebyshev interpolant at INTERP_NODES nodes converges like
+ * (9 + sqrt(80))^-16 = 1e-20: what is left is the rounding of the node values
+ * (a few ulps, times the interpolant's Lebesgue constant, about 3). A graded
+ * grid's merged cells need every uniform offset out to the far end of the
+ * domain (their coefficients are run sums): 2928 offsets cost 2 x 256 direct
+ * evaluations and 16 per piece instead of one each. */
+#define INTERP_FROM 256
+#define INTERP_PIECES 4
+#define INTERP_NODES 16
+
+/* What every offset's evaluation shares. */
+typedef struct {
+  const double *A;
+  const double *beta; /* b / delta */
+  size_t n_terms;
+  double sum_a, ld;
+  term_sums g;
+  size_t win[VL_KERNEL_MAX_TERMS];
+} refill_state;
+
+/* coef/delta at +ax and -ax (ax >= 0, any real). The groups of the terms are
+ * set by their counts alone (relaxed: the smallest beta, frozen: the largest),
+ * so the offsets may come in any order. */
+static void total_pair(refill_state *r, double ax, double *plus, double *minus) {
+  size_t nr, nf, nw = classify(r->A, r->beta, r->n_terms, ax, r->win, &nr, &nf);
+  if (nr != r->g.n_relaxed || nf != r->g.n_frozen)
+    sums_regroup(&r->g, r->A, r->beta, r->n_terms, ax);
+  *plus = offset_total(&r->g, r->A, r->beta, r->win, nw, r->sum_a, r->ld, ax);
+  *minus = ax > 0.0 ? offset_total(&r->g, r->A, r->beta, r->win, nw, r->sum_a, r->ld, -ax) : *plus;
+}
+
+/* Chebyshev coefficients from values at the nodes cos(pi (j + 1/2)/N), summed in
+ * long double (in double, the transform's rounding would be the largest error). */
+static void chebyshev_fit(const double *f, const double (*cosines)[INTERP_NODES], double *c) {
+  for (int k = 0; k < INTERP_NODES; k++) {
+    long double s = 0.0L;
+    for (int j = 0; j < INTERP_NODES; j++)
+      s += (long double)f[j] * cosines[k][j];
+    c[k] = (double)((k == 0 ? 1.0L : 2.0L) * s / INTERP_NODES);
+  }
+}
+
+static double chebyshev_eval(const double *c, double u) {
+  double b1 = 0.0, b2 = 0.0, u2 = 2.0 * u;
+  for (int k = INTERP_NODES - 1; k >= 1; k--) {
+    double b0 = c[k] + u2 * b1 - b2;
+    b2 = b1, b1 = b0;
+  }
+  return c[0] + u * b1 - b2;
+}
+
+/* Offsets lo .. hi - 1 (and their negatives) from one interpolant on [lo, hi]. */
+static void interpolate_piece(refill_state *r, vl_toeplitz *t, size_t lo, size_t hi,
+                              const double (*cosines)[INTERP_NODES]) {
+  double mid = 0.5 * (double)(lo + hi), half = 0.5 * (double)(hi - lo);
+  double fp[INTERP_NODES], fm[INTERP_NODES], cp[INTERP_NODES], cm[INTERP_NODES];
+  for (int j = 0; j < INTERP_NODES; j++)
+    total_pair(r, mid + half * cosines[1][j], &fp[j], &fm[j]);
+  chebyshev_fit(fp, cosines, cp);
+  chebyshev_fit(fm, cosines, cm);
+  size_t n = t->n;
+  for (size_t i = lo; i < hi; i++) {
+    double u = ((double)i - mid) / half;
+    t->coef[n - 1 + i] = t->delta * chebyshev_eval(cp, u);
+    t->coef[n - 1 - i] = t->delta * chebyshev_eval(cm, u);
+  }
+}
+
 void vl_toeplitz_refill(vl_toeplitz *t, const double *A, const double *b, size_t n_terms) {
   size_t n = t->n;
-  double delta = t->delta, ld = log(delta), sum_a = 0.0;
-  vl_gsl_errors_off();
   double beta[VL_KERNEL_MAX_TERMS];
+  refill_state r = {.A = A, .beta = beta, .n_terms = n_terms, .ld = log(t->delta)};
+  vl_gsl_errors_off();
   for (size_t k = 0; k < n_terms; k++) {
-    sum_a += A[k];
-    beta[k] = b[k] / delta;
+    r.sum_a += A[k];
+    beta[k] = b[k] / t->delta;
   }
-  term_sums g;
   m_coef mc = {0, 1.0, 0.0};
   for (int i = 0; i <= FROZEN_N; i++, m_next(&mc)) {
-    g.alpha[i] = m_alpha(&mc);
-    g.bc[i] = m_b(&mc);
+    r.g.alpha[i] = m_alpha(&mc);
+    r.g.bc[i] = m_b(&mc);
+    r.g.inv[i] = 1.0 / (double)(i + 1);
   }
-  sums_regroup(&g, A, beta, n_terms, 0.0);
-  size_t win[VL_KERNEL_MAX_TERMS];
-  for (size_t i = 0; i < n; i++) {
-    double ax = (double)i;
-    size_t nr, nf, nw = classify(A, beta, n_terms, ax, win, &nr, &nf);
-    if (nr != g.n_relaxed || nf != g.n_frozen) sums_regroup(&g, A, beta, n_terms, ax);
-    t->coef[n - 1 + i] = delta * offset_total(&g, A, beta, win, nw, sum_a, ld, ax);
-    if (i > 0) t->coef[n - 1 - i] = delta * offset_total(&g, A, beta, win, nw, sum_a, ld, -ax);
+  sums_regroup(&r.g, A, beta, n_terms, 0.0);
+  size_t direct = n < INTERP_FROM ? n : INTERP_FROM;
+  for (size_t i = 0; i < direct; i++) {
+    double plus, minus;
+    total_pair(&r, (double)i, &plus, &minus);
+    t->coef[n - 1 + i] = t->delta * plus;
+    t->coef[n - 1 - i] = t->delta * minus;
+  }
+  if (n <= INTERP_FROM) return;
+  double cosines[INTERP_NODES][INTERP_NODES]; /* [k][j] = cos(pi k (j + 1/2)/N) */
+  for (int k = 0; k < INTERP_NODES; k++)
+    for (int j = 0; j < INTERP_NODES; j++)
+      cosines[k][j] = cos(M_PI * k * (j + 0.5) / INTERP_NODES);
+  for (size_t lo = INTERP_FROM; lo < n;) {
+    size_t octave = lo; /* lo is a power of two times 1 + p/INTERP_PIECES */
+    while (octave & (octave - 1))
+      octave &= octave - 1;
+    size_t hi = lo + octave / INTERP_PIECES;
+    if (hi > n) hi = n;
+    interpolate_piece(&r, t, lo, hi, (const double(*)[INTERP_NODES])cosines);
+    lo = hi;
   }
 }
 
