@@ -799,7 +799,7 @@ static int compound_add(const context *cx, const vl_cli_globals *g, int argc, ch
                    {"--fit-weights", "WEIGHTS", NULL},
                    {"--moduli", "KIND", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
-  const char *pos[1], *name = NULL;
+  const char *pos[1] = {NULL}, *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
@@ -937,7 +937,7 @@ static int surface_add(const context *cx, const vl_cli_globals *g, int argc, cha
                    {"--description", "TEXT", NULL}, {"--topography", "FILE", NULL},
                    {"--psd-kind", "KIND", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
-  const char *pos[1], *name = NULL;
+  const char *pos[1] = {NULL}, *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
@@ -1076,7 +1076,7 @@ static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char 
                    {"--law-range", "TMIN_C,TMAX_C", NULL},
                    {"--description", "TEXT", NULL}};
   const size_t n_opts = sizeof opts / sizeof *opts;
-  const char *pos[1], *name = NULL;
+  const char *pos[1] = {NULL}, *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
@@ -1143,7 +1143,7 @@ static int fluid_add(const context *cx, const vl_cli_globals *g, int argc, char 
 
 static int do_list(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
   option opts[] = {{"--json", NULL, NULL}};
-  const char *pos[1];
+  const char *pos[1] = {NULL};
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, 1, pos, 0, &n_pos)) >= 0) return rc;
@@ -1419,7 +1419,7 @@ static int do_show(const context *cx, const vl_cli_globals *g, int argc, char **
   option surface_opts[] = {{"--json", NULL, NULL}, {"--plot", "FILE", NULL}};
   size_t n_opts = cx->kind == NOUN_COMPOUND ? 4 : cx->kind == NOUN_SURFACE ? 2 : 1;
   if (cx->kind == NOUN_SURFACE) memcpy(opts, surface_opts, sizeof surface_opts);
-  const char *pos[1], *name = NULL;
+  const char *pos[1] = {NULL}, *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, n_opts, pos, 1, &n_pos)) >= 0) return rc;
@@ -1458,7 +1458,7 @@ static int do_flow_factors(const context *cx, const vl_cli_globals *g, int argc,
                    {"--points", "N", NULL},    {"--film-cutoff", "M", NULL},
                    {"--out", "FILE", NULL},    {"--json", NULL, NULL},
                    {"--plot", NULL, NULL}};
-  const char *pos[1], *name = NULL;
+  const char *pos[1] = {NULL}, *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, opts, 7, pos, 1, &n_pos)) >= 0) return rc;
@@ -1470,7 +1470,7 @@ static int do_flow_factors(const context *cx, const vl_cli_globals *g, int argc,
 }
 
 static int do_remove(const context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  const char *pos[1], *name = NULL;
+  const char *pos[1] = {NULL}, *name = NULL;
   size_t n_pos;
   int rc;
   if ((rc = parse_args(cx, argc, argv, 2, NULL, 0, pos, 1, &n_pos)) >= 0) return rc;

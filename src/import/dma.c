@@ -645,7 +645,13 @@ static vl_status scan_units_row(layout *lay, const char *p, size_t n, size_t lin
                    fam == U_NONE ? "" : list);
       return VL_EINPUT;
     }
-    snprintf(f->row_unit, sizeof f->row_unit, "%s", u[k]);
+    /* a unit find_unit knows always fits; checked, not assumed */
+    int w = snprintf(f->row_unit, sizeof f->row_unit, "%s", u[k]);
+    if (w < 0 || (size_t)w >= sizeof f->row_unit) {
+      vl_error_set(err, "%s:%zu: column '%s' (field %zu): unit '%.40s' is too long", lay->src,
+                   line_no, f->text, k + 1, u[k]);
+      return VL_EINPUT;
+    }
     f->has_row_unit = 1;
   }
   return VL_OK;
