@@ -30,6 +30,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "viscolube/numerics.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
@@ -138,10 +139,105 @@ static void test_start_above_fold(void **state) {
   agree(3e-8, 19, N, v, ref);
 }
 
+/* A thin smooth film (soft EHL, no roughness): a stiff one-term rubber
+ * (Einf/E0 2930, tau 22 ms), R 0.84 mm, 700 N/m, eta 1.99 Pa s, 48 cells on
+ * [-2.36, 1.6] a0 (a corner of the hard-case matrix), one speed a decade from
+ * 1e-12 to 100 m/s. Every start near 1e-12-1e-9 m/s fails on these cells
+ * (films of 1e-14-1e-11 m); the sweep reaches them by continuation down
+ * from the first point that converges above them (sweep.h, path 5). */
+static void thin_film_config(vl_contact_config *cfg) {
+  vl_contact_config_defaults(cfg);
+  cfg->rubber.e_inf_pa = 3.6e6 * 2930.0;
+  cfg->rubber.nu = 0.5;
+  cfg->rubber.n_terms = 1;
+  cfg->rubber.tau_s[0] = 0.0223;
+  cfg->rubber.A[0] = 2929.0;
+  cfg->radius_m = 0.00084;
+  cfg->load_n_per_m = 700.0;
+  cfg->eta_pa_s = 1.99;
+  cfg->flow_factors = VL_FLOW_FACTORS_SMOOTH;
+  cfg->grid = 48;
+  cfg->x_min_a0 = -2.36;
+  cfg->x_max_a0 = 1.6;
+}
+
+typedef struct {
+  int calls[16];
+  int converged_without_contact;
+} report_log;
+
+static void log_report(void *user, size_t i, size_t total, const vl_point *pt,
+                       const vl_contact *c) {
+  report_log *l = user;
+  (void)total;
+  l->calls[i]++;
+  if (pt->converged && !c) l->converged_without_contact++;
+}
+
+/* Whether the sweep through v converged everywhere (the contact of cfg). */
+static size_t sweep_failures(const vl_contact_config *cfg, size_t n, const double *v, vl_point *pt,
+                             vl_sweep_stats *st, report_log *log) {
+  vl_contact *c = NULL;
+  vl_error err;
+  assert_int_equal(vl_contact_create(cfg, &c, &err), VL_OK);
+  assert_int_equal(vl_sweep_run(c, n, v, NULL, pt, log ? log_report : NULL, log, st, &err), VL_OK);
+  vl_contact_free(c);
+  size_t failed = 0;
+  for (size_t i = 0; i < n; i++)
+    failed += !pt[i].converged;
+  return failed;
+}
+
+static void test_thin_film_from_above(void **state) {
+  (void)state;
+  enum { N = 15, LOW = 4 };
+  double v[N];
+  for (int i = 0; i < N; i++)
+    v[i] = 1e-12 * pow(10.0, i);
+  vl_contact_config cfg;
+  thin_film_config(&cfg);
+  vl_point pt[N], low[LOW];
+  vl_sweep_stats st, st_low;
+  /* the four lowest speeds on their own: nothing converged above them */
+  size_t low_failed = sweep_failures(&cfg, LOW, v, low, &st_low, NULL);
+  report_log log = {{0}, 0};
+  assert_int_equal(sweep_failures(&cfg, N, v, pt, &st, &log), 0);
+  print_message("thin smooth film: alone, %zu of the %d lowest speeds fail; in the sweep to 100 "
+                "m/s every point converges, %zu of them from above; u_min %.3g m at %g m/s, "
+                "%.3g m at %g m/s\n",
+                low_failed, LOW, st.recovered_below, pt[0].u_min_m, v[0], pt[LOW].u_min_m, v[LOW]);
+  assert_true(low_failed > 0);
+  assert_true(st.recovered_below >= low_failed);
+  for (int i = 0; i < N; i++) {
+    assert_int_equal(log.calls[i], 1); /* each point reported once */
+    assert_true(pt[i].load_error < 1e-8);
+    assert_true(pt[i].residual <= cfg.tolerance);
+    /* the film thickens with speed at every step (soft EHL) */
+    if (i > 0 && !(pt[i].u_min_m > pt[i - 1].u_min_m))
+      fail_msg("u_min %.4g m at %g m/s, %.4g m at %g m/s", pt[i - 1].u_min_m, v[i - 1],
+               pt[i].u_min_m, v[i]);
+  }
+  assert_int_equal(log.converged_without_contact, 0);
+  /* the automatic sweep on the same cells (keep_numerics) recovers them the
+   * same way, through its own copy of the contact: the same solutions */
+  vl_point pa[N];
+  vl_sweep_stats sa;
+  vl_auto_options o = {0.0, -1, true};
+  vl_error err;
+  assert_int_equal(vl_sweep_run_auto(&cfg, &o, N, v, pa, NULL, NULL, &sa, &err), VL_OK);
+  assert_int_equal(sa.converged, N);
+  assert_true(sa.recovered_below >= low_failed);
+  for (int i = 0; i < N; i++)
+    if (fabs(pa[i].u_min_m - pt[i].u_min_m) > UMIN_TOL * pt[i].u_min_m)
+      fail_msg("%g m/s: u_min %.6g m (automatic sweep), %.6g m (sweep)", v[i], pa[i].u_min_m,
+               pt[i].u_min_m);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_start_mid_curve),
       cmocka_unit_test(test_start_above_fold),
+      cmocka_unit_test(test_thin_film_from_above),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -7,8 +7,11 @@
 #include "viscolube/contact.h"
 #include "viscolube/status.h"
 
-/* Called after each requested speed; the contact holds that point's solution
- * when pt->converged (so vl_contact_fields may be called). */
+/* Called once for each requested speed, when its result is final; the
+ * contact holds that point's solution when pt->converged (so
+ * vl_contact_fields may be called), and may be NULL otherwise. Points come
+ * in increasing index, except that a run of failed points comes (in
+ * decreasing index) after the retry from the converged point above it. */
 typedef void (*vl_sweep_callback)(void *user, size_t index, size_t total, const vl_point *pt,
                                   const vl_contact *contact);
 
@@ -23,6 +26,7 @@ typedef struct {
   size_t fresh_starts;    /* points retried from the Hertz guess after continuation failed */
   size_t starts_below;    /* points retried from a fresh start at a lower speed */
   size_t starts_above;    /* points retried from a fresh start at a higher speed */
+  size_t recovered_below; /* failed points reached later from the converged point above */
   double seconds;
 } vl_sweep_stats;
 
@@ -47,11 +51,17 @@ void vl_sweep_options_defaults(vl_sweep_options *opt);
  *   4. a fresh start 0.5, 1 or 2 decades above v0, continued down to v0
  *      the same way: past a fold of the curve (a film that lifts off the
  *      asperities within a step: the mixed branch ends) the lifted branch
- *      is found from above.
+ *      is found from above;
+ *   5. when a later point converges: continuation down from it to the
+ *      failed points below, nearest first, until one fails (a thin film
+ *      that no start near its own speed finds is reached from a thicker
+ *      one). The sweep then goes on from the later point.
  * So the first point need not lie in the boundary regime. Only the
- * requested speeds are reported (cb, out); a point that still fails is
- * reported with converged = false and the sweep goes on from the Hertz
- * guess. out[n] is filled.
+ * requested speeds are reported (cb, out), each once; a run of failed
+ * points is reported after path 5 was tried for it, in decreasing speed,
+ * just before the converged point above it (or at the end). A point that
+ * still fails is reported with converged = false and the sweep goes on
+ * from the Hertz guess. out[n] is filled.
  * Returns VL_OK even when some points failed (see stats); errors only for
  * bad input. */
 vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_sweep_options *opt,

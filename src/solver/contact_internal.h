@@ -302,6 +302,24 @@ static inline void vl_contact_scales_put(vl_contact *c, const vl_contact_scales 
  * s, and the state evaluated there. */
 void vl_contact_restore_saved(vl_contact *c, const vl_contact_scales *s);
 
+/* A copy of a converged state of c (unknowns, speed, fluid scales) to come
+ * back to after a detour of other solves (sweep.c: the recovery of failed
+ * points below a converged one). */
+typedef struct {
+  N_Vector y; /* NULL until taken */
+  vl_contact_scales s;
+  double v_state;
+} vl_contact_mark;
+
+/* Takes c's present state into m (allocating m->y on first use); false when
+ * out of memory. */
+bool vl_contact_mark_take(const vl_contact *c, vl_contact_mark *m);
+
+/* Puts m's state back in c, evaluated there. */
+void vl_contact_mark_return(vl_contact *c, const vl_contact_mark *m);
+
+void vl_contact_mark_free(vl_contact_mark *m);
+
 /* Caps the Newton iterations of c's later solves at n (> 0; the
  * configuration's max_iterations otherwise). */
 void vl_contact_set_max_iterations(vl_contact *c, int n);

@@ -247,6 +247,25 @@ void vl_contact_restore_saved(vl_contact *c, const vl_contact_scales *s) {
   }
 }
 
+bool vl_contact_mark_take(const vl_contact *c, vl_contact_mark *m) {
+  if (!m->y && !(m->y = N_VClone(c->y))) return false;
+  N_VScale(1.0, c->y, m->y);
+  m->s = vl_contact_scales_get(c);
+  m->v_state = c->v_state;
+  return true;
+}
+
+void vl_contact_mark_return(vl_contact *c, const vl_contact_mark *m) {
+  N_VScale(1.0, m->y, c->y_saved);
+  vl_contact_restore_saved(c, &m->s);
+  c->v_state = m->v_state;
+}
+
+void vl_contact_mark_free(vl_contact_mark *m) {
+  if (m->y) N_VDestroy(m->y);
+  m->y = NULL;
+}
+
 /* A thin smooth film that a fresh start misses: starts afresh at a
  * viscosity 10, 100, ... times larger (thicker film, wider inlet and outlet
  * zones) and comes down by continuation in viscosity. Returns whether that

@@ -2,6 +2,7 @@
 #include "viscolube/sweep.h"
 
 #include "contact_internal.h"
+#include "sweep_internal.h"
 
 #include <math.h>
 #include <string.h>
@@ -112,6 +113,43 @@ vl_status vl_sweep_solve_point(vl_contact *c, double last_ok, double v, int max_
   return so;
 }
 
+void vl_sweep_report_point(const vl_sweep_report *r, size_t i, const vl_contact *c) {
+  r->out[i].v0_m_s = r->v[i];
+  if (r->out[i].converged)
+    r->st->converged++;
+  else
+    r->st->failed++;
+  if (r->cb) r->cb(r->user, i, r->n, &r->out[i], c);
+}
+
+/* Points lo .. hi-1 failed on the way up and hi has converged (the contact
+ * holds it): each failed point is retried by continuation down from its
+ * neighbour above (ramp), nearest first, until one fails (the points below
+ * it would have to be reached through it). A thin smooth film that no start
+ * near its own speed finds is reached this way from a thicker one (the
+ * hard-case matrix: films of 1e-12-1e-7 m/s on coarse grids). Every point
+ * lo .. hi-1 is reported here, in decreasing speed; the contact then has
+ * hi's state back. */
+static void recover_below(vl_contact *c, const vl_sweep_report *r, size_t lo, size_t hi,
+                          int max_depth) {
+  vl_contact_mark mark = {0};
+  size_t k = hi;
+  if (vl_contact_mark_take(c, &mark)) {
+    for (; k > lo; k--) {
+      vl_point pt;
+      vl_error e;
+      if (ramp(c, r->v[k], r->v[k - 1], max_depth, &pt, r->st, &e) != VL_OK) break;
+      r->out[k - 1] = pt;
+      r->st->recovered_below++;
+      vl_sweep_report_point(r, k - 1, c);
+    }
+    vl_contact_mark_return(c, &mark);
+  }
+  vl_contact_mark_free(&mark);
+  while (k-- > lo)
+    vl_sweep_report_point(r, k, c);
+}
+
 vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_sweep_options *opt,
                        vl_point *out, vl_sweep_callback cb, void *user, vl_sweep_stats *stats,
                        vl_error *err) {
@@ -131,24 +169,28 @@ vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_s
   }
   struct timespec t0, t1;
   clock_gettime(CLOCK_MONOTONIC, &t0);
+  vl_sweep_report r = {v0_m_s, n, out, cb, user, &st};
   double last_ok = 0.0;
+  size_t pending = 0; /* points pending .. i-1 failed and are not reported yet */
   for (size_t i = 0; i < n; i++) {
     vl_error e;
     vl_status s =
         vl_sweep_solve_point(c, last_ok, v0_m_s[i], opt->max_subdivisions, &out[i], &st, &e);
+    out[i].v0_m_s = v0_m_s[i];
     if (s == VL_OK) {
-      st.converged++;
+      if (pending < i) recover_below(c, &r, pending, i, opt->max_subdivisions);
+      vl_sweep_report_point(&r, i, c);
+      pending = i + 1;
       last_ok = v0_m_s[i];
     } else if (s == VL_ENOCONV) {
-      st.failed++;
       last_ok = 0.0; /* the state is the Hertz guess now */
     } else {
       if (err) *err = e;
       return s;
     }
-    out[i].v0_m_s = v0_m_s[i];
-    if (cb) cb(user, i, n, &out[i], c);
   }
+  for (size_t i = pending; i < n; i++) /* failed with nothing converged above */
+    vl_sweep_report_point(&r, i, c);
   clock_gettime(CLOCK_MONOTONIC, &t1);
   st.seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
   if (stats) *stats = st;

@@ -8,6 +8,7 @@
 #include <time.h>
 
 #include "contact_internal.h"
+#include "sweep_internal.h"
 
 /* A smooth film re-planned when the film expected at the next speed is
  * this many times thicker or thinner than the one the layout was made for
@@ -202,6 +203,38 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
   return VL_OK;
 }
 
+/* Points lo .. hi-1 failed and hi has converged on a's contact: each failed
+ * point is solved again by continuation down from its neighbour above,
+ * nearest first, until one fails (path 5 of vl_sweep_run, sweep.h), with its
+ * own cells, estimate and refinement. The descent runs on a copy of a's
+ * contact, so a goes on from hi unchanged. Every point lo .. hi-1 is
+ * reported here, in decreasing speed. */
+static void auto_recover_below(const auto_state *a, const vl_auto_options *o,
+                               const vl_sweep_report *r, size_t lo, size_t hi) {
+  auto_state down = {.base = a->base,
+                     .layout = a->layout,
+                     .plan_film = a->plan_film,
+                     .resolution = a->resolution,
+                     .inlet_scale = a->inlet_scale,
+                     .last_ok = r->v[hi]};
+  size_t k = hi;
+  if (vl_contact_create(&a->c->cfg, &down.c, NULL) == VL_OK &&
+      vl_contact_start_from(down.c, a->c, r->v[hi])) {
+    for (; k > lo; k--) {
+      vl_point pt;
+      vl_error e;
+      if (auto_point(&down, o, r->v[k - 1], &r->out[k], &pt, r->st, &e) != VL_OK) break;
+      r->out[k - 1] = pt;
+      r->st->recovered_below++;
+      vl_sweep_report_point(r, k - 1, down.c);
+    }
+  }
+  vl_contact_free(down.c);
+  vl_plan_free(&down.plan);
+  while (k-- > lo)
+    vl_sweep_report_point(r, k, NULL);
+}
+
 vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options *opt, size_t n,
                             const double *v0_m_s, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err) {
@@ -223,23 +256,29 @@ vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options
   double t0 = vl_contact_now_s();
   const vl_point *prev = NULL;
   vl_status s = VL_OK;
+  vl_sweep_report r = {v0_m_s, n, out, cb, user, &st};
+  size_t pending = 0; /* points pending .. i-1 failed and are not reported yet */
   for (size_t i = 0; i < n; i++) {
     vl_error e;
     s = auto_point(&a, &o, v0_m_s[i], prev, &out[i], &st, &e);
+    out[i].v0_m_s = v0_m_s[i];
     if (s == VL_ENOCONV) {
-      st.failed++;
       prev = NULL;
-    } else if (s != VL_OK) {
+      s = VL_OK;
+      continue;
+    }
+    if (s != VL_OK) {
       if (err) *err = e;
       break;
-    } else {
-      st.converged++;
-      prev = &out[i];
     }
-    s = VL_OK;
-    out[i].v0_m_s = v0_m_s[i];
-    if (cb) cb(user, i, n, &out[i], a.c);
+    if (pending < i) auto_recover_below(&a, &o, &r, pending, i);
+    vl_sweep_report_point(&r, i, a.c);
+    pending = i + 1;
+    prev = &out[i];
   }
+  if (s == VL_OK) /* failed with nothing converged above */
+    for (size_t i = pending; i < n; i++)
+      vl_sweep_report_point(&r, i, NULL);
   st.seconds = vl_contact_now_s() - t0;
   if (stats) *stats = st;
   vl_contact_free(a.c);

@@ -511,8 +511,10 @@ static inline void hard_run_corner(hard_family *fam, const char *label,
   double secs = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
   fam->seconds += secs;
   if (getenv("VL_HARD_VERBOSE"))
-    printf("  corner %3zu: %zu/%zu converged, %ld Newton iterations, %zu sub-steps, %.2f s | %s\n",
-           fam->corners, ss.converged, n, ss.newton_iterations, ss.substeps, secs, label);
+    printf("  corner %3zu: %zu/%zu converged (%zu from above), %ld Newton iterations, %zu "
+           "sub-steps, %.2f s | %s\n",
+           fam->corners, ss.converged, n, ss.recovered_below, ss.newton_iterations, ss.substeps,
+           secs, label);
   if (st != VL_OK) fail_msg("sweep returned %d (%s) for %s", st, err.msg, label);
   assert_int_equal(ss.converged + ss.failed, n);
   fam->corners++;
