@@ -74,6 +74,7 @@
  * phi_f continue as the power laws phi_0 (x/x_0)^k with k = the
  * interpolant's end slope d ln phi/d ln x (C1 by construction). */
 #include <math.h>
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -989,8 +990,14 @@ cleanup:
 
 /* ------------------------------------------------------------ queries */
 
-/* Value and d/d ln x of factor f at ln x = l inside the table. */
-static double interp(const vl_emt_table *t, int f, double l, double *dl) {
+/* Where ln x = l falls inside the table: the interval lo and the Hermite
+ * coordinate on it (shared by the factors: one search for all). */
+typedef struct {
+  size_t lo;
+  double dx, h, h2, h3;
+} table_spot;
+
+static table_spot locate(const vl_emt_table *t, double l) {
   size_t lo = 0, hi = t->n - 1;
   while (hi - lo > 1) {
     size_t mid = (lo + hi) / 2;
@@ -999,7 +1006,15 @@ static double interp(const vl_emt_table *t, int f, double l, double *dl) {
     else
       hi = mid;
   }
-  double dx = t->lx[lo + 1] - t->lx[lo], h = (l - t->lx[lo]) / dx, h2 = h * h, h3 = h2 * h;
+  table_spot p = {lo, t->lx[lo + 1] - t->lx[lo], 0.0, 0.0, 0.0};
+  p.h = (l - t->lx[lo]) / p.dx, p.h2 = p.h * p.h, p.h3 = p.h2 * p.h;
+  return p;
+}
+
+/* Value and d/d ln x of factor f at the spot p inside the table. */
+static double interp(const vl_emt_table *t, int f, const table_spot *p, double *dl) {
+  size_t lo = p->lo;
+  double dx = p->dx, h = p->h, h2 = p->h2, h3 = p->h3;
   double y0 = t->v[f][lo], y1 = t->v[f][lo + 1];
   double m0 = t->d[f][lo] * dx, m1 = t->d[f][lo + 1] * dx;
   *dl = ((6 * h2 - 6 * h) * y0 + (3 * h2 - 4 * h + 1) * m0 + (-6 * h2 + 6 * h) * y1 +
@@ -1009,9 +1024,8 @@ static double interp(const vl_emt_table *t, int f, double l, double *dl) {
          (h3 - h2) * m1;
 }
 
-/* Factor f and d/d ln x at x (x > 0). */
-static double factor(const vl_emt_table *t, int f, double x, double *dl) {
-  double l = log(x);
+/* Factor f and d/d ln x at x > 0, l = ln x outside the table. */
+static double factor_outside(const vl_emt_table *t, int f, double x, double l, double *dl) {
   if (l >= t->lx[t->n - 1]) { /* Tripp */
     double a = t->tail[f] / (x * x);
     if (f == F_P || f == F_FP) {
@@ -1021,12 +1035,10 @@ static double factor(const vl_emt_table *t, int f, double x, double *dl) {
     *dl = -2.0 * a;
     return f == F_FS ? a : 1.0 + a;
   }
-  if (l <= t->lx[0]) { /* power law (k = 0: constant) */
-    double k = t->k_lo[f], v = t->v[f][0] * (k == 0.0 ? 1.0 : exp(k * (l - t->lx[0])));
-    *dl = k * v;
-    return v;
-  }
-  return interp(t, f, l, dl);
+  /* power law (k = 0: constant) */
+  double k = t->k_lo[f], v = t->v[f][0] * (k == 0.0 ? 1.0 : exp(k * (l - t->lx[0])));
+  *dl = k * v;
+  return v;
 }
 
 void vl_emt_table_eval(const vl_emt_table *t, double u_m, vl_flow_factor_values *v,
@@ -1045,8 +1057,11 @@ void vl_emt_table_eval(const vl_emt_table *t, double u_m, vl_flow_factor_values 
     }
     x = 0.0;
   } else {
+    double l = log(x);
+    bool inside = l < t->lx[t->n - 1] && l > t->lx[0];
+    table_spot p = inside ? locate(t, l) : (table_spot){0};
     for (int f = 0; f < NF; f++)
-      val[f] = factor(t, f, x, &dl[f]);
+      val[f] = inside ? interp(t, f, &p, &dl[f]) : factor_outside(t, f, x, l, &dl[f]);
   }
   v->phi_p = val[F_P];
   v->phi_fp = val[F_FP];
