@@ -18,23 +18,74 @@
  * h ~ (eta v0)^0.6-0.7, a rigid film ~ eta v0). */
 #define FILM_SPEED_EXPONENT 0.7
 
+#define AUTO_SPARES 3
+
 typedef struct {
   vl_contact_config base;
   bool layout; /* smooth film: planned cells */
   vl_contact *c;
   vl_plan plan;
-  double plan_film;   /* the film the layout was planned for (m) */
-  double resolution;  /* vl_plan_input.resolution, or the grid's divisor */
-  double inlet_scale; /* vl_plan_input.inlet_scale, or the inlet's factor */
-  double last_ok;     /* speed of c's converged state (0: none) */
+  double plan_film;             /* the film the layout was planned for (m) */
+  double resolution;            /* vl_plan_input.resolution, or the grid's divisor */
+  double inlet_scale;           /* vl_plan_input.inlet_scale, or the inlet's factor */
+  double last_ok;               /* speed of c's converged state (0: none) */
+  double c_resolution, c_inlet; /* the numerics c was built with */
+  /* Contacts of uniform or graded cells (which do not depend on the speed)
+   * that were set aside, to be used again by a later point with the same
+   * numerics: a refined point goes back to the standard cells at the next
+   * point, and the next refined one to the refined cells; made anew each
+   * time, fig15 built 38 contacts for 12 refined points (allocation and
+   * the first touch of their matrices, a fifth of its time). */
+  struct {
+    vl_contact *c;
+    double resolution, inlet;
+  } spare[AUTO_SPARES];
 } auto_state;
+
+/* The spare contact for a's present numerics, taken out (NULL: none). */
+static vl_contact *spare_take(auto_state *a) {
+  for (int k = 0; k < AUTO_SPARES; k++)
+    if (a->spare[k].c && a->spare[k].resolution == a->resolution &&
+        a->spare[k].inlet == a->inlet_scale) {
+      vl_contact *c = a->spare[k].c;
+      a->spare[k].c = NULL;
+      vl_contact_set_max_iterations(c, a->base.max_iterations); /* refine may have capped it */
+      return c;
+    }
+  return NULL;
+}
+
+/* Sets c (built with the given numerics) aside, in place of the oldest
+ * spare; a planned layout's contact is freed (its cells fit one film). */
+static void spare_put(auto_state *a, vl_contact *c, double resolution, double inlet) {
+  if (!c) return;
+  if (a->layout) {
+    vl_contact_free(c);
+    return;
+  }
+  vl_contact_free(a->spare[0].c);
+  for (int k = 0; k + 1 < AUTO_SPARES; k++)
+    a->spare[k] = a->spare[k + 1];
+  a->spare[AUTO_SPARES - 1].c = c;
+  a->spare[AUTO_SPARES - 1].resolution = resolution;
+  a->spare[AUTO_SPARES - 1].inlet = inlet;
+}
+
+static void free_state(auto_state *a) {
+  vl_contact_free(a->c);
+  a->c = NULL;
+  for (int k = 0; k < AUTO_SPARES; k++)
+    vl_contact_free(a->spare[k].c), a->spare[k].c = NULL;
+  vl_plan_free(&a->plan);
+}
 
 /* A new contact for speed v (prev: the last converged point, or NULL),
  * started from a's converged state where it has one (*continued), and
  * its layout (plan->spans NULL when not planned). a is not changed. */
-static vl_status build(const auto_state *a, double v, const vl_point *prev, vl_contact **out,
+static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact **out,
                        vl_plan *plan, double *plan_film, bool *continued, vl_error *err) {
   vl_status st;
+  bool spare = false;
   memset(plan, 0, sizeof *plan);
   *out = NULL;
   if (a->layout) {
@@ -48,6 +99,8 @@ static vl_status build(const auto_state *a, double v, const vl_point *prev, vl_c
       return st;
     }
     *plan_film = in.film_m > 0.0 ? in.film_m : vl_contact_film_estimate(&a->base, v);
+  } else if ((*out = spare_take(a))) {
+    spare = true;
   } else {
     vl_contact_config cfg = a->base;
     cfg.grid = (size_t)round((double)cfg.grid / a->resolution);
@@ -59,16 +112,22 @@ static vl_status build(const auto_state *a, double v, const vl_point *prev, vl_c
     if (st != VL_OK) return st;
   }
   /* continued from the old contact's converged state where it has one
-   * (the same branch, without a fresh start), else a fresh start */
+   * (the same branch, without a fresh start), else a fresh start (a spare
+   * contact forgets the state it had) */
   *continued = a->c && a->last_ok > 0.0 && vl_contact_start_from(*out, a->c, a->last_ok);
+  if (!*continued && spare) { /* as vl_contact_create leaves a contact */
+    vl_contact_set_speed(*out, 0.0);
+    vl_contact_reset(*out);
+  }
   return VL_OK;
 }
 
 /* Makes c (with its layout) a's contact, freeing the old one. */
 static void install(auto_state *a, vl_contact *c, vl_plan *plan, double plan_film, bool continued) {
   if (!continued) a->last_ok = 0.0;
-  vl_contact_free(a->c);
+  spare_put(a, a->c, a->c_resolution, a->c_inlet);
   a->c = c;
+  a->c_resolution = a->resolution, a->c_inlet = a->inlet_scale;
   if (plan->spans) {
     vl_plan_free(&a->plan);
     a->plan = *plan;
@@ -144,7 +203,7 @@ static vl_status refine(auto_state *a, double v, double resolution, double inlet
     *pt = np;
     return VL_OK;
   }
-  vl_contact_free(c);
+  spare_put(a, c, a->resolution, a->inlet_scale);
   vl_plan_free(&plan);
   a->resolution = old_resolution, a->inlet_scale = old_inlet;
   return s;
@@ -229,8 +288,7 @@ static void auto_recover_below(const auto_state *a, const vl_auto_options *o,
       vl_sweep_report_point(r, k - 1, down.c);
     }
   }
-  vl_contact_free(down.c);
-  vl_plan_free(&down.plan);
+  free_state(&down);
   while (k-- > lo)
     vl_sweep_report_point(r, k, NULL);
 }
@@ -281,7 +339,6 @@ vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options
       vl_sweep_report_point(&r, i, NULL);
   st.seconds = vl_contact_now_s() - t0;
   if (stats) *stats = st;
-  vl_contact_free(a.c);
-  vl_plan_free(&a.plan);
+  free_state(&a);
   return s;
 }
