@@ -127,7 +127,7 @@ void vl_sweep_report_point(const vl_sweep_report *r, size_t i, const vl_contact 
  * neighbour above (ramp), nearest first, until one fails (the points below
  * it would have to be reached through it). A thin smooth film that no start
  * near its own speed finds is reached this way from a thicker one (the
- * hard-case matrix: films of 1e-12-1e-7 m/s on coarse grids). Every point
+ * hard-case matrix: films at 1e-12-1e-7 m/s on coarse grids). Every point
  * lo .. hi-1 is reported here, in decreasing speed; the contact then has
  * hi's state back. */
 static void recover_below(vl_contact *c, const vl_sweep_report *r, size_t lo, size_t hi,
@@ -185,6 +185,8 @@ vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_s
     } else if (s == VL_ENOCONV) {
       last_ok = 0.0; /* the state is the Hertz guess now */
     } else {
+      for (size_t k = pending; k < i; k++) /* the failed points before the error */
+        vl_sweep_report_point(&r, k, c);
       if (err) *err = e;
       return s;
     }
