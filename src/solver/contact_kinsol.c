@@ -157,6 +157,9 @@ vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err) {
     inner = SUNLinSol_Dense(c->y, c->J, c->ctx);
   } else if (cfg->linear_solver == VL_LINSOL_SCHUR && c->rough && c->wet) {
     inner = c->schur = vl_linsol_schur_create((long)c->n, (long)c->of, (long)c->ih, c->ctx);
+    /* Reynolds row i depends on u of cells i-2 .. i+1 (its two faces'
+     * upwinded films: jacobian_reynolds_row) */
+    if (inner) vl_linsol_schur_set_band(inner, 1, 2);
   } else if (cfg->linear_solver == VL_LINSOL_SCHUR && !c->rough && !c->wet) {
     /* the default on a dry smooth contact: only the cells in contact are
      * coupled (linsol_reduced.h) */

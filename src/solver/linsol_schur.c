@@ -20,8 +20,10 @@ typedef struct {
   int n, of, ih, N;      /* grid, offsets, full size 2n + 1 */
   double *lo, *up, *sup; /* Bp = L U: L unit lower (lo), U diag up, super sup */
   int *c_lo, *c_hi;      /* nonzero rows (within the Reynolds block) of C's columns */
-  double *X;             /* B Bp^{-1}, (n+1) x n column-major */
-  double *S;             /* Schur complement (n+1)^2, then its LU */
+  int band_lo,
+      band_hi; /* C's u column j is zero outside rows j-band_lo .. j+band_hi (-1: unknown) */
+  double *X;   /* B Bp^{-1}, (n+1) x n column-major */
+  double *S;   /* Schur complement (n+1)^2, then its LU */
   int *piv;
   double *r, *w, *res, *dx; /* work vectors */
   double *full;             /* fallback: LU of the full matrix (allocated on first use) */
@@ -134,8 +136,12 @@ static int schur_setup(SUNLinearSolver LS, SUNMatrix A) {
       scol[r] = jcol[r];
     scol[n] = jcol[c->ih];
     const double *ccol = jcol + of;
-    int lo = n, hi = -1;
-    for (int k = 0; k < n; k++) {
+    int lo = n, hi = -1, k0 = 0, k1 = n;
+    if (c->band_lo >= 0 && j < n) { /* only the band can hold nonzeros */
+      k0 = j - c->band_lo > 0 ? j - c->band_lo : 0;
+      k1 = j + c->band_hi + 1 < n ? j + c->band_hi + 1 : n;
+    }
+    for (int k = k0; k < k1; k++) {
       if (ccol[k] == 0.0) continue;
       if (lo == n) lo = k;
       hi = k;
@@ -273,6 +279,7 @@ SUNLinearSolver vl_linsol_schur_create(long n, long of, long ih, SUNContext ctx)
     return NULL;
   }
   c->n = (int)n, c->of = (int)of, c->ih = (int)ih, c->N = (int)(2 * n + 1);
+  c->band_lo = c->band_hi = -1;
   size_t un = (size_t)n, m = un + 1, N = (size_t)c->N;
   c->lo = calloc(un, sizeof *c->lo);
   c->up = calloc(un, sizeof *c->up);
@@ -299,6 +306,12 @@ SUNLinearSolver vl_linsol_schur_create(long n, long of, long ih, SUNContext ctx)
   S->ops->lastflag = schur_lastflag;
   S->ops->space = schur_space;
   return S;
+}
+
+void vl_linsol_schur_set_band(SUNLinearSolver S, int lower, int upper) {
+  schur_content *c = S->content;
+  c->band_lo = lower >= 0 && upper >= 0 ? lower : -1;
+  c->band_hi = c->band_lo >= 0 ? upper : -1;
 }
 
 long vl_linsol_schur_fallbacks(SUNLinearSolver S) {
