@@ -51,6 +51,8 @@
 #     every binary's database already holds its Persson and flow-factor tables:
 #     - fig05.ini and fig15.ini with points = 60: s per curve, ms per point (wall time /
 #       rows of curve.csv, fields_at points included), ratio fig15/fig05;
+#     - fig15 with points = 60 and fields_at dropped: exactly a 60-point curve (the run
+#       above also solves the case's 3 fields_at speeds and writes their field files);
 #     - fig05 with fig15's flow factors (persson-emt), points = 60, and the ratio
 #       fig15/that: the cost of the 28-term compound without that of the flow factors;
 #     - `friction --compound sbr-unfilled --surface paper-0.5um --fluid water --speed V
@@ -493,6 +495,8 @@ for ((i = 0; i < nb; i++)); do
   sd="${BDIR[$i]}/scenes"
   scene_edit "$CASES/fig05.ini" "$sd/time-fig05-60.ini" sweep points 60 2>/dev/null || true
   scene_edit "$CASES/fig15.ini" "$sd/time-fig15-60.ini" sweep points 60 2>/dev/null || true
+  # the same curve with exactly its 60 points: no fields_at speeds added, no field files
+  scene_edit "$sd/time-fig15-60.ini" "$sd/time-fig15only-60.ini" sweep fields_at --delete 2>/dev/null || true
   # fig05 with fig15's flow factors: the ratio to fig15 without the flow-factor model's cost
   scene_edit "$sd/time-fig05-60.ini" "$sd/time-fig05emt-60.ini" effects flow_factors persson-emt 2>/dev/null || true
   scene_edit "$CASES/fig03-smooth.ini" "$sd/time-fig03-smooth-400.ini" numerics grid 400 2>/dev/null || true
@@ -506,7 +510,7 @@ for ((r = 1; r <= REPEATS; r++)); do
     select_bin "$i"
     sd="${BDIR[$i]}/scenes"; lg="${BDIR[$i]}/logs"; raw="${BDIR[$i]}/timing.raw"
     log "timing repeat $r/$REPEATS, binary $((i + 1))/$nb"
-    for t in fig05-60 fig05emt-60 fig15-60 fig03-smooth-400; do
+    for t in fig05-60 fig05emt-60 fig15-60 fig15only-60 fig03-smooth-400; do
       sc="$sd/time-$t.ini"; dir="${BDIR[$i]}/runs/time-$t"; lb="$lg/time-$t-r$r"
       if [[ ! -s $sc ]]; then echo "$t $r derive NA 0 NA" >>"$raw"; continue; fi
       rm -rf -- "$dir"
@@ -527,7 +531,7 @@ done
 declare -A T=()
 for ((i = 0; i < nb; i++)); do
   raw="${BDIR[$i]}/timing.raw"
-  for t in fig05-60 fig05emt-60 fig15-60 fig03-smooth-400 "${SPEEDS[@]/#/friction-}"; do
+  for t in fig05-60 fig05emt-60 fig15-60 fig15only-60 fig03-smooth-400 "${SPEEDS[@]/#/friction-}"; do
     ok=$(awk -v t="$t" '$1 == t && ($3 == 0 || $3 == 7)' "$raw" | wc -l)
     runs=$(awk -v t="$t" '$1 == t' "$raw" | wc -l)
     med=$(awk -v t="$t" '$1 == t && ($3 == 0 || $3 == 7) { print $4 }' "$raw" | median)
@@ -540,6 +544,7 @@ for ((i = 0; i < nb; i++)); do
     [[ $t == fig* && -n $rows ]] && note+="; $rows points per curve"
     case $t in
       fig05-60) item="fig05 points=60" ;; fig05emt-60) item="fig05 persson-emt points=60" ;; fig15-60) item="fig15 points=60" ;;
+      fig15only-60) item="fig15 points=60 no fields_at" ;;
       fig03-smooth-400) item="fig03-smooth grid=400" ;; friction-*) item="friction v=${t#friction-} m/s" ;;
     esac
     csv_row "$i" B timing "$item" "" "" "" "$med" "$mspp" "$sms" "$ok" "$runs" "" "$note"
@@ -587,9 +592,10 @@ print_table() {
   echo
   printf '%-28s %10s %10s %14s %7s  %s\n' "B. timing (median of $REPEATS)" "s/run" "ms/point" "summary ms/pt" "ok" "exit statuses"
   local t label
-  for t in fig05-60 fig05emt-60 fig15-60 "${SPEEDS[@]/#/friction-}" fig03-smooth-400; do
+  for t in fig05-60 fig05emt-60 fig15-60 fig15only-60 "${SPEEDS[@]/#/friction-}" fig03-smooth-400; do
     case $t in
       fig05-60) label="fig05 points=60" ;; fig05emt-60) label="fig05 persson-emt pts=60" ;; fig15-60) label="fig15 points=60" ;;
+      fig15only-60) label="fig15 60, no fields_at" ;;
       fig03-smooth-400) label="fig03-smooth grid=400" ;; friction-*) label="friction v=${t#friction-}" ;;
     esac
     printf '%-28s %10s %10s %14s %7s  %s\n' "$label" "$(fmt '%.3f' "${T[$i,$t,s]}")" "$(fmt '%.2f' "${T[$i,$t,ms]}")" \
@@ -643,6 +649,7 @@ if ((nb >= 2)); then
   cmp_line "fig05 60 pts, ms/point" "fig05-60,ms" '%.2f'
   cmp_line "fig15 60 pts, s/curve" "fig15-60,s" '%.3f'
   cmp_line "fig15 60 pts, ms/point" "fig15-60,ms" '%.2f'
+  cmp_line "fig15 60 pts no fields_at, s" "fig15only-60,s" '%.3f'
   cmp_line "ratio fig15/fig05" "ratio" '%.2f'
   cmp_line "fig05 persson-emt 60 pts, s/curve" "fig05emt-60,s" '%.3f'
   cmp_line "ratio fig15/fig05 persson-emt" "ratio_emt" '%.2f'
