@@ -20,10 +20,10 @@ typedef struct {
   int n, of, ih, N;      /* grid, offsets, full size 2n + 1 */
   double *lo, *up, *sup; /* Bp = L U: L unit lower (lo), U diag up, super sup */
   int *c_lo, *c_hi;      /* nonzero rows (within the Reynolds block) of C's columns */
-  int band_lo,
-      band_hi; /* C's u column j is zero outside rows j-band_lo .. j+band_hi (-1: unknown) */
-  double *X;   /* B Bp^{-1}, (n+1) x n column-major */
-  double *S;   /* Schur complement (n+1)^2, then its LU */
+  /* C's u column j is zero outside rows j-band_lo .. j+band_hi (-1: unknown) */
+  int band_lo, band_hi;
+  double *X; /* B Bp^{-1}, (n+1) x n column-major */
+  double *S; /* Schur complement (n+1)^2, then its LU */
   int *piv;
   double *r, *w, *res, *dx; /* work vectors */
   double *full;             /* fallback: LU of the full matrix (allocated on first use) */
