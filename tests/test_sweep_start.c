@@ -143,7 +143,7 @@ static void test_start_above_fold(void **state) {
  * (Einf/E0 2930, tau 22 ms), R 0.84 mm, 700 N/m, eta 1.99 Pa s, 48 cells on
  * [-2.36, 1.6] a0 (a corner of the hard-case matrix), one speed a decade from
  * 1e-12 to 100 m/s. Every start near 1e-12-1e-9 m/s fails on these cells
- * (films of 1e-14-1e-11 m); the sweep reaches them by continuation down
+ * (minimum films of 1.7e-11-5.3e-10 m); the sweep reaches them by continuation down
  * from the first point that converges above them (sweep.h, path 5). */
 static void thin_film_config(vl_contact_config *cfg) {
   vl_contact_config_defaults(cfg);
