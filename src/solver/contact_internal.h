@@ -298,9 +298,9 @@ static inline void vl_contact_scales_put(vl_contact *c, const vl_contact_scales 
   c->kappa = s->kappa, c->lambda = s->lambda, c->rscale = s->rscale, c->u_ref = s->u_ref;
 }
 
-/* y back from y_saved, with the speed (unless NaN: none yet) and scales of
- * s, and the state evaluated there. */
-void vl_contact_restore_saved(vl_contact *c, const vl_contact_scales *s);
+/* c's unknowns back from y, with the speed (unless NaN: none yet) and scales
+ * of s, and the state evaluated there. */
+void vl_contact_restore(vl_contact *c, N_Vector y, const vl_contact_scales *s);
 
 /* A copy of a converged state of c (unknowns, speed, fluid scales) to come
  * back to after a detour of other solves (sweep.c: the recovery of failed

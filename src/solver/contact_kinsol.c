@@ -240,8 +240,8 @@ static bool newton_from_hertz(vl_contact *c, double v0, int max_iterations, long
   return ok;
 }
 
-void vl_contact_restore_saved(vl_contact *c, const vl_contact_scales *s) {
-  N_VScale(1.0, c->y_saved, c->y);
+void vl_contact_restore(vl_contact *c, N_Vector y, const vl_contact_scales *s) {
+  N_VScale(1.0, y, c->y);
   if (s->v0 == s->v0) vl_contact_set_speed(c, s->v0);
   vl_contact_scales_put(c, s);
   if (c->wet) {
@@ -259,8 +259,7 @@ bool vl_contact_mark_take(const vl_contact *c, vl_contact_mark *m) {
 }
 
 void vl_contact_mark_return(vl_contact *c, const vl_contact_mark *m) {
-  N_VScale(1.0, m->y, c->y_saved);
-  vl_contact_restore_saved(c, &m->s);
+  vl_contact_restore(c, m->y, &m->s);
   c->v_state = m->v_state;
 }
 
@@ -321,7 +320,7 @@ static vl_status solve_failed(vl_contact *c, double v0_m_s, const vl_contact_sca
                         "narrow the domain)"
                       : "");
   free(flag_name);
-  vl_contact_restore_saved(c, saved);
+  vl_contact_restore(c, c->y_saved, saved);
   memset(pt, 0, sizeof *pt);
   pt->error_estimate = NAN;
   pt->v0_m_s = v0_m_s;

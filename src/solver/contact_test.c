@@ -149,7 +149,7 @@ bool vl_contact_film_check(vl_contact *c, double v0_m_s, vl_contact_film_check_r
         r->gap_change = fmax(r->gap_change, d);
     }
   }
-  vl_contact_restore_saved(c, &saved); /* the state, speed and scales as they were */
+  vl_contact_restore(c, c->y_saved, &saved); /* the state, speed and scales as they were */
   free(plain);
   return ok;
 }

@@ -124,7 +124,8 @@ static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact
   return VL_OK;
 }
 
-/* Makes c (with its layout) a's contact, freeing the old one. */
+/* Makes c (with its layout) a's contact; the old one is set aside as a
+ * spare (spare_put). */
 static void install(auto_state *a, vl_contact *c, vl_plan *plan, double plan_film, bool continued) {
   if (!continued) a->last_ok = 0.0;
   spare_put(a, a->c, a->c_resolution, a->c_inlet);
