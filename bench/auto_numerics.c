@@ -23,6 +23,8 @@
 
 #include "viscolube.h"
 
+#include "numerics_plan.h" /* the planner, private to the solver */
+
 static double now_s(void) {
   struct timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);

@@ -74,6 +74,7 @@
 
 #include "contact_test.h"
 #include "hunter.h"
+#include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/database.h"
 #include "viscolube/persson.h"

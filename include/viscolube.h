@@ -82,7 +82,6 @@
 /* solver: one operating point, sweeps, results, model-validity checks */
 #include "viscolube/assumptions.h"
 #include "viscolube/contact.h"
-#include "viscolube/numerics.h"
 #include "viscolube/results.h"
 #include "viscolube/sweep.h"
 

@@ -14,8 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "numerics_plan.h"
 #include "viscolube/contact.h"
-#include "viscolube/numerics.h"
 #include "viscolube/sweep.h"
 
 static vl_contact_config film(double e0, double eta) {

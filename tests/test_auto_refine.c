@@ -22,7 +22,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
-#include "viscolube/numerics.h"
+#include "numerics_plan.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"

@@ -16,6 +16,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"

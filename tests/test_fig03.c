@@ -12,6 +12,7 @@
 #include <stdio.h>
 
 #include "hunter.h"
+#include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"

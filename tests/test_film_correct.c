@@ -28,8 +28,8 @@
 #include <cmocka.h> /* after the four headers it needs */
 
 #include "contact_test.h"
+#include "numerics_plan.h"
 #include "viscolube/contact.h"
-#include "viscolube/numerics.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
 

@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "contact_test.h"
+#include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/flattening.h"
 #include "viscolube/persson.h"

@@ -15,6 +15,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "linsol_reduced.h"
+#include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"

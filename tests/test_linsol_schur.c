@@ -17,6 +17,7 @@
 
 #include "contact_test.h"
 #include "linsol_schur.h"
+#include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"

@@ -19,6 +19,7 @@
 #include <stdlib.h>
 
 #include "contact_test.h"
+#include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/sweep.h"
 #include "vl_test_scenes.h"

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 #include "viscolube/scene.h"

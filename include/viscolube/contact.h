@@ -167,7 +167,7 @@ typedef struct {
    * on the domain, odd (so that its node is a uniform node and its influence
    * coefficients exact sums of the uniform ones), summing to `grid`; n_cells
    * of them, at most VL_CONTACT_MAX_CELLS, on any contact. Copied by
-   * vl_contact_create. The automatic numerics (numerics.h) lay cells out
+   * vl_contact_create. The automatic sweep (sweep.h) lays cells out
    * this way: fine where the solution changes fast (the edges of the
    * contact, a film's outlet constriction), coarse elsewhere. */
   const size_t *cell_spans;

@@ -32,8 +32,8 @@ typedef struct {
   int regime;          /* vl_regime */
   double eps_f_min;    /* smallest epsilon_f(u) over the grid (viscous flattening);
                         * 1 when the effect is off */
-  /* relative error of mu estimated from a coarser solve (numerics.h:
-   * vl_contact_estimate_error); NAN when none was made or it failed */
+  /* relative error of mu estimated from a coarser solve (sweep.h; the
+   * point on cells three times as wide); NAN when none was made or it failed */
   double error_estimate;
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
 } vl_point;

@@ -9,8 +9,8 @@
 
 #include "viscolube/contact.h"
 #include "viscolube/flow_factors.h"
-#include "viscolube/numerics.h"
 #include "viscolube/status.h"
+#include "viscolube/sweep.h"
 
 #define VL_NAME_MAX 128
 /* The flow factors of a rough wet scene that does not name them, and of
@@ -71,7 +71,7 @@ typedef struct {
   double tolerance;
   vl_linear_solver linear_solver;
   size_t persson_table;
-  /* Automatic numerics (numerics.h: domain and cells per run of points, an
+  /* Automatic numerics (sweep.h: domain and cells per run of points, an
    * error estimate on every point, refinement to target_error): on unless
    * the scene sets grid, grid_growth or domain_a0 (then the grid, growth
    * and domain are the scene's, and each point still gets its estimate). */

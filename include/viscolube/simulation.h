@@ -65,7 +65,7 @@ const vl_psd *vl_simulation_psd(const vl_simulation *sim); /* NULL when smooth *
  * NULL. */
 const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cutoff_m);
 
-/* Runs the sweep (vl_sweep_run: continuation in speed, upwards from the
+/* Runs the sweep (vl_sweep_run_auto: continuation in speed, upwards from the
  * first speed, which may lie anywhere on the curve; a point continuation
  * misses is retried by fresh starts at, below and above its speed); every
  * point's warnings gain the model-assumption checks of assumptions.h before

@@ -1,4 +1,5 @@
-/* viscolube: a Stribeck sweep by continuation in speed. */
+/* viscolube: a Stribeck sweep, the points solved by continuation in speed
+ * with numerics chosen per point (docs/NUMERICS.md sections 8 and 11). */
 #ifndef VISCOLUBE_SWEEP_H
 #define VISCOLUBE_SWEEP_H
 
@@ -16,10 +17,6 @@ typedef void (*vl_sweep_callback)(void *user, size_t index, size_t total, const 
                                   const vl_contact *contact);
 
 typedef struct {
-  int max_subdivisions; /* a failed step is split in 2, 4, ... up to 2^this */
-} vl_sweep_options;
-
-typedef struct {
   size_t converged, failed;
   long newton_iterations; /* all solves, including sub-steps */
   size_t substeps;        /* extra solves inserted by step control */
@@ -30,19 +27,33 @@ typedef struct {
   double seconds;
 } vl_sweep_stats;
 
-void vl_sweep_options_defaults(vl_sweep_options *opt);
+/* Default relative error of mu a point should meet (scene key
+ * [numerics] target_error). */
+#define VL_TARGET_ERROR_DEFAULT 0.01
 
-/* Solves at v0[0..n-1] in order, each from the previous converged
- * solution. Increasing speed is the direction continuation is easiest in:
- * from the boundary regime, where any start converges, up through the
- * mixed regime, where the film lifts the solid off gradually (a fresh start
- * in the hydrodynamic regime misses the lifted film). Every point is tried
- * by these paths in turn:
+/* Refinements (every width halved) a point may take to meet its target. */
+#define VL_AUTO_MAX_REFINEMENTS 2
+
+/* Options of an automatic sweep. */
+typedef struct {
+  double target_error; /* relative error of mu to meet (<= 0: VL_TARGET_ERROR_DEFAULT) */
+  int max_refinements; /* per point (< 0: VL_AUTO_MAX_REFINEMENTS) */
+  bool keep_numerics;  /* base's numerics throughout (a scene's own [numerics]): every
+                        * point still gets its estimate, none is refined */
+} vl_auto_options;
+
+/* The Stribeck sweep: solves at v0_m_s[0..n-1] (positive, in order) the
+ * contact base describes, and reports each point once (out[0..n-1], and cb
+ * when not NULL).
+ *
+ * Each point is reached from the last converged one by these paths in
+ * turn (increasing speed is the direction continuation is easiest in: from
+ * the boundary regime, where any start converges, up through the mixed
+ * regime, where the film lifts the solid off gradually):
  *   1. continuation: a failed step is retried through geometrically spaced
- *      intermediate speeds (step halving in log v0, up to
- *      2^max_subdivisions sub-steps);
- *   2. a fresh start at v0 (vl_contact_reset; vl_contact_solve then starts
- *      a rough film that Hertz does not from the dry contact at v0);
+ *      intermediate speeds (step halving in log v0, up to 64 sub-steps);
+ *   2. a fresh start at v0 (the Hertz guess; a rough film that Hertz does
+ *      not start is started from the dry contact or the smooth film at v0);
  *   3. without a converged point below v0 (the first point, or after a
  *      failed one): a fresh start 1, 2, 4, 8 or 12 decades below v0, the
  *      first that converges, continued up to v0 with step control (steps
@@ -50,22 +61,32 @@ void vl_sweep_options_defaults(vl_sweep_options *opt);
  *      halved as in 1);
  *   4. a fresh start 0.5, 1 or 2 decades above v0, continued down to v0
  *      the same way: past a fold of the curve (a film that lifts off the
- *      asperities within a step: the mixed branch ends) the lifted branch
- *      is found from above;
+ *      asperities within a step) the lifted branch is found from above;
  *   5. when a later point converges: continuation down from it to the
- *      failed points below, nearest first, until one fails (a thin film
- *      that no start near its own speed finds is reached from a thicker
- *      one). The sweep then goes on from the later point.
- * So the first point need not lie in the boundary regime. Only the
- * requested speeds are reported (cb, out), each once; a run of failed
- * points is reported after path 5 was tried for it, in decreasing speed,
- * just before the converged point above it (or at the end). A point that
- * still fails is reported with converged = false and the sweep goes on
- * from the Hertz guess. out[n] is filled.
- * Returns VL_OK even when some points failed (see stats); errors only for
- * bad input. */
-vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_sweep_options *opt,
-                       vl_point *out, vl_sweep_callback cb, void *user, vl_sweep_stats *stats,
-                       vl_error *err);
+ *      failed points below, nearest first, until one fails. The sweep then
+ *      goes on from the later point.
+ * A point that still fails is reported with converged = false (never NaN
+ * or zero as if computed) and the sweep goes on.
+ *
+ * Numerics: a smooth film gets cells planned for its film (docs/NUMERICS.md
+ * section 11), re-planned when the film it expects has changed by more
+ * than 1.5x since the last plan; any other contact keeps base's numerics.
+ * Every converged point gets an error estimate (results.h,
+ * error_estimate: the point solved again on cells three times as wide);
+ * above the target the numerics are refined (every width halved) and the
+ * point solved again from the coarser solution, up to max_refinements
+ * times within a bound on the cells (the next point starts from the
+ * standard cells again), and a pressure that reaches the domain's ends
+ * doubles the inlet (up to 8x) and moves the outlet by sqrt(2). A point
+ * still above its target carries the warning "error estimate X % above the
+ * target Y %". opt->keep_numerics keeps base's numerics throughout (every
+ * point still gets its estimate). opt may be NULL (the defaults).
+ *
+ * The callback receives the contact that solved the point. Returns VL_OK
+ * even when some points failed (see stats); errors only for bad input or
+ * when out of memory. */
+vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options *opt, size_t n,
+                            const double *v0_m_s, vl_point *out, vl_sweep_callback cb, void *user,
+                            vl_sweep_stats *stats, vl_error *err);
 
 #endif

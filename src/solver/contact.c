@@ -223,3 +223,21 @@ void vl_contact_numerics_of(const vl_contact *c, vl_contact_numerics_used *out) 
       cfg->max_iterations > 0 ? cfg->max_iterations : VL_NEWTON_MAX_ITERATIONS,
       (unsigned)cfg->linear_solver < 3 ? solvers[cfg->linear_solver] : "unknown"};
 }
+
+/* The viscosity of the contact and of its smooth-film helper (the coarse
+ * level or the film that starts a rough one), which solve at the same. */
+vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err) {
+  if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s))) {
+    vl_error_set(err, "viscosity: a wet contact takes a finite eta > 0 (got %g Pa s%s)", eta_pa_s,
+                 c->wet ? "" : ", contact created dry");
+    return VL_EINPUT;
+  }
+  if (c->q_rolling > 0.0) c->q_rolling *= eta_pa_s / c->cfg.eta_pa_s; /* Q ~ eta */
+  c->cfg.eta_pa_s = eta_pa_s;
+  /* epsilon_f depends on eta v0: its table is rebuilt (eta validated above) */
+  if (c->flattening) vl_flattening_set_viscosity(c->flattening, eta_pa_s, NULL);
+  if (c->coarse) vl_contact_set_viscosity(c->coarse, eta_pa_s, NULL);
+  return VL_OK;
+}
+
+double vl_contact_viscosity(const vl_contact *c) { return c->cfg.eta_pa_s; }

@@ -1,6 +1,6 @@
 /* The error estimate of a point (numerics.h): the same point on cells
  * three times as wide. */
-#include "viscolube/numerics.h"
+#include "numerics_plan.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -46,7 +46,7 @@ void vl_contact_estimate_error(vl_contact *c, vl_point *pt) {
   vl_point ep;
   /* from the point itself: on its branch (the coarse contact's own previous
    * state may lie decades of speed away, across a transition) */
-  vl_contact_start_from(e, c, pt->v0_m_s);
+  vl_contact_start_from(e, c);
   if (vl_contact_solve(e, pt->v0_m_s, &ep, NULL) != VL_OK) {
     vl_contact_reset(e); /* continuation lost: a fresh start */
     if (vl_contact_solve(e, pt->v0_m_s, &ep, NULL) != VL_OK) return;

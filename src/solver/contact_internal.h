@@ -11,13 +11,26 @@
  *   contact_equations.c the discretised equations: state, residual and
  *                       Jacobian, Fischer-Burmeister, Couette faces,
  *                       Reynolds row weights and fluid scales;
- *   contact_start.c     initial guesses: Hertz, the rigid cylinder, the
- *                       coarse-grid and dry starts, the speed predictor;
- *   contact_kinsol.c    KINSOL glue and the solve with its continuation and
- *                       fallbacks;
+ *   contact_film.c      the film pressure balanced at a Newton step's gap;
+ *   contact_start.c     initial guesses, which solve nothing: Hertz, the
+ *                       rigid cylinder, a state from the coarse grid, the
+ *                       dry contact or the smooth film (solved by the
+ *                       caller), a state from other cells, the speed
+ *                       predictor;
+ *   contact_newton.c    KINSOL glue: the Newton variants, the linear solvers
+ *                       and their cost, the states a failed solve returns to;
  *   contact_report.c    results: the point's friction integrals and derived
  *                       quantities, the fields;
- *   contact_test.c      the test aids of contact_test.h. */
+ *   contact.c           (again) creation calls the grid, the start and the
+ *                       KINSOL set-up;
+ *   contact_solve.c     the solve of a point: the ladder of starts and Newton
+ *                       variants at one speed, and the paths that reach a
+ *                       speed from a converged state;
+ *   contact_estimate.c  the error estimate of a point (numerics.h);
+ *   contact_test.c      the test aids of contact_test.h.
+ * Calls go one way: a file calls only files listed before it (contact.c
+ * counted where it appears again), then the sweeps (sweep.c, sweep_auto.c)
+ * call them all. */
 #ifndef VISCOLUBE_CONTACT_INTERNAL_H
 #define VISCOLUBE_CONTACT_INTERNAL_H
 
@@ -53,7 +66,7 @@
  * the hard-case matrix the same 1772 of 1845 wet points converged with 50
  * as with 200, the sweeps took 40.6 s instead of 52.2 s; a cap of 30 on
  * every fresh start lost 33 points. The Newton from Hertz also stops
- * earlier when it crawls (newton_from_hertz in contact_kinsol.c). */
+ * earlier when it crawls (newton_from_hertz in contact_newton.c). */
 #define VL_FRESH_HERTZ_ITERATIONS 50
 
 /* Smallest grid of the coarse levels used to start smooth wet solves. */
@@ -105,12 +118,11 @@ struct vl_contact {
                               * NULL when off */
   double *theta;             /* film fraction (report only) */
   double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */
-  bool film_correct;         /* Newton's steps get the film pressure of contact_film.c (set
-                              * for the continuation of a converged rough film) */
+  bool film_correct;         /* Newton's steps get the film pressure of contact_film.c (during
+                              * the Newton variants that continue a converged rough film) */
   vl_contact *coarse;        /* smooth wet: half-size grid for fresh starts (NULL when small);
                               * rough wet: the smooth film whose solution starts a lifted rough
-                              * film (created on first use, vl_contact_rough_wet_film_start) */
-  bool no_fallback;          /* inside the viscosity-continuation fallback of a fresh start */
+                              * film (created on first use by contact_solve.c) */
   vl_contact *dry;           /* smooth wet viscoelastic, coarsest level: the dry contact on the same
                               * grid, whose solution starts the wet one (NULL otherwise) */
   vl_contact *estimator;     /* the same contact on cells three times as wide (error estimate;
@@ -137,14 +149,6 @@ static inline vl_status vl_contact_nomem(const vl_contact *c, vl_error *err) {
   vl_error_set(err, "out of memory for a %zu-node contact solver", c->cfg.grid);
   return VL_ENOMEM;
 }
-
-/* sweep.c */
-
-/* Solves point v from the state of c converged at last_ok (0: none) by
- * every path of sweep.h in turn (continuation, a fresh start, starts below
- * and above); counts into *st. On VL_ENOCONV c holds the Hertz guess. */
-vl_status vl_sweep_solve_point(vl_contact *c, double last_ok, double v, int max_depth, vl_point *pt,
-                               vl_sweep_stats *st, vl_error *err);
 
 /* contact.c */
 
@@ -240,7 +244,44 @@ void vl_contact_jacobian(vl_contact *c, const double *y, double *Jd);
  * the caller evaluates again. */
 bool vl_contact_film_correct(vl_contact *c, const double *y, double fnorm, double *step);
 
-/* contact_kinsol.c */
+/* contact_start.c: guesses, which set c's unknowns and solve nothing */
+
+/* Whether a smooth film of c at v0 is expected rigid (the film estimate no
+ * thicker than Martin's rigid film): its start is then Martin's pressure. */
+bool vl_contact_film_rigid(const vl_contact *c, double v0);
+
+/* The analytic start of a smooth film at v0 (the film estimate with
+ * Martin's pressure; else the pressure of dry, the dry contact of a
+ * viscoelastic solid solved at v0 on the same cells, when not NULL, or
+ * Hertz's). */
+void vl_contact_guess_smooth_film(vl_contact *c, double v0, const vl_contact *dry);
+
+/* A smooth film's start from the solution of the coarser level cc. */
+void vl_contact_guess_from_coarse(vl_contact *c, vl_contact *cc);
+
+/* Predictor of a continuation step to speed v0 (rough films). */
+void vl_contact_predict_state(vl_contact *c, double v0);
+
+/* A rough film's start from d, the dry contact solved at the same speed
+ * on the same cells (separations and rigid approach; no fluid pressure):
+ * the limit of a film that carries nothing. */
+void vl_contact_guess_from_dry(vl_contact *c, const vl_contact *d);
+
+/* A rough film's start from s, the smooth film solved at the same speed on
+ * a uniform grid over the same domain (separation and fluid pressure
+ * interpolated): the limit of a film that has lifted the solid off the
+ * asperities. */
+void vl_contact_guess_from_film(vl_contact *c, vl_contact *s);
+
+/* Starts dst from src's converged state at its speed src->v_state (the
+ * same contact on other cells: the unknowns interpolated between the
+ * nodes, the rigid approach and the fluid scales copied), as a
+ * continuation from there. False, with dst unchanged, when src holds no
+ * converged state, the two differ in roughness or fluid, or a rough dst
+ * reaches beyond src's domain. */
+bool vl_contact_start_from(vl_contact *dst, const vl_contact *src);
+
+/* contact_newton.c */
 
 /* KINSOL's residual and Jacobian callbacks (timed; user is the contact). */
 int vl_contact_residual_fn(N_Vector yv, N_Vector fv, void *user);
@@ -252,36 +293,24 @@ int vl_contact_jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_
  * with the reason in err. */
 vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err);
 
-/* contact_start.c */
+/* The Newton variants of the solve's ladder (contact_solve.c). */
+typedef enum {
+  VL_NEWTON_PLAIN,      /* up to the configuration's max_iterations */
+  VL_NEWTON_CONTINUED,  /* a converged rough film continued: capped at
+                         * VL_FRESH_HERTZ_ITERATIONS, each step's film pressure
+                         * balanced (contact_film.c) */
+  VL_NEWTON_FILM,       /* the film pressure balanced, not capped */
+  VL_NEWTON_FROM_HERTZ, /* a rough film from Hertz: capped, in chunks, given up
+                         * when a chunk has not halved the residual */
+  VL_NEWTON_KINDS
+} vl_newton_kind;
 
-/* Starts a smooth wet solve without a usable previous state; adds the
- * Newton iterations spent to *nni. */
-void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni);
-
-/* Predictor of a continuation step to speed v0 (rough films). */
-void vl_contact_predict_state(vl_contact *c, double v0);
-
-/* Starts a rough wet solve at v0 from the dry contact's solution at v0
- * (separations and rigid approach; no fluid pressure): the limit of a film
- * that carries nothing. Solves the dry contact (its helper is created on
- * first use) and adds its Newton iterations to *nni; false, with c
- * unchanged, when that fails or the helper cannot be made. */
-bool vl_contact_rough_wet_dry_start(vl_contact *c, double v0, long *nni);
-
-/* Starts a rough wet solve at v0 from the smooth film's solution at v0
- * (separation and fluid pressure interpolated from a uniform grid over the
- * same domain; c->coarse, created on first use): the limit of a film that
- * has lifted the solid off the asperities. Adds the smooth solve's Newton
- * iterations to *nni; false, with c unchanged, when it fails or the smooth
- * film's estimate (vl_contact_film_estimate) is thinner than h_rms. */
-bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni);
-
-/* Starts dst from src's converged state at speed v0 (the same contact on
- * other cells: the unknowns interpolated between the nodes, the rigid
- * approach and the fluid scales copied), as a continuation from v0. False,
- * with dst unchanged, when src holds no converged state, the two differ in
- * roughness or fluid, or a rough dst reaches beyond src's domain. */
-bool vl_contact_start_from(vl_contact *dst, const vl_contact *src, double v0);
+/* Newton (KINSOL) of the given kind from the current y at speed v0 (the
+ * fluid scales set for v0 here): adds the iterations to *nni, sets
+ * KINSOL's flag and the residual's max norm; true when that residual is
+ * within the tolerance. */
+bool vl_contact_newton(vl_contact *c, vl_newton_kind kind, double v0, long *nni, int *flag,
+                       double *fnorm);
 
 /* The speed and fluid scales of c's state: what a solve changes besides y,
  * and restores with it when it fails. */
@@ -323,6 +352,19 @@ void vl_contact_mark_free(vl_contact_mark *m);
 /* Caps the Newton iterations of c's later solves at n (> 0; the
  * configuration's max_iterations otherwise). */
 void vl_contact_set_max_iterations(vl_contact *c, int n);
+
+/* contact_solve.c */
+
+/* Solves point v from c's state (converged at c->v_state; 0: none) by
+ * every path of sweep.h in turn (continuation, a fresh start, starts below
+ * and above); counts into *st. On VL_ENOCONV c holds the Hertz guess. */
+vl_status vl_contact_reach(vl_contact *c, double v, int max_depth, vl_point *pt, vl_sweep_stats *st,
+                           vl_error *err);
+
+/* Continuation with step control from c's converged state to `to`
+ * (either way); only `to` is reported. */
+vl_status vl_contact_ramp(vl_contact *c, double to, int max_depth, vl_point *pt, vl_sweep_stats *st,
+                          vl_error *err);
 
 /* contact_report.c */
 

@@ -1,10 +1,14 @@
-/* Initial guesses of the Newton solve: the relaxed Hertz contact
- * (docs/MODEL.md section 9: the scales a0, p0), with Persson's separation under
- * it on a rough surface (section 4); for a smooth film the rigid cylinder's
- * Reynolds pressure (Martin, section 5), the dry contact of a viscoelastic
- * solid, or the converged solution of a half-size grid; for a rough film
- * that Hertz does not start, the dry contact at the same speed; and the
- * predictor of a continuation step in speed. */
+/* Initial guesses of the Newton solve. Each only guesses: it sets the
+ * unknowns (and the fluid scales) of a contact, from closed forms or from a
+ * helper contact that contact_solve.c has already solved, and solves
+ * nothing itself. The relaxed Hertz contact (docs/MODEL.md section 9: the
+ * scales a0, p0), with Persson's separation under it on a rough surface
+ * (section 4); for a smooth film the rigid cylinder's Reynolds pressure
+ * (Martin, section 5), the dry contact of a viscoelastic solid, or the
+ * solution of a half-size grid; for a rough film the dry contact or the
+ * smooth film at the same speed; a state interpolated from the same
+ * contact on other cells; and the predictor of a continuation step in
+ * speed. */
 #include "contact_internal.h"
 
 #include <math.h>
@@ -97,37 +101,36 @@ static double rigid_outlet(double X_in, double X_max) {
   return 0.5 * (lo + hi);
 }
 
+bool vl_contact_film_rigid(const vl_contact *c, double v0) {
+  const vl_contact_config *cfg = &c->cfg;
+  double um = 0.5 * v0, eta = cfg->eta_pa_s, R = cfg->radius_m, fN = cfg->load_n_per_m;
+  return vl_contact_film_estimate(cfg, v0) <= 4.894 * eta * um * R / fN * (1.0 + 1e-12);
+}
+
 /* A fresh smooth wet solve starts from a film with a pressure that carries
  * the load (a start without pressure leaves the load independent of the
  * rigid approach: singular Jacobian). The film is vl_contact_film_estimate; the
  * pressure is the rigid cylinder's (Martin) where that film exceeds the
- * soft estimate, else the relaxed Hertz pressure (the soft EHL pressure is
- * nearly Hertzian); the rigid approach puts the minimum film at the
- * estimate. Newton then corrects the shape. */
-static void wet_smooth_guess(vl_contact *c, double v0) {
+ * soft estimate, else the dry contact's (dry: a viscoelastic solid is
+ * stiffer and its pressure asymmetric at v0 tau ~ a0, where Hertz would
+ * leave the gap far from flat) or the relaxed Hertz pressure (the soft EHL
+ * pressure is nearly Hertzian); the rigid approach puts the minimum film at
+ * the estimate. Newton then corrects the shape. */
+void vl_contact_guess_smooth_film(vl_contact *c, double v0, const vl_contact *dry) {
   size_t n = c->n;
   double *y = N_VGetArrayPointer(c->y);
   const vl_contact_config *cfg = &c->cfg;
-  double um = 0.5 * v0, eta = cfg->eta_pa_s, R = cfg->radius_m, fN = cfg->load_n_per_m;
-  double h = vl_contact_film_estimate(&c->cfg, v0);
-  bool rigid = h <= 4.894 * eta * um * R / fN * (1.0 + 1e-12);
+  double R = cfg->radius_m, h = vl_contact_film_estimate(cfg, v0);
+  bool rigid = vl_contact_film_rigid(c, v0);
   double b = sqrt(2.0 * R * h) / c->a0; /* in a0 */
   double X_in = (c->xi[0] - 0.5 * c->wc[0]) / b, X_max = (c->xi[n - 1] + 0.5 * c->wc[n - 1]) / b;
   double Xc = rigid ? rigid_outlet(X_in, X_max) : 0.0, Hc = 1.0 + Xc * Xc;
   double a2 = rigid_i2(X_in), a3 = rigid_i3(X_in), sum = 0.0;
-  /* a viscoelastic solid: the dry contact at this speed (same grid), the
-   * limit of a thin film; Hertz would leave the gap far from flat (the
-   * solid is stiffer and the pressure asymmetric at v0 tau ~ a0) */
-  bool dry = false;
-  if (!rigid && c->dry) {
-    vl_point dp;
-    vl_contact_reset(c->dry);
-    dry = vl_contact_solve(c->dry, v0, &dp, NULL) == VL_OK;
-  }
+  if (rigid) dry = NULL;
   for (size_t i = 0; i < n; i++) {
     double x = c->xi[i], p;
     if (dry) {
-      p = fmax(c->dry->P[i], 0.0);
+      p = fmax(dry->P[i], 0.0);
     } else if (rigid) {
       double X = x / b;
       p = X < Xc ? fmax((rigid_i2(X) - a2) - Hc * (rigid_i3(X) - a3), 0.0) : 0.0;
@@ -151,53 +154,34 @@ static void wet_smooth_guess(vl_contact *c, double v0) {
   y[c->ih] = h / c->uscale - umin;
 }
 
-/* Starts a smooth wet solve without a usable previous state: the converged
- * solution of the coarse level (itself started the same way), interpolated,
- * or on the coarsest level the analytic guess. Cavitation is a free
- * boundary that a semismooth Newton step moves by about one cell (cells
- * beyond it are held at pf = 0 by the linearised complementarity), so a
- * start whose film rupture is n cells off costs n iterations; each level
- * halves that distance in its own cells. Adds the Newton iterations spent
- * to *nni. */
-void vl_contact_smooth_wet_start(vl_contact *c, double v0, long *nni) {
-  vl_contact *cc = c->coarse;
-  if (cc) {
-    vl_point cp;
-    cc->v_state = 0.0; /* a fresh start there too */
-    vl_status st = vl_contact_solve(cc, v0, &cp, NULL);
-    *nni += cp.iterations;
-    if (st == VL_OK) {
-      /* pressure (p0) linear between the coarse nodes, 0 on the domain ends;
-       * rigid approach such that the minimum films agree */
-      size_t n = c->n, m = cc->n;
-      double *y = N_VGetArrayPointer(c->y), fmx = 0.0, umin_c = INFINITY, umin = INFINITY;
-      vl_contact_eval_state(cc, N_VGetArrayPointer(cc->y));
-      for (size_t k = 0; k < m; k++)
-        umin_c = fmin(umin_c, cc->U[k]);
-      for (size_t i = 0; i < n; i++) {
-        double x = c->xi[i], f;
-        if (x <= cc->xi[0]) {
-          f = cc->F[0] * fmax(0.0, 1.0 - (cc->xi[0] - x) / (0.5 * cc->wc[0]));
-        } else if (x >= cc->xi[m - 1]) {
-          f = cc->F[m - 1] * fmax(0.0, 1.0 - (x - cc->xi[m - 1]) / (0.5 * cc->wc[m - 1]));
-        } else {
-          f = interpolate(cc->F, cc->xi, m, x);
-        }
-        c->F[i] = f;
-        fmx = fmax(fmx, f);
-      }
-      c->kappa = fmx > 0.0 ? fmx : 1.0;
-      for (size_t i = 0; i < n; i++)
-        y[c->of + i] = c->F[i] / c->kappa;
-      y[c->ih] = 0.0;
-      vl_contact_eval_state(c, y);
-      for (size_t i = 0; i < n; i++)
-        umin = fmin(umin, c->U[i]);
-      y[c->ih] = umin_c - umin;
-      return;
+void vl_contact_guess_from_coarse(vl_contact *c, vl_contact *cc) {
+  /* pressure (p0) linear between the coarse nodes, 0 on the domain ends;
+   * rigid approach such that the minimum films agree */
+  size_t n = c->n, m = cc->n;
+  double *y = N_VGetArrayPointer(c->y), fmx = 0.0, umin_c = INFINITY, umin = INFINITY;
+  vl_contact_eval_state(cc, N_VGetArrayPointer(cc->y));
+  for (size_t k = 0; k < m; k++)
+    umin_c = fmin(umin_c, cc->U[k]);
+  for (size_t i = 0; i < n; i++) {
+    double x = c->xi[i], f;
+    if (x <= cc->xi[0]) {
+      f = cc->F[0] * fmax(0.0, 1.0 - (cc->xi[0] - x) / (0.5 * cc->wc[0]));
+    } else if (x >= cc->xi[m - 1]) {
+      f = cc->F[m - 1] * fmax(0.0, 1.0 - (x - cc->xi[m - 1]) / (0.5 * cc->wc[m - 1]));
+    } else {
+      f = interpolate(cc->F, cc->xi, m, x);
     }
+    c->F[i] = f;
+    fmx = fmax(fmx, f);
   }
-  wet_smooth_guess(c, v0);
+  c->kappa = fmx > 0.0 ? fmx : 1.0;
+  for (size_t i = 0; i < n; i++)
+    y[c->of + i] = c->F[i] / c->kappa;
+  y[c->ih] = 0.0;
+  vl_contact_eval_state(c, y);
+  for (size_t i = 0; i < n; i++)
+    umin = fmin(umin, c->U[i]);
+  y[c->ih] = umin_c - umin;
 }
 
 /* Predictor of a continuation step to speed v0 from the converged state at
@@ -217,40 +201,7 @@ void vl_contact_predict_state(vl_contact *c, double v0) {
     y[c->of + i] *= grow;
 }
 
-/* The dry contact of a rough film on the same grid, created when first
- * needed (most sweeps never need it): the configuration without the fluid
- * (and so without viscous flattening, which needs one). NULL when it cannot
- * be made (out of memory): the start is then skipped. */
-static vl_contact *dry_helper(vl_contact *c) {
-  if (!c->dry) {
-    vl_contact_config dry = c->cfg;
-    dry.eta_pa_s = 0.0;
-    dry.flattening = NULL;
-    dry.flattening_psd = NULL;
-    if (vl_contact_create(&dry, &c->dry, NULL) != VL_OK) c->dry = NULL;
-  }
-  return c->dry;
-}
-
-/* Why the dry contact: Hertz is the relaxed solid's contact, and a rough
- * film on a stiffening (viscoelastic) solid at speed is far from it. On
- * fig05 with paper-0.1um (h_rms 0.1 um), Newton from Hertz fails at every
- * v0 from 0.016 to 0.16 m/s (the loss peak: the real contact shrinks and
- * u_min drops to 0.002 h_rms), and continuation in speed needs 100-150
- * iterations for steps of 0.5 %; the dry contact converges from Hertz in
- * 11-32 iterations there, and the film from it in 6-11. In the boundary and
- * mixed regimes the film barely changes the contact (mu of the wet and dry
- * points agree to 5 digits at 0.01 m/s); in the hydrodynamic regime the
- * film lifts the solid off and the start fails (fig05 above ~10 m/s): the
- * sweep then continues from a lower speed (sweep.c). */
-bool vl_contact_rough_wet_dry_start(vl_contact *c, double v0, long *nni) {
-  vl_contact *d = dry_helper(c);
-  if (!d) return false;
-  vl_point dp;
-  vl_contact_reset(d);
-  vl_status st = vl_contact_solve(d, v0, &dp, NULL);
-  *nni += dp.iterations;
-  if (st != VL_OK) return false;
+void vl_contact_guess_from_dry(vl_contact *c, const vl_contact *d) {
   /* the same cells and scales (a0, a0^2/R): the separations and the rigid
    * approach carry over; no fluid pressure yet */
   double *y = N_VGetArrayPointer(c->y);
@@ -262,54 +213,9 @@ bool vl_contact_rough_wet_dry_start(vl_contact *c, double v0, long *nni) {
   y[c->ih] = yd[d->ih];
   c->kappa = 1.0;
   c->v_state = 0.0; /* no converged wet state: the fluid scales start from estimates */
-  return true;
 }
 
-/* Cells of the smooth film that starts a rough one (film_helper): the wet
- * default's resolution (VL_WET_GRID on the default inlet), at most the
- * rough contact's own uniform cells. */
-#define FILM_START_GRID VL_WET_GRID
-
-/* The smooth film of a rough contact on a uniform grid over the same
- * domain, created when first needed: the configuration without roughness
- * (its flow factors, Couette roughness and asperity contact), viscous
- * flattening or graded cells. NULL when it cannot be made. */
-static vl_contact *film_helper(vl_contact *c) {
-  if (!c->coarse) {
-    vl_contact_config film = c->cfg;
-    film.roughness = NULL;
-    film.flow_factors = VL_FLOW_FACTORS_SMOOTH;
-    film.flow_table = NULL;
-    film.flattening = NULL;
-    film.flattening_psd = NULL;
-    film.sigma_s_pa = 0.0;
-    film.grid_growth = 1.0;
-    if (film.grid > FILM_START_GRID) film.grid = FILM_START_GRID;
-    if (vl_contact_create(&film, &c->coarse, NULL) != VL_OK) c->coarse = NULL;
-  }
-  return c->coarse;
-}
-
-/* Why the smooth film: in the hydrodynamic regime the film has lifted the
- * solid off the asperities (u >> h_rms: the flow factors are 1, the
- * asperity pressure vanishes), so the rough solution is the smooth one,
- * which its own fresh starts find (coarse grids, Martin's rigid film).
- * Neither Hertz nor the dry contact (a closed film) is near it. On fig05 with a self-affine surface
- * of h_rms 30 nm, the rough film from this start converged at 15.8 to 400 m/s where continuation
- * from the mixed regime failed: there u_min jumps from 8e-11 m to 1.6e-7 m (a fold of the Stribeck
- * curve: the mixed and the lifted branches coexist near 10-16 m/s). */
-bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni) {
-  vl_contact *s = film_helper(c);
-  if (!s) return false;
-  vl_point sp;
-  s->v_state = 0.0; /* its own fresh start */
-  /* without its continuation in viscosity: the films that need it are thin,
-   * where the rough film is not the smooth one anyway, and on a fine grid it
-   * cost a hard-case corner that failed at 1e-12 m/s 100 s */
-  s->no_fallback = true;
-  vl_status st = vl_contact_solve(s, v0, &sp, NULL);
-  *nni += sp.iterations;
-  if (st != VL_OK) return false;
+void vl_contact_guess_from_film(vl_contact *c, vl_contact *s) {
   vl_contact_eval_state(s, N_VGetArrayPointer(s->y));
   /* the separation and the fluid pressure (both in the scales a0^2/R, p0
    * that the two contacts share) at the rough contact's nodes */
@@ -336,11 +242,11 @@ bool vl_contact_rough_wet_film_start(vl_contact *c, double v0, long *nni) {
   }
   y[c->ih] = cnt ? sum / (double)cnt : 0.0;
   c->v_state = 0.0;
-  return true;
 }
 
-bool vl_contact_start_from(vl_contact *dst, const vl_contact *src, double v0) {
-  if (dst->rough != src->rough || dst->wet != src->wet || !(src->v_state > 0.0)) return false;
+bool vl_contact_start_from(vl_contact *dst, const vl_contact *src) {
+  double v0 = src->v_state;
+  if (dst->rough != src->rough || dst->wet != src->wet || !(v0 > 0.0)) return false;
   if (dst->rough &&
       (dst->cfg.x_min_a0 < src->cfg.x_min_a0 || dst->cfg.x_max_a0 > src->cfg.x_max_a0))
     return false; /* separations beyond src's domain are not its end values */

@@ -72,8 +72,8 @@ double vl_contact_jacobian_check_blocks(vl_contact *c, double v0_m_s, double rel
   return r;
 }
 
-/* The state the next solve of a sweep starts from (solve_point in
- * contact_kinsol.c): kernel, predicted pf and fluid scales at v0. */
+/* The state the next solve of a sweep starts from (the first rung of
+ * contact_solve.c's ladder): kernel, predicted pf and fluid scales at v0. */
 static void start_next_solve(vl_contact *c, double v0_m_s) {
   vl_contact_set_speed(c, v0_m_s);
   vl_contact_predict_state(c, v0_m_s);

@@ -1,6 +1,6 @@
 /* The automatic layout of a smooth film's cells (numerics.h says which
  * lengths set it and why). */
-#include "viscolube/numerics.h"
+#include "numerics_plan.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,6 +1,6 @@
 /* The automatic sweep (numerics.h): numerics per run of points, an error
  * estimate on every point, refinement until it meets the target. */
-#include "viscolube/numerics.h"
+#include "numerics_plan.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -28,7 +28,6 @@ typedef struct {
   double plan_film;             /* the film the layout was planned for (m) */
   double resolution;            /* vl_plan_input.resolution, or the grid's divisor */
   double inlet_scale;           /* vl_plan_input.inlet_scale, or the inlet's factor */
-  double last_ok;               /* speed of c's converged state (0: none) */
   double c_resolution, c_inlet; /* the numerics c was built with */
   /* Contacts of uniform or graded cells (which do not depend on the speed)
    * that were set aside, to be used again by a later point with the same
@@ -81,7 +80,8 @@ static void free_state(auto_state *a) {
 }
 
 /* A new contact for speed v (prev: the last converged point, or NULL),
- * started from a's converged state where it has one (*continued), and
+ * started from a's converged state where it has one (*continued, unless
+ * NULL), and
  * its layout (plan->spans NULL when not planned). Only a's spares change
  * (one may be taken). */
 static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact **out,
@@ -116,8 +116,9 @@ static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact
   /* continued from the old contact's converged state where it has one
    * (the same branch, without a fresh start), else a fresh start (a spare
    * contact forgets the state it had) */
-  *continued = a->c && a->last_ok > 0.0 && vl_contact_start_from(*out, a->c, a->last_ok);
-  if (!*continued && spare) { /* as vl_contact_create leaves a contact */
+  bool cont = a->c && vl_contact_start_from(*out, a->c);
+  if (continued) *continued = cont;
+  if (!cont && spare) { /* as vl_contact_create leaves a contact */
     vl_contact_set_speed(*out, 0.0);
     vl_contact_reset(*out);
   }
@@ -126,8 +127,7 @@ static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact
 
 /* Makes c (with its layout) a's contact; the old one is set aside as a
  * spare (spare_put). */
-static void install(auto_state *a, vl_contact *c, vl_plan *plan, double plan_film, bool continued) {
-  if (!continued) a->last_ok = 0.0;
+static void install(auto_state *a, vl_contact *c, vl_plan *plan, double plan_film) {
   spare_put(a, a->c, a->c_resolution, a->c_inlet);
   a->c = c;
   a->c_resolution = a->resolution, a->c_inlet = a->inlet_scale;
@@ -142,9 +142,8 @@ static vl_status rebuild(auto_state *a, double v, const vl_point *prev, vl_error
   vl_contact *c;
   vl_plan plan;
   double film = 0.0;
-  bool continued;
-  vl_status st = build(a, v, prev, &c, &plan, &film, &continued, err);
-  if (st == VL_OK) install(a, c, &plan, film, continued);
+  vl_status st = build(a, v, prev, &c, &plan, &film, NULL, err);
+  if (st == VL_OK) install(a, c, &plan, film);
   return st;
 }
 
@@ -198,11 +197,10 @@ static vl_status refine(auto_state *a, double v, double resolution, double inlet
     s = vl_contact_solve(c, v, &np, err);
     st->newton_iterations += np.iterations;
   } else {
-    s = vl_sweep_solve_point(c, 0.0, v, 6, &np, st, err);
+    s = vl_contact_reach(c, v, 6, &np, st, err);
   }
   if (s == VL_OK) {
-    install(a, c, &plan, film, continued);
-    a->last_ok = v;
+    install(a, c, &plan, film);
     *pt = np;
     return VL_OK;
   }
@@ -231,12 +229,8 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
   bool coarsen = a->resolution < 1.0;
   if (coarsen) a->resolution = 1.0;
   if ((coarsen || needs_plan(a, v, prev)) && (s = rebuild(a, v, prev, err)) != VL_OK) return s;
-  s = vl_sweep_solve_point(a->c, a->last_ok, v, 6, pt, st, err);
-  if (s != VL_OK) {
-    a->last_ok = 0.0;
-    return s;
-  }
-  a->last_ok = v;
+  s = vl_contact_reach(a->c, v, 6, pt, st, err);
+  if (s != VL_OK) return s;
   vl_contact_estimate_error(a->c, pt);
   const char *stop = NULL;
   for (int k = 0; k < o->max_refinements && !stop; k++) {
@@ -278,12 +272,11 @@ static void auto_recover_below(const auto_state *a, const vl_auto_options *o,
                      .plan_film = a->plan_film,
                      .resolution = a->resolution,
                      .inlet_scale = a->inlet_scale,
-                     .last_ok = r->v[hi],
                      .c_resolution = a->c_resolution,
                      .c_inlet = a->c_inlet};
   size_t k = hi;
   if (vl_contact_create(&a->c->cfg, &down.c, NULL) == VL_OK &&
-      vl_contact_start_from(down.c, a->c, r->v[hi])) {
+      vl_contact_start_from(down.c, a->c)) {
     vl_contact_set_max_iterations(down.c, a->base.max_iterations); /* a->c may be capped */
     for (; k > lo; k--) {
       vl_point pt;

@@ -1,7 +1,7 @@
 /* Scene -> solver (simulation.h). */
 #include "viscolube/simulation.h"
-#include "viscolube/numerics.h"
 #include "viscolube/persson.h"
+#include "viscolube/sweep.h"
 
 #include "flow_factors_emt.h"
 

@@ -23,6 +23,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "sweep_internal.h"
 #include "viscolube/assumptions.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"

@@ -1,4 +1,5 @@
-/* viscolube: automatic numerics. The domain and the cells of a contact
+/* Automatic numerics (private to the solver; the automatic sweep is
+ * vl_sweep_run_auto, viscolube/sweep.h). The domain and the cells of a contact
  * chosen from the physics of the operating point, and the layout refined
  * until an error estimate meets a target.
  *
@@ -21,8 +22,8 @@
  * the domain runs from a + 60 L_h (at least 2 a0 beyond the contact)
  * upstream to max(a + 0.6 a0, 2 L_h) downstream. Rough films keep at least
  * the validated rough inlet (VL_WET_ROUGH_DOMAIN_MIN_A0). */
-#ifndef VISCOLUBE_NUMERICS_H
-#define VISCOLUBE_NUMERICS_H
+#ifndef VISCOLUBE_NUMERICS_PLAN_H
+#define VISCOLUBE_NUMERICS_PLAN_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -32,16 +33,9 @@
 #include "viscolube/status.h"
 #include "viscolube/sweep.h"
 
-/* Default relative error of mu a point should meet (scene key
- * [numerics] target_error). */
-#define VL_TARGET_ERROR_DEFAULT 0.01
-
 /* Most cells an automatic layout may take (a dense solve of n cells costs
  * n^3/3 flops per Newton step: 1500 cells about 0.1 s). */
 #define VL_AUTO_MAX_CELLS 1500
-
-/* Refinements (every width halved) a point may take to meet its target. */
-#define VL_AUTO_MAX_REFINEMENTS 2
 
 /* What the planner knows of the point. */
 typedef struct {
@@ -79,31 +73,5 @@ void vl_plan_free(vl_plan *p);
  * overestimate by four). Sets pt->error_estimate (NAN when the coarse
  * solve fails: the caller reports "no estimate"). */
 void vl_contact_estimate_error(vl_contact *c, vl_point *pt);
-
-/* Options of an automatic sweep. */
-typedef struct {
-  double target_error; /* relative error of mu to meet (<= 0: VL_TARGET_ERROR_DEFAULT) */
-  int max_refinements; /* per point (< 0: VL_AUTO_MAX_REFINEMENTS) */
-  bool keep_numerics;  /* base's numerics throughout (a scene's own [numerics]): every
-                        * point still gets its estimate, none is refined */
-} vl_auto_options;
-
-/* A Stribeck sweep (as vl_sweep_run, every path of it) whose numerics are
- * chosen per run of points: a smooth film gets the planned layout
- * (vl_plan_wet) for its film, re-planned when the film it expects has
- * changed by more than 1.5x since the last plan; any other contact keeps
- * base's numerics. Every converged point gets an error estimate
- * (vl_contact_estimate_error); above the target the numerics are refined
- * (every width halved; a uniform or graded grid: twice the cells) and the
- * point solved again (from the coarser solution), up to max_refinements
- * times and as long as the cells stay within VL_AUTO_MAX_CELLS (the next
- * point starts from the standard cells again),
- * and a pressure that reaches the domain's ends doubles the inlet (up to
- * 8x) and moves the outlet by sqrt(2). A point still above its
- * target carries the warning "error estimate X % above the target Y %".
- * The callback receives the contact that solved the point. */
-vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options *opt, size_t n,
-                            const double *v0_m_s, vl_point *out, vl_sweep_callback cb, void *user,
-                            vl_sweep_stats *stats, vl_error *err);
 
 #endif
