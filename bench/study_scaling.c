@@ -115,16 +115,20 @@ int main(int argc, char **argv) {
   size_t n = vl_study_n_tasks(s);
   double *sec = calloc(n, sizeof *sec), sum = 0, wall = 0;
   for (size_t i = 0; i < n; i++) {
-    vl_study_outcome o;
+    vl_study_result *r = NULL;
     double c0 = cpu_s();
-    if (vl_study_run_task(s, i, db, tmp, &o, &err) != VL_OK) {
+    vl_status st = vl_study_solve_task(s, i, db, &r, &err);
+    if (st == VL_OK) st = vl_study_write_task(s, i, tmp, r, &err);
+    if (st != VL_OK) {
       fprintf(stderr, "study_scaling: %s\n", err.msg);
+      vl_study_result_free(r);
       free(sec);
       goto done;
     }
     sec[i] = cpu_s() - c0;
     sum += sec[i];
-    wall += o.seconds;
+    wall += r->outcome.seconds;
+    vl_study_result_free(r);
     fprintf(stderr, "\r  task %zu/%zu  %.2f s   ", i + 1, n, sec[i]);
   }
   fputc('\n', stderr);

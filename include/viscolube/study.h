@@ -30,6 +30,7 @@
 #include <stdint.h>
 
 #include "viscolube/database.h"
+#include "viscolube/results.h"
 #include "viscolube/scene.h"
 #include "viscolube/status.h"
 
@@ -86,5 +87,44 @@ const char *const *vl_study_materials(const vl_study *s, int kind, size_t *n);
  * in the study are built and stored in the database's caches, so that
  * workers that open it read-only (vl_db_open_readonly) find them there. */
 vl_status vl_study_prepare(const vl_study *s, vl_db *db, vl_error *err);
+
+/* ---- solving a task (the writers, study_output.h, record it) ---------- */
+
+typedef enum {
+  VL_TASK_MISSING = 0,   /* no file: not run (yet) */
+  VL_TASK_OK,            /* every point converged */
+  VL_TASK_NOT_CONVERGED, /* written, some points with converged = 0 */
+  VL_TASK_ERROR          /* stopped on an error: no curve, the message says why */
+} vl_task_state;
+
+typedef struct {
+  vl_task_state state;
+  size_t points, converged, failed;
+  double seconds;  /* wall time of the task */
+  vl_status error; /* VL_TASK_ERROR: the status */
+  char message[VL_ERROR_MAX];
+} vl_study_outcome;
+
+const char *vl_task_state_name(vl_task_state s);
+
+/* A task solved: its outcome and, unless it stopped on an error, its curve
+ * with what labels it (vl_curve_meta of output.h). */
+typedef struct {
+  vl_study_outcome outcome;
+  vl_scene scene;   /* the task's scene (vl_study_scene) */
+  size_t n;         /* points[0..n): the sweep, as vl_simulation_run */
+  vl_point *points; /* owned by the result */
+  double eta_pa_s, tau_s, a0_m;
+  const char *flow_factors; /* vl_simulation_flow_factors: a static name or NULL */
+  double film_cutoff_m;
+} vl_study_result;
+
+/* Solves task i of s on db (a sweep, as vl_simulation_run) into *out
+ * (caller frees, vl_study_result_free). The task's own failure (a material
+ * it cannot load, a solver error) is its outcome: the call still returns
+ * VL_OK. VL_ENOMEM otherwise, with *out NULL. */
+vl_status vl_study_solve_task(const vl_study *s, size_t i, vl_db *db, vl_study_result **out,
+                              vl_error *err);
+void vl_study_result_free(vl_study_result *r);
 
 #endif

@@ -22,37 +22,18 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include "viscolube/database.h"
 #include "viscolube/status.h"
 #include "viscolube/study.h"
-
-typedef enum {
-  VL_TASK_MISSING = 0,   /* no file: not run (yet) */
-  VL_TASK_OK,            /* every point converged */
-  VL_TASK_NOT_CONVERGED, /* written, some points with converged = 0 */
-  VL_TASK_ERROR          /* stopped on an error: no curve, the message says why */
-} vl_task_state;
-
-typedef struct {
-  vl_task_state state;
-  size_t points, converged, failed;
-  double seconds;  /* wall time of the task */
-  vl_status error; /* VL_TASK_ERROR: the status */
-  char message[VL_ERROR_MAX];
-} vl_study_outcome;
-
-const char *vl_task_state_name(vl_task_state s);
 
 /* DIR/tasks/NNNNNN.csv of task id into buf. */
 void vl_study_task_path(const char *out_dir, size_t id, char *buf, size_t size);
 
-/* Runs task i of s on db (a sweep, as vl_simulation_run) and writes its
- * file. The task's own failure (a material it cannot load, a solver error)
- * is its outcome, written in the file: the call still returns VL_OK. Other
- * statuses (VL_EIO: the file cannot be written; VL_ENOMEM) mean that no
- * file was written. DIR/tasks must exist. */
-vl_status vl_study_run_task(const vl_study *s, size_t i, vl_db *db, const char *out_dir,
-                            vl_study_outcome *o, vl_error *err);
+/* Writes task i's file from r (vl_study_solve_task): its outcome, and its
+ * curve unless the task stopped on an error. A status other than VL_OK
+ * (VL_EIO: the file cannot be written; VL_ENOMEM) means that no file was
+ * written. DIR/tasks must exist. */
+vl_status vl_study_write_task(const vl_study *s, size_t i, const char *out_dir,
+                              const vl_study_result *r, vl_error *err);
 
 /* True when task i's file is there and belongs to s (its fingerprint and
  * id); *o (may be NULL) is then the recorded outcome. */

@@ -117,11 +117,14 @@ void vl_cli_study_report(vl_cli_study_run *cs, const vl_cli_study_record *r) {
 
 /* Runs task i in this process with db; the record of it in *r. */
 void vl_cli_study_run_one(vl_cli_study_run *cs, vl_db *db, size_t i, vl_cli_study_record *r) {
-  vl_study_outcome o;
+  vl_study_result *res = NULL;
   vl_error err = {{0}};
   memset(r, 0, sizeof *r);
   r->task = (long)i;
-  r->io_status = vl_study_run_task(cs->study, i, db, cs->out_dir, &o, &err);
+  r->io_status = vl_study_solve_task(cs->study, i, db, &res, &err);
+  if (r->io_status == VL_OK)
+    r->io_status = vl_study_write_task(cs->study, i, cs->out_dir, res, &err);
+  vl_study_result_free(res);
   if (r->io_status != VL_OK) snprintf(r->message, sizeof r->message, "%.500s", err.msg);
 }
 

@@ -1,8 +1,9 @@
 /* The material database's private parts, shared by the files of src/db/:
  *
- *   db_open.c      opening, the default path, SQLite errors as statuses,
- *                  statements and transactions, schema migrations, the
- *                  seeding of a new file with the embedded materials
+ *   db_sql.c       SQLite errors as statuses, statements, transactions
+ *   db_open.c      opening, the default path, closing
+ *   db_seed.c      the schema: a new file created and seeded from the
+ *                  embedded materials, an older one migrated
  *   db_names.c     name checks, look-up by name with "did you mean",
  *                  removal by name, listing a whole table
  *   db_compound.c  compounds: Prony terms, measured data, fit report
@@ -64,7 +65,7 @@ static inline int bind_text_or_null(sqlite3_stmt *st, int idx, const char *s) {
                    : sqlite3_bind_null(st, idx);
 }
 
-/* ---- errors, statements, transactions (db_open.c) --------------------- */
+/* ---- errors, statements, transactions (db_sql.c) ---------------------- */
 
 /* Maps the SQLite failure rc, met while `doing` (a phrase: "reading a
  * surface"), to a status and one sentence naming the file. db may be
@@ -73,6 +74,9 @@ vl_status vl_dbi_fail(const vl_db *db, int rc, const char *doing, vl_error *err)
 
 /* sqlite3_prepare_v2 of sql into *st (NULL on failure). */
 vl_status vl_dbi_prepare(vl_db *db, const char *sql, sqlite3_stmt **st, vl_error *err);
+
+/* sqlite3_exec of sql, which returns no rows; failures as vl_dbi_fail. */
+vl_status vl_dbi_exec(vl_db *db, const char *sql, const char *doing, vl_error *err);
 
 /* Every write is one BEGIN IMMEDIATE ... COMMIT: begin fails at once on a
  * read-only file; commit rolls back itself when it fails; rollback does
@@ -110,6 +114,15 @@ vl_status vl_dbi_remove_named(vl_db *db, const char *table, const char *name, vl
 vl_status vl_dbi_list_all(vl_db *db, const char *table, const char *plural, size_t item_size,
                           vl_status (*by_id)(vl_db *, sqlite3_int64, void *, vl_error *),
                           void **items, size_t *n, vl_error *err);
+
+/* ---- the schema (db_seed.c) ------------------------------------------- */
+
+/* Brings the open file to the latest schema (vl_db_schema_version): a new,
+ * empty file gets every migration and seed in one transaction, an older
+ * one each missing migration in its own. A newer, foreign or corrupt file,
+ * or an older read-only one, is refused (VL_EDB) before anything is
+ * written. */
+vl_status vl_dbi_migrate(vl_db *db, vl_error *err);
 
 /* ---- steps of a migration or seed, inside its transaction -------------- */
 

@@ -1,4 +1,5 @@
-/* The files of a study (study_output.h). */
+/* The files of a study (study_output.h), written from the tasks that
+ * src/study/study_run.c solved: nothing here runs a solver. */
 #include "viscolube/study_output.h"
 
 #include <errno.h>
@@ -8,26 +9,14 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #include "viscolube/atomic_file.h"
 #include "viscolube/output.h"
-#include "viscolube/simulation.h"
 
 #define PATH_SIZE 4400
 
 static const char *const FACTOR_COLUMNS =
     "compound,surface,fluid,load_n_per_m,radius_m,temperature_c";
-
-const char *vl_task_state_name(vl_task_state s) {
-  switch (s) {
-  case VL_TASK_MISSING: return "missing";
-  case VL_TASK_OK: return "ok";
-  case VL_TASK_NOT_CONVERGED: return "not_converged";
-  case VL_TASK_ERROR: return "error";
-  }
-  return "?";
-}
 
 void vl_study_task_path(const char *out_dir, size_t id, char *buf, size_t size) {
   snprintf(buf, size, "%s/tasks/%06zu.csv", out_dir, id);
@@ -76,47 +65,6 @@ static vl_status print_rows(FILE *f, const vl_study_task *t, const vl_scene *sce
   return VL_OK;
 }
 
-static double now_s(void) {
-  struct timespec ts;
-  clock_gettime(CLOCK_MONOTONIC, &ts);
-  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* The sweep of task i: its points in *pts (malloc'd), *n of them. The
- * task's own failures land in o. */
-static vl_status solve_task(const vl_study *s, size_t i, vl_db *db, vl_scene *scene, vl_point **pts,
-                            size_t *n, vl_curve_meta *meta, vl_study_outcome *o) {
-  vl_simulation *sim = NULL;
-  vl_error e = {{0}};
-  vl_status st = vl_study_scene(s, i, scene, &e);
-  if (st == VL_OK) st = vl_simulation_create(scene, db, &sim, &e);
-  if (st == VL_OK) {
-    *n = vl_simulation_points(sim);
-    if (!(*pts = calloc(*n, sizeof **pts))) {
-      vl_error_set(&e, "out of memory for %zu points", *n);
-      st = VL_ENOMEM;
-    }
-  }
-  vl_sweep_stats stats = {0};
-  if (st == VL_OK) st = vl_simulation_run(sim, *pts, NULL, NULL, &stats, &e);
-  if (st == VL_OK) {
-    const vl_contact *c = vl_simulation_contact(sim);
-    *meta = (vl_curve_meta){vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(c), NULL,
-                            0.0};
-    meta->flow_factors = vl_simulation_flow_factors(sim, &meta->film_cutoff_m);
-    o->points = *n;
-    o->converged = stats.converged;
-    o->failed = stats.failed;
-    o->state = stats.failed ? VL_TASK_NOT_CONVERGED : VL_TASK_OK;
-  } else {
-    o->state = VL_TASK_ERROR;
-    o->error = st;
-    snprintf(o->message, sizeof o->message, "%s", e.msg[0] ? e.msg : vl_status_name(st));
-  }
-  vl_simulation_free(sim);
-  return st == VL_ENOMEM ? st : VL_OK;
-}
-
 /* The two comment lines every task file begins with. */
 static void print_head(FILE *f, const vl_study *s, size_t i, const vl_study_outcome *o) {
   fprintf(f, "# viscolube study task %zu of %zu, study %016" PRIx64 "\n", i, vl_study_n_tasks(s),
@@ -131,39 +79,23 @@ static void print_head(FILE *f, const vl_study *s, size_t i, const vl_study_outc
   fputc('\n', f);
 }
 
-vl_status vl_study_run_task(const vl_study *s, size_t i, vl_db *db, const char *out_dir,
-                            vl_study_outcome *o, vl_error *err) {
-  *o = (vl_study_outcome){0};
-  vl_scene *scene = malloc(sizeof *scene);
-  vl_point *pts = NULL;
-  size_t n = 0;
-  vl_curve_meta meta = {0};
-  if (!scene) {
-    vl_error_set(err, "out of memory");
-    return VL_ENOMEM;
-  }
-  double t0 = now_s();
-  vl_status st = solve_task(s, i, db, scene, &pts, &n, &meta, o);
-  o->seconds = now_s() - t0;
-  if (st != VL_OK) {
-    vl_error_set(err, "task %zu: out of memory", i);
-    goto done;
-  }
+vl_status vl_study_write_task(const vl_study *s, size_t i, const char *out_dir,
+                              const vl_study_result *r, vl_error *err) {
   char path[PATH_SIZE];
   vl_study_task_path(out_dir, i, path, sizeof path);
   vl_atomic_file af;
-  if ((st = vl_atomic_file_open(&af, path, err)) != VL_OK) goto done;
-  print_head(af.f, s, i, o);
-  if (o->state != VL_TASK_ERROR &&
-      (st = print_rows(af.f, vl_study_task_at(s, i), scene, n, pts, &meta, err)) != VL_OK) {
-    vl_atomic_file_abort(&af);
-    goto done;
+  vl_status st = vl_atomic_file_open(&af, path, err);
+  if (st != VL_OK) return st;
+  print_head(af.f, s, i, &r->outcome);
+  if (r->outcome.state != VL_TASK_ERROR) {
+    const vl_curve_meta meta = {r->eta_pa_s, r->tau_s, r->a0_m, r->flow_factors, r->film_cutoff_m};
+    st = print_rows(af.f, vl_study_task_at(s, i), &r->scene, r->n, r->points, &meta, err);
+    if (st != VL_OK) {
+      vl_atomic_file_abort(&af);
+      return st;
+    }
   }
-  st = vl_atomic_file_commit(&af, err);
-done:
-  free(pts);
-  free(scene);
-  return st;
+  return vl_atomic_file_commit(&af, err);
 }
 
 /* Reads the head of a task file: true when it is task i of s. */
