@@ -14,123 +14,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Guards against reading a stray huge file (a disk image, a log) into memory:
- * measured tables are kilobytes to a few megabytes. */
-#define CSV_MAX_BYTES ((size_t)256 << 20)
-/* Longest cell we try to read as a number (beyond this it is not data). */
-#define NUMBER_MAX_CHARS 128
-/* Longest excerpt of a bad cell quoted back in a message. */
-#define SHOW_MAX_CHARS 40
-
-/* Header fields beyond this are refused: no table of ours has that many. */
-#define MAX_FIELDS 256
 /* Longest header cell a PSD column name is looked for in. */
 #define CELL_TEXT_MAX 64
 
-typedef struct {
-  const char *p;
-  size_t n;
-} span;
-
-static int is_blank(char c) { return c == ' ' || c == '\t'; }
-
-static span trim(span s) {
-  while (s.n > 0 && is_blank(s.p[0]))
-    s.p++, s.n--;
-  while (s.n > 0 && is_blank(s.p[s.n - 1]))
-    s.n--;
-  return s;
-}
-
-/* The next line of text that is not blank and not a '#' comment (CR
- * removed; a leading byte-order mark skipped); 0 at the end. */
-static int next_meaningful(const char *text, size_t len, size_t *pos, size_t *line_no, span *line) {
-  if (*pos == 0 && len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) *pos = 3;
-  while (*pos < len) {
-    (*line_no)++;
-    const char *start = text + *pos;
-    const char *nl = memchr(start, '\n', len - *pos);
-    size_t n = nl ? (size_t)(nl - start) : len - *pos;
-    *pos += n + 1;
-    if (n > 0 && start[n - 1] == '\r') n--;
-    span t = trim((span){start, n});
-    if (t.n == 0 || t.p[0] == '#') continue;
-    *line = (span){start, n};
-    return 1;
-  }
-  return 0;
-}
-
-/* Messages quote header cells and go to a terminal: no control bytes but
- * the line breaks between the sentences of a problem list. */
-static void sanitise(vl_error *err) {
-  if (!err) return;
-  for (char *c = err->msg; *c; c++)
-    if (((unsigned char)*c < 0x20 && *c != '\n') || *c == 0x7f) *c = '?';
-}
-
-/* Header and units cells may be quoted by spreadsheet exports. */
-static span unquote(span s) {
-  s = trim(s);
-  if (s.n >= 2 && s.p[0] == '"' && s.p[s.n - 1] == '"') {
-    s.p++;
-    s.n -= 2;
-    s = trim(s);
-  }
-  return s;
-}
-
-static int span_eq(span s, const char *t) {
-  size_t n = strlen(t);
-  return s.n == n && memcmp(s.p, t, n) == 0;
-}
-
-/* Copies a cell for quoting in a message: truncated, control bytes as '?'. */
-static void show(span s, char *buf, size_t size) {
-  size_t k = 0;
-  for (size_t i = 0; i < s.n && k + 4 < size && i < SHOW_MAX_CHARS; i++) {
-    unsigned char c = (unsigned char)s.p[i];
-    buf[k++] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
-  }
-  if (s.n > SHOW_MAX_CHARS && k + 4 < size) {
-    memcpy(buf + k, "...", 3);
-    k += 3;
-  }
-  buf[k] = '\0';
-}
-
-/* Splits a line at the delimiter into at most cap cells, through the
- * scratch arrays tp, tn (cap entries); returns the total count (which may
- * exceed cap: only the first cap are stored). */
-static size_t split(span line, char delimiter, span *cells, const char **tp, size_t *tn,
-                    size_t cap) {
-  size_t count = vl_import_split(line.p, line.n, delimiter, tp, tn, cap);
-  for (size_t k = 0; k < count && k < cap; k++)
-    cells[k] = (span){tp[k], tn[k]};
-  return count;
-}
-
-/* Case-insensitive ASCII comparison of a span with a string. */
-static int span_eq_nocase(span s, const char *t) {
-  size_t n = strlen(t);
-  if (s.n != n) return 0;
-  for (size_t i = 0; i < n; i++) {
-    char a = s.p[i], b = t[i];
-    if (a >= 'A' && a <= 'Z') a = (char)(a - 'A' + 'a');
-    if (b >= 'A' && b <= 'Z') b = (char)(b - 'A' + 'a');
-    if (a != b) return 0;
-  }
-  return 1;
-}
-
 /* Edit distance between a header cell and a column name (to decide whether
  * the cell is a misspelling worth suggesting a fix for). */
-static size_t distance(span a, const char *b) {
+static size_t distance(vl_span a, const char *b) {
   return vl_edit_distance(a.p, a.n, b, strlen(b), false);
-}
-
-static vl_status parse_span(span s, int decimal_comma, double *out, const char **why) {
-  return vl_import_parse_number(s.p, s.n, decimal_comma, out, why);
 }
 
 vl_status vl_csv_parse_double(const char *text, double *out, const char **why) {
@@ -140,7 +30,7 @@ vl_status vl_csv_parse_double(const char *text, double *out, const char **why) {
     *why = "empty cell";
     return VL_EINPUT;
   }
-  return parse_span((span){text, strlen(text)}, 0, out, why);
+  return vl_import_parse_number(text, strlen(text), 0, out, why);
 }
 
 void vl_csv_free(vl_csv *csv) {
@@ -171,7 +61,7 @@ static void expected_header(const vl_csv_column *cols, size_t n_cols, char *buf,
 }
 
 /* Does cell match one of the '|'-separated spellings in units? */
-static int units_match(span cell, const char *units) {
+static int units_match(vl_span cell, const char *units) {
   if (!units) return 1;
   const char *p = units;
   for (;;) {
@@ -220,9 +110,7 @@ typedef struct {
   const vl_csv_column *cols; /* the requested columns */
   size_t n_cols;
   vl_csv_options opt;
-  span *cells;     /* the fields of the current line (cell_cap kept) */
-  const char **tp; /* split scratch (cell_cap) */
-  size_t *tn;
+  vl_span *cells; /* the fields of the current line (cell_cap kept) */
   size_t cell_cap;
   size_t *map;         /* field f of the file holds column map[f], or IGNORED */
   size_t n_fields;     /* fields of the header, hence of every row */
@@ -235,12 +123,12 @@ typedef struct {
 
 /* The error of a header cell `name` (field f) that names no requested
  * column, with the closest name as a hint when it is a likely misspelling. */
-static vl_status unknown_column(const csv_reader *r, span name, size_t f, vl_error *err) {
+static vl_status unknown_column(const csv_reader *r, vl_span name, size_t f, vl_error *err) {
   char shown[64];
-  show(name, shown, sizeof shown);
+  vl_span_excerpt(name, shown, sizeof shown);
   size_t best = r->n_cols, best_d = 9;
   for (size_t k = 0; k < r->n_cols; k++) {
-    size_t d = span_eq_nocase(name, r->cols[k].name) ? 0 : distance(name, r->cols[k].name);
+    size_t d = vl_span_eq_nocase(name, r->cols[k].name) ? 0 : distance(name, r->cols[k].name);
     if (d < best_d) best_d = d, best = k;
   }
   if (best < r->n_cols && best_d <= 2)
@@ -255,9 +143,9 @@ static vl_status unknown_column(const csv_reader *r, span name, size_t f, vl_err
 }
 
 /* Appends 'name' to the list of ignored columns of out. */
-static vl_status note_ignored(vl_csv *out, span name) {
+static vl_status note_ignored(vl_csv *out, vl_span name) {
   char shown[64];
-  show(name, shown, sizeof shown);
+  vl_span_excerpt(name, shown, sizeof shown);
   size_t old = out->ignored ? strlen(out->ignored) : 0, add = strlen(shown) + 4;
   char *s = realloc(out->ignored, old + add + 1);
   if (!s) return VL_ENOMEM;
@@ -268,23 +156,21 @@ static vl_status note_ignored(vl_csv *out, span name) {
 }
 
 /* Splits the header line and sizes the cell arrays for it. */
-static vl_status header_cells(csv_reader *r, span line, size_t *count, vl_error *err) {
-  *count = vl_import_split(line.p, line.n, r->opt.delimiter, NULL, NULL, 0);
-  if (*count > MAX_FIELDS) {
+static vl_status header_cells(csv_reader *r, vl_span line, size_t *count, vl_error *err) {
+  *count = vl_import_split(line, r->opt.delimiter, NULL, 0);
+  if (*count > VL_IMPORT_MAX_FIELDS) {
     vl_error_set(err, "%s:%zu: the header has %zu fields; a table has at most %d", r->src,
-                 r->line_no, *count, MAX_FIELDS);
+                 r->line_no, *count, VL_IMPORT_MAX_FIELDS);
     return VL_EINPUT;
   }
   r->cell_cap = (*count > r->n_cols ? *count : r->n_cols) + 1;
   r->cells = malloc(r->cell_cap * sizeof *r->cells);
-  r->tp = malloc(r->cell_cap * sizeof *r->tp);
-  r->tn = malloc(r->cell_cap * sizeof *r->tn);
   r->map = malloc(r->cell_cap * sizeof *r->map);
-  if (!r->cells || !r->tp || !r->tn || !r->map) {
+  if (!r->cells || !r->map) {
     vl_error_set(err, "%s: out of memory", r->src);
     return VL_ENOMEM;
   }
-  split(line, r->opt.delimiter, r->cells, r->tp, r->tn, r->cell_cap);
+  vl_import_split(line, r->opt.delimiter, r->cells, r->cell_cap);
   return VL_OK;
 }
 
@@ -292,7 +178,7 @@ static vl_status header_cells(csv_reader *r, span line, size_t *count, vl_error 
  * ignored, with ignore_unknown), every column that is not optional is
  * there. Sets map, n_fields, the presence flags of out, its ignored list
  * and the expected units row. */
-static vl_status read_header(csv_reader *r, span line, vl_error *err) {
+static vl_status read_header(csv_reader *r, vl_span line, vl_error *err) {
   size_t n_cols = r->n_cols, count;
   vl_status st = header_cells(r, line, &count, err);
   if (st != VL_OK) return st;
@@ -300,7 +186,9 @@ static vl_status read_header(csv_reader *r, span line, vl_error *err) {
   for (size_t f = 0; f < count && all_numbers; f++) {
     double v;
     const char *why;
-    if (parse_span(r->cells[f], r->opt.decimal_comma, &v, &why) != VL_OK) all_numbers = 0;
+    if (vl_import_parse_number(r->cells[f].p, r->cells[f].n, r->opt.decimal_comma, &v, &why) !=
+        VL_OK)
+      all_numbers = 0;
   }
   if (all_numbers) {
     vl_error_set(err, "%s:%zu: missing header: expected the column names '%s' before the numbers",
@@ -308,14 +196,14 @@ static vl_status read_header(csv_reader *r, span line, vl_error *err) {
     return VL_EINPUT;
   }
   for (size_t f = 0; f < count; f++) {
-    span name = unquote(r->cells[f]);
+    vl_span name = vl_span_unquote(r->cells[f]);
     if (name.n == 0) {
       vl_error_set(err, "%s:%zu: header field %zu is empty (expected the header '%s')", r->src,
                    r->line_no, f + 1, r->hdr);
       return VL_EINPUT;
     }
     size_t c = 0;
-    while (c < n_cols && !span_eq(name, r->cols[c].name))
+    while (c < n_cols && !vl_span_eq(name, r->cols[c].name))
       c++;
     if (c == n_cols && !r->opt.ignore_unknown) return unknown_column(r, name, f, err);
     if (c == n_cols) {
@@ -355,17 +243,18 @@ static vl_status read_units_row(const csv_reader *r, int *is_units, vl_error *er
   for (size_t f = 0; f < r->n_fields && !*is_units; f++) {
     double v;
     const char *why;
-    span u = unquote(r->cells[f]);
-    if (r->map[f] != IGNORED && parse_span(u, r->opt.decimal_comma, &v, &why) != VL_OK &&
+    vl_span u = vl_span_unquote(r->cells[f]);
+    if (r->map[f] != IGNORED &&
+        vl_import_parse_number(u.p, u.n, r->opt.decimal_comma, &v, &why) != VL_OK &&
         units_match(u, r->cols[r->map[f]].units))
       *is_units = 1;
   }
   if (!*is_units) return VL_OK;
   for (size_t f = 0; f < r->n_fields; f++) {
-    span u = unquote(r->cells[f]);
+    vl_span u = vl_span_unquote(r->cells[f]);
     if (r->map[f] != IGNORED && !units_match(u, r->cols[r->map[f]].units)) {
       char shown[64];
-      show(u, shown, sizeof shown);
+      vl_span_excerpt(u, shown, sizeof shown);
       vl_error_set(err,
                    "%s:%zu: column '%s' (field %zu): '%s' is not the expected unit (the "
                    "optional units row after the header must read '%s')",
@@ -386,9 +275,9 @@ static vl_status read_cell(const csv_reader *r, size_t f, int first_row, double 
   double v = 0.0;
   const char *why = NULL;
   char shown[64];
-  span cell = trim(r->cells[f]);
-  show(cell, shown, sizeof shown);
-  if (parse_span(cell, r->opt.decimal_comma, &v, &why) != VL_OK) {
+  vl_span cell = vl_span_trim(r->cells[f]);
+  vl_span_excerpt(cell, shown, sizeof shown);
+  if (vl_import_parse_number(cell.p, cell.n, r->opt.decimal_comma, &v, &why) != VL_OK) {
     int hint = first_row && !strcmp(why, "not a number");
     vl_error_set(err, "%s:%zu: column '%s' (field %zu): %s (got '%s')%s%s%s", r->src, r->line_no,
                  col->name, f + 1, why, shown,
@@ -504,7 +393,7 @@ vl_status vl_csv_read_text_opts(const char *text, size_t len, const char *source
     r.line_no++;
     const char *nl = memchr(text + pos, '\n', len - pos);
     size_t end = nl ? (size_t)(nl - text) : len;
-    span line = {text + pos, end - pos};
+    vl_span line = {text + pos, end - pos};
     pos = end + 1;
     if (line.n > 0 && line.p[line.n - 1] == '\r') line.n--;
     if (memchr(line.p, '\0', line.n)) {
@@ -512,7 +401,7 @@ vl_status vl_csv_read_text_opts(const char *text, size_t len, const char *source
       st = VL_EINPUT;
       goto cleanup;
     }
-    span t = trim(line);
+    vl_span t = vl_span_trim(line);
     if (t.n == 0 || t.p[0] == '#') continue;
     last_line = r.line_no;
 
@@ -522,7 +411,7 @@ vl_status vl_csv_read_text_opts(const char *text, size_t len, const char *source
       stage = UNITS;
       continue;
     }
-    size_t count = split(line, r.opt.delimiter, r.cells, r.tp, r.tn, r.n_fields);
+    size_t count = vl_import_split(line, r.opt.delimiter, r.cells, r.n_fields);
     if (count != r.n_fields) {
       ragged_row(&r, count, &pr);
       stage = DATA;
@@ -563,12 +452,10 @@ vl_status vl_csv_read_text_opts(const char *text, size_t len, const char *source
 
 cleanup:
   free(r.cells);
-  free(r.tp);
-  free(r.tn);
   free(r.map);
   if (st != VL_OK) {
     vl_csv_free(out);
-    sanitise(err);
+    vl_import_sanitise(err);
   }
   return st;
 }
@@ -578,59 +465,13 @@ vl_status vl_csv_read_text(const char *text, size_t len, const char *source,
   return vl_csv_read_text_opts(text, len, source, cols, n_cols, NULL, out, err);
 }
 
-/* The whole file at path in a malloc'd buffer (*buf, *len; not
- * NUL-terminated). VL_EIO, VL_EINPUT (too large), VL_ENOMEM. */
-static vl_status read_whole(const char *path, char **buf, size_t *len, vl_error *err) {
-  vl_status st = VL_OK;
-  size_t cap = 0;
-  *buf = NULL;
-  *len = 0;
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    vl_error_set(err, "%s: cannot open: %s", path, strerror(errno));
-    return VL_EIO;
-  }
-  for (;;) {
-    if (*len == cap) {
-      if (cap >= CSV_MAX_BYTES) {
-        vl_error_set(err, "%s: larger than %zu MiB: not a material table", path,
-                     CSV_MAX_BYTES >> 20);
-        st = VL_EINPUT;
-        break;
-      }
-      size_t ncap = cap ? 2 * cap : 65536;
-      char *nb = realloc(*buf, ncap);
-      if (!nb) {
-        vl_error_set(err, "%s: out of memory", path);
-        st = VL_ENOMEM;
-        break;
-      }
-      *buf = nb;
-      cap = ncap;
-    }
-    size_t got = fread(*buf + *len, 1, cap - *len, f);
-    *len += got;
-    if (got == 0) break;
-  }
-  if (st == VL_OK && ferror(f)) {
-    vl_error_set(err, "%s: cannot read: %s", path, strerror(errno));
-    st = VL_EIO;
-  }
-  fclose(f);
-  if (st != VL_OK) {
-    free(*buf);
-    *buf = NULL;
-    *len = 0;
-  }
-  return st;
-}
-
 vl_status vl_csv_read_file(const char *path, const vl_csv_column *cols, size_t n_cols, vl_csv *out,
                            vl_error *err) {
   char *buf = NULL;
   size_t len = 0;
   memset(out, 0, sizeof *out);
-  vl_status st = read_whole(path, &buf, &len, err);
+  vl_status st =
+      vl_import_read_file(path, VL_IMPORT_TABLE_MAX_BYTES, "a material table", &buf, &len, err);
   if (st == VL_OK) st = vl_csv_read_text(buf, len, path, cols, n_cols, out, err);
   free(buf);
   return st;
@@ -717,7 +558,7 @@ static void psd_normalise(const char *s, size_t n, char *out, size_t cap) {
   out[k] = '\0';
 }
 
-static psd_role psd_name_role(span name) {
+static psd_role psd_name_role(vl_span name) {
   char b[64];
   if (name.n >= sizeof b) return P_NONE;
   psd_normalise(name.p, name.n, b, sizeof b);
@@ -743,7 +584,7 @@ static double psd_length(const char *s, size_t n) {
 
 /* A unit of q: 1/L, L^-1, L-1, per L, /L (L a length); *factor = the SI
  * value of one unit (1/m per unit). */
-static int q_unit(span u, double *factor) {
+static int q_unit(vl_span u, double *factor) {
   char b[32];
   if (u.n >= sizeof b) return 0;
   size_t k = 0;
@@ -770,7 +611,7 @@ static int q_unit(span u, double *factor) {
 
 /* A unit of C: L^4 / L4 (2-D) or L^3 / L3 (1-D); *factor = m^p per unit,
  * *power = p. */
-static int c_unit(span u, double *factor, int *power) {
+static int c_unit(vl_span u, double *factor, int *power) {
   char b[32];
   if (u.n >= sizeof b || u.n < 2) return 0;
   size_t k = 0;
@@ -800,8 +641,8 @@ typedef struct {
 
 /* Reads "q [1/um]", "C (m^4)", "q_per_m", "C_m4": the role of the name and,
  * when given, the unit. 0 when the cell names no PSD column. */
-static int psd_header_cell(span cell, psd_col *c) {
-  span t = unquote(cell);
+static int psd_header_cell(vl_span cell, psd_col *c) {
+  vl_span t = vl_span_unquote(cell);
   memset(c, 0, sizeof *c);
   if (t.n >= CELL_TEXT_MAX) return 0;
   memcpy(c->text, t.p, t.n);
@@ -810,7 +651,8 @@ static int psd_header_cell(span cell, psd_col *c) {
   char close = t.n ? t.p[t.n - 1] : 0, open = close == ']' ? '[' : close == ')' ? '(' : 0;
   for (size_t i = t.n; open && i-- > 1;) {
     if (t.p[i] != open) continue;
-    span name = trim((span){t.p, i}), unit = trim((span){t.p + i + 1, t.n - i - 2});
+    vl_span name = vl_span_trim((vl_span){t.p, i}),
+            unit = vl_span_trim((vl_span){t.p + i + 1, t.n - i - 2});
     if ((c->r = psd_name_role(name)) == P_NONE) return 0;
     c->has_unit = 1;
     memcpy(c->unit, unit.p, unit.n);
@@ -819,7 +661,7 @@ static int psd_header_cell(span cell, psd_col *c) {
   }
   for (size_t i = t.n; i-- > 1;) { /* "q_per_m", "C_m4": a unit after a '_' */
     if (t.p[i] != '_') continue;
-    span name = {t.p, i}, unit = {t.p + i + 1, t.n - i - 1};
+    vl_span name = {t.p, i}, unit = {t.p + i + 1, t.n - i - 1};
     psd_role r = psd_name_role(name);
     double f;
     int pw;
@@ -836,7 +678,7 @@ static int psd_header_cell(span cell, psd_col *c) {
 /* The unit text u of column c: sets factor and power, 0 if not a unit of
  * its column. */
 static int psd_unit_of(psd_col *c, const char *u) {
-  span s = trim((span){u, strlen(u)});
+  vl_span s = vl_span_trim((vl_span){u, strlen(u)});
   return c->r == P_Q ? q_unit(s, &c->factor) : c_unit(s, &c->factor, &c->power);
 }
 
@@ -854,14 +696,12 @@ typedef struct {
  * then reads the optional units row; every unit settled or an error. */
 static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error *err) {
   size_t pos = 0, line_no = 0;
-  span line, cells[MAX_FIELDS + 1];
-  const char *tp[MAX_FIELDS + 1];
-  size_t tn[MAX_FIELDS + 1];
-  if (!next_meaningful(text, len, &pos, &line_no, &line)) return VL_OK; /* the reader says so */
+  vl_span line, cells[VL_IMPORT_MAX_FIELDS + 1];
+  if (!vl_import_next_line(text, len, &pos, &line_no, &line)) return VL_OK; /* the reader says so */
   pl->header_line = line_no;
-  size_t count = split(line, pl->d.delimiter, cells, tp, tn, MAX_FIELDS + 1);
+  size_t count = vl_import_split(line, pl->d.delimiter, cells, VL_IMPORT_MAX_FIELDS + 1);
   psd_col col;
-  for (size_t f = 0; f < count && f < MAX_FIELDS; f++) {
+  for (size_t f = 0; f < count && f < VL_IMPORT_MAX_FIELDS; f++) {
     if (!psd_header_cell(cells[f], &col)) continue;
     psd_col *slot = col.r == P_Q ? &pl->q : &pl->c;
     if (slot->text[0]) {
@@ -891,17 +731,18 @@ static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error
     }
   }
   /* the units row: the row after the header, when its q or C cell is a unit */
-  if (next_meaningful(text, len, &pos, &line_no, &line) &&
-      split(line, pl->d.delimiter, cells, tp, tn, MAX_FIELDS + 1) == count) {
+  if (vl_import_next_line(text, len, &pos, &line_no, &line) &&
+      vl_import_split(line, pl->d.delimiter, cells, VL_IMPORT_MAX_FIELDS + 1) == count) {
     double v;
     const char *why;
     int is_units = 0;
     for (int i = 0; i < 2; i++) {
-      span u = unquote(cells[pc[i]->field]);
+      vl_span u = vl_span_unquote(cells[pc[i]->field]);
       psd_col probe = *pc[i];
       char ut[CELL_TEXT_MAX];
       snprintf(ut, sizeof ut, "%.*s", (int)(u.n < sizeof ut ? u.n : sizeof ut - 1), u.p);
-      if (parse_span(u, pl->d.decimal_comma, &v, &why) != VL_OK && psd_unit_of(&probe, ut))
+      if (vl_import_parse_number(u.p, u.n, pl->d.decimal_comma, &v, &why) != VL_OK &&
+          psd_unit_of(&probe, ut))
         is_units = 1;
       snprintf(pl->units_row[i], sizeof pl->units_row[i], "%s", ut);
     }
@@ -1184,7 +1025,7 @@ vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
 cleanup:
   free(pts);
   vl_csv_free(&csv);
-  if (st != VL_OK) sanitise(err);
+  if (st != VL_OK) vl_import_sanitise(err);
   return st;
 }
 
@@ -1193,7 +1034,8 @@ vl_status vl_csv_read_psd_file(const char *path, vl_psd_file_kind kind, vl_psd *
   char *buf = NULL;
   size_t len = 0;
   memset(psd, 0, sizeof *psd);
-  vl_status st = read_whole(path, &buf, &len, err);
+  vl_status st =
+      vl_import_read_file(path, VL_IMPORT_TABLE_MAX_BYTES, "a material table", &buf, &len, err);
   if (st == VL_OK) st = vl_csv_read_psd_text(buf, len, path, kind, psd, report, err);
   free(buf);
   return st;
