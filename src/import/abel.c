@@ -1,7 +1,8 @@
 /* The inverse Abel transform (abel.h): a profile's 1-D roughness spectrum
  * to the isotropic surface's 2-D one, step 6 of topography.h. Its own file
- * because two readers need it: the PSD of a line scan (topography.c) and a
- * tabulated 1-D spectrum (psd_file.c). It calls no other file of the layer. */
+ * because two readers need it: the PSD of a line scan (topography_psd.c)
+ * and a tabulated 1-D spectrum (psd_file.c). It calls no other file of the
+ * layer. */
 #include "abel.h"
 
 #include <math.h>
