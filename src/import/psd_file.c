@@ -209,16 +209,14 @@ typedef struct {
   char units_row[2][CELL_TEXT_MAX];
 } psd_layout;
 
-/* Finds the q and C columns in the header line (other columns ignored),
- * then reads the optional units row; every unit settled or an error. */
-static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error *err) {
-  size_t pos = 0, line_no = 0;
-  vl_span line, cells[VL_IMPORT_MAX_FIELDS + 1];
-  if (!vl_import_next_line(text, len, &pos, &line_no, &line)) return VL_OK; /* the reader says so */
-  pl->header_line = line_no;
-  size_t count = vl_import_split(line, pl->d.delimiter, cells, VL_IMPORT_MAX_FIELDS + 1);
+/* The q and C columns of the header line (other columns ignored) and the
+ * units their names give, if any; *count gets the number of fields. */
+static vl_status psd_header(vl_span line, size_t line_no, psd_layout *pl, size_t *count,
+                            vl_error *err) {
+  vl_span cells[VL_IMPORT_MAX_FIELDS + 1];
+  *count = vl_import_split(line, pl->d.delimiter, cells, VL_IMPORT_MAX_FIELDS + 1);
   psd_col col;
-  for (size_t f = 0; f < count && f < VL_IMPORT_MAX_FIELDS; f++) {
+  for (size_t f = 0; f < *count && f < VL_IMPORT_MAX_FIELDS; f++) {
     if (!psd_header_cell(cells[f], &col)) continue;
     psd_col *slot = col.r == P_Q ? &pl->q : &pl->c;
     if (slot->text[0]) {
@@ -247,45 +245,66 @@ static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error
       return VL_EINPUT;
     }
   }
-  /* the units row: the row after the header, when its q or C cell is a unit */
-  if (vl_import_next_line(text, len, &pos, &line_no, &line) &&
-      vl_import_split(line, pl->d.delimiter, cells, VL_IMPORT_MAX_FIELDS + 1) == count) {
-    double v;
-    const char *why;
-    int is_units = 0;
-    for (int i = 0; i < 2; i++) {
-      vl_span u = vl_span_unquote(cells[pc[i]->field]);
-      psd_col probe = *pc[i];
-      char ut[CELL_TEXT_MAX];
-      snprintf(ut, sizeof ut, "%.*s", (int)(u.n < sizeof ut ? u.n : sizeof ut - 1), u.p);
-      if (vl_import_parse_number(u.p, u.n, pl->d.decimal_comma, &v, &why) != VL_OK &&
-          psd_unit_of(&probe, ut))
-        is_units = 1;
-      snprintf(pl->units_row[i], sizeof pl->units_row[i], "%s", ut);
-    }
-    for (int i = 0; is_units && i < 2; i++) {
-      psd_col probe = *pc[i];
-      if (!psd_unit_of(&probe, pl->units_row[i])) {
-        vl_error_set(err, "%s:%zu: column '%s' (field %zu): '%s' is not a unit of %s", pl->src,
-                     line_no, pc[i]->text, pc[i]->field + 1, pl->units_row[i],
-                     i ? "a spectrum (m^4, um^4, nm^4; 1-D: m^3 ...)"
-                       : "a wavevector (1/m, 1/um, "
-                         "1/nm)");
-        return VL_EINPUT;
-      }
-      if (pc[i]->has_unit && (probe.factor != pc[i]->factor || probe.power != pc[i]->power)) {
-        vl_error_set(err,
-                     "%s:%zu: column '%s' (field %zu): mixed units: the header says %s but "
-                     "the units row says %s",
-                     pl->src, line_no, pc[i]->text, pc[i]->field + 1, pc[i]->unit,
-                     pl->units_row[i]);
-        return VL_EINPUT;
-      }
-      *pc[i] = probe;
-      pc[i]->has_unit = 1;
-    }
-    pl->has_units_row = is_units;
+  return VL_OK;
+}
+
+/* The row after the header (its cells, as many as the header's) is the
+ * units row when its q or C cell is not a number but a unit of its column:
+ * then both must be units, agreeing with the header's, and they settle the
+ * units. Otherwise it is data and pl is left as it is. */
+static vl_status psd_units_row(const vl_span *cells, size_t line_no, psd_layout *pl,
+                               vl_error *err) {
+  psd_col *pc[2] = {&pl->q, &pl->c};
+  double v;
+  const char *why;
+  int is_units = 0;
+  for (int i = 0; i < 2; i++) {
+    vl_span u = vl_span_unquote(cells[pc[i]->field]);
+    psd_col probe = *pc[i];
+    char ut[CELL_TEXT_MAX];
+    snprintf(ut, sizeof ut, "%.*s", (int)(u.n < sizeof ut ? u.n : sizeof ut - 1), u.p);
+    if (vl_import_parse_number(u.p, u.n, pl->d.decimal_comma, &v, &why) != VL_OK &&
+        psd_unit_of(&probe, ut))
+      is_units = 1;
+    snprintf(pl->units_row[i], sizeof pl->units_row[i], "%s", ut);
   }
+  for (int i = 0; is_units && i < 2; i++) {
+    psd_col probe = *pc[i];
+    if (!psd_unit_of(&probe, pl->units_row[i])) {
+      vl_error_set(err, "%s:%zu: column '%s' (field %zu): '%s' is not a unit of %s", pl->src,
+                   line_no, pc[i]->text, pc[i]->field + 1, pl->units_row[i],
+                   i ? "a spectrum (m^4, um^4, nm^4; 1-D: m^3 ...)"
+                     : "a wavevector (1/m, 1/um, 1/nm)");
+      return VL_EINPUT;
+    }
+    if (pc[i]->has_unit && (probe.factor != pc[i]->factor || probe.power != pc[i]->power)) {
+      vl_error_set(err,
+                   "%s:%zu: column '%s' (field %zu): mixed units: the header says %s but "
+                   "the units row says %s",
+                   pl->src, line_no, pc[i]->text, pc[i]->field + 1, pc[i]->unit, pl->units_row[i]);
+      return VL_EINPUT;
+    }
+    *pc[i] = probe;
+    pc[i]->has_unit = 1;
+  }
+  pl->has_units_row = is_units;
+  return VL_OK;
+}
+
+/* Finds the q and C columns in the header line, then reads the optional
+ * units row; every unit settled or an error. */
+static vl_status psd_scan(const char *text, size_t len, psd_layout *pl, vl_error *err) {
+  size_t pos = 0, line_no = 0, count;
+  vl_span line, cells[VL_IMPORT_MAX_FIELDS + 1];
+  if (!vl_import_next_line(text, len, &pos, &line_no, &line)) return VL_OK; /* the reader says so */
+  pl->header_line = line_no;
+  vl_status st = psd_header(line, line_no, pl, &count, err);
+  if (st != VL_OK) return st;
+  if (vl_import_next_line(text, len, &pos, &line_no, &line) &&
+      vl_import_split(line, pl->d.delimiter, cells, VL_IMPORT_MAX_FIELDS + 1) == count &&
+      (st = psd_units_row(cells, line_no, pl, err)) != VL_OK)
+    return st;
+  psd_col *pc[2] = {&pl->q, &pl->c};
   for (int i = 0; i < 2; i++) {
     if (!pc[i]->has_unit) {
       vl_error_set(err,
