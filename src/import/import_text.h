@@ -55,10 +55,11 @@ void vl_span_excerpt(vl_span s, char *buf, size_t size);
 /* ---- files and lines ----------------------------------------------------- */
 
 /* The whole file at path in a malloc'd buffer (*buf, *len; not
- * NUL-terminated; the caller frees it). A file that fills max_bytes is
+ * NUL-terminated; the caller frees it). A file of max_bytes or more is
  * refused as VL_EINPUT "PATH: larger than N MiB: not WHAT" (a stray disk
- * image or log is not read whole); VL_EIO when it cannot be opened or
- * read, VL_ENOMEM. On failure *buf is NULL. */
+ * image or log is not read whole; max_bytes is 64 KiB times a power of
+ * two, the sizes the buffer doubles through); VL_EIO when it cannot be
+ * opened or read, VL_ENOMEM. On failure *buf is NULL. */
 vl_status vl_import_read_file(const char *path, size_t max_bytes, const char *what, char **buf,
                               size_t *len, vl_error *err);
 

@@ -51,7 +51,6 @@ static plane fit_plane(const vl_topography *t) {
   return p;
 }
 
-/* rms about the mean, for telling a plane from a rough surface */
 /* The scale the flatness test compares with: the rms of the heights about
  * their mean, and at least their magnitude (a constant height map has a
  * zero rms about its mean, and its detrended rms is round-off of the
