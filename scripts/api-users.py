@@ -39,6 +39,8 @@ CLIENTS = ("cli", "python")  # who makes a function public
 KEEP = {
     "vl_scene_defaults": "the manual's way to fill a vl_scene in code (include/viscolube.h)",
     "vl_atomic_file_abort": "ends an open vl_atomic_file on the caller's own failure",
+    "vl_json_integer": "a value of the public JSON writer (json.h writes every kind)",
+    "vl_json_bool": "a value of the public JSON writer (json.h writes every kind)",
 }
 SOURCE_EXT = (".c", ".h")
 

@@ -6,6 +6,7 @@
  * db_compound.c, db_surface.c, db_persson.c and db_fluid.c. */
 #define _POSIX_C_SOURCE 200809L
 
+#include "database_internal.h"
 #include "db_internal.h"
 
 #include <errno.h>

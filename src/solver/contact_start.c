@@ -6,6 +6,7 @@
  * that Hertz does not start, the dry contact at the same speed; and the
  * predictor of a continuation step in speed. */
 #include "contact_internal.h"
+#include "persson_internal.h"
 
 #include <math.h>
 

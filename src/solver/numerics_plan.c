@@ -1,5 +1,6 @@
 /* The automatic layout of a smooth film's cells (numerics.h says which
  * lengths set it and why). */
+#include "rheology_internal.h"
 #include "viscolube/numerics.h"
 
 #include <math.h>

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "output_internal.h"
 #include "viscolube/atomic_file.h"
 #include "viscolube/output.h"
 #include "viscolube/simulation.h"
