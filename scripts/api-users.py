@@ -18,8 +18,10 @@ header of its layer (src/LAYER/*.h), which tests and the benchmarks reach
 through viscolube_internal.
 
   scripts/api-users.py               every function, by header, then a summary
-  scripts/api-users.py --private     only those that should leave include/
+  scripts/api-users.py --private     only those that should leave include/, each
+                                     with the folder of its definition
   scripts/api-users.py --summary     only the summary
+  scripts/api-users.py --check       the summary; exit 1 when a function should leave
   scripts/api-users.py HEADER...     only these headers (persson.h ...)
 
 Occurrences in comments and strings do not count (both are blanked before
@@ -29,6 +31,7 @@ not either. Needs ctags (universal-ctags, Debian package universal-ctags).
 import collections
 import os
 import re
+import signal
 import subprocess
 import sys
 
@@ -90,19 +93,24 @@ def source_files():
 
 def main(argv):
     only_private = "--private" in argv
-    only_summary = "--summary" in argv
+    check = "--check" in argv
+    only_summary = "--summary" in argv or check
     headers = [a for a in argv if not a.startswith("--")]
-    bad = [a for a in argv if a.startswith("--") and a not in ("--private", "--summary")]
+    bad = [a for a in argv if a.startswith("--") and a not in ("--private", "--summary", "--check")]
     if bad:
         sys.exit(__doc__)
 
-    include = sorted("include/viscolube/" + n for n in os.listdir(os.path.join(ROOT, "include/viscolube"))
-                     if n.endswith(".h"))
+    folder = os.path.join(ROOT, "include/viscolube")
+    include = sorted("include/viscolube/" + n for n in os.listdir(folder) if n.endswith(".h"))
     public = sorted(ctags(include, "p"), key=lambda t: (t[1], t[2]))
     names = {t[0] for t in public}
     files = source_files()
     # declarations and definitions of the public names outside include/
-    skip = {(p, n) for name, p, n in ctags(files, "fp") if name in names}
+    tags = ctags(files, "fp")
+    skip = {(p, n) for name, p, n in tags if name in names}
+    # where each is defined: its private header belongs to that layer
+    defined = {name: p for name, p, _ in ctags([f for f in files if f.endswith(".c")], "f")
+               if name in names}
 
     users = collections.defaultdict(lambda: collections.Counter())
     word = re.compile(r"\bvl_\w+\b")
@@ -153,7 +161,9 @@ def main(argv):
             who = users[f]
             order = list(CLIENTS) + ["bench", "tests"] + ["lib:" + l for l in LAYERS]
             text = " ".join(w for w in order if w in who) or "none"
-            mark = {"public": "", "kept": "public: " + KEEP.get(f, "") + "; "}.get(kind(f), "-> private  ")
+            home = os.path.dirname(defined.get(f, "?"))
+            mark = {"public": "", "kept": "public: " + KEEP.get(f, "") + "; "}.get(
+                kind(f), f"-> private ({home}): ")
             print(f"  {f:<40} {mark}{text}")
     total = sum(counts.values())
     leave = total - counts["public"] - counts["kept"]
@@ -167,7 +177,10 @@ def main(argv):
                     ("bench", "bench/ (and tests, the library)"),
                     ("none", "nobody")):
         print(f"  {counts[k]:8d}  {text}")
+    if check and leave:
+        sys.exit(1)
 
 
 if __name__ == "__main__":
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # quietly into `| head`
     main(sys.argv[1:])
