@@ -9,7 +9,11 @@
  * gives the equations and the one sign convention; docs/NUMERICS.md the
  * discretisation; docs/FORMATS.md the files.
  *
- * This header is the library's manual: include it and nothing else.
+ * This header is the library's manual: include it and nothing else. It
+ * declares what a program calls (src/cli and the Python package call
+ * nothing else); the plumbing between the library's layers and its test
+ * hooks are private headers of src/ (scripts/api-users.py lists who calls
+ * each public function).
  *
  * Conventions
  *   - SI units at every interface; names carry them (radius_m,

@@ -63,6 +63,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "database_internal.h"
 #include "viscolube/database.h"
 
 #define CAMPAIGN_SECONDS 20.0

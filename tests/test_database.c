@@ -20,6 +20,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "database_internal.h"
 #include "viscolube/database.h"
 
 #define PI 3.14159265358979323846

@@ -32,6 +32,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "database_internal.h"
 #include "viscolube/database.h"
 #include "viscolube/dma.h"
 

@@ -29,6 +29,8 @@
 #include <string.h>
 
 #include "contact_test.h"
+#include "flattening_internal.h"
+#include "persson_internal.h"
 #include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/flattening.h"

@@ -12,6 +12,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "output_internal.h"
 #include "viscolube/output.h"
 #include "vl_test_util.h"
 

@@ -24,6 +24,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fluid_internal.h"
+#include "rheology_internal.h"
+#include "simulation_internal.h"
 #include "viscolube/database.h"
 #include "viscolube/fluid.h"
 #include "viscolube/rheology.h"

@@ -122,9 +122,6 @@ const char *vl_db_path(const vl_db *db);
 /* Nonzero if db was opened read-only (file without write permission). */
 int vl_db_readonly(const vl_db *db);
 
-/* The schema version this program creates and understands. */
-int vl_db_schema_version(void);
-
 /* ---- compounds -------------------------------------------------------- */
 
 /* The Prony series of compound `name` at its reference temperature.
@@ -230,9 +227,9 @@ vl_status vl_db_surface_list(vl_db *db, vl_db_surface **items, size_t *n, vl_err
  * in the database (table surface_persson, 0004_persson_cache.sql). psd must
  * be the surface's spectrum as vl_db_surface_get returned it.
  *
- * A stored table is used only if it passes vl_persson_deserialize's checks
+ * A stored table is used only if it passes every check of the stored blob
  * (format, checksum, PSD fingerprint, values): it then answers every query
- * bit for bit like a fresh vl_persson_build. Otherwise (absent, another
+ * bit for bit like a freshly built one. Otherwise (absent, another
  * format, corrupt, another PSD) the table is built and stored with INSERT
  * OR REPLACE in its own transaction. Storing is an optimisation: when it
  * fails (read-only file, locked by another program for more than a short
@@ -262,11 +259,11 @@ vl_status vl_db_flow_table(vl_db *db, const char *name, const vl_psd *psd, doubl
 vl_status vl_db_fluid_get(vl_db *db, const char *name, double *eta_pa_s, vl_error *err);
 
 /* Everything stored about fluid `name`, its viscosity law included (a
- * stored law that fails vl_viscosity_law_validate: VL_EDB). VL_ENOTFOUND. */
+ * stored law that is not valid, fluid.h: VL_EDB). VL_ENOTFOUND. */
 vl_status vl_db_fluid_info(vl_db *db, const char *name, vl_db_fluid *out, vl_error *err);
 
-/* Adds a fluid (viscosity > 0 and finite, tref finite, the law valid by
- * vl_viscosity_law_validate; a zeroed law is NONE). created_at is ignored.
+/* Adds a fluid (viscosity > 0 and finite, tref finite, the law valid for
+ * tref as fluid.h states; a zeroed law is NONE). created_at is ignored.
  * VL_EINPUT, VL_EEXIST, VL_EDB. */
 vl_status vl_db_fluid_add(vl_db *db, const vl_db_fluid *fluid, vl_error *err);
 

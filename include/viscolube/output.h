@@ -6,7 +6,6 @@
 #define VISCOLUBE_OUTPUT_H
 
 #include <stddef.h>
-#include <stdio.h>
 
 #include "viscolube/json.h"
 #include "viscolube/results.h"
@@ -33,7 +32,6 @@ extern const char *const vl_curve_columns[];
  * message naming path when it cannot be written. */
 vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
                              const vl_curve_meta *meta, vl_error *err);
-void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta);
 
 /* Fields: x_m, x_over_a0, p_f_pa, p_c_pa, u_m, area_ratio, film_fraction, and
  * cell_width_m when fl->width_m is set (a graded grid's cells differ: the
@@ -43,9 +41,8 @@ vl_status vl_write_fields_csv(const char *path, const vl_fields *f, double a0_m,
 /* JSON (json.h), numbers with 10 significant digits as in the CSV: a
  * point is one object with the keys of the CSV columns (on one line); a
  * curve an array of them, a point a line (VL_JSON_ROWS). */
-void vl_point_json(vl_json *w, const vl_point *pt, const vl_curve_meta *meta);
 void vl_curve_json(vl_json *w, size_t n, const vl_point *pts, const vl_curve_meta *meta);
-/* The members of vl_point_json, into an object the caller has begun (and
+/* The members of a point's object, into an object the caller has begun (and
  * ends), for a point written with more keys of its own. */
 void vl_point_json_members(vl_json *w, const vl_point *pt, const vl_curve_meta *meta);
 

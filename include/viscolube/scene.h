@@ -83,12 +83,6 @@ typedef struct {
  * for scenes built in code (the `friction` and `compare` commands). */
 void vl_scene_defaults(vl_scene *scene);
 
-/* The numerics a scene gets from its effects when it does not set them
- * (grid, grid_growth, domain, tolerance): the solver's defaults for its
- * roughness and fluid effects, vl_contact_numerics_defaults (dry as
- * vl_scene_defaults; wet with a long inlet, graded on a rough surface). */
-void vl_scene_default_numerics(vl_scene *scene);
-
 /* Parses a scene file. Errors (unknown section or key, missing required key,
  * bad value, inconsistent effects) name "file:line: [section] key: why". */
 vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err);

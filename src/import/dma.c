@@ -14,6 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "prony_fit_internal.h"
+#include "rheology_internal.h"
 #include "tts.h"
 #include "viscolube/csv.h"
 

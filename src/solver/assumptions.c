@@ -1,5 +1,8 @@
 /* Checks of the model's assumptions for one operating point (assumptions.h). */
 #include "viscolube/assumptions.h"
+#include "assumptions_internal.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 #include "viscolube/persson.h"
 
 #include <math.h>

@@ -6,6 +6,8 @@
  * when it exceeds a0). */
 #include "contact_internal.h"
 #include "flow_factors_emt.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 
 #include <math.h>
 #include <string.h>

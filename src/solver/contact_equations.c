@@ -16,6 +16,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "flattening_internal.h"
+#include "flow_factors_internal.h"
 #include "lapack_abi.h"
 
 /* Fischer-Burmeister complementarity a >= 0, b >= 0, a b = eps/2 (smoothed),

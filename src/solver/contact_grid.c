@@ -4,6 +4,7 @@
  * coefficients of the uniform grid (kernel.h, Appendix A), with the
  * asperity state |Er(wH)|, aH of that speed (docs/MODEL.md section 4). */
 #include "contact_internal.h"
+#include "rheology_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

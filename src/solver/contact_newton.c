@@ -17,6 +17,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "blas_threads.h"
+#include "flattening_internal.h"
 #include "linsol_lapack.h"
 #include "linsol_reduced.h"
 #include "linsol_schur.h"

@@ -5,6 +5,7 @@
  * Poiseuille), the derived quantities of a point (films, centroid, contact
  * width, fluid load share, regime, warnings), and the fields on the grid. */
 #include "contact_internal.h"
+#include "flow_factors_internal.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene_internal.h"
+#include "simulation_internal.h"
 #include "viscolube/query.h"
 #include "viscolube/simulation.h"
 

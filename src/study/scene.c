@@ -1,5 +1,6 @@
 /* Scene files: INI parsed by libinih, with line numbers for every error. */
 #include "viscolube/scene.h"
+#include "scene_internal.h"
 
 #include "slurp.h"
 

@@ -7,6 +7,9 @@
 
 #include "viscolube/assumptions.h"
 
+#include "assumptions_internal.h"
+#include "rheology_internal.h"
+#include "simulation_internal.h"
 #include "viscolube/flattening.h"
 
 #include <math.h>

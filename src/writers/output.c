@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "output_internal.h"
 #include "viscolube/atomic_file.h"
 
 const char *const vl_curve_columns[] = {

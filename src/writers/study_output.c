@@ -10,6 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "output_internal.h"
 #include "viscolube/atomic_file.h"
 #include "viscolube/output.h"
 

@@ -12,6 +12,8 @@
 #include <cmocka.h> /* after the four headers it needs */
 
 #include "hard_util.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
