@@ -72,6 +72,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "contact_private.h"
 #include "contact_test.h"
 #include "hunter.h"
 #include "persson_internal.h"

@@ -47,8 +47,11 @@
  *        vl_simulation_create(&sc, db, &sim, &err);
  *        vl_point *pts = calloc(vl_simulation_points(sim), sizeof *pts);
  *        vl_simulation_run(sim, pts, NULL, NULL, &stats, &err);
- *      A single operating point: vl_contact_solve(contact, v0, &pt, &err);
- *      the command line's friction query, robustly (continuation when a
+ *      A contact configured in code (contact.h) is solved point by point
+ *      with vl_contact_solve(contact, v0, &pt, &err), or swept with
+ *      vl_sweep_run_auto (sweep.h); examples/point.c and examples/stribeck.c
+ *      do each in fifty lines. The
+ *      command line's friction query, robustly (continuation when a
  *      direct solve fails), with its defaults: vl_query_friction (query.h).
  *
  *   4. Read the results (results.h): each vl_point holds mu and its parts

@@ -6,13 +6,15 @@ the prototypes universal-ctags finds), lists the code that names it:
 
   cli        the program, src/cli
   python     the Python extension, python/src
+  examples   the example programs, examples/ (the public API as a client
+             program uses it)
   bench      the benchmark programs, bench/
   tests      tests/ (cmocka tests, oracles, fuzz targets, hard cases)
   lib:LAYER  the library itself, src/LAYER (another function than its own
              definition: a call, or its address taken)
   none       nobody
 
-A public function is one a client calls: the CLI or Python (and the few of
+A public function is one a client calls: the CLI, Python or an example (and the few of
 KEEP below, with the reason). Every other function belongs in a private
 header of its layer (src/LAYER/*.h), which tests and the benchmarks reach
 through viscolube_internal.
@@ -37,13 +39,15 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LAYERS = ["base", "materials", "mechanics", "import", "solver", "db", "study", "writers"]
-CLIENTS = ("cli", "python")  # who makes a function public
+CLIENTS = ("cli", "python", "examples")  # who makes a function public
 # Public although no client calls them yet, and why.
 KEEP = {
     "vl_scene_defaults": "the manual's way to fill a vl_scene in code (include/viscolube.h)",
     "vl_atomic_file_abort": "ends an open vl_atomic_file on the caller's own failure",
     "vl_json_integer": "a value of the public JSON writer (json.h writes every kind)",
     "vl_json_bool": "a value of the public JSON writer (json.h writes every kind)",
+    "vl_topography_psd_options_default": "the options of the public vl_topography_psd: a "
+    "program that changes one takes the others from here",
 }
 SOURCE_EXT = (".c", ".h")
 
@@ -76,14 +80,14 @@ def category(path):
         return "cli" if parts[1] == "cli" else "lib:" + parts[1]
     if parts[0] == "python" and parts[1] == "src":
         return "python"
-    if parts[0] in ("bench", "tests"):
+    if parts[0] in ("bench", "tests", "examples"):
         return parts[0]
     return None
 
 
 def source_files():
     files = []
-    for top in ("src", "python/src", "bench", "tests"):
+    for top in ("src", "python/src", "bench", "tests", "examples"):
         for d, _, names in os.walk(os.path.join(ROOT, top)):
             for n in names:
                 if n.endswith(SOURCE_EXT):
@@ -168,7 +172,7 @@ def main(argv):
     total = sum(counts.values())
     leave = total - counts["public"] - counts["kept"]
     print(f"\n{total} functions declared in include/viscolube/*.h ({len(by_header)} headers):")
-    print(f"  {counts['public']:4d}  public: called by the CLI or Python")
+    print(f"  {counts['public']:4d}  public: called by the CLI, Python or an example")
     print(f"  {counts['kept']:4d}  public, no client yet (KEEP in scripts/api-users.py)")
     print(f"  {leave:4d}  should leave include/ (private headers of src/LAYER):")
     for k, text in (("library only", "the library only"),

@@ -21,6 +21,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "dma_private.h"
 #include "vl_test_hn.h"
 #include "vl_test_util.h"
 

@@ -20,6 +20,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "contact_private.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
 

@@ -22,6 +22,8 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "csv_private.h"
+#include "dma_private.h"
 #include "vl_test_hn.h"
 #include "vl_test_util.h"
 

@@ -14,6 +14,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "study_private.h"
 #include "viscolube.h"
 #include "vl_test_util.h"
 

@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "contact_private.h"
 #include "contact_test.h"
 #include "flow_factors_emt.h"
 #include "flow_factors_internal.h"

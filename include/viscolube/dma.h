@@ -107,9 +107,6 @@ typedef enum {
   VL_DMA_COMPLIANCE         /* J', J'' */
 } vl_dma_kind;
 
-/* "storage-loss", "storage-tan-delta", "compliance". */
-const char *vl_dma_kind_name(vl_dma_kind kind);
-
 /* Whether the file's moduli are tensile (E) or shear (G). */
 typedef enum {
   VL_DMA_MODULI_AUTO = 0, /* from the column names: G', G'', |G*| are shear, E', E'', |E*|
@@ -117,9 +114,6 @@ typedef enum {
   VL_DMA_MODULI_TENSILE,  /* tensile; a shear name in the header is refused */
   VL_DMA_MODULI_SHEAR     /* shear, whatever the names (an E name is refused) */
 } vl_dma_moduli;
-
-/* "auto", "tensile", "shear". */
-const char *vl_dma_moduli_name(vl_dma_moduli moduli);
 
 typedef struct {
   const char *freq_unit;    /* "Hz" or "rad/s"; NULL: from the file */
@@ -179,10 +173,6 @@ typedef struct {
  * VL_EIO (unreadable file), VL_EINPUT, VL_ENOMEM, VL_ENOCONV. */
 vl_status vl_measured_read_file(const char *path, const vl_dma_options *opts, vl_measured *out,
                                 vl_error *err);
-
-/* As vl_measured_read_file for text[0..len) in memory, named source. */
-vl_status vl_measured_read_text(const char *text, size_t len, const char *source,
-                                const vl_dma_options *opts, vl_measured *out, vl_error *err);
 
 /* Releases what a vl_measured owns and empties it (NULL or empty is fine). */
 void vl_measured_free(vl_measured *m);

@@ -56,25 +56,14 @@ typedef struct vl_study vl_study;
  * cannot be read. */
 vl_status vl_study_load(const char *path, vl_study **out, vl_error *err);
 
-/* The same from text (path names it in messages). Every task's scene is
- * parsed and checked here, so a study that loads has no bad task. */
-vl_status vl_study_parse(const char *text, const char *path, vl_study **out, vl_error *err);
-
 void vl_study_free(vl_study *s);
 
-const char *vl_study_path(const vl_study *s);
-const char *vl_study_title(const vl_study *s); /* "" when none */
-const char *vl_study_text(const vl_study *s);  /* the file as read */
+const char *vl_study_text(const vl_study *s); /* the file as read */
 /* 64-bit FNV-1a of the text: task files carry it, so that a folder holding
  * the results of another study is recognised. */
 uint64_t vl_study_fingerprint(const vl_study *s);
 
 size_t vl_study_n_tasks(const vl_study *s);
-const vl_study_task *vl_study_task_at(const vl_study *s, size_t i);
-
-/* The scene of task i (titled "TITLE | task I"); VL_EINPUT cannot happen
- * for a study that loaded, but is checked. */
-vl_status vl_study_scene(const vl_study *s, size_t i, vl_scene *out, vl_error *err);
 
 /* The distinct material names of the study (kind 0 compounds, 1
  * surfaces, 2 fluids), in order of first use: n names in *names (owned by

@@ -3,6 +3,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "viscolube/csv.h"
+#include "csv_private.h"
 
 #include "edit_distance.h"
 #include "import_text.h"

@@ -6,6 +6,8 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "viscolube/dma.h"
+#include "csv_private.h"
+#include "dma_private.h"
 
 #include <errno.h>
 #include <math.h>

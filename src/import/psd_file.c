@@ -5,6 +5,7 @@
  * and refuses an implausible result. */
 #define _POSIX_C_SOURCE 200809L
 
+#include "csv_private.h"
 #include "viscolube/csv.h"
 
 #include "abel.h"

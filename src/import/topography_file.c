@@ -5,6 +5,7 @@
  * data row. The spectrum of what is read is topography_psd.c's. */
 #define _POSIX_C_SOURCE 200809L
 
+#include "topography_private.h"
 #include "viscolube/topography.h"
 
 #include "import_text.h"

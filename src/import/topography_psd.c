@@ -4,6 +4,7 @@
  * surface's. Reading the topography is topography_file.c's. */
 #define _POSIX_C_SOURCE 200809L
 
+#include "topography_private.h"
 #include "viscolube/topography.h"
 
 #include <fftw3.h>

@@ -5,6 +5,7 @@
  * 8, and builds the parts the other contact_*.c files work on
  * (contact_internal.h lists them). */
 #include "contact_internal.h"
+#include "contact_private.h"
 #include "flattening_internal.h"
 #include "persson_internal.h"
 #include "rheology_internal.h"

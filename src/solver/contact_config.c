@@ -5,6 +5,7 @@
  * (docs/MODEL.md section 9: the domain must follow the inlet length sqrt(2 R h)
  * when it exceeds a0). */
 #include "contact_internal.h"
+#include "contact_private.h"
 #include "flow_factors_emt.h"
 #include "persson_internal.h"
 #include "rheology_internal.h"

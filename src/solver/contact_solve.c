@@ -14,6 +14,7 @@
  * asperity state). A failed solve leaves both, the unknowns and the fluid
  * scales as they were. */
 #include "contact_internal.h"
+#include "contact_private.h"
 
 #include <float.h>
 #include <kinsol/kinsol.h>

@@ -10,6 +10,7 @@
  * contact on other cells; and the predictor of a continuation step in
  * speed. */
 #include "contact_internal.h"
+#include "contact_private.h"
 #include "persson_internal.h"
 
 #include <math.h>

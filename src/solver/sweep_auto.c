@@ -1,5 +1,6 @@
 /* The automatic sweep (numerics.h): numerics per run of points, an error
  * estimate on every point, refinement until it meets the target. */
+#include "contact_private.h"
 #include "numerics_plan.h"
 
 #include <math.h>

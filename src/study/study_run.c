@@ -2,6 +2,7 @@
  * the curve and the outcome handed back for the writers (study_output.h)
  * to put in the task's file. Nothing here touches a file, so a task is
  * solved the same whether it is written, benchmarked or thrown away. */
+#include "study_private.h"
 #include "viscolube/study.h"
 
 #include <stdio.h>

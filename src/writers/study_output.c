@@ -1,6 +1,8 @@
 /* The files of a study (study_output.h), written from the tasks that
  * src/study/study_run.c solved: nothing here runs a solver. */
 #include "viscolube/study_output.h"
+#include "study_output_private.h"
+#include "study_private.h"
 
 #include <errno.h>
 #include <inttypes.h>

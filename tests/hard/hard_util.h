@@ -24,6 +24,7 @@
 #include <time.h>
 
 #include "assumptions_internal.h"
+#include "contact_private.h"
 #include "persson_internal.h"
 #include "rheology_internal.h"
 #include "roughness_internal.h"

@@ -11,6 +11,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "contact_private.h"
 #include "hard_util.h"
 #include "persson_internal.h"
 #include "rheology_internal.h"

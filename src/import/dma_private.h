@@ -1,0 +1,18 @@
+/* The private part of viscolube/dma.h: the DMA reader on a string and the
+ * names of its enums, for the import layer, the database and the tests. */
+#ifndef VISCOLUBE_DMA_PRIVATE_H
+#define VISCOLUBE_DMA_PRIVATE_H
+
+#include "viscolube/dma.h"
+
+/* "storage-loss", "storage-tan-delta", "compliance". */
+const char *vl_dma_kind_name(vl_dma_kind kind);
+
+/* "auto", "tensile", "shear". */
+const char *vl_dma_moduli_name(vl_dma_moduli moduli);
+
+/* As vl_measured_read_file for text[0..len) in memory, named source. */
+vl_status vl_measured_read_text(const char *text, size_t len, const char *source,
+                                const vl_dma_options *opts, vl_measured *out, vl_error *err);
+
+#endif
