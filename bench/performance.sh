@@ -109,10 +109,12 @@ scene_edit() {
   ' "$in" >"$out"
 }
 
-# curve_stats DIR: "converged total iterations" over every curve.csv under DIR
+# curve_stats DIR: "converged total iterations" over every curve.csv under DIR (a study:
+# its results.csv, which has the same columns after the factors)
 curve_stats() {
   local files=()
   mapfile -t files < <(find "$1" -name curve.csv -not -path '*/fields/*' -type f 2>/dev/null | sort)
+  if ((${#files[@]} == 0)) && [[ -f $1/results.csv ]]; then files=("$1/results.csv"); fi
   if ((${#files[@]} == 0)); then echo "0 0 0"; return 0; fi
   awk -F, '
     FNR == 1 { hdr = 0 }
