@@ -24,7 +24,8 @@
 # again), so drifting load hits all items alike. Times are wall clock of the whole
 # process (date +%s.%N); on a shared machine they scatter by 10-30 %: the Newton
 # iterations and the converged counts are the noise-free figures.
-# About 1 minute per repeat with the study, 30 s without, on 2 busy cores.
+# About 75 s in all with 3 repeats (20 s a round with the study, the warm-up included)
+# on 2 cores at load average 6-8; --no-study about halves it.
 set -euo pipefail
 
 REPEATS=3
