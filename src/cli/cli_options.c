@@ -141,11 +141,36 @@ static int missing(const vl_cli_parser *p, const vl_cli_option *o) {
   return failv(p->cmd, "option %s needs a value", o->name);
 }
 
+/* Comma-separated positive numbers (strict syntax) into o's destination:
+ * -1, else the exit status after the message. */
+static int store_list(const vl_cli_parser *p, vl_cli_option *o, const char *text) {
+  char buf[2048];
+  double *vals = o->dest;
+  size_t *n = o->n_values;
+  if (strlen(text) >= sizeof buf)
+    return failv(p->cmd, "option %s needs a comma-separated list", o->name);
+  snprintf(buf, sizeof buf, "%s", text);
+  *n = 0;
+  char *save = NULL;
+  for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
+    double d = 0.0;
+    if (*n == o->max_values)
+      return failv(p->cmd, "option %s takes at most %zu values", o->name, o->max_values);
+    if (!vl_cli_number(t, &d, NULL) || !(d > 0.0))
+      return failv(p->cmd, "option %s needs positive numbers (got '%s')", o->name, t);
+    vals[(*n)++] = d;
+  }
+  if (*n == 0) return failv(p->cmd, "option %s needs at least one value", o->name);
+  return -1;
+}
+
 /* Stores value into o's destination by its kind: -1, else the exit status
  * after the message. */
 static int store(const vl_cli_parser *p, vl_cli_option *o, const char *value) {
   if (o->kind == VL_CLI_TEXT) {
     *(const char **)o->dest = value;
+  } else if (o->kind == VL_CLI_LIST) {
+    return store_list(p, o, value);
   } else if (o->kind == VL_CLI_NUMBER) {
     if (!vl_cli_number_checked(p->cmd, o->name, value, o->rule, o->dest))
       return vl_status_exit_code(VL_EINPUT);
@@ -176,7 +201,8 @@ static int one_option(vl_cli_parser *p, vl_cli_option *o, const char *eq, int ar
   if (!take_value(p, eq, argc, argv, i, &value)) return missing(p, o);
   if (strict && value[0] == '\0')
     return failv(p->cmd, "option %s needs a non-empty value (%s)", o->name, o->metavar);
-  return store(p, o, value);
+  int rc = store(p, o, value);
+  return rc == -1 && o->check ? o->check(p->cmd, o->ctx) : rc;
 }
 
 int vl_cli_parse(vl_cli_parser *p, int argc, char **argv, int first) {

@@ -17,6 +17,7 @@ typedef enum {
   VL_CLI_TEXT,   /* a value as given: *(const char **)dest */
   VL_CLI_NUMBER, /* a number checked against its rule at once: *(double *)dest */
   VL_CLI_CHOICE, /* one of choices[]: *(int *)dest = its index */
+  VL_CLI_LIST,   /* comma-separated positive numbers: dest double[max_values], *n_values */
   VL_CLI_HELP,   /* --help: parsing stops, vl_cli_parse returns VL_CLI_HELP_ASKED */
 } vl_cli_kind;
 
@@ -44,7 +45,13 @@ typedef struct {
   const char *const *choices;     /* VL_CLI_CHOICE, NULL-terminated */
   const char *choice_bad;         /* VL_CLI_CHOICE: format (name, text) */
   const char *missing; /* format (name, metavar) of a missing value; NULL: the parser's */
-  int given;           /* set by vl_cli_parse: times given */
+  size_t max_values;   /* VL_CLI_LIST: room in dest */
+  size_t *n_values;    /* VL_CLI_LIST: values stored */
+  /* a check of the value as soon as it is stored (NULL: none): -1 when
+   * fine, else the exit status after the message */
+  int (*check)(const char *cmd, void *ctx);
+  void *ctx;
+  int given; /* set by vl_cli_parse: times given */
 } vl_cli_option;
 
 /* Parser flags. */

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_options.h"
 
 static void run_usage(FILE *out) {
   fputs("usage: viscolube run SCENE [--out DIR] [--json] [--plot] [--quiet]\n"
@@ -484,46 +485,50 @@ const char *__lsan_default_options(void);
 const char *__lsan_default_options(void) { return "print_suppressions=0"; }
 #endif
 
-int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
-  const char *scene_path = NULL, *out_dir = NULL;
-  int json = 0, plot = 0, quiet = g->quiet;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      run_usage(stdout);
-      return 0;
-    } else if (!strcmp(argv[i], "--json")) {
-      json = 1;
-    } else if (!strcmp(argv[i], "--plot")) {
-      plot = 1;
-    } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
-      quiet = 1;
-    } else if (!strcmp(argv[i], "--out")) {
-      if (i + 1 >= argc) {
-        fputs("viscolube run: option --out needs a DIR\n", stderr);
-        return 2;
-      }
-      out_dir = argv[++i];
-    } else if (argv[i][0] == '-') {
-      fprintf(stderr, "viscolube run: unknown option '%s' (see viscolube run --help)\n", argv[i]);
-      return 2;
-    } else if (!scene_path) {
-      scene_path = argv[i];
-    } else {
-      fprintf(stderr, "viscolube run: one scene at a time (got '%s' and '%s')\n", scene_path,
-              argv[i]);
-      return 2;
-    }
+/* The options of `run`: -1 to go on, else the exit status (0 after
+ * --help). */
+static int run_options(int argc, char **argv, const char **scene_path, const char **out_dir,
+                       int *json, int *plot, int *quiet) {
+  vl_cli_option opts[] = {
+      {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
+      {.name = "--json", .kind = VL_CLI_FLAG, .dest = json},
+      {.name = "--plot", .kind = VL_CLI_FLAG, .dest = plot},
+      {.name = "--quiet", .alias = "-q", .kind = VL_CLI_FLAG, .dest = quiet},
+      {.name = "--out", .kind = VL_CLI_TEXT, .metavar = "DIR", .dest = out_dir},
+  };
+  vl_cli_parser p = {.cmd = "run",
+                     .opts = opts,
+                     .n_opts = sizeof opts / sizeof opts[0],
+                     .flags = VL_CLI_DASH_IS_OPTION,
+                     .unknown = "unknown option '%s' (see viscolube run --help)",
+                     .missing = "option %s needs a %s",
+                     .pos = scene_path,
+                     .max_pos = 1,
+                     .extra = "one scene at a time (got '%s' and '%s')"};
+  int rc = vl_cli_parse(&p, argc, argv, 1);
+  if (rc == VL_CLI_HELP_ASKED) {
+    run_usage(stdout);
+    return 0;
   }
-  if (!scene_path) {
+  if (rc >= 0) return rc;
+  if (!*scene_path) {
     run_usage(stderr);
     return 2;
   }
+  return -1;
+}
+
+int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
+  const char *scene_path = NULL, *out_dir = NULL;
+  int json = 0, plot = 0, quiet = g->quiet;
+  int rc = run_options(argc, argv, &scene_path, &out_dir, &json, &plot, &quiet);
+  if (rc >= 0) return rc;
   vl_error err = {{0}};
   vl_scene scene;
   vl_db *db = NULL;
   vl_manifest *man = NULL;
   char *scene_text = NULL;
-  int rc = 0;
+  rc = 0;
   size_t failed = 0;
   char default_dir[2048];
   kept_curve curves[VL_FLUIDS_MAX] = {{0}};
