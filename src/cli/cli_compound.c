@@ -392,10 +392,8 @@ static int add_args_parse(const vl_cli_context *cx, int argc, char **argv, add_a
       {.name = "--fit-weights", .kind = VL_CLI_TEXT, .metavar = "WEIGHTS", .dest = &a->fit_weights},
       {.name = "--moduli", .kind = VL_CLI_TEXT, .metavar = "KIND", .dest = &a->moduli},
   };
-  const char *pos[1] = {NULL};
-  size_t n_pos;
-  int rc = vl_cli_material_args(cx, argc, argv, opts, sizeof opts / sizeof opts[0], pos, 1, &n_pos);
-  return rc >= 0 ? rc : vl_cli_need_name(cx, pos, n_pos, &a->name);
+  return vl_cli_named_args(cx, NULL, argc, argv, opts, sizeof opts / sizeof opts[0], &a->name,
+                           NULL);
 }
 
 /* The text options both forms share: --class from the known list,
@@ -419,22 +417,15 @@ static int check_texts(const vl_cli_context *cx, const add_args *a, const char *
 /* --tref (the reference temperature, C) and --nu (the Poisson ratio) into
  * *out when given: -1, else the exit status after the message. */
 static int tref_opt(const vl_cli_context *cx, const char *text, double *out) {
-  int rc;
-  if (!text) return -1;
-  if ((rc = vl_cli_number_opt(cx, "--tref", text, out)) >= 0) return rc;
-  if (*out < -273.15)
-    return vl_cli_failf(cx, VL_EINPUT, "option --tref: below absolute zero (got '%s')", text);
-  return -1;
+  return text ? vl_cli_number_in(cx, "--tref", text, -273.15, 0, INFINITY, "below absolute zero",
+                                 out)
+              : -1;
 }
 
 static int nu_opt(const vl_cli_context *cx, const char *text, double *out) {
-  int rc;
-  if (!text) return -1;
-  if ((rc = vl_cli_number_opt(cx, "--nu", text, out)) >= 0) return rc;
-  if (!(*out >= 0.0 && *out <= 0.5))
-    return vl_cli_failf(cx, VL_EINPUT,
-                        "option --nu: the Poisson ratio must lie in [0, 0.5] (got '%s')", text);
-  return -1;
+  return text ? vl_cli_number_in(cx, "--nu", text, 0.0, 0, 0.5,
+                                 "the Poisson ratio must lie in [0, 0.5]", out)
+              : -1;
 }
 
 /* The name and texts of a new compound c. */
@@ -577,10 +568,9 @@ static int prony_options(const vl_cli_context *cx, const add_args *a, vl_db_comp
   if (!a->nu) return vl_cli_fail(cx, VL_EINPUT, "option --nu NU is required");
   int rc;
   c->tref_c = 20.0, c->wlf_c1 = NAN, c->wlf_c2_k = NAN, c->fit_rms_error = NAN;
-  if ((rc = vl_cli_number_opt(cx, "--e-inf", a->e_inf, &c->prony.e_inf_pa)) >= 0) return rc;
-  if (!(c->prony.e_inf_pa > 0.0))
-    return vl_cli_failf(cx, VL_EINPUT,
-                        "option --e-inf: the glassy modulus must be > 0 Pa (got '%s')", a->e_inf);
+  if ((rc = vl_cli_number_in(cx, "--e-inf", a->e_inf, 0.0, 1, INFINITY,
+                             "the glassy modulus must be > 0 Pa", &c->prony.e_inf_pa)) >= 0)
+    return rc;
   if ((rc = nu_opt(cx, a->nu, &c->prony.nu)) >= 0) return rc;
   if ((rc = check_texts(cx, a, "--prony", a->prony)) >= 0) return rc;
   if ((rc = tref_opt(cx, a->tref, &c->tref_c)) >= 0) return rc;
@@ -589,10 +579,8 @@ static int prony_options(const vl_cli_context *cx, const add_args *a, vl_db_comp
                        "options --wlf-c1 and --wlf-c2 go together (give both or neither)");
   if (!a->wlf_c1) return -1;
   if ((rc = vl_cli_number_opt(cx, "--wlf-c1", a->wlf_c1, &c->wlf_c1)) >= 0) return rc;
-  if ((rc = vl_cli_number_opt(cx, "--wlf-c2", a->wlf_c2, &c->wlf_c2_k)) >= 0) return rc;
-  if (!(c->wlf_c2_k > 0.0))
-    return vl_cli_failf(cx, VL_EINPUT, "option --wlf-c2: C2 must be > 0 K (got '%s')", a->wlf_c2);
-  return -1;
+  return vl_cli_number_in(cx, "--wlf-c2", a->wlf_c2, 0.0, 1, INFINITY, "C2 must be > 0 K",
+                          &c->wlf_c2_k);
 }
 
 /* `compound add NAME --prony FILE --e-inf PA --nu NU ...`. */
@@ -780,7 +768,7 @@ static int show_compound(const vl_cli_context *cx, vl_db *db, const vl_db_compou
  * --plot. The exit status. */
 static int compound_show(const vl_cli_context *cx, const vl_cli_globals *g, int argc, char **argv) {
   int json = 0, plot = 0;
-  const char *curve = NULL, *out = NULL, *pos[1] = {NULL}, *name = NULL;
+  const char *curve = NULL, *out = NULL, *name = NULL;
   /* a compound's --plot writes into --out DIR */
   vl_cli_option opts[] = {
       {.name = "--json", .kind = VL_CLI_FLAG, .dest = &json},
@@ -788,10 +776,8 @@ static int compound_show(const vl_cli_context *cx, const vl_cli_globals *g, int 
       {.name = "--plot", .kind = VL_CLI_FLAG, .dest = &plot},
       {.name = "--out", .kind = VL_CLI_TEXT, .metavar = "DIR", .dest = &out},
   };
-  size_t n_pos;
-  int rc;
-  if ((rc = vl_cli_material_args(cx, argc, argv, opts, 4, pos, 1, &n_pos)) >= 0) return rc;
-  if ((rc = vl_cli_need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  int rc = vl_cli_named_args(cx, g, argc, argv, opts, 4, &name, NULL);
+  if (rc >= 0) return rc;
   if (out && !plot) return vl_cli_fail(cx, VL_EINPUT, "option --out goes with --plot");
   vl_db *db = NULL;
   if ((rc = vl_cli_open_db(cx, g, &db)) >= 0) return rc;

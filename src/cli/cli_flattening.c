@@ -186,12 +186,9 @@ static int flat_parse(int argc, char **argv, flat_args *a) {
                      .opts = opts,
                      .n_opts = sizeof opts / sizeof opts[0],
                      .unknown = "unknown or incomplete option '%s' (see --help)",
-                     .missing = "unknown or incomplete option '%s' (see --help)"};
+                     .missing = "unknown or incomplete option '%s' (see --help)",
+                     .usage = usage};
   int rc = vl_cli_parse(&p, argc, argv, 1);
-  if (rc == VL_CLI_HELP_ASKED) {
-    usage(stdout);
-    return 0;
-  }
   a->have_load = vl_cli_find(&p, "--load")->given > 0;
   a->have_radius = vl_cli_find(&p, "--radius")->given > 0;
   return rc;

@@ -108,7 +108,7 @@ static int fluid_law(const vl_cli_context *cx, const char *b, const char *c, con
  * the message. */
 static int fluid_add_args(const vl_cli_context *cx, int argc, char **argv, vl_db_fluid *f) {
   const char *viscosity = NULL, *tref = NULL, *vogel_b = NULL, *vogel_c = NULL, *range = NULL,
-             *desc = NULL, *pos[1] = {NULL}, *name = NULL;
+             *desc = NULL, *name = NULL;
   vl_cli_option opts[] = {
       {.name = "--viscosity", .kind = VL_CLI_TEXT, .metavar = "PA_S", .dest = &viscosity},
       {.name = "--tref", .kind = VL_CLI_TEXT, .metavar = "C", .dest = &tref},
@@ -117,25 +117,18 @@ static int fluid_add_args(const vl_cli_context *cx, int argc, char **argv, vl_db
       {.name = "--law-range", .kind = VL_CLI_TEXT, .metavar = "TMIN_C,TMAX_C", .dest = &range},
       {.name = "--description", .kind = VL_CLI_TEXT, .metavar = "TEXT", .dest = &desc},
   };
-  size_t n_pos;
-  int rc;
-  if ((rc = vl_cli_material_args(cx, argc, argv, opts, sizeof opts / sizeof opts[0], pos, 1,
-                                 &n_pos)) >= 0)
-    return rc;
-  if ((rc = vl_cli_need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  int rc = vl_cli_named_args(cx, NULL, argc, argv, opts, sizeof opts / sizeof opts[0], &name, NULL);
+  if (rc >= 0) return rc;
   memset(f, 0, sizeof *f);
   snprintf(f->name, sizeof f->name, "%s", name);
   f->tref_c = 20.0;
   if (!viscosity) return vl_cli_fail(cx, VL_EINPUT, "option --viscosity PA_S is required");
-  if ((rc = vl_cli_number_opt(cx, "--viscosity", viscosity, &f->viscosity_pa_s)) >= 0) return rc;
-  if (!(f->viscosity_pa_s > 0.0))
-    return vl_cli_failf(cx, VL_EINPUT, "option --viscosity: must be > 0 Pa s (got '%s')",
-                        viscosity);
-  if (tref) {
-    if ((rc = vl_cli_number_opt(cx, "--tref", tref, &f->tref_c)) >= 0) return rc;
-    if (f->tref_c < -273.15)
-      return vl_cli_failf(cx, VL_EINPUT, "option --tref: below absolute zero (got '%s')", tref);
-  }
+  if ((rc = vl_cli_number_in(cx, "--viscosity", viscosity, 0.0, 1, INFINITY, "must be > 0 Pa s",
+                             &f->viscosity_pa_s)) >= 0)
+    return rc;
+  if (tref && (rc = vl_cli_number_in(cx, "--tref", tref, -273.15, 0, INFINITY,
+                                     "below absolute zero", &f->tref_c)) >= 0)
+    return rc;
   if ((rc = vl_cli_check_description(cx, desc)) >= 0) return rc;
   if (desc) snprintf(f->description, sizeof f->description, "%s", desc);
   return fluid_law(cx, vogel_b, vogel_c, range, f);
@@ -165,13 +158,10 @@ static int fluid_add(const vl_cli_context *cx, const vl_cli_globals *g, int argc
 static int fluid_show(const vl_cli_context *cx, const vl_cli_globals *g, int argc, char **argv) {
   int json = 0;
   vl_cli_option opts[] = {{.name = "--json", .kind = VL_CLI_FLAG, .dest = &json}};
-  const char *pos[1] = {NULL}, *name = NULL;
-  size_t n_pos;
-  int rc;
-  if ((rc = vl_cli_material_args(cx, argc, argv, opts, 1, pos, 1, &n_pos)) >= 0) return rc;
-  if ((rc = vl_cli_need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  const char *name = NULL;
   vl_db *db = NULL;
-  if ((rc = vl_cli_open_db(cx, g, &db)) >= 0) return rc;
+  int rc = vl_cli_named_args(cx, g, argc, argv, opts, 1, &name, &db);
+  if (rc >= 0) return rc;
   vl_error err;
   vl_db_fluid f;
   vl_status st = vl_db_fluid_info(db, name, &f, &err);

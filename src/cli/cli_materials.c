@@ -67,6 +67,16 @@ int vl_cli_need_name(const vl_cli_context *cx, const char **pos, size_t n_pos, c
   return -1;
 }
 
+int vl_cli_named_args(const vl_cli_context *cx, const vl_cli_globals *g, int argc, char **argv,
+                      vl_cli_option *opts, size_t n_opts, const char **name, vl_db **db) {
+  const char *pos[1] = {NULL};
+  size_t n_pos;
+  int rc = vl_cli_material_args(cx, argc, argv, opts, n_opts, pos, 1, &n_pos);
+  if (rc < 0) rc = vl_cli_need_name(cx, pos, n_pos, name);
+  if (rc < 0 && db) rc = vl_cli_open_db(cx, g, db);
+  return rc;
+}
+
 int vl_cli_open_db(const vl_cli_context *cx, const vl_cli_globals *g, vl_db **db) {
   vl_error err;
   vl_status st = vl_db_open(g->db_path, db, &err);
@@ -79,6 +89,14 @@ int vl_cli_number_opt(const vl_cli_context *cx, const char *name, const char *te
   if (!vl_cli_number(text, out, &why))
     return vl_cli_failf(cx, VL_EINPUT, "option %s: %s (got '%s')", name, why, text);
   return -1;
+}
+
+int vl_cli_number_in(const vl_cli_context *cx, const char *name, const char *text, double lo,
+                     int lo_open, double hi, const char *why, double *out) {
+  int rc = vl_cli_number_opt(cx, name, text, out);
+  if (rc >= 0) return rc;
+  if ((lo_open ? *out > lo : *out >= lo) && *out <= hi) return -1;
+  return vl_cli_failf(cx, VL_EINPUT, "option %s: %s (got '%s')", name, why, text);
 }
 
 int vl_cli_check_description(const vl_cli_context *cx, const char *text) {
@@ -162,13 +180,10 @@ static int do_list(const vl_cli_noun *noun, const vl_cli_context *cx, const vl_c
 
 static int do_remove(const vl_cli_noun *noun, const vl_cli_context *cx, const vl_cli_globals *g,
                      int argc, char **argv) {
-  const char *pos[1] = {NULL}, *name = NULL;
-  size_t n_pos;
-  int rc;
-  if ((rc = vl_cli_material_args(cx, argc, argv, NULL, 0, pos, 1, &n_pos)) >= 0) return rc;
-  if ((rc = vl_cli_need_name(cx, pos, n_pos, &name)) >= 0) return rc;
+  const char *name = NULL;
   vl_db *db = NULL;
-  if ((rc = vl_cli_open_db(cx, g, &db)) >= 0) return rc;
+  int rc = vl_cli_named_args(cx, g, argc, argv, NULL, 0, &name, &db);
+  if (rc >= 0) return rc;
   vl_error err;
   vl_status st = noun->remove(db, name, &err);
   if (st == VL_OK) printf("removed %s '%s' from %s\n", cx->noun, name, vl_db_path(db));

@@ -56,12 +56,24 @@ int vl_cli_material_args(const vl_cli_context *cx, int argc, char **argv, vl_cli
  * into *name. -1, else the exit status after the message. */
 int vl_cli_need_name(const vl_cli_context *cx, const char **pos, size_t n_pos, const char **name);
 
+/* The verbs on one material (show, add, remove, flow-factors): argv[2..)
+ * parsed by the table opts (vl_cli_material_args) with the NAME checked
+ * into *name, then, when db is not NULL, the database opened into *db. -1,
+ * else the exit status after the message. */
+int vl_cli_named_args(const vl_cli_context *cx, const vl_cli_globals *g, int argc, char **argv,
+                      vl_cli_option *opts, size_t n_opts, const char **name, vl_db **db);
+
 /* Opens the database into *db: -1, else the exit status after the message. */
 int vl_cli_open_db(const vl_cli_context *cx, const vl_cli_globals *g, vl_db **db);
 
 /* A numeric option's text (the strict syntax, vl_cli_number) into *out:
  * -1, else the exit status after "option NAME: WHY (got 'TEXT')". */
 int vl_cli_number_opt(const vl_cli_context *cx, const char *name, const char *text, double *out);
+
+/* The same for a number that must lie in [lo, hi] ((lo, hi] when lo_open):
+ * else "option NAME: WHY (got 'TEXT')". */
+int vl_cli_number_in(const vl_cli_context *cx, const char *name, const char *text, double lo,
+                     int lo_open, double hi, const char *why, double *out);
 
 /* --description (may be NULL) short enough to store: -1, else the exit
  * status after the message. */

@@ -215,6 +215,10 @@ int vl_cli_parse(vl_cli_parser *p, int argc, char **argv, int first) {
     p->next = i;
     if (o) {
       int rc = one_option(p, o, eq, argc, argv, &i);
+      if (rc == VL_CLI_HELP_ASKED && p->usage) {
+        p->usage(stdout);
+        return 0;
+      }
       if (rc != -1) return rc;
     } else if (looks_positional(p, a) && (p->flags & VL_CLI_STOP_AT_POSITIONAL)) {
       return -1;

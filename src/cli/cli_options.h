@@ -11,6 +11,7 @@
 #define VL_CLI_OPTIONS_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 typedef enum {
   VL_CLI_FLAG,   /* no value: *(int *)dest = 1 */
@@ -18,7 +19,7 @@ typedef enum {
   VL_CLI_NUMBER, /* a number checked against its rule at once: *(double *)dest */
   VL_CLI_CHOICE, /* one of choices[]: *(int *)dest = its index */
   VL_CLI_LIST,   /* comma-separated positive numbers: dest double[max_values], *n_values */
-  VL_CLI_HELP,   /* --help: parsing stops, vl_cli_parse returns VL_CLI_HELP_ASKED */
+  VL_CLI_HELP,   /* --help: parsing stops, the usage is printed (see vl_cli_parse) */
 } vl_cli_kind;
 
 /* What a number must be, and what is said when it is not. The messages
@@ -79,16 +80,18 @@ typedef struct {
   const char *missing; /* format (name, metavar) of an option without its value */
   const char **pos;    /* room for max_pos positional arguments */
   size_t max_pos;
-  size_t n_pos;      /* set: how many were given */
-  const char *extra; /* format (first positional or "", this one) of one too many */
-  int next;          /* set: the argument parsing stopped at (argc: all read) */
+  size_t n_pos;             /* set: how many were given */
+  const char *extra;        /* format (first positional or "", this one) of one too many */
+  int next;                 /* set: the argument parsing stopped at (argc: all read) */
+  void (*usage)(FILE *out); /* the command's --help text; NULL: the caller prints it */
 } vl_cli_parser;
 
 #define VL_CLI_HELP_ASKED (-2)
 
 /* Parses argv[first..argc) by p's table. Returns -1 when every argument
- * was fine, VL_CLI_HELP_ASKED when --help was met (the caller prints its
- * usage), else the exit status (2) after one message on stderr. */
+ * was fine, 0 after p's usage on stdout when --help was met (without a
+ * usage: VL_CLI_HELP_ASKED), else the exit status (2) after one message on
+ * stderr. */
 int vl_cli_parse(vl_cli_parser *p, int argc, char **argv, int first);
 
 /* The option named name in p's table (NULL when none). */

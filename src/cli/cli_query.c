@@ -92,11 +92,8 @@ static int parse_command(vl_cli_parser *p, int argc, char **argv, conditions *c,
                          const common_rules *r, void (*usage)(FILE *)) {
   p->flags = 0;
   p->unknown = UNKNOWN_OR_INCOMPLETE;
+  p->usage = usage;
   int rc = vl_cli_parse(p, argc, argv, 1);
-  if (rc == VL_CLI_HELP_ASKED) {
-    usage(stdout);
-    return 0;
-  }
   if (rc >= 0) return rc;
   common_given(p, c, r);
   return -1;

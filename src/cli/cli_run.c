@@ -545,12 +545,9 @@ static int run_options(int argc, char **argv, const char **scene_path, const cha
                      .missing = "option %s needs a %s",
                      .pos = scene_path,
                      .max_pos = 1,
-                     .extra = "one scene at a time (got '%s' and '%s')"};
+                     .extra = "one scene at a time (got '%s' and '%s')",
+                     .usage = run_usage};
   int rc = vl_cli_parse(&p, argc, argv, 1);
-  if (rc == VL_CLI_HELP_ASKED) {
-    run_usage(stdout);
-    return 0;
-  }
   if (rc >= 0) return rc;
   if (!*scene_path) {
     run_usage(stderr);

@@ -354,7 +354,7 @@ bool vl_cli_study_launched_by_mpi(void) {
   return false;
 }
 
-/* Reads the options; 0 to go on, else the exit status (-1: --help). */
+/* Reads the options; -1 to go on, else the exit status (0 after --help). */
 static int study_options(vl_cli_study_run *cs, int argc, char **argv) {
   static const vl_cli_number_rule jobs_rule = {
       .lo = 1, .hi = 1024, .whole = 1, .bad = "%s: expected a whole number in [1, 1024], got '%s'"};
@@ -373,12 +373,9 @@ static int study_options(vl_cli_study_run *cs, int argc, char **argv) {
                      .missing = "option %s needs a value",
                      .pos = &cs->study_path,
                      .max_pos = 1,
-                     .extra = "one study at a time (got '%s' and '%s')"};
+                     .extra = "one study at a time (got '%s' and '%s')",
+                     .usage = study_usage};
   int rc = vl_cli_parse(&p, argc, argv, 1);
-  if (rc == VL_CLI_HELP_ASKED) {
-    study_usage(stdout);
-    return -1;
-  }
   if (rc >= 0) return rc;
   cs->jobs = (int)jobs;
   if (!cs->study_path || !cs->out_dir) {
@@ -386,7 +383,7 @@ static int study_options(vl_cli_study_run *cs, int argc, char **argv) {
             !cs->study_path ? "which study? (STUDY file)" : "--out DIR is required");
     return 2;
   }
-  return 0;
+  return -1;
 }
 
 int vl_cli_study(const vl_cli_globals *g, int argc, char **argv) {
@@ -399,7 +396,7 @@ int vl_cli_study(const vl_cli_globals *g, int argc, char **argv) {
                          .mode = "serial",
                          .processes = 1};
   int rc = study_options(&cs, argc, argv);
-  if (rc) return rc < 0 ? 0 : rc;
+  if (rc >= 0) return rc;
   one_blas_thread(); /* before any worker (fork, MPI rank) computes */
   if (vl_cli_study_launched_by_mpi()) {
     if (cs.jobs > 1) {

@@ -443,10 +443,7 @@ static int ff_args_parse(const vl_cli_context *cx, int argc, char **argv, ff_arg
       {.name = "--json", .kind = VL_CLI_FLAG, .dest = &a->json},
       {.name = "--plot", .kind = VL_CLI_FLAG, .dest = &a->plot},
   };
-  const char *pos[1] = {NULL};
-  size_t n_pos;
-  int rc = vl_cli_material_args(cx, argc, argv, opts, sizeof opts / sizeof opts[0], pos, 1, &n_pos);
-  return rc >= 0 ? rc : vl_cli_need_name(cx, pos, n_pos, name);
+  return vl_cli_named_args(cx, NULL, argc, argv, opts, sizeof opts / sizeof opts[0], name, NULL);
 }
 
 static int surface_flow_factors(const vl_cli_context *cx, const vl_cli_globals *g, int argc,
@@ -601,10 +598,8 @@ static int add_args_parse(const vl_cli_context *cx, int argc, char **argv, add_a
       {.name = "--topography", .kind = VL_CLI_TEXT, .metavar = "FILE", .dest = &a->topography},
       {.name = "--psd-kind", .kind = VL_CLI_TEXT, .metavar = "KIND", .dest = &a->psd_kind},
   };
-  const char *pos[1] = {NULL};
-  size_t n_pos;
-  int rc = vl_cli_material_args(cx, argc, argv, opts, sizeof opts / sizeof opts[0], pos, 1, &n_pos);
-  return rc >= 0 ? rc : vl_cli_need_name(cx, pos, n_pos, &a->name);
+  return vl_cli_named_args(cx, NULL, argc, argv, opts, sizeof opts / sizeof opts[0], &a->name,
+                           NULL);
 }
 
 /* One of the three forms, with the options that belong to it (and the
@@ -701,16 +696,13 @@ static int surface_add(const vl_cli_context *cx, const vl_cli_globals *g, int ar
 
 static int surface_show(const vl_cli_context *cx, const vl_cli_globals *g, int argc, char **argv) {
   int json = 0;
-  const char *plot = NULL, *pos[1] = {NULL}, *name = NULL;
+  const char *plot = NULL, *name = NULL;
   vl_cli_option opts[] = {
       {.name = "--json", .kind = VL_CLI_FLAG, .dest = &json},
       {.name = "--plot", .kind = VL_CLI_TEXT, .metavar = "FILE", .dest = &plot}};
-  size_t n_pos;
-  int rc;
-  if ((rc = vl_cli_material_args(cx, argc, argv, opts, 2, pos, 1, &n_pos)) >= 0) return rc;
-  if ((rc = vl_cli_need_name(cx, pos, n_pos, &name)) >= 0) return rc;
   vl_db *db = NULL;
-  if ((rc = vl_cli_open_db(cx, g, &db)) >= 0) return rc;
+  int rc = vl_cli_named_args(cx, g, argc, argv, opts, 2, &name, &db);
+  if (rc >= 0) return rc;
   vl_error err;
   vl_db_surface s;
   vl_status st = vl_db_surface_info(db, name, &s, &err);
