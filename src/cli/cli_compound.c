@@ -414,19 +414,13 @@ static int check_texts(const vl_cli_context *cx, const add_args *a, const char *
   return -1;
 }
 
-/* --tref (the reference temperature, C) and --nu (the Poisson ratio) into
- * *out when given: -1, else the exit status after the message. */
-static int tref_opt(const vl_cli_context *cx, const char *text, double *out) {
-  return text ? vl_cli_number_in(cx, "--tref", text, -273.15, 0, INFINITY, "below absolute zero",
-                                 out)
-              : -1;
-}
-
-static int nu_opt(const vl_cli_context *cx, const char *text, double *out) {
-  return text ? vl_cli_number_in(cx, "--nu", text, 0.0, 0, 0.5,
-                                 "the Poisson ratio must lie in [0, 0.5]", out)
-              : -1;
-}
+/* The ranges of the numeric options (vl_cli_number_in). */
+static const vl_cli_number_rule nu_rule = {
+    .lo = 0.0, .hi = 0.5, .bad = "the Poisson ratio must lie in [0, 0.5]"};
+static const vl_cli_number_rule e_inf_rule = {
+    .lo = 0.0, .lo_open = 1, .hi = INFINITY, .bad = "the glassy modulus must be > 0 Pa"};
+static const vl_cli_number_rule wlf_c2_rule = {
+    .lo = 0.0, .lo_open = 1, .hi = INFINITY, .bad = "C2 must be > 0 K"};
 
 /* The name and texts of a new compound c. */
 static void compound_named(vl_db_compound *c, const add_args *a, const char *file) {
@@ -494,8 +488,8 @@ static int measured_options(const vl_cli_context *cx, const add_args *a, vl_dma_
                           names[k], k >= 2 ? " and the WLF constants" : "");
   *o = vl_dma_options_default();
   int rc;
-  if ((rc = tref_opt(cx, a->tref, &o->tref_c)) >= 0) return rc;
-  if ((rc = nu_opt(cx, a->nu, &o->nu)) >= 0) return rc;
+  if ((rc = vl_cli_number_in(cx, "--tref", a->tref, &vl_cli_tref_rule, &o->tref_c)) >= 0) return rc;
+  if ((rc = vl_cli_number_in(cx, "--nu", a->nu, &nu_rule, &o->nu)) >= 0) return rc;
   if ((rc = measured_units(cx, a, o)) >= 0) return rc;
   if ((rc = measured_fit(cx, a, o)) >= 0) return rc;
   return check_texts(cx, a, "--measured", a->measured);
@@ -568,19 +562,17 @@ static int prony_options(const vl_cli_context *cx, const add_args *a, vl_db_comp
   if (!a->nu) return vl_cli_fail(cx, VL_EINPUT, "option --nu NU is required");
   int rc;
   c->tref_c = 20.0, c->wlf_c1 = NAN, c->wlf_c2_k = NAN, c->fit_rms_error = NAN;
-  if ((rc = vl_cli_number_in(cx, "--e-inf", a->e_inf, 0.0, 1, INFINITY,
-                             "the glassy modulus must be > 0 Pa", &c->prony.e_inf_pa)) >= 0)
+  if ((rc = vl_cli_number_in(cx, "--e-inf", a->e_inf, &e_inf_rule, &c->prony.e_inf_pa)) >= 0)
     return rc;
-  if ((rc = nu_opt(cx, a->nu, &c->prony.nu)) >= 0) return rc;
+  if ((rc = vl_cli_number_in(cx, "--nu", a->nu, &nu_rule, &c->prony.nu)) >= 0) return rc;
   if ((rc = check_texts(cx, a, "--prony", a->prony)) >= 0) return rc;
-  if ((rc = tref_opt(cx, a->tref, &c->tref_c)) >= 0) return rc;
+  if ((rc = vl_cli_number_in(cx, "--tref", a->tref, &vl_cli_tref_rule, &c->tref_c)) >= 0) return rc;
   if ((!a->wlf_c1) != (!a->wlf_c2))
     return vl_cli_fail(cx, VL_EINPUT,
                        "options --wlf-c1 and --wlf-c2 go together (give both or neither)");
   if (!a->wlf_c1) return -1;
   if ((rc = vl_cli_number_opt(cx, "--wlf-c1", a->wlf_c1, &c->wlf_c1)) >= 0) return rc;
-  return vl_cli_number_in(cx, "--wlf-c2", a->wlf_c2, 0.0, 1, INFINITY, "C2 must be > 0 K",
-                          &c->wlf_c2_k);
+  return vl_cli_number_in(cx, "--wlf-c2", a->wlf_c2, &wlf_c2_rule, &c->wlf_c2_k);
 }
 
 /* `compound add NAME --prony FILE --e-inf PA --nu NU ...`. */
@@ -803,6 +795,7 @@ static vl_status compound_list(vl_db *db, vl_json *w, int json, vl_error *err) {
   vl_db_compound *items;
   size_t n = 0;
   vl_status st = vl_db_compound_list(db, &items, &n, err);
+  if (st != VL_OK) return st;
   for (size_t i = 0; st == VL_OK && i < n; i++) {
     vl_db_compound_fit f;
     if (!json)
@@ -812,7 +805,7 @@ static vl_status compound_list(vl_db *db, vl_json *w, int json, vl_error *err) {
       vl_db_compound_fit_free(&f);
     }
   }
-  if (n || st == VL_OK) free(items);
+  free(items);
   return st;
 }
 

@@ -123,11 +123,10 @@ static int fluid_add_args(const vl_cli_context *cx, int argc, char **argv, vl_db
   snprintf(f->name, sizeof f->name, "%s", name);
   f->tref_c = 20.0;
   if (!viscosity) return vl_cli_fail(cx, VL_EINPUT, "option --viscosity PA_S is required");
-  if ((rc = vl_cli_number_in(cx, "--viscosity", viscosity, 0.0, 1, INFINITY, "must be > 0 Pa s",
-                             &f->viscosity_pa_s)) >= 0)
-    return rc;
-  if (tref && (rc = vl_cli_number_in(cx, "--tref", tref, -273.15, 0, INFINITY,
-                                     "below absolute zero", &f->tref_c)) >= 0)
+  static const vl_cli_number_rule positive = {
+      .lo = 0.0, .lo_open = 1, .hi = INFINITY, .bad = "must be > 0 Pa s"};
+  if ((rc = vl_cli_number_in(cx, "--viscosity", viscosity, &positive, &f->viscosity_pa_s)) >= 0 ||
+      (rc = vl_cli_number_in(cx, "--tref", tref, &vl_cli_tref_rule, &f->tref_c)) >= 0)
     return rc;
   if ((rc = vl_cli_check_description(cx, desc)) >= 0) return rc;
   if (desc) snprintf(f->description, sizeof f->description, "%s", desc);

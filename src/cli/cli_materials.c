@@ -9,6 +9,7 @@
 
 #include "cli_materials.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,21 +38,18 @@ int vl_cli_failf(const vl_cli_context *cx, vl_status st, const char *fmt, ...) {
 
 int vl_cli_material_args(const vl_cli_context *cx, int argc, char **argv, vl_cli_option *opts,
                          size_t n_opts, const char **pos, size_t max_pos, size_t *n_pos) {
-  char cmd[64], unknown[160], extra[160];
+  char cmd[64];
   snprintf(cmd, sizeof cmd, "%s %s", cx->noun, cx->verb);
-  /* the noun and verb are known words, no '%' in them */
-  snprintf(unknown, sizeof unknown, "unknown option '%%s' (see viscolube %s --help)", cmd);
-  /* the format is given the first positional too: printed with no room */
-  snprintf(extra, sizeof extra, "%%.0sunexpected argument '%%s' (see viscolube %s --help)", cmd);
   vl_cli_parser p = {.cmd = cmd,
                      .opts = opts,
                      .n_opts = n_opts,
                      .flags = VL_CLI_STRICT,
-                     .unknown = unknown,
+                     .unknown = "unknown option '%s' (see viscolube %s --help)",
                      .missing = "option %s needs a value (%s)",
                      .pos = pos,
                      .max_pos = max_pos,
-                     .extra = extra};
+                     /* given the first positional too: printed with no room */
+                     .extra = "%.0sunexpected argument '%s' (see viscolube %s --help)"};
   int rc = vl_cli_parse(&p, argc, argv, 2);
   *n_pos = p.n_pos;
   return rc;
@@ -91,12 +89,16 @@ int vl_cli_number_opt(const vl_cli_context *cx, const char *name, const char *te
   return -1;
 }
 
-int vl_cli_number_in(const vl_cli_context *cx, const char *name, const char *text, double lo,
-                     int lo_open, double hi, const char *why, double *out) {
+const vl_cli_number_rule vl_cli_tref_rule = {
+    .lo = -273.15, .hi = INFINITY, .bad = "below absolute zero"};
+
+int vl_cli_number_in(const vl_cli_context *cx, const char *name, const char *text,
+                     const vl_cli_number_rule *r, double *out) {
+  if (!text) return -1;
   int rc = vl_cli_number_opt(cx, name, text, out);
   if (rc >= 0) return rc;
-  if ((lo_open ? *out > lo : *out >= lo) && *out <= hi) return -1;
-  return vl_cli_failf(cx, VL_EINPUT, "option %s: %s (got '%s')", name, why, text);
+  if ((r->lo_open ? *out > r->lo : *out >= r->lo) && *out <= r->hi) return -1;
+  return vl_cli_failf(cx, VL_EINPUT, "option %s: %s (got '%s')", name, r->bad, text);
 }
 
 int vl_cli_check_description(const vl_cli_context *cx, const char *text) {

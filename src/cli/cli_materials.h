@@ -70,10 +70,13 @@ int vl_cli_open_db(const vl_cli_context *cx, const vl_cli_globals *g, vl_db **db
  * -1, else the exit status after "option NAME: WHY (got 'TEXT')". */
 int vl_cli_number_opt(const vl_cli_context *cx, const char *name, const char *text, double *out);
 
-/* The same for a number that must lie in [lo, hi] ((lo, hi] when lo_open):
- * else "option NAME: WHY (got 'TEXT')". */
-int vl_cli_number_in(const vl_cli_context *cx, const char *name, const char *text, double lo,
-                     int lo_open, double hi, const char *why, double *out);
+/* The same, when text is given (not NULL), for a number that must lie
+ * within r's lo and hi: else "option NAME: R->BAD (got 'TEXT')". */
+int vl_cli_number_in(const vl_cli_context *cx, const char *name, const char *text,
+                     const vl_cli_number_rule *r, double *out);
+
+/* A temperature in C (--tref): not below absolute zero. */
+extern const vl_cli_number_rule vl_cli_tref_rule;
 
 /* --description (may be NULL) short enough to store: -1, else the exit
  * status after the message. */

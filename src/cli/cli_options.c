@@ -64,6 +64,20 @@ int vl_cli_number_pair(const char *text, double *lo, double *hi) {
   return vl_cli_number(first, lo, NULL) && vl_cli_number(comma + 1, hi, NULL);
 }
 
+vl_cli_parser vl_cli_file_command(const char *cmd, vl_cli_option *opts, size_t n_opts,
+                                  const char **file, const char *extra, void (*usage)(FILE *)) {
+  return (vl_cli_parser){.cmd = cmd,
+                         .opts = opts,
+                         .n_opts = n_opts,
+                         .flags = VL_CLI_DASH_IS_OPTION,
+                         .unknown = "unknown option '%s' (see viscolube %s --help)",
+                         .missing = "option %s needs a value",
+                         .pos = file,
+                         .max_pos = 1,
+                         .extra = extra,
+                         .usage = usage};
+}
+
 vl_cli_option *vl_cli_find(vl_cli_parser *p, const char *name) {
   for (size_t k = 0; k < p->n_opts; k++)
     if (!strcmp(p->opts[k].name, name)) return &p->opts[k];
@@ -89,7 +103,7 @@ static int unknown(const vl_cli_parser *p, const char *arg, size_t len) {
   snprintf(shown, sizeof shown, "%.*s", (int)(len < 200 ? len : 200), arg);
   const char *near = vl_cli_suggest(p, arg, len);
   if (near) return failv(p->cmd, "unknown option '%s' (did you mean %s?)", shown, near);
-  return failv(p->cmd, p->unknown, shown);
+  return failv(p->cmd, p->unknown, shown, p->cmd);
 }
 
 /* Whether a is a positional argument rather than an option. */
@@ -225,7 +239,7 @@ int vl_cli_parse(vl_cli_parser *p, int argc, char **argv, int first) {
     } else if (looks_positional(p, a) && p->n_pos < p->max_pos) {
       p->pos[p->n_pos++] = a;
     } else if (looks_positional(p, a) && p->extra) {
-      return failv(p->cmd, p->extra, p->n_pos ? p->pos[0] : "", a);
+      return failv(p->cmd, p->extra, p->n_pos ? p->pos[0] : "", a, p->cmd);
     } else {
       return unknown(p, a, len);
     }

@@ -76,12 +76,12 @@ typedef struct {
   vl_cli_option *opts; /* the table */
   size_t n_opts;
   unsigned flags;
-  const char *unknown; /* format (argument) of an unknown option without a near one */
+  const char *unknown; /* format (argument, cmd) of an unknown option without a near one */
   const char *missing; /* format (name, metavar) of an option without its value */
   const char **pos;    /* room for max_pos positional arguments */
   size_t max_pos;
   size_t n_pos;             /* set: how many were given */
-  const char *extra;        /* format (first positional or "", this one) of one too many */
+  const char *extra;        /* format (first positional or "", this one, cmd) of one too many */
   int next;                 /* set: the argument parsing stopped at (argc: all read) */
   void (*usage)(FILE *out); /* the command's --help text; NULL: the caller prints it */
 } vl_cli_parser;
@@ -93,6 +93,12 @@ typedef struct {
  * usage: VL_CLI_HELP_ASKED), else the exit status (2) after one message on
  * stderr. */
 int vl_cli_parse(vl_cli_parser *p, int argc, char **argv, int first);
+
+/* The parser of a command with one file argument (into *file) and options
+ * that all start with '-' (`run SCENE`, `study STUDY`): a second file is
+ * refused with "one WHAT at a time", --help prints usage. */
+vl_cli_parser vl_cli_file_command(const char *cmd, vl_cli_option *opts, size_t n_opts,
+                                  const char **file, const char *extra, void (*usage)(FILE *));
 
 /* The option named name in p's table (NULL when none). */
 vl_cli_option *vl_cli_find(vl_cli_parser *p, const char *name);

@@ -535,18 +535,14 @@ static int run_options(int argc, char **argv, const char **scene_path, const cha
       {.name = "--json", .kind = VL_CLI_FLAG, .dest = json},
       {.name = "--plot", .kind = VL_CLI_FLAG, .dest = plot},
       {.name = "--quiet", .alias = "-q", .kind = VL_CLI_FLAG, .dest = quiet},
-      {.name = "--out", .kind = VL_CLI_TEXT, .metavar = "DIR", .dest = out_dir},
+      {.name = "--out",
+       .kind = VL_CLI_TEXT,
+       .metavar = "DIR",
+       .dest = out_dir,
+       .missing = "option %s needs a %s"},
   };
-  vl_cli_parser p = {.cmd = "run",
-                     .opts = opts,
-                     .n_opts = sizeof opts / sizeof opts[0],
-                     .flags = VL_CLI_DASH_IS_OPTION,
-                     .unknown = "unknown option '%s' (see viscolube run --help)",
-                     .missing = "option %s needs a %s",
-                     .pos = scene_path,
-                     .max_pos = 1,
-                     .extra = "one scene at a time (got '%s' and '%s')",
-                     .usage = run_usage};
+  vl_cli_parser p = vl_cli_file_command("run", opts, sizeof opts / sizeof opts[0], scene_path,
+                                        "one scene at a time (got '%s' and '%s')", run_usage);
   int rc = vl_cli_parse(&p, argc, argv, 1);
   if (rc >= 0) return rc;
   if (!*scene_path) {

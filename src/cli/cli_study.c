@@ -365,16 +365,9 @@ static int study_options(vl_cli_study_run *cs, int argc, char **argv) {
       {.name = "--out", .kind = VL_CLI_TEXT, .metavar = "DIR", .dest = &cs->out_dir},
       {.name = "--jobs", .kind = VL_CLI_NUMBER, .metavar = "N", .dest = &jobs, .rule = &jobs_rule},
   };
-  vl_cli_parser p = {.cmd = "study",
-                     .opts = opts,
-                     .n_opts = sizeof opts / sizeof opts[0],
-                     .flags = VL_CLI_DASH_IS_OPTION,
-                     .unknown = "unknown option '%s' (see viscolube study --help)",
-                     .missing = "option %s needs a value",
-                     .pos = &cs->study_path,
-                     .max_pos = 1,
-                     .extra = "one study at a time (got '%s' and '%s')",
-                     .usage = study_usage};
+  vl_cli_parser p =
+      vl_cli_file_command("study", opts, sizeof opts / sizeof opts[0], &cs->study_path,
+                          "one study at a time (got '%s' and '%s')", study_usage);
   int rc = vl_cli_parse(&p, argc, argv, 1);
   if (rc >= 0) return rc;
   cs->jobs = (int)jobs;
