@@ -36,22 +36,24 @@ static void expect_suggestion(const char *args, const char *typo, const char *ne
 
 static void test_friction_and_compare(void **state) {
   (void)state;
+  static const struct {
+    const char *args, *typo, *near;
+  } cases[] = {
+      {"friction --compound sbr-unfilled %s --sped 1", "--sped", "--speed"},
+      {"friction --compund sbr-unfilled %s --speed 1", "--compund", "--compound"},
+      /* a neighbour swap is one edit */
+      {"friction --compound sbr-unfilled %s --speed 1 --laod 100", "--laod", "--load"},
+      {"compare --compunds sbr-unfilled,sbr-filled %s", "--compunds", "--compounds"},
+      {"compare --compounds sbr-unfilled %s --form 1e-9", "--form", "--from"},
+      /* friction's option, given to compare */
+      {"compare --compound sbr-unfilled %s", "--compound", "--compounds"},
+  };
   const char *mats = "--surface paper-3um --fluid water";
   char args[512];
-  snprintf(args, sizeof args, "friction --compound sbr-unfilled %s --sped 1", mats);
-  expect_suggestion(args, "--sped", "--speed");
-  snprintf(args, sizeof args, "friction --compund sbr-unfilled %s --speed 1", mats);
-  expect_suggestion(args, "--compund", "--compound");
-  /* a neighbour swap is one edit */
-  snprintf(args, sizeof args, "friction --compound sbr-unfilled %s --speed 1 --laod 100", mats);
-  expect_suggestion(args, "--laod", "--load");
-  snprintf(args, sizeof args, "compare --compunds sbr-unfilled,sbr-filled %s", mats);
-  expect_suggestion(args, "--compunds", "--compounds");
-  snprintf(args, sizeof args, "compare --compounds sbr-unfilled %s --form 1e-9", mats);
-  expect_suggestion(args, "--form", "--from");
-  /* friction's option, given to compare */
-  snprintf(args, sizeof args, "compare --compound sbr-unfilled %s", mats);
-  expect_suggestion(args, "--compound", "--compounds");
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    snprintf(args, sizeof args, cases[i].args, mats);
+    expect_suggestion(args, cases[i].typo, cases[i].near);
+  }
   /* nothing near: the command's own message, unchanged */
   snprintf(args, sizeof args, "friction --compound sbr-unfilled %s --speed 1 --bogus", mats);
   vl_test_expect_fail(2, "unknown or incomplete option '--bogus' (see --help)", NULL, "%s", args);

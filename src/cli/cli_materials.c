@@ -40,16 +40,12 @@ int vl_cli_material_args(const vl_cli_context *cx, int argc, char **argv, vl_cli
                          size_t n_opts, const char **pos, size_t max_pos, size_t *n_pos) {
   char cmd[64];
   snprintf(cmd, sizeof cmd, "%s %s", cx->noun, cx->verb);
-  vl_cli_parser p = {.cmd = cmd,
-                     .opts = opts,
-                     .n_opts = n_opts,
-                     .flags = VL_CLI_STRICT,
-                     .unknown = "unknown option '%s' (see viscolube %s --help)",
-                     .missing = "option %s needs a value (%s)",
-                     .pos = pos,
-                     .max_pos = max_pos,
-                     /* given the first positional too: printed with no room */
-                     .extra = "%.0sunexpected argument '%s' (see viscolube %s --help)"};
+  /* the extra format is given the first positional too: printed with no room */
+  vl_cli_parser p = vl_cli_file_command(
+      cmd, opts, n_opts, pos, "%.0sunexpected argument '%s' (see viscolube %s --help)", NULL);
+  p.flags = VL_CLI_STRICT;
+  p.missing = "option %s needs a value (%s)";
+  p.max_pos = max_pos;
   int rc = vl_cli_parse(&p, argc, argv, 2);
   *n_pos = p.n_pos;
   return rc;
