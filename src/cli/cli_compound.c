@@ -660,32 +660,29 @@ static int write_curve(const vl_cli_context *cx, vl_db *db, const vl_db_compound
   return -1;
 }
 
-/* `compound show NAME --plot`: DIR/moduli and, with isotherms, DIR/shifts
- * (plot.h). Returns -1 on success, else the exit code after the message. */
-static int plot_compound(const vl_cli_context *cx, vl_db *db, const vl_db_compound *c,
-                         const vl_db_compound_fit *fit, const char *dir, int quiet) {
-  vl_error err = {{0}};
-  vl_db_measured_point *pts = NULL;
-  size_t n = 0;
-  vl_status st = vl_db_compound_points(db, c->name, &pts, &n, &err);
-  if (st != VL_OK) return vl_cli_fail(cx, st, err.msg);
-  enum { NFIT = 240 };
-  /* the fit over the measured window, else over the series' own times */
-  double wlo = INFINITY, whi = 0;
+enum { NFIT = 240 }; /* points of the fitted curve in the figure */
+
+/* The frequencies the fitted curve is drawn over: the measured window,
+ * else the series' own times; the points of that curve (0: none). */
+static size_t fit_window(const vl_db_compound *c, const vl_db_measured_point *pts, size_t n,
+                         double *wlo, double *whi) {
+  *wlo = INFINITY, *whi = 0;
   for (size_t k = 0; k < n; k++) {
-    wlo = fmin(wlo, pts[k].reduced_omega_rad_s);
-    whi = fmax(whi, pts[k].reduced_omega_rad_s);
+    *wlo = fmin(*wlo, pts[k].reduced_omega_rad_s);
+    *whi = fmax(*whi, pts[k].reduced_omega_rad_s);
   }
   for (size_t k = 0; n == 0 && k < c->prony.n_terms; k++) {
-    wlo = fmin(wlo, 0.01 / c->prony.tau_s[k]);
-    whi = fmax(whi, 100 / c->prony.tau_s[k]);
+    *wlo = fmin(*wlo, 0.01 / c->prony.tau_s[k]);
+    *whi = fmax(*whi, 100 / c->prony.tau_s[k]);
   }
-  size_t n_fit = c->prony.n_terms > 0 && whi > wlo ? NFIT : 0;
-  double *buf = malloc((3 * n + 3 * NFIT + 1) * sizeof *buf);
-  if (!buf) {
-    free(pts);
-    return vl_cli_fail(cx, VL_ENOMEM, "out of memory");
-  }
+  return c->prony.n_terms > 0 && *whi > *wlo ? NFIT : 0;
+}
+
+/* The measured points and the fitted curve into d's arrays, laid out in
+ * buf (3 n + 3 NFIT values). */
+static void modulus_data(const vl_db_compound *c, const vl_db_measured_point *pts, size_t n,
+                         size_t n_fit, double wlo, double whi, double *buf,
+                         vl_plot_modulus_data *d) {
   double *w = buf, *e1 = buf + n, *e2 = buf + 2 * n, *fw = buf + 3 * n, *f1 = fw + NFIT,
          *f2 = f1 + NFIT;
   for (size_t k = 0; k < n; k++) {
@@ -699,35 +696,62 @@ static int plot_compound(const vl_cli_context *cx, vl_db *db, const vl_db_compou
     f1[k] = creal(e);
     f2[k] = cimag(e);
   }
-  char ml[96], fl[96], title[160], stem[4300];
+  *d = (vl_plot_modulus_data){n, w, e1, e2, n_fit, fw, f1, f2, d->measured_label, d->fit_label};
+}
+
+/* DIR/moduli and, with two isotherms or more, DIR/shifts. */
+static vl_status draw_compound(const char *dir, const vl_db_compound *c,
+                               const vl_db_compound_fit *fit, const vl_plot_modulus_data *d,
+                               vl_error *err) {
+  char title[160], stem[4300];
+  snprintf(title, sizeof title, "compound %s at %g °C", c->name, c->tref_c);
+  vl_plot_options opt;
+  vl_plot_options_defaults(&opt);
+  opt.title = title;
+  if (d->n + d->n_fit == 0) {
+    vl_error_set(err, "option --plot: compound '%s' is elastic and has no measured data", c->name);
+    return VL_EINPUT;
+  }
+  if (vl_cli_make_dirs(dir) != 0) {
+    vl_error_set(err, "%s: cannot create directory: %s", dir, strerror(errno));
+    return VL_EIO;
+  }
+  snprintf(stem, sizeof stem, "%s/moduli", dir);
+  vl_status st = vl_plot_modulus(stem, d, &opt, NULL, err);
+  if (st != VL_OK || !(fit->has_fit && fit->n_shifts >= 2)) return st;
+  snprintf(stem, sizeof stem, "%s/shifts", dir);
+  return vl_plot_shifts(stem, fit->n_shifts, fit->shift_temperature_c, fit->shift_log10_a_t,
+                        c->tref_c, c->wlf_c1, c->wlf_c2_k, &opt, NULL, err);
+}
+
+/* `compound show NAME --plot`: DIR/moduli and, with isotherms, DIR/shifts
+ * (plot.h). Returns -1 on success, else the exit code after the message. */
+static int plot_compound(const vl_cli_context *cx, vl_db *db, const vl_db_compound *c,
+                         const vl_db_compound_fit *fit, const char *dir, int quiet) {
+  vl_error err = {{0}};
+  vl_db_measured_point *pts = NULL;
+  size_t n = 0;
+  vl_status st = vl_db_compound_points(db, c->name, &pts, &n, &err);
+  if (st != VL_OK) return vl_cli_fail(cx, st, err.msg);
+  double wlo, whi;
+  size_t n_fit = fit_window(c, pts, n, &wlo, &whi);
+  double *buf = malloc((3 * n + 3 * NFIT + 1) * sizeof *buf);
+  if (!buf) {
+    free(pts);
+    return vl_cli_fail(cx, VL_ENOMEM, "out of memory");
+  }
+  char ml[96], fl[96];
   snprintf(ml, sizeof ml, fit->n_isotherms > 1 ? "measured, shifted to %g °C" : "measured, %g °C",
            c->tref_c);
   snprintf(fl, sizeof fl, "Prony series, %zu term%s", c->prony.n_terms,
            c->prony.n_terms == 1 ? "" : "s");
-  snprintf(title, sizeof title, "compound %s at %g °C", c->name, c->tref_c);
-  vl_plot_modulus_data d = {n, w, e1, e2, n_fit, fw, f1, f2, ml, fl};
-  vl_plot_options opt;
-  vl_plot_options_defaults(&opt);
-  opt.title = title;
-  int shifts = fit->has_fit && fit->n_shifts >= 2;
-  if (n + n_fit == 0) {
-    st = VL_EINPUT;
-    vl_error_set(&err, "option --plot: compound '%s' is elastic and has no measured data", c->name);
-  } else if (vl_cli_make_dirs(dir) != 0) {
-    st = VL_EIO;
-    vl_error_set(&err, "%s: cannot create directory: %s", dir, strerror(errno));
-  } else {
-    snprintf(stem, sizeof stem, "%s/moduli", dir);
-    st = vl_plot_modulus(stem, &d, &opt, NULL, &err);
-    if (st == VL_OK && shifts) {
-      snprintf(stem, sizeof stem, "%s/shifts", dir);
-      st = vl_plot_shifts(stem, fit->n_shifts, fit->shift_temperature_c, fit->shift_log10_a_t,
-                          c->tref_c, c->wlf_c1, c->wlf_c2_k, &opt, NULL, &err);
-    }
-  }
+  vl_plot_modulus_data d = {.measured_label = ml, .fit_label = fl};
+  modulus_data(c, pts, n, n_fit, wlo, whi, buf, &d);
+  st = draw_compound(dir, c, fit, &d, &err);
   free(buf);
   free(pts);
   if (st != VL_OK) return vl_cli_fail(cx, st, err.msg);
+  int shifts = fit->has_fit && fit->n_shifts >= 2;
   if (!quiet) printf("plots (png, svg) in %s: moduli%s\n", dir, shifts ? ", shifts" : "");
   return -1;
 }

@@ -148,6 +148,51 @@ static void scene_subtitle(const vl_scene *scene, vl_simulation *sim, const vl_c
     snprintf(buf + n, size - (size_t)n, " · flow factors %s", meta->flow_factors);
 }
 
+/* The kept fields' speeds, numbered from 1 as the figures mark them:
+ * marks[k] (their points) and labels[k] ("1: v0 = 0.01 m/s"). */
+static void plot_marks(const vl_scene *scene, const vl_point *pts, const vl_curve_meta *meta,
+                       const run_ctx *ctx, size_t *marks, char (*labels)[96],
+                       const char **label_ptrs) {
+  static const char *const pre[] = {"v₀ = ", "v₀η = ", "v₀τ/a₀ = "};
+  static const char *const post[] = {" m/s", " Pa m", ""};
+  for (size_t k = 0; k < ctx->n_kept; k++) {
+    marks[k] = ctx->kept_index[k];
+    char v[48];
+    vl_plot_format_value(v, sizeof v, sweep_value(scene->quantity, &pts[marks[k]], meta));
+    snprintf(labels[k], sizeof labels[k], "%zu: %s%s%s", k + 1, pre[scene->quantity], v,
+             post[scene->quantity]);
+    label_ptrs[k] = labels[k];
+  }
+}
+
+/* The fields figures (p_c, p_f when wet, u) of the kept speeds, each
+ * recorded in the manifest and appended to list (length *len). */
+static vl_status plot_field_figures(const char *out_dir, const vl_scene *scene, vl_simulation *sim,
+                                    double h_rms, const run_ctx *ctx, const char **label_ptrs,
+                                    const vl_plot_options *opt, char *list, size_t list_size,
+                                    size_t *len, vl_error *err) {
+  const vl_contact *c = vl_simulation_contact(sim);
+  vl_plot_scales sc = {vl_contact_a0(c), vl_contact_p0(c), h_rms};
+  static const struct {
+    vl_plot_field field;
+    const char *name;
+  } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"},
+              {VL_PLOT_FIELD_PF, "fields-pf"},
+              {VL_PLOT_FIELD_U, "fields-u"}};
+  char stem[4200];
+  for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
+    if (figs[k].field == VL_PLOT_FIELD_PF && !scene->effects.fluid) continue;
+    snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
+    vl_status st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, opt,
+                                  NULL, err);
+    vl_cli_manifest_figure(ctx->man, stem, st, err);
+    if (st != VL_OK && st != VL_EIO) return st;
+    if (*len < list_size)
+      *len += (size_t)snprintf(list + *len, list_size - *len, ", %s", figs[k].name);
+  }
+  return VL_OK;
+}
+
 /* Writes the figures of one curve (see run_usage); names them in *list. */
 static vl_status write_plots(const char *out_dir, const vl_scene *scene, const char *fluid_key,
                              vl_simulation *sim, size_t n, const vl_point *pts,
@@ -177,16 +222,7 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
       goto done;
     }
   }
-  static const char *const pre[] = {"v₀ = ", "v₀η = ", "v₀τ/a₀ = "};
-  static const char *const post[] = {" m/s", " Pa m", ""};
-  for (size_t k = 0; k < ctx->n_kept; k++) {
-    marks[k] = ctx->kept_index[k];
-    char v[48];
-    vl_plot_format_value(v, sizeof v, sweep_value(scene->quantity, &pts[marks[k]], meta));
-    snprintf(labels[k], sizeof labels[k], "%zu: %s%s%s", k + 1, pre[scene->quantity], v,
-             post[scene->quantity]);
-    label_ptrs[k] = labels[k];
-  }
+  plot_marks(scene, pts, meta, ctx, marks, labels, label_ptrs);
   /* a figure that does not fit is noted and the next still tried */
   snprintf(stem, sizeof stem, "%s/stribeck", out_dir);
   st = vl_plot_stribeck(stem, n, pts, meta, scene->quantity, ctx->n_kept, marks, &opt, NULL, err);
@@ -198,27 +234,10 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
   vl_cli_manifest_figure(ctx->man, stem, st, err);
   if (st != VL_OK && st != VL_EIO) goto done;
   size_t len = (size_t)snprintf(list, list_size, "stribeck, separation");
-  if (ctx->n_kept) {
-    const vl_contact *c = vl_simulation_contact(sim);
-    vl_plot_scales sc = {vl_contact_a0(c), vl_contact_p0(c), h_rms};
-    static const struct {
-      vl_plot_field field;
-      const char *name;
-    } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"},
-                {VL_PLOT_FIELD_PF, "fields-pf"},
-                {VL_PLOT_FIELD_U, "fields-u"}};
-    for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
-      if (figs[k].field == VL_PLOT_FIELD_PF && !scene->effects.fluid) continue;
-      snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
-      st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, &opt, NULL,
-                          err);
-      vl_cli_manifest_figure(ctx->man, stem, st, err);
-      if (st != VL_OK && st != VL_EIO) goto done;
-      if (len < list_size)
-        len += (size_t)snprintf(list + len, list_size - len, ", %s", figs[k].name);
-    }
-  }
   st = VL_OK; /* the files that did not fit are in the manifest */
+  if (ctx->n_kept)
+    st = plot_field_figures(out_dir, scene, sim, h_rms, ctx, label_ptrs, &opt, list, list_size,
+                            &len, err);
 done:
   free(label_ptrs);
   free(labels);
