@@ -29,6 +29,10 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv);
 /* `compare --compounds A,B --surface S --fluid F ...`. */
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv);
 
+/* `flattening --compound C --surface S --fluid F --speeds V1,...` or
+ * `flattening --case SCENE` (cli_flattening.c). */
+int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
+
 /* mkdir -p: creates path and its missing parents (0 on success, -1 with
  * errno set). */
 int vl_cli_make_dirs(const char *path);

@@ -706,6 +706,42 @@ static void compare_report(const compare_args *a, const compare_curves *cv) {
   }
 }
 
+/* The sweep of every compound (DIR/<compound>/curve.csv), DIR/compare.csv
+ * and the figures, each file recorded in man. *rc: 2 after the message
+ * when a compound's scene cannot be made. */
+static vl_status compare_files(vl_db *db, const compare_args *a, compare_curves *cv,
+                               vl_manifest *man, int *rc, vl_error *err) {
+  vl_status st = VL_OK;
+  for (size_t k = 0; st == VL_OK && k < a->nc; k++) {
+    int r = compare_one(db, a, k, cv, man, &st, err);
+    if (r >= 0) {
+      *rc = r;
+      return VL_OK;
+    }
+  }
+  if (st != VL_OK) return st;
+  char path[4300];
+  snprintf(path, sizeof path, "%s/compare.csv", a->out_dir);
+  vl_error werr = {{0}};
+  vl_cli_manifest_file(man, path, write_compare_csv(path, a, cv, &werr), &werr);
+  /* every file before the table: a reader of stdout that goes away
+   * (`| head`) cannot cut them short */
+  return a->c.plot ? compare_plots(a, cv, man, err) : VL_OK;
+}
+
+/* On stdout the table (or JSON) and the files written; then on stderr the
+ * warnings and failures. */
+static void compare_print(const compare_args *a, const compare_curves *cv) {
+  if (a->c.json) {
+    compare_json(a, cv);
+  } else {
+    compare_table(a, cv);
+    printf("wrote %s/compare.csv and %s/<compound>/curve.csv%s, %s/%s\n", a->out_dir, a->out_dir,
+           a->c.plot ? " and compare-mu/compare-umin figures" : "", a->out_dir, VL_MANIFEST_NAME);
+  }
+  compare_report(a, cv);
+}
+
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   compare_args a = {.c = conditions_default(g),
                     .from = VL_QUERY_FROM_PA_M,
@@ -726,30 +762,14 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   if (!cv.pts || !cv.hrms) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
   if (st == VL_OK) st = compare_prepare(db, &a, &cv, &err);
   if (st == VL_OK && !(man = vl_cli_manifest_begin(g, "compare", a.out_dir, &rc))) goto done;
-  if (st == VL_OK) compare_manifest(man, db, &a);
-  for (size_t k = 0; st == VL_OK && k < a.nc; k++)
-    if ((rc = compare_one(db, &a, k, &cv, man, &st, &err)) >= 0) goto done;
-  rc = 0;
-  char path[4300];
-  snprintf(path, sizeof path, "%s/compare.csv", a.out_dir);
   if (st == VL_OK) {
-    vl_error werr = {{0}};
-    vl_cli_manifest_file(man, path, write_compare_csv(path, &a, &cv, &werr), &werr);
+    compare_manifest(man, db, &a);
+    st = compare_files(db, &a, &cv, man, &rc, &err);
   }
-  /* every file before the table: a reader of stdout that goes away
-   * (`| head`) cannot cut them short */
-  if (st == VL_OK && a.c.plot) st = compare_plots(&a, &cv, man, &err);
-  if (st != VL_OK) goto done;
+  if (st != VL_OK || rc) goto done;
   rc = vl_cli_manifest_finish(man, "compare", a.c.quiet, cv.failed ? 7 : 0);
   man = NULL;
-  if (a.c.json)
-    compare_json(&a, &cv);
-  else
-    compare_table(&a, &cv);
-  if (!a.c.json)
-    printf("wrote %s and %s/<compound>/curve.csv%s, %s/%s\n", path, a.out_dir,
-           a.c.plot ? " and compare-mu/compare-umin figures" : "", a.out_dir, VL_MANIFEST_NAME);
-  compare_report(&a, &cv);
+  compare_print(&a, &cv);
 done:
   if (st != VL_OK) {
     fprintf(stderr, "viscolube compare: %s\n", err.msg[0] ? err.msg : vl_status_name(st));

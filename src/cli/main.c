@@ -10,9 +10,6 @@
 #include "cli_options.h"
 #include "vl_version.h" /* generated at configure time (src/CMakeLists.txt) */
 
-/* `flattening ...` (src/cli/cli_flattening.c); belongs in cli.h */
-int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
-
 static void usage(FILE *out) {
   fputs(
       "usage: viscolube [--db PATH] [--quiet] NOUN VERB ...\n"
