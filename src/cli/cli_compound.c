@@ -833,10 +833,7 @@ static vl_status compound_list(vl_db *db, vl_json *w, int json, vl_error *err) {
   return st;
 }
 
-const vl_cli_noun vl_cli_compound_noun = {.name = "compound",
-                                          .help = compound_help,
-                                          .verb_help = compound_verb_help,
-                                          .add = compound_add,
-                                          .show = compound_show,
-                                          .list = compound_list,
-                                          .remove = vl_db_compound_remove};
+/* name, help, verb_help, add, show, flow_factors, list, remove */
+const vl_cli_noun vl_cli_compound_noun = {"compound",    compound_help,        compound_verb_help,
+                                          compound_add,  compound_show,        NULL,
+                                          compound_list, vl_db_compound_remove};

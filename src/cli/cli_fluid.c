@@ -197,10 +197,6 @@ static int fluid_verb_help(const char *verb, FILE *out) {
   return 1;
 }
 
-const vl_cli_noun vl_cli_fluid_noun = {.name = "fluid",
-                                       .help = fluid_help,
-                                       .verb_help = fluid_verb_help,
-                                       .add = fluid_add,
-                                       .show = fluid_show,
-                                       .list = fluid_list,
-                                       .remove = vl_db_fluid_remove};
+/* name, help, verb_help, add, show, flow_factors, list, remove */
+const vl_cli_noun vl_cli_fluid_noun = {"fluid",    fluid_help, fluid_verb_help, fluid_add,
+                                       fluid_show, NULL,       fluid_list,      vl_db_fluid_remove};

@@ -16,12 +16,12 @@
 /* One message "viscolube CMD: ..." (or "viscolube: ..." without a command)
  * on stderr; the exit status of bad input. */
 static int failv(const char *cmd, const char *fmt, ...) {
-  char buf[1024];
   va_list ap;
+  fprintf(stderr, "viscolube%s%s: ", cmd ? " " : "", cmd ? cmd : "");
   va_start(ap, fmt);
-  vsnprintf(buf, sizeof buf, fmt, ap);
+  vfprintf(stderr, fmt, ap);
   va_end(ap);
-  fprintf(stderr, "viscolube%s%s: %s\n", cmd ? " " : "", cmd ? cmd : "", buf);
+  fputc('\n', stderr);
   return vl_status_exit_code(VL_EINPUT);
 }
 

@@ -747,11 +747,7 @@ static int surface_verb_help(const char *verb, FILE *out) {
   return 1;
 }
 
-const vl_cli_noun vl_cli_surface_noun = {.name = "surface",
-                                         .help = surface_help,
-                                         .verb_help = surface_verb_help,
-                                         .add = surface_add,
-                                         .show = surface_show,
-                                         .flow_factors = surface_flow_factors,
-                                         .list = surface_list,
-                                         .remove = vl_db_surface_remove};
+/* name, help, verb_help, add, show, flow_factors, list, remove */
+const vl_cli_noun vl_cli_surface_noun = {"surface",    surface_help,        surface_verb_help,
+                                         surface_add,  surface_show,        surface_flow_factors,
+                                         surface_list, vl_db_surface_remove};
