@@ -33,7 +33,7 @@ typedef struct {
   const char *bad;   /* not a number (strict syntax) or below lo */
   const char *range; /* NULL: bad also above hi or not whole; else said when
                       * below range_lo, above hi or not whole */
-  double range_lo;
+  double range_lo;   /* with range: the least value range accepts */
 } vl_cli_number_rule;
 
 typedef struct {
@@ -61,10 +61,11 @@ enum {
    * the next option: the value is missing); an empty value, an option
    * given twice and a flag given a value are refused */
   VL_CLI_STRICT = 1,
-  /* an argument starting with '-' that is no option is an unknown option
-   * ('-' and negative numbers included); without it, only "--x" and
-   * "-x" with x not a digit or '.' are (strict) or every argument that is
-   * no option and no positional (positionals 0) */
+  /* an argument that is no option of the table and starts with '-' is an
+   * unknown option ('-' and negative numbers included), the others are
+   * positionals. With VL_CLI_STRICT instead, "--x" and "-x" with x not a
+   * digit or '.' are options (so "-0.3" is a positional); with neither,
+   * an argument not starting with '-' is a positional */
   VL_CLI_DASH_IS_OPTION = 2,
   /* the first positional argument ends the options (the global options
    * before the noun): parsing stops there, next says where */
@@ -96,7 +97,8 @@ int vl_cli_parse(vl_cli_parser *p, int argc, char **argv, int first);
 
 /* The parser of a command with one file argument (into *file) and options
  * that all start with '-' (`run SCENE`, `study STUDY`): a second file is
- * refused with "one WHAT at a time", --help prints usage. */
+ * refused with the format extra (first, this, cmd), --help prints usage,
+ * an option without its value "option NAME needs a value". */
 vl_cli_parser vl_cli_file_command(const char *cmd, vl_cli_option *opts, size_t n_opts,
                                   const char **file, const char *extra, void (*usage)(FILE *));
 
