@@ -67,6 +67,7 @@
 
 /* base: statuses and messages, JSON text, atomic files */
 #include "viscolube/atomic_file.h"
+#include "viscolube/edit_distance.h"
 #include "viscolube/json.h"
 #include "viscolube/status.h"
 

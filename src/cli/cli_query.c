@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_options.h"
 
 #define MAX_COMPOUNDS 8
 
@@ -22,95 +23,80 @@ typedef struct {
   int quiet; /* --quiet (or the global one): no warnings, no progress */
 } conditions;
 
-/* The strict decimal syntax of every numeric option and CSV cell
- * (vl_csv_parse_double): no hex floats, NaN, Inf or trailing units. */
-static int parse_number(const char *cmd, const char *opt, const char *v, double *out,
-                        int positive) {
-  double d = 0.0;
-  if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || (positive ? d <= 0.0 : d < 0.0)) {
-    fprintf(stderr, "viscolube %s: option %s needs a %s number (got '%s')\n", cmd, opt,
-            positive ? "positive" : "non-negative", v ? v : "");
-    return 0;
-  }
-  *out = d;
-  return 1;
+/* The rules of the numeric options (messages: option, text as typed). */
+static const vl_cli_number_rule positive = {
+    .lo = 0.0, .lo_open = 1, .hi = INFINITY, .bad = "option %s needs a positive number (got '%s')"};
+static const vl_cli_number_rule non_negative = {
+    .lo = 0.0, .hi = INFINITY, .bad = "option %s needs a non-negative number (got '%s')"};
+static const vl_cli_number_rule temperature = {
+    .lo = -273.15, .hi = INFINITY, .bad = "option %s needs a temperature in C (got '%s')"};
+
+/* The options both commands take, into opts (room for N_COMMON); the
+ * numbers that need a second look go to grid and the given counts. */
+#define N_COMMON 12
+#define UNKNOWN_OR_INCOMPLETE "unknown or incomplete option '%s' (see --help)"
+
+typedef struct {
+  vl_cli_number_rule grid, film_cutoff; /* with their limits in the messages */
+  char grid_range[96], cutoff_range[96];
+  double grid_value;
+} common_rules;
+
+static size_t common_options(conditions *c, common_rules *r, vl_cli_option *opts) {
+  r->grid = positive;
+  r->grid.range_lo = VL_GRID_MIN;
+  r->grid.hi = VL_GRID_GRADED_MAX;
+  r->grid.whole = 1;
+  snprintf(r->grid_range, sizeof r->grid_range, "option %%s needs a whole number in [%d, %d]",
+           VL_GRID_MIN, VL_GRID_GRADED_MAX);
+  r->grid.range = r->grid_range;
+  r->film_cutoff = positive;
+  r->film_cutoff.hi = VL_FILM_CUTOFF_MAX_M;
+  snprintf(r->cutoff_range, sizeof r->cutoff_range,
+           "option %%s needs a length in (0, %g] m (got '%%s')", VL_FILM_CUTOFF_MAX_M);
+  r->film_cutoff.range = r->cutoff_range;
+  const char *value = "option %s needs a value";
+  vl_cli_option common[N_COMMON] = {
+      {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
+      {.name = "--json", .kind = VL_CLI_FLAG, .dest = &c->json},
+      {.name = "--quiet", .alias = "-q", .kind = VL_CLI_FLAG, .dest = &c->quiet},
+      {.name = "--surface", .kind = VL_CLI_TEXT, .dest = &c->q.surface, .missing = value},
+      {.name = "--fluid", .kind = VL_CLI_TEXT, .dest = &c->q.fluid, .missing = value},
+      {.name = "--flow-factors", .kind = VL_CLI_TEXT, .dest = &c->flow_factors, .missing = value},
+      {.name = "--load", .kind = VL_CLI_NUMBER, .dest = &c->q.load_n_per_m, .rule = &positive},
+      {.name = "--radius", .kind = VL_CLI_NUMBER, .dest = &c->q.radius_m, .rule = &positive},
+      {.name = "--sigma-s", .kind = VL_CLI_NUMBER, .dest = &c->q.sigma_s_pa, .rule = &non_negative},
+      {.name = "--grid", .kind = VL_CLI_NUMBER, .dest = &r->grid_value, .rule = &r->grid},
+      {.name = "--film-cutoff",
+       .kind = VL_CLI_NUMBER,
+       .dest = &c->q.film_cutoff_m,
+       .rule = &r->film_cutoff},
+      {.name = "--temperature",
+       .kind = VL_CLI_NUMBER,
+       .dest = &c->q.temperature_c,
+       .rule = &temperature},
+  };
+  memcpy(opts, common, sizeof common);
+  return N_COMMON;
 }
 
-/* Common options; returns 1 when argv[*i] was one of them (consuming its
- * value), 0 when not, -1 on a bad value. */
-static int common_option(const char *cmd, int argc, char **argv, int *i, conditions *c) {
-  const char *o = argv[*i];
-  const char *v = *i + 1 < argc ? argv[*i + 1] : NULL;
-  double d;
-  if (!strcmp(o, "--json")) {
-    c->json = 1;
-    return 1;
-  }
-  if (!strcmp(o, "--quiet") || !strcmp(o, "-q")) {
-    c->quiet = 1;
-    return 1;
-  }
-  if (!strcmp(o, "--plot") && !strcmp(cmd, "compare")) {
-    c->plot = 1;
-    return 1;
-  }
-  if (!strcmp(o, "--surface") || !strcmp(o, "--fluid") || !strcmp(o, "--flow-factors")) {
-    if (!v) {
-      fprintf(stderr, "viscolube %s: option %s needs a value\n", cmd, o);
-      return -1;
-    }
-    if (!strcmp(o, "--surface"))
-      c->q.surface = v;
-    else if (!strcmp(o, "--fluid"))
-      c->q.fluid = v;
-    else
-      c->flow_factors = v;
-    (*i)++;
-    return 1;
-  }
-  if (!strcmp(o, "--load") || !strcmp(o, "--radius") || !strcmp(o, "--sigma-s") ||
-      !strcmp(o, "--grid")) {
-    if (!parse_number(cmd, o, v, &d, strcmp(o, "--sigma-s") != 0)) return -1;
-    if (!strcmp(o, "--load"))
-      c->q.load_n_per_m = d;
-    else if (!strcmp(o, "--radius"))
-      c->q.radius_m = d;
-    else if (!strcmp(o, "--sigma-s"))
-      c->q.sigma_s_pa = d;
-    else {
-      if (d < VL_GRID_MIN || d > VL_GRID_GRADED_MAX || d != floor(d)) {
-        fprintf(stderr, "viscolube %s: option --grid needs a whole number in [%d, %d]\n", cmd,
-                VL_GRID_MIN, VL_GRID_GRADED_MAX);
-        return -1;
-      }
-      c->q.grid = (size_t)d;
-    }
-    (*i)++;
-    return 1;
-  }
-  if (!strcmp(o, "--film-cutoff")) {
-    if (!parse_number(cmd, o, v, &d, 1)) return -1;
-    if (d > VL_FILM_CUTOFF_MAX_M) {
-      fprintf(stderr, "viscolube %s: option --film-cutoff needs a length in (0, %g] m (got '%s')\n",
-              cmd, VL_FILM_CUTOFF_MAX_M, v);
-      return -1;
-    }
-    c->q.film_cutoff_m = d;
-    (*i)++;
-    return 1;
-  }
-  if (!strcmp(o, "--temperature")) {
-    if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || d < -273.15) {
-      fprintf(stderr, "viscolube %s: option --temperature needs a temperature in C (got '%s')\n",
-              cmd, v ? v : "");
-      return -1;
-    }
-    c->q.at_temperature = true;
-    c->q.temperature_c = d;
-    (*i)++;
-    return 1;
-  }
-  return 0;
+/* After the parse: the common options that are more than a value. */
+static void common_given(vl_cli_parser *p, conditions *c, const common_rules *r) {
+  if (vl_cli_find(p, "--grid")->given) c->q.grid = (size_t)r->grid_value;
+  if (vl_cli_find(p, "--temperature")->given) c->q.at_temperature = true;
+}
+
+/* Parses argv by p (its table: the common options and the command's);
+ * -1 to go on, else the exit status (0 after the usage on --help). */
+static int parse_command(vl_cli_parser *p, int argc, char **argv, conditions *c,
+                         const common_rules *r, void (*usage)(FILE *)) {
+  p->flags = 0;
+  p->unknown = UNKNOWN_OR_INCOMPLETE;
+  p->usage = usage;
+  int rc = vl_cli_parse(p, argc, argv, 1);
+  if (rc >= 0) return rc;
+  common_given(p, c, r);
+  return -1;
 }
 
 /* The viscosity the run uses (vl_query_fluid_eta), the message naming the
@@ -216,28 +202,19 @@ static void friction_usage(FILE *out) {
  * --help). */
 static int friction_args(int argc, char **argv, conditions *c, const char **compound,
                          double *speed) {
-  int have_speed = 0;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      friction_usage(stdout);
-      return 0;
-    }
-    int r = common_option("friction", argc, argv, &i, c);
-    if (r < 0) return 2;
-    if (r) continue;
-    if (!strcmp(argv[i], "--compound") && i + 1 < argc) {
-      *compound = argv[++i];
-    } else if (!strcmp(argv[i], "--speed")) {
-      if (!parse_number("friction", "--speed", i + 1 < argc ? argv[i + 1] : NULL, speed, 1))
-        return 2;
-      have_speed = 1;
-      i++;
-    } else {
-      fprintf(stderr, "viscolube friction: unknown or incomplete option '%s' (see --help)\n",
-              argv[i]);
-      return 2;
-    }
-  }
+  common_rules r;
+  vl_cli_option opts[N_COMMON + 2];
+  size_t n = common_options(c, &r, opts);
+  opts[n++] = (vl_cli_option){.name = "--compound",
+                              .kind = VL_CLI_TEXT,
+                              .dest = compound,
+                              .missing = UNKNOWN_OR_INCOMPLETE};
+  opts[n++] =
+      (vl_cli_option){.name = "--speed", .kind = VL_CLI_NUMBER, .dest = speed, .rule = &positive};
+  vl_cli_parser p = {.cmd = "friction", .opts = opts, .n_opts = n};
+  int rc = parse_command(&p, argc, argv, c, &r, friction_usage);
+  if (rc >= 0) return rc;
+  int have_speed = vl_cli_find(&p, "--speed")->given > 0;
   if (!need("friction", "--compound", *compound) || !need("friction", "--surface", c->q.surface) ||
       !need("friction", "--fluid", c->q.fluid) ||
       !need("friction", "--speed", have_speed ? "" : NULL))
@@ -412,43 +389,33 @@ typedef struct {
 /* The options of `compare`: -1 to go on, else the exit code (0 after
  * --help). */
 static int compare_parse(int argc, char **argv, compare_args *a) {
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      compare_usage(stdout);
-      return 0;
-    }
-    int r = common_option("compare", argc, argv, &i, &a->c);
-    if (r < 0) return 2;
-    if (r) continue;
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(argv[i], "--compounds") && v) {
-      snprintf(a->list, sizeof a->list, "%s", v);
-      i++;
-    } else if (!strcmp(argv[i], "--out") && v) {
-      a->out_dir = v;
-      i++;
-    } else if (!strcmp(argv[i], "--axis")) {
-      if (!v || (strcmp(v, "speed") && strcmp(v, "v0eta"))) {
-        fprintf(stderr, "viscolube compare: option --axis needs speed or v0eta (got '%s')\n",
-                v ? v : "");
-        return 2;
-      }
-      a->axis_v0eta = !strcmp(v, "v0eta");
-      i++;
-    } else if (!strcmp(argv[i], "--from") || !strcmp(argv[i], "--to") ||
-               !strcmp(argv[i], "--points")) {
-      double *dst = !strcmp(argv[i], "--from") ? &a->from
-                    : !strcmp(argv[i], "--to") ? &a->to
-                                               : &a->points;
-      if (!parse_number("compare", argv[i], v, dst, 1)) return 2;
-      i++;
-    } else {
-      fprintf(stderr, "viscolube compare: unknown or incomplete option '%s' (see --help)\n",
-              argv[i]);
-      return 2;
-    }
-  }
-  return -1;
+  static const char *const axes[] = {"speed", "v0eta", NULL};
+  common_rules r;
+  const char *compounds = NULL;
+  vl_cli_option opts[N_COMMON + 7];
+  size_t n = common_options(&a->c, &r, opts);
+  opts[n++] = (vl_cli_option){.name = "--plot", .kind = VL_CLI_FLAG, .dest = &a->c.plot};
+  opts[n++] = (vl_cli_option){.name = "--compounds",
+                              .kind = VL_CLI_TEXT,
+                              .dest = &compounds,
+                              .missing = UNKNOWN_OR_INCOMPLETE};
+  opts[n++] = (vl_cli_option){
+      .name = "--out", .kind = VL_CLI_TEXT, .dest = &a->out_dir, .missing = UNKNOWN_OR_INCOMPLETE};
+  opts[n++] = (vl_cli_option){.name = "--axis",
+                              .kind = VL_CLI_CHOICE,
+                              .dest = &a->axis_v0eta,
+                              .choices = axes,
+                              .choice_bad = "option %s needs speed or v0eta (got '%s')"};
+  opts[n++] =
+      (vl_cli_option){.name = "--from", .kind = VL_CLI_NUMBER, .dest = &a->from, .rule = &positive};
+  opts[n++] =
+      (vl_cli_option){.name = "--to", .kind = VL_CLI_NUMBER, .dest = &a->to, .rule = &positive};
+  opts[n++] = (vl_cli_option){
+      .name = "--points", .kind = VL_CLI_NUMBER, .dest = &a->points, .rule = &positive};
+  vl_cli_parser p = {.cmd = "compare", .opts = opts, .n_opts = n};
+  int rc = parse_command(&p, argc, argv, &a->c, &r, compare_usage);
+  if (rc < 0 && compounds) snprintf(a->list, sizeof a->list, "%s", compounds);
+  return rc;
 }
 
 /* Cuts --compounds into names and checks that everything needed was given. */
@@ -739,6 +706,42 @@ static void compare_report(const compare_args *a, const compare_curves *cv) {
   }
 }
 
+/* The sweep of every compound (DIR/<compound>/curve.csv), DIR/compare.csv
+ * and the figures, each file recorded in man. *rc: 2 after the message
+ * when a compound's scene cannot be made. */
+static vl_status compare_files(vl_db *db, const compare_args *a, compare_curves *cv,
+                               vl_manifest *man, int *rc, vl_error *err) {
+  vl_status st = VL_OK;
+  for (size_t k = 0; st == VL_OK && k < a->nc; k++) {
+    int r = compare_one(db, a, k, cv, man, &st, err);
+    if (r >= 0) {
+      *rc = r;
+      return VL_OK;
+    }
+  }
+  if (st != VL_OK) return st;
+  char path[4300];
+  snprintf(path, sizeof path, "%s/compare.csv", a->out_dir);
+  vl_error werr = {{0}};
+  vl_cli_manifest_file(man, path, write_compare_csv(path, a, cv, &werr), &werr);
+  /* every file before the table: a reader of stdout that goes away
+   * (`| head`) cannot cut them short */
+  return a->c.plot ? compare_plots(a, cv, man, err) : VL_OK;
+}
+
+/* On stdout the table (or JSON) and the files written; then on stderr the
+ * warnings and failures. */
+static void compare_print(const compare_args *a, const compare_curves *cv) {
+  if (a->c.json) {
+    compare_json(a, cv);
+  } else {
+    compare_table(a, cv);
+    printf("wrote %s/compare.csv and %s/<compound>/curve.csv%s, %s/%s\n", a->out_dir, a->out_dir,
+           a->c.plot ? " and compare-mu/compare-umin figures" : "", a->out_dir, VL_MANIFEST_NAME);
+  }
+  compare_report(a, cv);
+}
+
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   compare_args a = {.c = conditions_default(g),
                     .from = VL_QUERY_FROM_PA_M,
@@ -759,30 +762,14 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   if (!cv.pts || !cv.hrms) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
   if (st == VL_OK) st = compare_prepare(db, &a, &cv, &err);
   if (st == VL_OK && !(man = vl_cli_manifest_begin(g, "compare", a.out_dir, &rc))) goto done;
-  if (st == VL_OK) compare_manifest(man, db, &a);
-  for (size_t k = 0; st == VL_OK && k < a.nc; k++)
-    if ((rc = compare_one(db, &a, k, &cv, man, &st, &err)) >= 0) goto done;
-  rc = 0;
-  char path[4300];
-  snprintf(path, sizeof path, "%s/compare.csv", a.out_dir);
   if (st == VL_OK) {
-    vl_error werr = {{0}};
-    vl_cli_manifest_file(man, path, write_compare_csv(path, &a, &cv, &werr), &werr);
+    compare_manifest(man, db, &a);
+    st = compare_files(db, &a, &cv, man, &rc, &err);
   }
-  /* every file before the table: a reader of stdout that goes away
-   * (`| head`) cannot cut them short */
-  if (st == VL_OK && a.c.plot) st = compare_plots(&a, &cv, man, &err);
-  if (st != VL_OK) goto done;
+  if (st != VL_OK || rc) goto done;
   rc = vl_cli_manifest_finish(man, "compare", a.c.quiet, cv.failed ? 7 : 0);
   man = NULL;
-  if (a.c.json)
-    compare_json(&a, &cv);
-  else
-    compare_table(&a, &cv);
-  if (!a.c.json)
-    printf("wrote %s and %s/<compound>/curve.csv%s, %s/%s\n", path, a.out_dir,
-           a.c.plot ? " and compare-mu/compare-umin figures" : "", a.out_dir, VL_MANIFEST_NAME);
-  compare_report(&a, &cv);
+  compare_print(&a, &cv);
 done:
   if (st != VL_OK) {
     fprintf(stderr, "viscolube compare: %s\n", err.msg[0] ? err.msg : vl_status_name(st));

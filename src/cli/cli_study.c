@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_options.h"
 #include "cli_study.h"
 #include "vl_version.h"
 
@@ -356,50 +357,29 @@ bool vl_cli_study_launched_by_mpi(void) {
   return false;
 }
 
-/* Reads the options; 0 to go on, else the exit status (-1: --help). */
+/* Reads the options; -1 to go on, else the exit status (0 after --help). */
 static int study_options(vl_cli_study_run *cs, int argc, char **argv) {
-  for (int i = 1; i < argc; i++) {
-    const char *a = argv[i];
-    if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-      study_usage(stdout);
-      return -1;
-    } else if (!strcmp(a, "--quiet") || !strcmp(a, "-q")) {
-      cs->quiet = 1;
-    } else if (!strcmp(a, "--out") || !strcmp(a, "--jobs")) {
-      if (i + 1 >= argc) {
-        fprintf(stderr, "viscolube study: option %s needs a value\n", a);
-        return 2;
-      }
-      const char *v = argv[++i];
-      if (!strcmp(a, "--out")) {
-        cs->out_dir = v;
-        continue;
-      }
-      char *end;
-      long n = strtol(v, &end, 10);
-      if (end == v || *end || n < 1 || n > 1024) {
-        fprintf(stderr, "viscolube study: --jobs: expected a whole number in [1, 1024], got '%s'\n",
-                v);
-        return 2;
-      }
-      cs->jobs = (int)n;
-    } else if (a[0] == '-') {
-      fprintf(stderr, "viscolube study: unknown option '%s' (see viscolube study --help)\n", a);
-      return 2;
-    } else if (!cs->study_path) {
-      cs->study_path = a;
-    } else {
-      fprintf(stderr, "viscolube study: one study at a time (got '%s' and '%s')\n", cs->study_path,
-              a);
-      return 2;
-    }
-  }
+  static const vl_cli_number_rule jobs_rule = {
+      .lo = 1, .hi = 1024, .whole = 1, .bad = "%s: expected a whole number in [1, 1024], got '%s'"};
+  double jobs = cs->jobs;
+  vl_cli_option opts[] = {
+      {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
+      {.name = "--quiet", .alias = "-q", .kind = VL_CLI_FLAG, .dest = &cs->quiet},
+      {.name = "--out", .kind = VL_CLI_TEXT, .metavar = "DIR", .dest = &cs->out_dir},
+      {.name = "--jobs", .kind = VL_CLI_NUMBER, .metavar = "N", .dest = &jobs, .rule = &jobs_rule},
+  };
+  vl_cli_parser p =
+      vl_cli_file_command("study", opts, sizeof opts / sizeof opts[0], &cs->study_path,
+                          "one study at a time (got '%s' and '%s')", study_usage);
+  int rc = vl_cli_parse(&p, argc, argv, 1);
+  if (rc >= 0) return rc;
+  cs->jobs = (int)jobs;
   if (!cs->study_path || !cs->out_dir) {
     fprintf(stderr, "viscolube study: %s\n",
             !cs->study_path ? "which study? (STUDY file)" : "--out DIR is required");
     return 2;
   }
-  return 0;
+  return -1;
 }
 
 int vl_cli_study(const vl_cli_globals *g, int argc, char **argv) {
@@ -412,7 +392,7 @@ int vl_cli_study(const vl_cli_globals *g, int argc, char **argv) {
                          .mode = "serial",
                          .processes = 1};
   int rc = study_options(&cs, argc, argv);
-  if (rc) return rc < 0 ? 0 : rc;
+  if (rc >= 0) return rc;
   one_blas_thread(); /* before any worker (fork, MPI rank) computes */
   if (vl_cli_study_launched_by_mpi()) {
     if (cs.jobs > 1) {

@@ -7,10 +7,8 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_options.h"
 #include "vl_version.h" /* generated at configure time (src/CMakeLists.txt) */
-
-/* `flattening ...` (src/cli/cli_flattening.c); belongs in cli.h */
-int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
 
 static void usage(FILE *out) {
   fputs(
@@ -57,33 +55,42 @@ static void usage(FILE *out) {
       out);
 }
 
-static int dispatch(int argc, char **argv) {
-  vl_cli_globals g = {.db_path = getenv("VISCOLUBE_DB"), .argc = argc, .argv = argv};
-  int i = 1;
-  for (; i < argc && argv[i][0] == '-'; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(argv[i], "--version")) {
-      printf("viscolube %s (source %s)\n", VL_VERSION, VL_SOURCE_COMMIT);
-      return 0;
-    } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
-      g.quiet = 1;
-    } else if (!strcmp(argv[i], "--db")) {
-      if (i + 1 >= argc) {
-        fputs("viscolube: option --db needs a PATH\n", stderr);
-        return 2;
-      }
-      g.db_path = argv[++i];
-    } else {
-      fprintf(stderr, "viscolube: unknown option '%s' (see viscolube --help)\n", argv[i]);
-      return 2;
-    }
+/* The global options before the noun; -1 to go on with the noun at
+ * argv[*noun], else the exit status. */
+static int global_options(vl_cli_globals *g, int argc, char **argv, int *noun) {
+  vl_cli_option opts[] = {
+      {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
+      {.name = "--version", .kind = VL_CLI_HELP},
+      {.name = "--quiet", .alias = "-q", .kind = VL_CLI_FLAG, .dest = &g->quiet},
+      {.name = "--db", .kind = VL_CLI_TEXT, .metavar = "PATH", .dest = &g->db_path},
+  };
+  vl_cli_parser p = {.opts = opts,
+                     .n_opts = sizeof opts / sizeof opts[0],
+                     .flags = VL_CLI_DASH_IS_OPTION | VL_CLI_STOP_AT_POSITIONAL,
+                     .unknown = "unknown option '%s' (see viscolube --help)",
+                     .missing = "option %s needs a %s"};
+  int rc = vl_cli_parse(&p, argc, argv, 1);
+  if (rc == VL_CLI_HELP_ASKED && opts[1].given) {
+    printf("viscolube %s (source %s)\n", VL_VERSION, VL_SOURCE_COMMIT);
+    return 0;
   }
-  if (i >= argc) {
+  if (rc == VL_CLI_HELP_ASKED) {
+    usage(stdout);
+    return 0;
+  }
+  if (rc >= 0) return rc;
+  if (p.next >= argc) {
     usage(stderr);
     return 2;
   }
+  *noun = p.next;
+  return -1;
+}
+
+static int dispatch(int argc, char **argv) {
+  vl_cli_globals g = {.db_path = getenv("VISCOLUBE_DB"), .argc = argc, .argv = argv};
+  int i = 0, rc = global_options(&g, argc, argv, &i);
+  if (rc >= 0) return rc;
   const char *noun = argv[i];
   if (!strcmp(noun, "compound") || !strcmp(noun, "surface") || !strcmp(noun, "fluid"))
     return vl_cli_materials(&g, argc - i, argv + i);

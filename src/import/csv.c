@@ -5,8 +5,8 @@
 #include "viscolube/csv.h"
 #include "csv_private.h"
 
-#include "edit_distance.h"
 #include "import_text.h"
+#include "viscolube/edit_distance.h"
 
 #include <math.h>
 #include <stdio.h>

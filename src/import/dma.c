@@ -21,8 +21,8 @@
 #include "tts.h"
 #include "viscolube/csv.h"
 
-#include "edit_distance.h"
 #include "import_text.h"
+#include "viscolube/edit_distance.h"
 
 #define TWO_PI 6.283185307179586476925287
 #define MAX_FIELDS 64

@@ -4,7 +4,7 @@
 
 #include "slurp.h"
 
-#include "edit_distance.h"
+#include "viscolube/edit_distance.h"
 
 #include <ctype.h>
 #include <errno.h>
