@@ -19,7 +19,8 @@
 # report and its error estimate, a second solve on cells three times as wide);
 # numpy, the S active-set solves in sequence with the matrices already in
 # memory (neither the interpreter's start-up, numpy's import nor the matrices'
-# construction or loading). Needs /usr/bin/python3 with numpy (Debian's
+# construction or loading). Both also report their CPU time (on a loaded
+# machine the wall time also counts other programs' turns). Needs /usr/bin/python3 with numpy (Debian's
 # python3-numpy).
 set -euo pipefail
 ROUNDS=5 REPEATS=5 GRID=400 POINTS=13 BUILD=build
@@ -45,15 +46,19 @@ median() { sort -g | awk '{ v[NR] = $1 } END { if (NR) print (NR % 2 ? v[(NR + 1
 echo "# $(date -u +%FT%TZ) $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg), $(git -C "$HERE" rev-parse --short HEAD 2>/dev/null || echo '?')"
 "$BIN" --grid "$GRID" --points "$POINTS" --repeats 1 --dump "$tmp" >/dev/null
 "$PY" "$HERE/dry_active_set.py" "$tmp" --repeats 1 | grep numpy_vs_viscolube
-: >"$tmp/vl" ; : >"$tmp/np"
+: >"$tmp/vl"; : >"$tmp/np"; : >"$tmp/vlc"; : >"$tmp/npc"
 for ((r = 1; r <= ROUNDS; r++)); do
   "$BIN" --grid "$GRID" --points "$POINTS" --repeats "$REPEATS" >"$tmp/vl.out"
   awk '/^viscolube_ms_per_point/ { print $2 }' "$tmp/vl.out" >>"$tmp/vl"
+  sed -n 's/^viscolube_ms.*CPU time \([0-9.]*\).*/\1/p' "$tmp/vl.out" >>"$tmp/vlc"
   "$PY" "$HERE/dry_active_set.py" "$tmp" --repeats "$REPEATS" >"$tmp/np.out"
   awk '/^numpy_ms_per_point/ { print $2 }' "$tmp/np.out" >>"$tmp/np"
+  sed -n 's/^numpy_ms.*CPU time \([0-9.]*\).*/\1/p' "$tmp/np.out" >>"$tmp/npc"
   echo "round $r: viscolube $(tail -1 "$tmp/vl") ms, numpy $(tail -1 "$tmp/np") ms per point"
 done
 grep -v '^viscolube_ms' "$tmp/vl.out"
 grep '^numpy_ms' "$tmp/np.out" | sed 's/^/last numpy round: /'
 vl=$(median <"$tmp/vl") np=$(median <"$tmp/np")
+vlc=$(median <"$tmp/vlc") npc=$(median <"$tmp/npc")
+echo "CPU time per point, medians: viscolube $vlc ms, numpy $npc ms, viscolube/numpy $(awk -v a="$vlc" -v b="$npc" 'BEGIN { printf "%.3f", a / b }')"
 echo "per point, median of $ROUNDS rounds (each the median of $REPEATS): viscolube $vl ms (with its error estimate), numpy $np ms, viscolube/numpy $(awk -v a="$vl" -v b="$np" 'BEGIN { printf "%.3f", a / b }')"
