@@ -104,6 +104,8 @@ struct vl_contact {
   double *sf, *dsf;          /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
                               * NULL when off */
   double *theta;             /* film fraction (report only) */
+  double *fb_work;           /* smooth dry: d FB/dp and d FB/du per node (2 n, Jacobian work),
+                              * else NULL */
   double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */
   bool film_correct;         /* Newton's steps get the film pressure of contact_film.c (set
                               * for the continuation of a converged rough film) */
