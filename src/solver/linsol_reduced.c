@@ -21,18 +21,20 @@
 #define REFINE_MAX 30
 
 typedef struct {
-  int n;          /* full size */
-  int m;          /* coupled rows of the last set-up */
-  int *coupled;   /* their indices, m of them */
-  bool *free_row; /* row solved on its own */
-  double *off;    /* largest off-diagonal magnitude per row (set-up work) */
-  double *R;      /* the coupled block, m x m column-major */
-  double *LU;     /* its LU in double, when the single one fails */
-  float *RS;      /* its LU in single precision */
-  float *rf;      /* m: a refinement step's right-hand side and correction */
-  double *x, *r;  /* m: the refined solution and its residual */
-  double anrm;    /* ||R||_inf */
-  bool single;    /* RS holds the LU (else LU does) */
+  int n;            /* full size */
+  int m;            /* coupled rows of the last set-up */
+  int *coupled;     /* their indices, m of them */
+  int *runs, nruns; /* the coupled indices as runs of consecutive ones: first index, its
+                     * position in coupled, length (3 ints a run) */
+  bool *free_row;   /* row solved on its own */
+  double *off;      /* largest off-diagonal magnitude per row (set-up work) */
+  double *R;        /* the coupled block, m x m column-major */
+  double *LU;       /* its LU in double, when the single one fails */
+  float *RS;        /* its LU in single precision */
+  float *rf;        /* m: a refinement step's right-hand side and correction */
+  double *x, *r;    /* m: the refined solution and its residual */
+  double anrm;      /* ||R||_inf */
+  bool single;      /* RS holds the LU (else LU does) */
   int *piv;
   double *rhs; /* m */
   sunindextype last_flag;
@@ -69,11 +71,19 @@ static void find_free_rows(reduced_content *c, const double *J) {
       off[i] = a > off[i] ? a : off[i];
     }
   }
-  c->m = 0;
+  c->m = 0, c->nruns = 0;
   for (int i = 0; i < n; i++) {
     double d = fabs(J[(size_t)i * (size_t)n + (size_t)i]);
     c->free_row[i] = d > 0.0 && c->off[i] <= VL_REDUCED_ROW_TOL * d;
-    if (!c->free_row[i]) c->coupled[c->m++] = i;
+    if (c->free_row[i]) continue;
+    int *run = c->runs + 3 * (c->nruns - 1);
+    if (c->nruns > 0 && run[0] + run[2] == i) {
+      run[2]++;
+    } else {
+      run += 3, c->nruns++;
+      run[0] = i, run[1] = c->m, run[2] = 1;
+    }
+    c->coupled[c->m++] = i;
   }
 }
 
@@ -96,14 +106,18 @@ static int reduced_setup(SUNLinearSolver S, SUNMatrix A) {
   double *rowsum = c->off; /* free again */
   for (size_t a = 0; a < M; a++)
     rowsum[a] = 0.0;
-  for (size_t b = 0; b < M; b++) {
+  for (size_t b = 0; b < M; b++) { /* the block, run by run (contiguous copies) */
     const double *col = J + (size_t)c->coupled[b] * (size_t)c->n;
-    double *R = c->R + b * M;
-    float *RS = c->RS + b * M;
-    for (size_t a = 0; a < M; a++) {
-      double v = col[c->coupled[a]];
-      R[a] = v, RS[a] = (float)v;
-      rowsum[a] += fabs(v);
+    for (int k = 0; k < c->nruns; k++) {
+      const int *run = c->runs + 3 * k;
+      const double *src = col + run[0];
+      size_t at = b * M + (size_t)run[1], len = (size_t)run[2];
+      double *R = c->R + at, *sum = rowsum + run[1];
+      float *RS = c->RS + at;
+      for (size_t a = 0; a < len; a++) {
+        R[a] = src[a], RS[a] = (float)src[a];
+        sum[a] += fabs(src[a]);
+      }
     }
   }
   c->anrm = 0.0;
@@ -163,8 +177,13 @@ static int reduced_solve(SUNLinearSolver S, SUNMatrix A, N_Vector xv, N_Vector b
     if (!c->free_row[j]) continue;
     const double *col = J + (size_t)j * (size_t)n;
     x[j] = b[j] / col[j];
-    for (int a = 0; a < m; a++)
-      c->rhs[a] -= col[c->coupled[a]] * x[j];
+    for (int k = 0; k < c->nruns; k++) {
+      const int *run = c->runs + 3 * k;
+      const double *src = col + run[0];
+      double *rhs = c->rhs + run[1];
+      for (int a = 0; a < run[2]; a++)
+        rhs[a] -= src[a] * x[j];
+    }
   }
   if (m > 0 && c->single && !refine(c) && factorise_double(c) != 0) {
     c->last_flag = 1;
@@ -185,7 +204,7 @@ static sunindextype reduced_lastflag(SUNLinearSolver S) {
 static int reduced_space(SUNLinearSolver S, long *lenrw, long *leniw) {
   long n = ((reduced_content *)S->content)->n;
   *lenrw = 2 * n * n + n * n / 2 + 5 * n; /* R, LU, RS (floats), off, rhs, x, r, rf */
-  *leniw = 3 * n + 2;
+  *leniw = 6 * n + 2;
   return SUNLS_SUCCESS;
 }
 
@@ -194,6 +213,7 @@ static int reduced_free(SUNLinearSolver S) {
   reduced_content *c = S->content;
   if (c) {
     free(c->coupled);
+    free(c->runs);
     free(c->free_row);
     free(c->off);
     free(c->R);
@@ -224,6 +244,7 @@ SUNLinearSolver vl_linsol_reduced_create(long n, SUNContext ctx) {
   S->content = c;
   c->n = c->m = (int)n;
   c->coupled = malloc(N * sizeof *c->coupled);
+  c->runs = malloc(3 * N * sizeof *c->runs);
   c->free_row = malloc(N * sizeof *c->free_row);
   c->off = malloc(N * sizeof *c->off);
   c->R = malloc(N * N * sizeof *c->R);
@@ -234,8 +255,8 @@ SUNLinearSolver vl_linsol_reduced_create(long n, SUNContext ctx) {
   c->r = c->x ? c->x + N : NULL;
   c->piv = malloc(N * sizeof *c->piv);
   c->rhs = malloc(N * sizeof *c->rhs);
-  if (!c->coupled || !c->free_row || !c->off || !c->R || !c->LU || !c->RS || !c->rf || !c->x ||
-      !c->piv || !c->rhs) {
+  if (!c->coupled || !c->runs || !c->free_row || !c->off || !c->R || !c->LU || !c->RS || !c->rf ||
+      !c->x || !c->piv || !c->rhs) {
     reduced_free(S);
     return NULL;
   }
