@@ -28,13 +28,12 @@ typedef struct {
                      * position in coupled, length (3 ints a run) */
   bool *free_row;   /* row solved on its own */
   double *off;      /* largest off-diagonal magnitude per row (set-up work) */
-  double *R;        /* the coupled block, m x m column-major */
-  double *LU;       /* its LU in double, when the single one fails */
+  double *R;        /* the coupled block, m x m column-major (its LU when in double) */
   float *RS;        /* its LU in single precision */
   float *rf;        /* m: a refinement step's right-hand side and correction */
   double *x, *r;    /* m: the refined solution and its residual */
   double anrm;      /* ||R||_inf */
-  bool single;      /* RS holds the LU (else LU does) */
+  bool single;      /* RS holds the LU (else R does) */
   int *piv;
   double *rhs; /* m */
   sunindextype last_flag;
@@ -87,11 +86,11 @@ static void find_free_rows(reduced_content *c, const double *J) {
   }
 }
 
-/* The block's LU in double (into LU, from R). */
+/* The block's LU in double, in place of R (no longer needed for
+ * refinement). */
 static int factorise_double(reduced_content *c) {
   int m = c->m, info = 0;
-  memcpy(c->LU, c->R, (size_t)m * (size_t)m * sizeof *c->LU);
-  dgetrf_(&m, &m, c->LU, &m, c->piv, &info);
+  dgetrf_(&m, &m, c->R, &m, c->piv, &info);
   c->single = false;
   return info;
 }
@@ -189,7 +188,7 @@ static int reduced_solve(SUNLinearSolver S, SUNMatrix A, N_Vector xv, N_Vector b
     c->last_flag = 1;
     return SUNLS_PACKAGE_FAIL_UNREC;
   }
-  if (m > 0 && !c->single) dgetrs_("N", &m, &one, c->LU, &m, c->piv, c->rhs, &m, &info, 1);
+  if (m > 0 && !c->single) dgetrs_("N", &m, &one, c->R, &m, c->piv, c->rhs, &m, &info, 1);
   c->last_flag = info;
   if (info != 0) return SUNLS_PACKAGE_FAIL_UNREC;
   for (int a = 0; a < m; a++)
@@ -203,7 +202,7 @@ static sunindextype reduced_lastflag(SUNLinearSolver S) {
 
 static int reduced_space(SUNLinearSolver S, long *lenrw, long *leniw) {
   long n = ((reduced_content *)S->content)->n;
-  *lenrw = 2 * n * n + n * n / 2 + 5 * n; /* R, LU, RS (floats), off, rhs, x, r, rf */
+  *lenrw = n * n + n * n / 2 + 5 * n; /* R, RS (floats), off, rhs, x, r, rf */
   *leniw = 6 * n + 2;
   return SUNLS_SUCCESS;
 }
@@ -217,7 +216,6 @@ static int reduced_free(SUNLinearSolver S) {
     free(c->free_row);
     free(c->off);
     free(c->R);
-    free(c->LU);
     free(c->RS);
     free(c->rf);
     free(c->x);
@@ -248,15 +246,14 @@ SUNLinearSolver vl_linsol_reduced_create(long n, SUNContext ctx) {
   c->free_row = malloc(N * sizeof *c->free_row);
   c->off = malloc(N * sizeof *c->off);
   c->R = malloc(N * N * sizeof *c->R);
-  c->LU = malloc(N * N * sizeof *c->LU);
   c->RS = malloc(N * N * sizeof *c->RS);
   c->rf = malloc(N * sizeof *c->rf);
   c->x = malloc(2 * N * sizeof *c->x);
   c->r = c->x ? c->x + N : NULL;
   c->piv = malloc(N * sizeof *c->piv);
   c->rhs = malloc(N * sizeof *c->rhs);
-  if (!c->coupled || !c->runs || !c->free_row || !c->off || !c->R || !c->LU || !c->RS || !c->rf ||
-      !c->x || !c->piv || !c->rhs) {
+  if (!c->coupled || !c->runs || !c->free_row || !c->off || !c->R || !c->RS || !c->rf || !c->x ||
+      !c->piv || !c->rhs) {
     reduced_free(S);
     return NULL;
   }
