@@ -68,8 +68,10 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
       !c->theta || !c->g || !c->Jf || !c->rw)
     return vl_contact_nomem(c, err);
   if (!c->rough && !c->wet) {
-    c->fb_work = malloc(2 * n * sizeof *c->fb_work);
+    c->fb_work = malloc((2 * n + c->nunk) * sizeof *c->fb_work);
     if (!c->fb_work) return vl_contact_nomem(c, err);
+    c->state_y = c->fb_work + 2 * n;
+    c->state_kernel = (size_t)-1; /* no state yet */
   }
   if (c->rough && c->wet) {
     c->film_work = malloc((2 * c->nunk + 3 * n) * sizeof *c->film_work);

@@ -261,6 +261,10 @@ void vl_contact_eval_fluxes(vl_contact *c, const double *y) {
 void vl_contact_eval_state(vl_contact *c, const double *y) {
   eval_contact_pressure(c, y);
   eval_gap(c, y);
+  if (c->state_y) { /* smooth dry: the state is that of y and this kernel */
+    memcpy(c->state_y, y, c->nunk * sizeof *c->state_y);
+    c->state_kernel = c->kernel_builds;
+  }
   if (!c->wet) return;
   eval_flow(c);
   vl_contact_eval_fluxes(c, y);
@@ -473,7 +477,12 @@ static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, si
 
 void vl_contact_jacobian(vl_contact *c, const double *y, double *Jd) {
   size_t nc = c->nc, nf = c->nf, of = c->of, ld = c->nunk, ih = c->ih;
-  vl_contact_eval_state(c, y);
+  /* KINSOL asks for the Jacobian where it has just evaluated the residual:
+   * a smooth dry contact's state is then current (its gap is a product
+   * with the n x n influence matrix) */
+  if (!c->state_y || c->state_kernel != c->kernel_builds ||
+      memcmp(c->state_y, y, ld * sizeof *y) != 0)
+    vl_contact_eval_state(c, y);
   jacobian_contact_rows(c, Jd);
   for (size_t i = 0; i < nf; i++)
     jacobian_reynolds_row(c, y, Jd, i);
