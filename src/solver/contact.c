@@ -71,6 +71,12 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
   if (!c->A || !c->beta || !c->M || !c->P || !c->q || !c->U || !c->dPdU || !c->F || !c->D ||
       !c->theta || !c->g || !c->Jf || !c->rw)
     return vl_contact_nomem(c, err);
+  if (!c->rough && !c->wet) {
+    c->fb_work = malloc((2 * n + c->nunk) * sizeof *c->fb_work);
+    if (!c->fb_work) return vl_contact_nomem(c, err);
+    c->state_y = c->fb_work + 2 * n;
+    c->state_kernel = (size_t)-1; /* no state yet */
+  }
   if (c->rough && c->wet) {
     c->film_work = malloc((2 * c->nunk + 3 * n) * sizeof *c->film_work);
     if (!c->film_work) return vl_contact_nomem(c, err);
@@ -207,6 +213,7 @@ void vl_contact_free(vl_contact *c) {
   free(c->rw);
   free(c->sf);
   free(c->film_work);
+  free(c->fb_work);
   free(c);
 }
 

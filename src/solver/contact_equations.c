@@ -263,6 +263,10 @@ void vl_contact_eval_fluxes(vl_contact *c, const double *y) {
 void vl_contact_eval_state(vl_contact *c, const double *y) {
   eval_contact_pressure(c, y);
   eval_gap(c, y);
+  if (c->state_y) { /* smooth dry: the state is that of y and this kernel */
+    memcpy(c->state_y, y, c->nunk * sizeof *c->state_y);
+    c->state_kernel = c->kernel_builds;
+  }
   if (!c->wet) return;
   eval_flow(c);
   vl_contact_eval_fluxes(c, y);
@@ -396,6 +400,28 @@ static void jacobian_contact_rows(vl_contact *c, double *Jd) {
       }
       memset(col + n, 0, (ld - n) * sizeof *col);
     }
+  } else if (nc && !c->span) {
+    /* smooth dry contact on a uniform grid: the complementarity rows
+     * d FB/du_i dU_i/dy_j + d FB/dp_i delta_ij, written column by column
+     * and every entry once (the matrix is column-major); column j of M is
+     * -kfac times the Toeplitz coefficients from n-1-j on (as
+     * graded_influence builds M, so the same values as the rows of M
+     * the general branch below adds, at a fifth of its time) */
+    double *dp = c->fb_work, *du = c->fb_work + n, mk = -c->kfac;
+    for (size_t i = 0; i < n; i++)
+      fb(c->P[i], c->U[i], &dp[i], &du[i]);
+    for (size_t j = 0; j < n; j++) {
+      double *col = Jd + j * ld;
+      const double *t = c->kern.coef + (n - 1 - j);
+      for (size_t i = 0; i < n; i++) /* + 0.0: a zero du gives +0, as the zeroed matrix */
+        col[i] = du[i] * (mk * t[i]) + 0.0;
+      col[j] += dp[j];
+      col[ih] = 0.0; /* the load row: vl_contact_jacobian */
+    }
+    double *col = Jd + ih * ld; /* d/d(h0) */
+    for (size_t i = 0; i < n; i++)
+      col[i] = du[i];
+    col[ih] = 0.0;
   } else {
     memset(Jd, 0, ld * ld * sizeof *Jd);
     for (size_t i = 0; i < nc; i++) { /* smooth contact: complementarity rows */
@@ -453,7 +479,12 @@ static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, si
 
 void vl_contact_jacobian(vl_contact *c, const double *y, double *Jd) {
   size_t nc = c->nc, nf = c->nf, of = c->of, ld = c->nunk, ih = c->ih;
-  vl_contact_eval_state(c, y);
+  /* KINSOL asks for the Jacobian where it has just evaluated the residual:
+   * a smooth dry contact's state is then current (its gap is a product
+   * with the n x n influence matrix) */
+  if (!c->state_y || c->state_kernel != c->kernel_builds ||
+      memcmp(c->state_y, y, ld * sizeof *y) != 0)
+    vl_contact_eval_state(c, y);
   jacobian_contact_rows(c, Jd);
   for (size_t i = 0; i < nf; i++)
     jacobian_reynolds_row(c, y, Jd, i);

@@ -165,4 +165,5 @@ void vl_contact_set_speed(vl_contact *c, double v0) {
   graded_influence(c);
   c->timing.t_kernel_s += vl_contact_now_s() - t0;
   c->timing.kernels++;
+  c->kernel_builds++;
 }

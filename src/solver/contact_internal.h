@@ -117,6 +117,11 @@ struct vl_contact {
   double *sf, *dsf;          /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
                               * NULL when off */
   double *theta;             /* film fraction (report only) */
+  double *fb_work;           /* smooth dry: d FB/dp and d FB/du per node (2 n, Jacobian work),
+                              * else NULL */
+  double *state_y;           /* smooth dry: the y of the last vl_contact_eval_state, else NULL */
+  size_t kernel_builds;      /* influence matrices built (vl_contact_set_speed) */
+  size_t state_kernel;       /* the one state_y was evaluated with */
   double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */
   bool film_correct;         /* Newton's steps get the film pressure of contact_film.c (during
                               * the Newton variants that continue a converged rough film) */

@@ -12,6 +12,13 @@ extern void dgetrs_(const char *trans, const int *n, const int *nrhs, const doub
                     const int *lda, const int *ipiv, double *b, const int *ldb, int *info,
                     size_t trans_len);
 
+/* The same in single precision (a first factorisation refined in double:
+ * linsol_reduced.c). */
+extern void sgetrf_(const int *m, const int *n, float *a, const int *lda, int *ipiv, int *info);
+extern void sgetrs_(const char *trans, const int *n, const int *nrhs, const float *a,
+                    const int *lda, const int *ipiv, float *b, const int *ldb, int *info,
+                    size_t trans_len);
+
 /* y = alpha op(A) x + beta y. */
 extern void dgemv_(const char *trans, const int *m, const int *n, const double *alpha,
                    const double *a, const int *lda, const double *x, const int *incx,
