@@ -43,6 +43,7 @@ typedef struct {
   double film_cutoff_m;             /* persson-emt only; 0: VL_FILM_CUTOFF_DEFAULT_M */
   bool at_temperature;              /* compound (WLF) and fluid (its law) at temperature_c */
   double temperature_c;
+  double target_error; /* relative error of mu each point should meet; 0: VL_TARGET_ERROR_DEFAULT */
 } vl_query;
 
 /* One answered operating point. */

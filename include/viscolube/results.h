@@ -35,8 +35,28 @@ typedef struct {
   /* relative error of mu estimated from a coarser solve (sweep.h; the
    * point on cells three times as wide); NAN when none was made or it failed */
   double error_estimate;
+  int accuracy;               /* vl_accuracy: the estimate against the point's target */
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
 } vl_point;
+
+/* How a converged point's error estimate compares with its target (the
+ * sweep's target_error). A point above its target, or without an estimate,
+ * is not known to be accurate: every output marks it (the console, the
+ * CSV and JSON column `accuracy`, the figures, the exit status of the
+ * program, a study's counts, Python's `reliable`), as it marks a point that
+ * did not converge, but distinguishably. */
+typedef enum {
+  VL_ACCURACY_UNCHECKED = 0, /* not compared: the point did not converge, or no target */
+  VL_ACCURACY_MET,           /* the estimate is within the target */
+  VL_ACCURACY_ABOVE_TARGET,  /* the estimate is above the target */
+  VL_ACCURACY_NO_ESTIMATE    /* no estimate could be made (its coarser solve failed) */
+} vl_accuracy;
+
+/* "", "met", "above_target", "no_estimate"; "?" for anything else. */
+const char *vl_accuracy_name(int accuracy);
+
+/* True when pt converged but is above its error target or has no estimate. */
+bool vl_point_unreliable(const vl_point *pt);
 
 /* Lubrication regime by the share of the load carried by the fluid. */
 typedef enum {

@@ -83,14 +83,17 @@ typedef enum {
   VL_TASK_MISSING = 0,   /* no file: not run (yet) */
   VL_TASK_OK,            /* every point converged */
   VL_TASK_NOT_CONVERGED, /* written, some points with converged = 0 */
+  VL_TASK_ABOVE_TARGET,  /* written, every point converged, some not known to their error
+                          * target (vl_point_unreliable) */
   VL_TASK_ERROR          /* stopped on an error: no curve, the message says why */
 } vl_task_state;
 
 typedef struct {
   vl_task_state state;
   size_t points, converged, failed;
-  double seconds;  /* wall time of the task */
-  vl_status error; /* VL_TASK_ERROR: the status */
+  size_t above_target; /* converged points not known to their error target */
+  double seconds;      /* wall time of the task */
+  vl_status error;     /* VL_TASK_ERROR: the status */
   char message[VL_ERROR_MAX];
 } vl_study_outcome;
 

@@ -81,16 +81,17 @@ static PyObject *column(const char *name, size_t n, const vl_point *pts, const v
     }
     return a;
   }
-  int regime = !strcmp(name, "regime");
-  if (!regime && strcmp(name, "warnings")) {
+  int regime = !strcmp(name, "regime"), accuracy = !strcmp(name, "accuracy");
+  if (!regime && !accuracy && strcmp(name, "warnings")) {
     vl_error err;
     vl_error_set(&err, "curve column '%s' unknown to the Python binding", name);
     return vlpy_raise(VL_EINTERNAL, &err);
   }
   PyObject *l = PyList_New((Py_ssize_t)n);
   for (size_t i = 0; l && i < n; i++) {
-    const char *s =
-        regime ? (pts[i].converged ? vl_regime_name(pts[i].regime) : "") : pts[i].warnings;
+    const char *s = regime     ? (pts[i].converged ? vl_regime_name(pts[i].regime) : "")
+                    : accuracy ? (pts[i].converged ? vl_accuracy_name(pts[i].accuracy) : "")
+                               : pts[i].warnings;
     PyObject *t = PyUnicode_FromString(s);
     if (!t)
       Py_CLEAR(l);
@@ -160,9 +161,12 @@ static PyObject *friction_dict(const vl_query *q, const vl_query_result *r) {
         : !strcmp(name, "iterations")             ? PyLong_FromLong(r->point.iterations)
         : !strcmp(name, "regime")
             ? PyUnicode_FromString(r->point.converged ? vl_regime_name(r->point.regime) : "")
+        : !strcmp(name, "accuracy")
+            ? PyUnicode_FromString(r->point.converged ? vl_accuracy_name(r->point.accuracy) : "")
             : PyUnicode_FromString(r->point.warnings);
     if (vlpy_set(d, name, o) < 0) Py_CLEAR(d);
   }
+
   if (d &&
       (vlpy_set_double(d, "eta_pa_s", r->eta_pa_s) || vlpy_set_double(d, "a_T", r->shift_factor) ||
        vlpy_set_double(d, "a0_m", r->a0_m) || vlpy_set_double(d, "hrms_m", r->hrms_m) ||

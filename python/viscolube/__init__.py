@@ -54,12 +54,18 @@ def _path(p):
     return None if p is None else os.fspath(p)
 
 
+# The `accuracy` of a converged point that is not known to its error target.
+UNRELIABLE = ("above_target", "no_estimate")
+
+
 class Point(dict):
     """One operating point: the keys of `viscolube friction --json` (the
     columns of curve.csv) and how it was computed (eta_pa_s, a_T, a0_m,
     hrms_m, flow_factors, film_cutoff_m, temperature_c, points_solved).
     Keys are also attributes; `u_min` is `u_min_m`; `warnings` is a list.
-    A point that did not converge has converged False and NaN physics."""
+    A point that did not converge has converged False and NaN physics;
+    `reliable` is False for it and for a point above its error target or
+    without an estimate (`accuracy` 'above_target' or 'no_estimate')."""
 
     def __getattr__(self, key):
         try:
@@ -71,13 +77,22 @@ class Point(dict):
     def u_min(self):
         return self["u_min_m"]
 
+    @property
+    def reliable(self):
+        """Converged and known to its error target (what the program does
+        not mark '!')."""
+        return bool(self["converged"]) and self["accuracy"] not in UNRELIABLE
+
 
 class Curve(dict):
     """A Stribeck curve: {column of curve.csv: numpy array}, one entry per
     sweep point. Float columns hold NaN where curve.csv has an empty cell
     (a point that did not converge, a quantity not defined for the scene);
     `converged` (bool) says which points are solved, `iterations` is int,
-    `regime` and `warnings` are arrays of str ('' for a failed point).
+    `regime`, `accuracy` and `warnings` are arrays of str ('' for a failed
+    point); the property `reliable` (bool array) is True where a point
+    converged and is known to its error target: the points the program marks
+    '!' are False.
 
     .info    the curve's context: compound, surface, fluid, quantity,
              eta_pa_s, tau_s, a0_m, p0_pa, hrms_m, flow_factors,
@@ -96,6 +111,12 @@ class Curve(dict):
             self[name] = values
         self.info = raw["info"]
         self.fields = raw["fields"]
+
+    @property
+    def reliable(self):
+        """Boolean array: converged and known to the error target (False
+        where the program marks '!', and where a point failed)."""
+        return self["converged"] & ~np.isin(self["accuracy"], UNRELIABLE)
 
     def __getattr__(self, key):
         try:

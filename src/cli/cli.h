@@ -58,6 +58,21 @@ size_t vl_cli_print_warnings(FILE *out, const char *label, size_t n, const vl_po
 size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size_t n,
                              const vl_point *pts, const char *where);
 
+/* Exit status when every point converged but some are above their error
+ * target or have no estimate (vl_point_unreliable): a result of its own,
+ * after 7 (not converged) in precedence. */
+#define VL_CLI_EXIT_UNRELIABLE 8
+
+/* The points that converged but are not known to their error target, on
+ * out: how many, and each with its speed and estimate (at most 10); returns
+ * the count (0: nothing printed). */
+size_t vl_cli_print_unreliable(FILE *out, const char *cmd, const char *label, size_t n,
+                               const vl_point *pts);
+
+/* The exit status of a command's points: 7 when some failed, else 8 when
+ * some are unreliable, else 0. */
+int vl_cli_points_status(size_t failed, size_t unreliable);
+
 /* ---- output folders and their manifests (cli_manifest.c) ---- */
 
 /* Starts the manifest of folder dir (vl_manifest_begin) with the whole

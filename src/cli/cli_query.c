@@ -33,11 +33,11 @@ static const vl_cli_number_rule temperature = {
 
 /* The options both commands take, into opts (room for N_COMMON); the
  * numbers that need a second look go to grid and the given counts. */
-#define N_COMMON 12
+#define N_COMMON 13
 #define UNKNOWN_OR_INCOMPLETE "unknown or incomplete option '%s' (see --help)"
 
 typedef struct {
-  vl_cli_number_rule grid, film_cutoff; /* with their limits in the messages */
+  vl_cli_number_rule grid, film_cutoff, target; /* with their limits in the messages */
   char grid_range[96], cutoff_range[96];
   double grid_value;
 } common_rules;
@@ -55,6 +55,9 @@ static size_t common_options(conditions *c, common_rules *r, vl_cli_option *opts
   snprintf(r->cutoff_range, sizeof r->cutoff_range,
            "option %%s needs a length in (0, %g] m (got '%%s')", VL_FILM_CUTOFF_MAX_M);
   r->film_cutoff.range = r->cutoff_range;
+  r->target = positive;
+  r->target.range_lo = 1e-6, r->target.hi = 0.5;
+  r->target.range = "option %s needs a relative error in [1e-6, 0.5] (got '%s')";
   const char *value = "option %s needs a value";
   vl_cli_option common[N_COMMON] = {
       {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
@@ -75,6 +78,10 @@ static size_t common_options(conditions *c, common_rules *r, vl_cli_option *opts
        .kind = VL_CLI_NUMBER,
        .dest = &c->q.temperature_c,
        .rule = &temperature},
+      {.name = "--target-error",
+       .kind = VL_CLI_NUMBER,
+       .dest = &c->q.target_error,
+       .rule = &r->target},
   };
   memcpy(opts, common, sizeof common);
   return N_COMMON;
@@ -171,8 +178,8 @@ static void friction_usage(FILE *out) {
   fputs("usage: viscolube friction --compound C --surface S --fluid F --speed V_M_S\n"
         "                          [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
         "                          [--flow-factors persson-emt|patir-cheng|smooth]\n"
-        "                          [--film-cutoff M] [--grid N] [--temperature C] [--json]\n"
-        "                          [--quiet]\n"
+        "                          [--film-cutoff M] [--grid N] [--temperature C]\n"
+        "                          [--target-error E] [--json] [--quiet]\n"
         "\n"
         "Friction of one operating point: a smooth rigid cylinder (radius, load per unit\n"
         "length) sliding at V on the stored compound with the stored rough surface in the\n"
@@ -193,8 +200,12 @@ static void friction_usage(FILE *out) {
         "growing by 5 % (about 200 cells), tolerance 1e-6 (docs/NUMERICS.md).\n"
         "The point's model-validity warnings follow on stderr, one a line (with --json\n"
         "only in the JSON; --quiet leaves them out).\n"
+        "--target-error E: the relative error of mu the point should meet (default\n"
+        "0.01); the numerics are refined towards it, and a point still above it (or\n"
+        "without an error estimate) is marked.\n"
         "Exit status: 0 converged, 7 did not converge (iterations and residual on\n"
-        "stderr), 2 bad option or name, 3 unknown material, 5 database error.\n",
+        "stderr), 8 converged but above its error target or without an estimate,\n"
+        "2 bad option or name, 3 unknown material, 5 database error.\n",
         out);
 }
 
@@ -268,8 +279,10 @@ static void friction_text(const conditions *c, const char *compound, double spee
          pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
          vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual, r->points_solved);
   if (isfinite(pt->error_estimate))
-    printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)\n",
-           100.0 * pt->error_estimate);
+    printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)%s\n",
+           100.0 * pt->error_estimate,
+           pt->accuracy == VL_ACCURACY_ABOVE_TARGET ? ": ABOVE the target, not to be trusted to it"
+                                                    : "");
   else
     printf("  error estimate of mu: none (the point on coarser cells did not converge)\n");
 }
@@ -317,6 +330,8 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
             "(%ld iterations, residual %.3g)\n",
             speed, r.point.iterations, r.point.residual);
     rc = vl_status_exit_code(VL_ENOCONV);
+  } else if (vl_cli_print_unreliable(stderr, "friction", NULL, 1, &r.point)) {
+    rc = VL_CLI_EXIT_UNRELIABLE;
   }
 done:
   vl_db_close(db);
@@ -329,7 +344,7 @@ static void compare_usage(FILE *out) {
         "                         [--axis speed|v0eta] [--load N_PER_M] [--radius M]\n"
         "                         [--sigma-s PA] [--flow-factors persson-emt|patir-cheng|smooth]\n"
         "                         [--film-cutoff M] [--grid N] [--json] [--plot]\n"
-        "                         [--temperature C] [--quiet]\n"
+        "                         [--temperature C] [--target-error E] [--quiet]\n"
         "\n"
         "Stribeck curves of several compounds on one surface in one fluid, side by side:\n"
         "mu and u_min/h_rms per compound. The sweep runs over v0*eta from --from to --to\n"
@@ -355,9 +370,12 @@ static void compare_usage(FILE *out) {
         "anything is computed.\n"
         "After the table, on stderr: one line per kind of model-validity warning and\n"
         "compound with the points it applies to (with --json only in the JSON), and the\n"
-        "points that did not converge (speed, iterations, residual). --quiet leaves out\n"
-        "the warnings and the progress lines.\n"
+        "points that did not converge (speed, iterations, residual), then those above their\n"
+        "error target (--target-error, default 0.01) or without an estimate, marked '!' in\n"
+        "the table, `accuracy` in curve.csv and hollow squares in the figures. --quiet\n"
+        "leaves out the warnings and the progress lines.\n"
         "Exit status: 0 every point converged, 7 some did not (written with converged = 0),\n"
+        "8 all converged but some are above their error target or have no estimate,\n"
         "2 bad option or name, 3 unknown material, 5 database error, 6 file error (a file\n"
         "that did not fit is named; the others are kept) or standard output lost.\n"
         "Defaults: --from 1e-12 --to 0.1 --points 45 --axis speed, and those of\n"
@@ -384,6 +402,7 @@ typedef struct {
   double *hrms; /* of each compound's surface (1 when smooth) */
   double eta;   /* Pa s, the fluid's (at --temperature) */
   size_t failed;
+  size_t unreliable; /* converged, but above their error target or without an estimate */
 } compare_curves;
 
 /* The options of `compare`: -1 to go on, else the exit code (0 after
@@ -576,8 +595,9 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
     printf("%12.4g", axis_value(a, cv, i));
     for (size_t k = 0; k < a->nc; k++) {
       const vl_point *p = &cv->pts[k * cv->n + i];
-      if (p->converged)
-        printf(" %14.5g %14.4g", p->mu, p->u_min_m / cv->hrms[k]);
+      if (p->converged) /* '!': not known to its error target */
+        printf(" %13.5g%c %14.4g", p->mu, vl_point_unreliable(p) ? '!' : ' ',
+               p->u_min_m / cv->hrms[k]);
       else
         printf(" %14s %14s", "-", "-");
     }
@@ -694,7 +714,7 @@ static void compare_manifest(vl_manifest *m, vl_db *db, const compare_args *a) {
 }
 
 /* After the table, on stderr: each compound's warnings and failed points. */
-static void compare_report(const compare_args *a, const compare_curves *cv) {
+static void compare_report(const compare_args *a, compare_curves *cv) {
   fflush(stdout); /* the lines follow the table in a shared log */
   for (size_t k = 0; k < a->nc; k++) {
     const vl_point *pts = cv->pts + k * cv->n;
@@ -703,6 +723,7 @@ static void compare_report(const compare_args *a, const compare_curves *cv) {
     snprintf(where, sizeof where, "written with converged = 0 in %s/%s/curve.csv", a->out_dir,
              a->names[k]);
     vl_cli_print_failures(stderr, "compare", a->names[k], cv->n, pts, where);
+    cv->unreliable += vl_cli_print_unreliable(stderr, "compare", a->names[k], cv->n, pts);
   }
 }
 
@@ -731,7 +752,7 @@ static vl_status compare_files(vl_db *db, const compare_args *a, compare_curves 
 
 /* On stdout the table (or JSON) and the files written; then on stderr the
  * warnings and failures. */
-static void compare_print(const compare_args *a, const compare_curves *cv) {
+static void compare_print(const compare_args *a, compare_curves *cv) {
   if (a->c.json) {
     compare_json(a, cv);
   } else {
@@ -767,7 +788,8 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
     st = compare_files(db, &a, &cv, man, &rc, &err);
   }
   if (st != VL_OK || rc) goto done;
-  rc = vl_cli_manifest_finish(man, "compare", a.c.quiet, cv.failed ? 7 : 0);
+  rc = vl_cli_manifest_finish(man, "compare", a.c.quiet,
+                              vl_cli_points_status(cv.failed, cv.unreliable));
   man = NULL;
   compare_print(&a, &cv);
 done:

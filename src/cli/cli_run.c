@@ -272,6 +272,8 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
     char est[16] = "-"; /* no estimate: the coarse solve failed */
     if (p->converged && isfinite(p->error_estimate))
       snprintf(est, sizeof est, "%.2g%%", 100.0 * p->error_estimate);
+    if (vl_point_unreliable(p)) /* not known to its target: marked as such */
+      snprintf(est + strlen(est), sizeof est - strlen(est), "!");
     if (p->converged)
       printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld %8s\n",
              p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0,
@@ -292,7 +294,8 @@ typedef struct {
   vl_json *json; /* NULL for the table, else the writer the curves go to */
   int plot, quiet;
   vl_manifest *man;
-  size_t failed; /* points that did not converge, over the curves */
+  size_t failed;     /* points that did not converge, over the curves */
+  size_t unreliable; /* converged, but above their error target or without an estimate */
 } run_job;
 
 /* The output folders and buffers of a curve of n points into ctx, *pts
@@ -398,6 +401,7 @@ static vl_status curve_outputs(run_job *job, const vl_scene *scene, vl_simulatio
   char where[4300];
   snprintf(where, sizeof where, "written with converged = 0 in %s", curve_path);
   vl_cli_print_failures(stderr, "run", fluid_key, n, pts, where);
+  job->unreliable += vl_cli_print_unreliable(stderr, "run", fluid_key, n, pts);
   return VL_OK;
 }
 
@@ -657,7 +661,7 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
   }
   /* last: the manifest, once every file is in place */
   rc = vl_cli_manifest_finish(job.man, "run", quiet,
-                              job.failed ? vl_status_exit_code(VL_ENOCONV) : 0);
+                              vl_cli_points_status(job.failed, job.unreliable));
   job.man = NULL;
 done:
   vl_manifest_free(job.man); /* a failed run leaves no manifest: the folder is incomplete */

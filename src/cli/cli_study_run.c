@@ -93,7 +93,7 @@ static void iso_time(time_t t, char *buf, size_t size) {
 /* Counts of the outcomes: [state] tasks, and the points. */
 typedef struct {
   size_t state[VL_TASK_ERROR + 1];
-  size_t converged, failed;
+  size_t converged, failed, above_target;
   vl_status first_error;
 } study_counts;
 
@@ -103,6 +103,7 @@ static study_counts count(const vl_cli_study_run *cs, const vl_study_outcome *o)
     c.state[o[i].state]++;
     c.converged += o[i].converged;
     c.failed += o[i].failed;
+    c.above_target += o[i].above_target;
     if (o[i].state == VL_TASK_ERROR && c.first_error == VL_OK) c.first_error = o[i].error;
   }
   return c;
@@ -201,9 +202,10 @@ int vl_cli_study_finish(vl_cli_study_run *cs, int rc) {
   printf("study %s: %zu tasks (%zu run now, %zu already done), %s with %d process%s\n",
          cs->study_path, cs->n_tasks, cs->done_now, cs->n_skipped, cs->mode, cs->processes,
          cs->processes == 1 ? "" : "es");
-  printf("%zu ok, %zu not converged, %zu error, %zu missing; points: %zu converged, %zu failed\n",
-         c.state[VL_TASK_OK], c.state[VL_TASK_NOT_CONVERGED], c.state[VL_TASK_ERROR],
-         c.state[VL_TASK_MISSING], c.converged, c.failed);
+  printf("%zu ok, %zu above their error target, %zu not converged, %zu error, %zu missing; "
+         "points: %zu converged (%zu above their error target), %zu failed\n",
+         c.state[VL_TASK_OK], c.state[VL_TASK_ABOVE_TARGET], c.state[VL_TASK_NOT_CONVERGED],
+         c.state[VL_TASK_ERROR], c.state[VL_TASK_MISSING], c.converged, c.above_target, c.failed);
   if (cs->done_now)
     printf("%.2f s for %zu tasks: %.3g tasks/s\n", seconds, cs->done_now,
            (double)cs->done_now / seconds);
@@ -215,7 +217,7 @@ int vl_cli_study_finish(vl_cli_study_run *cs, int rc) {
   if (cs->io_failed) return vl_status_exit_code(VL_EIO);
   if (c.state[VL_TASK_MISSING]) return vl_status_exit_code(VL_EINTERNAL);
   if (c.state[VL_TASK_ERROR]) return vl_status_exit_code(c.first_error);
-  return c.failed ? vl_status_exit_code(VL_ENOCONV) : 0;
+  return vl_cli_points_status(c.failed, c.above_target);
 }
 
 void vl_cli_study_free(vl_cli_study_run *cs) {

@@ -51,6 +51,9 @@ static void usage(FILE *out) {
       "      output could not be written (e.g. its reader has gone: `| head`)\n"
       "  7   some points did not converge (results written, flagged converged = 0;\n"
       "      stderr lists each with its speed, iterations and residual)\n"
+      "  8   every point converged, but some are above their error target or have no\n"
+      "      error estimate (written with accuracy = above_target or no_estimate,\n"
+      "      marked '!' in the table and in the figures; stderr lists them)\n"
       "  70  out of memory or internal error\n",
       out);
 }
@@ -119,7 +122,7 @@ static int check_stdout(int rc) {
   if (!e && poll(&p, 1, 0) == 1 && (p.revents & POLLERR)) e = EPIPE;
   fprintf(stderr, "viscolube: cannot write to standard output%s%s\n", e ? ": " : "",
           e ? strerror(e) : "");
-  return rc == 0 || rc == 7 ? 6 : rc;
+  return rc == 0 || rc == 7 || rc == VL_CLI_EXIT_UNRELIABLE ? 6 : rc;
 }
 
 int main(int argc, char **argv) {

@@ -11,6 +11,21 @@
 #include <stdio.h>
 #include <string.h>
 
+const char *vl_accuracy_name(int accuracy) {
+  switch (accuracy) {
+  case VL_ACCURACY_UNCHECKED: return "";
+  case VL_ACCURACY_MET: return "met";
+  case VL_ACCURACY_ABOVE_TARGET: return "above_target";
+  case VL_ACCURACY_NO_ESTIMATE: return "no_estimate";
+  }
+  return "?";
+}
+
+bool vl_point_unreliable(const vl_point *pt) {
+  return pt->converged &&
+         (pt->accuracy == VL_ACCURACY_ABOVE_TARGET || pt->accuracy == VL_ACCURACY_NO_ESTIMATE);
+}
+
 const char *vl_regime_name(int regime) {
   switch (regime) {
   case VL_REGIME_DRY: return "dry";

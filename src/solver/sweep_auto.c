@@ -250,6 +250,11 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
     if (coarse && !edge && !(pt->error_estimate < REFINE_MIN_GAIN * old_estimate))
       stop = "estimate not falling with refinement";
   }
+  pt->accuracy = !(pt->error_estimate == pt->error_estimate) ? VL_ACCURACY_NO_ESTIMATE
+                 : pt->error_estimate > o->target_error      ? VL_ACCURACY_ABOVE_TARGET
+                                                             : VL_ACCURACY_MET;
+  if (pt->accuracy == VL_ACCURACY_NO_ESTIMATE)
+    append_warning(pt, "no error estimate (the coarser solve failed)");
   if (pt->error_estimate > o->target_error) {
     char w[120];
     snprintf(w, sizeof w, "error estimate %.2g %% above the target %.2g %%",

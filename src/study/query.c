@@ -86,6 +86,7 @@ vl_status vl_query_scene(const vl_query *q, const char *label, vl_scene *sc, vl_
   if (q->film_cutoff_m > 0.0) sc->effects.film_cutoff_m = q->film_cutoff_m;
   vl_scene_default_numerics(sc);
   if (q->grid) sc->grid = q->grid, sc->auto_numerics = false; /* 0: automatic numerics */
+  if (q->target_error > 0.0) sc->target_error = q->target_error;
   sc->quantity = VL_SWEEP_V0_ETA;
   if (q->at_temperature) {
     sc->effects.temperature = true;

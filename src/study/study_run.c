@@ -16,6 +16,7 @@ const char *vl_task_state_name(vl_task_state s) {
   case VL_TASK_MISSING: return "missing";
   case VL_TASK_OK: return "ok";
   case VL_TASK_NOT_CONVERGED: return "not_converged";
+  case VL_TASK_ABOVE_TARGET: return "above_target";
   case VL_TASK_ERROR: return "error";
   }
   return "?";
@@ -53,7 +54,11 @@ static vl_status solve(const vl_study *s, size_t i, vl_db *db, vl_study_result *
     o->points = r->n;
     o->converged = stats.converged;
     o->failed = stats.failed;
-    o->state = stats.failed ? VL_TASK_NOT_CONVERGED : VL_TASK_OK;
+    for (size_t k = 0; k < r->n; k++)
+      o->above_target += vl_point_unreliable(&r->points[k]);
+    o->state = stats.failed      ? VL_TASK_NOT_CONVERGED
+               : o->above_target ? VL_TASK_ABOVE_TARGET
+                                 : VL_TASK_OK;
   } else {
     o->state = VL_TASK_ERROR;
     o->error = st;

@@ -11,8 +11,8 @@ const char *const vl_curve_columns[] = {
     "v0_m_s",    "v0_eta_pa_m", "deborah",  "mu",          "mu_Rc",           "mu_Rf",
     "mu_Sc",     "mu_Sf",       "u_min_m",  "u_central_m", "contact_width_m", "fluid_load_fraction",
     "regime",    "E_wH_pa",     "a_H_m",    "Q",           "x_centroid_m",    "load_error",
-    "converged", "iterations",  "residual", "eps_f_min",   "error_estimate",  "warnings",
-    NULL};
+    "converged", "iterations",  "residual", "eps_f_min",   "error_estimate",  "accuracy",
+    "warnings",  NULL};
 
 /* -0 (a sum of zeros with a minus sign, e.g. mu_Rf of a dry contact) is
  * written as 0: readers compare text, and "-0" looks like a sign. */
@@ -66,6 +66,7 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->eps_f_min, ok); /* viscous flattening: 1 when off */
     /* empty when no estimate could be made (the coarse solve failed) */
     cell(out, p->error_estimate, ok);
+    fprintf(out, ",%s", ok ? vl_accuracy_name(p->accuracy) : "");
     /* warnings never contain commas or quotes (contact.c writes them) */
     fprintf(out, ",%s\n", p->warnings);
   }
@@ -133,6 +134,7 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "residual", p->residual, 1);
   member(w, "eps_f_min", p->eps_f_min, ok);
   member(w, "error_estimate", p->error_estimate, ok && isfinite(p->error_estimate));
+  vl_json_key_string(w, "accuracy", ok && p->accuracy ? vl_accuracy_name(p->accuracy) : NULL);
   vl_json_key_string(w, "warnings", p->warnings);
   if (meta->flow_factors) {
     vl_json_key_string(w, "flow_factors", meta->flow_factors);

@@ -551,6 +551,22 @@ static size_t draw_failed(fig *f, size_t n, const double *wx, const bool *ok, rg
   return count;
 }
 
+/* Hollow squares on the curve at the points that converged but are not
+ * known to their error target (vl_point_unreliable): drawn where the value
+ * is, unlike a failed point, and in another shape, so the two read apart. */
+static size_t draw_unreliable(fig *f, size_t n, const double *wx, const double *wy,
+                              const vl_point *pts, rgb color) {
+  size_t count = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (!vl_point_unreliable(&pts[i]) || !isfinite(wx[i]) || !isfinite(wy[i])) continue;
+    draw_marker(f, wx[i], wy[i], M_SQUARE, 2.8, WHITE, color, false);
+    count++;
+  }
+  return count;
+}
+
+static const char *UNRELIABLE_TEXT = "above its error target";
+
 /* ---- legend, title ----------------------------------------------------- */
 
 #define LEGEND_X0 0.715
@@ -1041,6 +1057,8 @@ static void draw_stribeck(fig *f, const void *vctx) {
   }
   f->failed = draw_failed(f, n, wx, ok, BLACK, 0);
   if (f->failed) add_legend(f, FAILED_TEXT, false, styles[0], M_CIRCLE, true, BLACK);
+  if (draw_unreliable(f, n, wx, wy, c->pts, BLACK))
+    add_legend(f, UNRELIABLE_TEXT, false, styles[0], M_SQUARE, true, BLACK);
   draw_legend(f, f->vy1);
   free(wx);
   free(wy);
@@ -1367,7 +1385,7 @@ static void draw_compare(fig *f, const void *vctx) {
   draw_axes(f, x_title(c->q), y_title(c->y, hrms), true);
   use_data_area(f);
   off = 0;
-  bool any_half = false, any_failed = false;
+  bool any_half = false, any_failed = false, any_unreliable = false;
   for (size_t j = 0; j < c->k; j++) {
     const vl_plot_curve *cv = &c->curves[j];
     style st = {PALETTE[j % 8], 1 + (int)((j / 8) % 4) * 1, 2.4};
@@ -1390,11 +1408,13 @@ static void draw_compare(fig *f, const void *vctx) {
     size_t nf = draw_failed(f, cv->n, xv + off, ok + off, st.color, (int)(j % 6));
     f->failed += nf;
     if (nf) any_failed = true;
+    if (draw_unreliable(f, cv->n, xv + off, yv + off, cv->pts, st.color)) any_unreliable = true;
     off += cv->n;
   }
   style none = {BLACK, 1, 1};
   if (any_half) add_legend(f, HALF_LOAD_TEXT, false, none, M_DIAMOND, false, GREY);
   if (any_failed) add_legend(f, FAILED_TEXT, false, none, M_CIRCLE, true, BLACK);
+  if (any_unreliable) add_legend(f, UNRELIABLE_TEXT, false, none, M_SQUARE, true, BLACK);
   draw_legend(f, f->vy1);
   free(xv);
   free(yv);

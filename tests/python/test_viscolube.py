@@ -85,7 +85,7 @@ class Scratch(unittest.TestCase):
                     self.assertEqual(cell, "1" if v else "0")
                 elif name == "iterations":
                     self.assertEqual(cell, str(int(v)))
-                elif name in ("regime", "warnings"):
+                elif name in ("regime", "accuracy", "warnings"):
                     self.assertEqual(cell, v)
                 elif cell == "":
                     self.assertTrue(math.isnan(v), (name, i, v))
