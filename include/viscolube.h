@@ -67,6 +67,7 @@
 #include "viscolube/fluid.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
+#include "viscolube/shear_law.h"
 
 /* mechanics: Persson's contact law, flow factors, viscous flattening */
 #include "viscolube/flattening.h"
