@@ -59,6 +59,20 @@ double vl_simulation_temperature_c(const vl_simulation *sim);
 double vl_simulation_shift_factor(const vl_simulation *sim);
 const vl_psd *vl_simulation_psd(const vl_simulation *sim); /* NULL when smooth */
 
+/* The stored pair whose sigma_s law the contact uses (NULL: none; the
+ * scene's sigma_s_pa applies), and the law in use: the pair's at the
+ * scene's temperature and viscosity (vl_shear_law_at), else the constant
+ * sigma_s_pa (0 with solid_shear off). A pair is used when solid_shear is
+ * on, the scene did not give sigma_s_pa, and compound, surface and fluid
+ * have one. */
+const vl_db_pair *vl_simulation_pair(const vl_simulation *sim);
+const vl_shear_law *vl_simulation_shear_law(const vl_simulation *sim);
+
+/* "LAW: p = v, ... (pair C / S / F, SOURCE ...)": where sigma_s came from,
+ * for CSV headers, JSON and manifests; NULL without a pair (the scene's
+ * constant). Owned by sim. */
+const char *vl_simulation_shear_law_text(const vl_simulation *sim);
+
 /* The flow-factor model of the scene's rough film (vl_flow_factors_name)
  * and, for persson-emt, its film cut-off in *film_cutoff_m (else 0); NULL
  * (and 0) when the scene has no rough wet contact. film_cutoff_m may be

@@ -149,7 +149,9 @@ static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x
 
 /* The result of friction: the point's columns and how it was computed. */
 static PyObject *friction_dict(const vl_query *q, const vl_query_result *r) {
-  vl_curve_meta meta = {r->eta_pa_s, 0.0, r->a0_m, r->flow_factors, r->film_cutoff_m};
+  vl_curve_meta meta = {r->eta_pa_s,      0.0,
+                        r->a0_m,          r->flow_factors,
+                        r->film_cutoff_m, r->has_pair ? r->shear_law_text : NULL};
   PyObject *d = PyDict_New();
   for (size_t c = 0; d && vl_curve_columns[c]; c++) {
     const char *name = vl_curve_columns[c];
@@ -315,7 +317,9 @@ static PyObject *run_one(vl_db *db, const vl_scene *sc) {
     goto done;
   }
   vl_contact *c = vl_simulation_contact(s.sim);
-  vl_curve_meta m = {vl_simulation_eta(s.sim), vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0};
+  vl_curve_meta m = {
+      vl_simulation_eta(s.sim),           vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0,
+      vl_simulation_shear_law_text(s.sim)};
   m.flow_factors = vl_simulation_flow_factors(s.sim, &m.film_cutoff_m);
   ret = PyDict_New();
   if (ret && (vlpy_set(ret, "info", curve_info(sc, s.sim, &m)) ||

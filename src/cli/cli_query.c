@@ -76,7 +76,7 @@ static int common_option(const char *cmd, int argc, char **argv, int *i, conditi
     else if (!strcmp(o, "--radius"))
       c->q.radius_m = d;
     else if (!strcmp(o, "--sigma-s"))
-      c->q.sigma_s_pa = d;
+      c->q.sigma_s_pa = d, c->q.sigma_s_given = true;
     else {
       if (d < VL_GRID_MIN || d > VL_GRID_GRADED_MAX || d != floor(d)) {
         fprintf(stderr, "viscolube %s: option --grid needs a whole number in [%d, %d]\n", cmd,
@@ -252,7 +252,9 @@ static int friction_args(int argc, char **argv, conditions *c, const char **comp
 /* The point as JSON; with --temperature the temperature, shift and
  * viscosity come first in the same object. */
 static void friction_json(const conditions *c, const vl_query_result *r) {
-  vl_curve_meta meta = {r->eta_pa_s, 0.0, r->a0_m, r->flow_factors, r->film_cutoff_m};
+  vl_curve_meta meta = {r->eta_pa_s,      0.0,
+                        r->a0_m,          r->flow_factors,
+                        r->film_cutoff_m, r->has_pair ? r->shear_law_text : NULL};
   vl_json w;
   vl_json_init(&w, stdout, 10);
   vl_json_object_begin(&w, VL_JSON_INLINE);
@@ -272,6 +274,7 @@ static void friction_text(const conditions *c, const char *compound, double spee
   double eta = r->eta_pa_s, hrms = r->hrms_m;
   printf("%s on %s in %s at v0 = %g m/s (v0 eta = %g Pa m), R = %g m, fN = %g N/m\n", compound,
          c->q.surface, c->q.fluid, speed, speed * eta, c->q.radius_m, c->q.load_n_per_m);
+  if (r->has_pair) printf("  sigma_s: %s\n", r->shear_law_text);
   if (r->flow_factors) {
     printf("  flow factors: %s", r->flow_factors);
     if (r->film_cutoff_m > 0.0) printf(" (film cut-off %g m)", r->film_cutoff_m);
@@ -534,8 +537,9 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
     *st = VL_EIO;
   }
   if (*st == VL_OK) {
-    vl_curve_meta meta = {cv->eta, vl_simulation_tau(sim),
-                          vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
+    vl_curve_meta meta = {
+        cv->eta, vl_simulation_tau(sim),           vl_contact_a0(vl_simulation_contact(sim)), NULL,
+        0.0,     vl_simulation_shear_law_text(sim)};
     meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
     snprintf(path, sizeof path, "%s/curve.csv", dir);
     /* a file that does not fit is noted and the others still written */
@@ -634,7 +638,7 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
     vl_json_number_digits(&w, axis_value(a, cv, i), 6);
   vl_json_end(&w);
   for (size_t k = 0; k < a->nc; k++) {
-    vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0};
+    vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0, NULL};
     meta.flow_factors = model_of(&a->c, &meta.film_cutoff_m);
     vl_json_key(&w, a->names[k]);
     vl_curve_json(&w, cv->n, cv->pts + k * cv->n, &meta);
@@ -668,7 +672,7 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
   vl_plot_curve curves[MAX_COMPOUNDS];
   for (size_t k = 0; k < a->nc; k++)
     curves[k] = (vl_plot_curve){
-        a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
+        a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0, NULL}, cv->hrms[k]};
   char title[MAX_COMPOUNDS * 80 + 32], subtitle[1024];
   int len = snprintf(title, sizeof title, "Stribeck curves: ");
   for (size_t k = 0; k < a->nc && len > 0 && (size_t)len < sizeof title; k++)

@@ -326,8 +326,15 @@ static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *d
            scene->effects.fluid ? scene->fluid : "", n, numerics, vl_contact_a0(contact),
            vl_contact_p0(contact));
   }
-  vl_curve_meta meta = {vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(contact),
-                        NULL, 0.0};
+  vl_curve_meta meta = {
+      vl_simulation_eta(sim),           vl_simulation_tau(sim), vl_contact_a0(contact), NULL, 0.0,
+      vl_simulation_shear_law_text(sim)};
+  if (meta.shear_law) { /* a stored pair's law gave sigma_s: say which */
+    char key[128];
+    snprintf(key, sizeof key, "sigma_s%s%s", fluid_key ? "_" : "", fluid_key ? fluid_key : "");
+    vl_manifest_add_text(man, key, meta.shear_law);
+    if (!json) printf("sigma_s: %s\n", meta.shear_law);
+  }
   meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
   if (!json && meta.flow_factors) print_flow_model(&meta);
   if (!json && scene->effects.temperature)
