@@ -59,6 +59,11 @@ double vl_simulation_temperature_c(const vl_simulation *sim);
 double vl_simulation_shift_factor(const vl_simulation *sim);
 const vl_psd *vl_simulation_psd(const vl_simulation *sim); /* NULL when smooth */
 
+/* The same sweep at the n speeds v0_m_s (positive, increasing) instead of
+ * the scene's: the calibration of a pair solves at the measured speeds. */
+vl_status vl_simulation_run_speeds(vl_simulation *sim, size_t n, const double *v0_m_s,
+                                   vl_point *out, vl_sweep_stats *stats, vl_error *err);
+
 /* The stored pair whose sigma_s law the contact uses (NULL: none; the
  * scene's sigma_s_pa applies), and the law in use: the pair's at the
  * scene's temperature and viscosity (vl_shear_law_at), else the constant

@@ -386,6 +386,13 @@ vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback
   return vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
 }
 
+vl_status vl_simulation_run_speeds(vl_simulation *sim, size_t n, const double *v0_m_s,
+                                   vl_point *out, vl_sweep_stats *stats, vl_error *err) {
+  run_ctx r = {sim, out, NULL, NULL};
+  vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  return vl_sweep_run_auto(&sim->cfg, &o, n, v0_m_s, out, check_point, &r, stats, err);
+}
+
 const vl_db_pair *vl_simulation_pair(const vl_simulation *sim) {
   return sim->has_pair ? &sim->pair : NULL;
 }
