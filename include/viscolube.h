@@ -87,6 +87,7 @@
 #include "viscolube/sweep.h"
 
 /* database, scenes and simulations */
+#include "viscolube/calibrate.h"
 #include "viscolube/database.h"
 #include "viscolube/query.h"
 #include "viscolube/scene.h"

@@ -197,4 +197,20 @@ vl_status vl_csv_read_psd_file(const char *path, vl_psd_file_kind kind, vl_psd *
 /* vl_csv_read_psd_file for a 2-D spectrum, without the report. */
 vl_status vl_csv_read_psd(const char *path, vl_psd *psd, vl_error *err);
 
+/* ---- measured Stribeck curves ------------------------------------------
+ *
+ * A friction curve (`pair calibrate --measured FILE`): the delimiter,
+ * decimal-comma, comment and number rules above; a header naming a
+ * sliding-speed column with its unit in brackets or parentheses (v, v0,
+ * speed, velocity, sliding speed: m/s, mm/s, um/s, nm/s, cm/s, m/min,
+ * mm/min; or v_m_s) and a friction-coefficient column (mu, cof, friction,
+ * friction coefficient; unit '-' or '1' if any); other columns ignored.
+ * Values are read as written (signs are the caller's to judge); speeds in
+ * m/s. On success *v_m_s and *mu are malloc'd (caller frees) with *n rows.
+ * VL_EINPUT naming file, line and field; VL_EIO, VL_ENOMEM. */
+vl_status vl_friction_curve_read_text(const char *text, size_t len, const char *source,
+                                      double **v_m_s, double **mu, size_t *n, vl_error *err);
+vl_status vl_friction_curve_read_file(const char *path, double **v_m_s, double **mu, size_t *n,
+                                      vl_error *err);
+
 #endif
