@@ -17,7 +17,8 @@
   "       viscolube pair calibrate --compound C --surface S --fluid F --measured FILE\n"           \
   "                             [--load N_PER_M] [--radius M] [--temperature C] [--law LAW]\n"     \
   "                             [--check FILE [--check-load N_PER_M] [--check-radius M]\n"         \
-  "                             [--check-temperature C]] [--out FILE.csv] [--save] [--json]\n"     \
+  "                             [--check-temperature C]] [--out FILE.csv] [--plot STEM]\n"         \
+  "                             [--save] [--json]\n"                                               \
   "\n"                                                                                             \
   "A pair gives sigma_s, the shear stress in the real contact area, as a law of the\n"             \
   "sliding speed v (friction, compare, run, study and Python use it when no sigma_s is\n"          \
@@ -31,11 +32,13 @@
   "calibrate fits LAW (default constant) to a measured curve (speed with its unit in the\n"        \
   "header, e.g. 'v [mm/s]', and mu; CSV, TSV, decimal comma) at the conditions given\n"            \
   "(defaults: friction's), in log10 mu, with 95 %% intervals; --check predicts another\n"          \
-  "measured curve; --save stores the result (refused when the law does not fit).\n"                \
+  "measured curve; --out writes measured, fitted mu and its parts as CSV, --plot\n"                \
+  "STEM.png/.svg draws them; --save stores the result (refused when the law does not fit).\n"      \
   "Removing a compound, surface or fluid removes its pairs.\n"
 
 typedef struct {
   const char *verb, *compound, *surface, *fluid, *law, *measured, *check, *out, *description;
+  const char *plot;
   double p[VL_SHEAR_LAW_MAX_PARAMS];
   bool p_given[VL_SHEAR_LAW_MAX_PARAMS];
   double load, radius, temperature, eta_ref, check_load, check_radius, check_temperature;
@@ -77,6 +80,7 @@ static const char **text_slot(pair_args *a, const char *o) {
          : !strcmp(o, "--measured")    ? &a->measured
          : !strcmp(o, "--check")       ? &a->check
          : !strcmp(o, "--out")         ? &a->out
+         : !strcmp(o, "--plot")        ? &a->plot
          : !strcmp(o, "--description") ? &a->description
                                        : NULL;
 }
@@ -367,6 +371,37 @@ static vl_status write_fit_csv(const char *path, const vl_calibration_sweep *s,
   return vl_atomic_file_commit(&af, err);
 }
 
+/* The figure: measured points over the fitted mu and its parts. */
+static vl_status plot_fit(const char *stem, const vl_calibration_sweep *s,
+                          const vl_calibration_fit *f, vl_error *err) {
+  double *y = malloc(3 * s->n * sizeof *y);
+  bool *informative = malloc(s->n * sizeof *informative);
+  if (!y || !informative) {
+    free(y), free(informative);
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  for (size_t i = 0; i < s->n; i++) {
+    double sc = vl_shear_law_eval(&f->law, s->v_m_s[i], NULL) * s->area[i];
+    y[i] = s->converged[i] ? vl_calibration_model_mu(s, i, &f->law) : NAN;
+    y[s->n + i] = s->converged[i] ? s->mu_other[i] : NAN;
+    y[2 * s->n + i] = s->converged[i] ? sc : NAN;
+    informative[i] = !f->uninformative[i];
+  }
+  char label[64], title[128];
+  snprintf(label, sizeof label, "fitted μ (%s law)", vl_shear_law_name(f->law.kind));
+  snprintf(title, sizeof title, "calibration: rms %.3g in log10 μ", f->rms_log10_mu);
+  vl_plot_calibration_data d = {s->n,     s->v_m_s,     s->mu,       y,
+                                y + s->n, y + 2 * s->n, informative, label};
+  vl_plot_options opt;
+  vl_plot_options_defaults(&opt);
+  opt.title = title;
+  vl_status st = vl_plot_calibration(stem, &d, &opt, NULL, err);
+  free(y);
+  free(informative);
+  return st;
+}
+
 static void points_list(const vl_calibration_sweep *s, const bool *flag, bool want, char *buf,
                         size_t size) {
   size_t len = 0;
@@ -489,6 +524,8 @@ int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet) {
   }
   if (st == VL_OK && a->out && (st = write_fit_csv(a->out, &s, &f, &err)) != VL_OK)
     vl_error_prefix(&err, "--out");
+  if (st == VL_OK && a->plot && (st = plot_fit(a->plot, &s, &f, &err)) != VL_OK)
+    vl_error_prefix(&err, "--plot");
   if (st != VL_OK) {
     rc = fail(st, &err);
   } else {
