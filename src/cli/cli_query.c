@@ -530,6 +530,13 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   *st = vl_simulation_run(sim, pts, NULL, NULL, &stats, err);
   cv->failed += stats.failed;
   if (*st == VL_OK) vl_manifest_add_counts(man, stats.converged, stats.failed);
+  const char *law = vl_simulation_shear_law_text(sim);
+  if (*st == VL_OK && law) { /* a stored pair's law gave sigma_s: say which */
+    char key[128];
+    snprintf(key, sizeof key, "sigma_s_%s", a->names[k]);
+    vl_manifest_add_text(man, key, law);
+    if (!a->c.json && !a->c.quiet) fprintf(stderr, "compare: %s: sigma_s: %s\n", a->names[k], law);
+  }
   char dir[4200], path[4300];
   snprintf(dir, sizeof dir, "%s/%s", a->out_dir, a->names[k]);
   if (*st == VL_OK && vl_cli_make_dirs(dir) != 0) {
