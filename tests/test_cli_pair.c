@@ -52,8 +52,10 @@ static void test_add_show_remove(void **state) {
   vl_test_expect_fail(2, "needs sigma_wet_pa", NULL,
                       "pair add " TRIPLE " --law dewetting --sigma-dry 1e6 --v-d 1");
   vl_test_expect_fail(2, "unknown shear-stress law", NULL, "pair add " TRIPLE " --law eyrin");
-  /* removing the fluid removes the pair */
+  /* removing the fluid removes the pair, and says so */
   assert_int_equal(vl_test_run(&out, &err, "fluid remove water"), 0);
+  assert_non_null(strstr(out, "removed fluid 'water'"));
+  assert_non_null(strstr(out, "and its 1 pair\n"));
   free(out), free(err);
   assert_int_equal(vl_test_run(&out, &err, "pair list --json"), 0);
   size_t objects = 99;

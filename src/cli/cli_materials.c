@@ -1478,10 +1478,16 @@ static int do_remove(const context *cx, const vl_cli_globals *g, int argc, char 
   vl_db *db = NULL;
   if ((rc = open_db(cx, g, &db)) >= 0) return rc;
   vl_error err;
+  size_t pairs = 0; /* its pairs go with it (ON DELETE CASCADE): say so */
+  if (vl_db_pair_count(db, cx->noun, name, &pairs, &err) != VL_OK) pairs = 0;
   vl_status st = cx->kind == NOUN_COMPOUND  ? vl_db_compound_remove(db, name, &err)
                  : cx->kind == NOUN_SURFACE ? vl_db_surface_remove(db, name, &err)
                                             : vl_db_fluid_remove(db, name, &err);
-  if (st == VL_OK) printf("removed %s '%s' from %s\n", cx->noun, name, vl_db_path(db));
+  if (st == VL_OK && pairs)
+    printf("removed %s '%s' from %s, and its %zu pair%s\n", cx->noun, name, vl_db_path(db), pairs,
+           pairs > 1 ? "s" : "");
+  else if (st == VL_OK)
+    printf("removed %s '%s' from %s\n", cx->noun, name, vl_db_path(db));
   vl_db_close(db);
   return st == VL_OK ? 0 : fail(cx, st, err.msg);
 }

@@ -246,7 +246,9 @@ static int do_remove(vl_db *db, const pair_args *a, int quiet) {
   vl_error err;
   vl_status st = vl_db_pair_remove(db, a->compound, a->surface, a->fluid, &err);
   if (st != VL_OK) return fail(st, &err);
-  if (!quiet) printf("removed the pair %s / %s / %s\n", a->compound, a->surface, a->fluid);
+  if (!quiet)
+    printf("removed pair '%s / %s / %s' from %s\n", a->compound, a->surface, a->fluid,
+           vl_db_path(db));
   return 0;
 }
 
@@ -286,7 +288,8 @@ static int do_add(vl_db *db, const pair_args *a, int quiet) {
   st = vl_db_pair_add(db, &p, &err);
   if (st != VL_OK) return fail(st, &err);
   if (!quiet)
-    printf("added the pair %s / %s / %s (%s law)\n", a->compound, a->surface, a->fluid, a->law);
+    printf("added pair '%s / %s / %s' to %s: %s law, typed in\n", a->compound, a->surface, a->fluid,
+           vl_db_path(db), a->law);
   return 0;
 }
 
@@ -494,7 +497,8 @@ static int save_fit(vl_db *db, const pair_args *a, const vl_calibration_sweep *s
   vl_status st = vl_db_pair_add(db, &p, &err);
   if (st != VL_OK) return fail(st, &err);
   if (!quiet && !a->json)
-    printf("stored as the pair %s / %s / %s\n", a->compound, a->surface, a->fluid);
+    printf("stored as the pair: added pair '%s / %s / %s' to %s\n", a->compound, a->surface,
+           a->fluid, vl_db_path(db));
   return 0;
 }
 
