@@ -95,9 +95,40 @@ static void test_pair_changes_mu_sc_only(void **state) {
   vl_db_close(db);
 }
 
+/* At another temperature the stored law is shifted as shear_law.h states:
+ * Eyring's sigma_e with the absolute temperature, the dewetting speed as
+ * 1/eta of the fluid there. */
+static void test_pair_at_temperature(void **state) {
+  (void)state;
+  vl_db *db = open_fresh();
+  add_pair(db, (vl_shear_law){VL_SHEAR_EYRING, {2e5, 3e5, 1e-4}, 20.0, NAN});
+  vl_query q;
+  vl_query_defaults(&q);
+  q.compound = "sbr-unfilled", q.surface = "paper-0.5um", q.fluid = "water";
+  q.at_temperature = true, q.temperature_c = 50.0;
+  vl_query_result r;
+  vl_error err;
+  if (vl_query_friction(db, &q, 1e-3, &r, &err) != VL_OK) fail_msg("%s", err.msg);
+  assert_true(r.has_pair && r.point.converged);
+  double se = 3e5 * (50.0 + 273.15) / (20.0 + 273.15);
+  assert_true(fabs(r.shear_law.p[1] / se - 1.0) < 1e-14);
+  assert_true(r.shear_law.p[0] == 2e5 && r.shear_law.p[2] == 1e-4);
+  assert_true(fabs(r.sigma_s_pa / (2e5 + se * asinh(10.0)) - 1.0) < 1e-14);
+  vl_error e2;
+  assert_int_equal(vl_db_pair_remove(db, "sbr-unfilled", "paper-0.5um", "water", &e2), VL_OK);
+  add_pair(db, (vl_shear_law){VL_SHEAR_DEWETTING, {2e6, 3e5, 1e-4}, NAN, 1e-3});
+  if (vl_query_friction(db, &q, 1e-3, &r, &err) != VL_OK) fail_msg("%s", err.msg);
+  assert_true(r.has_pair);
+  /* water at 50 C is thinner than at 20 C: V_d grows by eta(20)/eta(50) */
+  assert_true(fabs(r.shear_law.p[2] / (1e-4 * 1e-3 / r.eta_pa_s) - 1.0) < 1e-14);
+  assert_true(r.eta_pa_s < 0.6e-3 && r.shear_law.p[2] > 1.6e-4);
+  vl_db_close(db);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_pair_changes_mu_sc_only),
+      cmocka_unit_test(test_pair_at_temperature),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
