@@ -130,7 +130,10 @@ vl_status vl_friction_curve_read_text(const char *text, size_t len, const char *
     return VL_EINPUT;
   }
   st = header(line, &d, source, line_no, &col_v, &col_mu, &scale, &n_cells, err);
-  if (st != VL_OK) return st;
+  if (st != VL_OK) {
+    vl_import_sanitise(err); /* the header's cells are quoted */
+    return st;
+  }
   vl_problems pr;
   vl_problems_init(&pr);
   double *v = NULL, *m = NULL;
