@@ -75,6 +75,7 @@
 #include "viscolube/fluid.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
+#include "viscolube/shear_law.h"
 
 /* mechanics: Persson's contact law, flow factors, viscous flattening */
 #include "viscolube/flattening.h"
@@ -94,6 +95,7 @@
 #include "viscolube/sweep.h"
 
 /* database, scenes and simulations */
+#include "viscolube/calibrate.h"
 #include "viscolube/database.h"
 #include "viscolube/query.h"
 #include "viscolube/scene.h"

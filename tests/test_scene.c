@@ -554,8 +554,10 @@ static void test_inconsistent_effects(void **state) {
               11, "[sweep] quantity", "fluid = on");
   parse_fails(edit(BASE, fx, "viscoelastic = off"), 10, "[sweep] quantity",
               "viscoelastic = on (line 15 sets it off)");
-  parse_fails(edit(BASE, fx, "viscoelastic = on\nsolid_shear = on"), 16, "[effects] solid_shear",
-              "sigma_s_pa > 0");
+  /* solid shear without the key: the stored pair's law, else the seed's 1 MPa
+   * (issue 34; refused before) */
+  parse_ok(edit(BASE, fx, "viscoelastic = on\nsolid_shear = on"));
+  assert_true(g_scene.sigma_s_pa == VL_SCENE_SIGMA_S_PA && !g_scene.sigma_s_given);
   parse_fails(edit(edit(BASE, fx, "viscoelastic = on\nsolid_shear = on"), "load_n_per_m = 1000",
                    "load_n_per_m = 1000\nsigma_s_pa = 0"),
               17, "[effects] solid_shear", "sigma_s_pa > 0");

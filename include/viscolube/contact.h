@@ -46,6 +46,7 @@
 #include "viscolube/persson.h"
 #include "viscolube/results.h"
 #include "viscolube/rheology.h"
+#include "viscolube/shear_law.h"
 #include "viscolube/status.h"
 
 typedef enum {
@@ -145,7 +146,12 @@ typedef struct {
   vl_prony rubber; /* n_terms = 0: elastic with E = e_inf_pa */
   double radius_m;
   double load_n_per_m;
-  double sigma_s_pa;                /* shear stress in the real contact area; 0 = off */
+  double sigma_s_pa; /* shear stress in the real contact area; 0 = off */
+  /* sigma_s as a law of the sliding speed v0 (shear_law.h, at the
+   * contact's temperature and viscosity), used instead of sigma_s_pa when
+   * not NULL; not owned, must outlive the contact. sigma_s does not enter
+   * the solution, only mu_Sc = sigma_s(v0) (1/fN) int A/A0 dx. */
+  const vl_shear_law *shear_law;
   const vl_persson *roughness;      /* NULL = smooth (hard contact); not owned */
   double eta_pa_s;                  /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
   vl_flow_factor_kind flow_factors; /* with roughness; smooth surfaces use smooth */

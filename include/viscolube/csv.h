@@ -120,4 +120,7 @@ vl_status vl_csv_read_psd_file(const char *path, vl_psd_file_kind kind, vl_psd *
 /* vl_csv_read_psd_file for a 2-D spectrum, without the report. */
 vl_status vl_csv_read_psd(const char *path, vl_psd *psd, vl_error *err);
 
+vl_status vl_friction_curve_read_file(const char *path, double **v_m_s, double **mu, size_t *n,
+                                      vl_error *err);
+
 #endif

@@ -22,6 +22,11 @@ typedef struct {
    * and JSON points carry the key flow_factors. */
   const char *flow_factors;
   double film_cutoff_m; /* persson-emt's g_cut (m); 0 for the other models */
+  /* Where sigma_s came from when a stored pair's law gave it
+   * (vl_simulation_shear_law_text), else NULL (the constant sigma_s of the
+   * scene or the options): CSV files then carry a comment line
+   * "# sigma_s = TEXT" and JSON points the key sigma_s_law. */
+  const char *shear_law;
 } vl_curve_meta;
 
 /* CSV columns of the curve, in order (a NULL-terminated list). */

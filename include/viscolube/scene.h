@@ -38,6 +38,10 @@ typedef enum {
   VL_ELASTIC_GIVEN        /* E = elastic_modulus_pa */
 } vl_elastic_choice;
 
+/* sigma_s of a scene with solid_shear = on and no [contact] sigma_s_pa, and
+ * no stored pair for its materials: the seed's 1 MPa. */
+#define VL_SCENE_SIGMA_S_PA 1e6
+
 typedef struct {
   char path[1024];
   char title[256];
@@ -50,6 +54,10 @@ typedef struct {
   double elastic_modulus_pa;
   /* [contact] */
   double radius_m, load_n_per_m, sigma_s_pa;
+  /* sigma_s_pa was given (the scene's key, a query's sigma_s): without it,
+   * a scene with solid_shear takes the law of the stored pair of its
+   * compound, surface and fluid when there is one (vl_simulation_create) */
+  bool sigma_s_given;
   /* [sweep] */
   vl_sweep_quantity quantity;
   double from, to;

@@ -45,6 +45,11 @@ double vl_simulation_temperature_c(const vl_simulation *sim);
 double vl_simulation_shift_factor(const vl_simulation *sim);
 const vl_psd *vl_simulation_psd(const vl_simulation *sim); /* NULL when smooth */
 
+/* "LAW: p = v, ... (pair C / S / F, SOURCE ...)": where sigma_s came from,
+ * for CSV headers, JSON and manifests; NULL without a pair (the scene's
+ * constant). Owned by sim. */
+const char *vl_simulation_shear_law_text(const vl_simulation *sim);
+
 /* The flow-factor model of the scene's rough film (vl_flow_factors_name)
  * and, for persson-emt, its film cut-off in *film_cutoff_m (else 0); NULL
  * (and 0) when the scene has no rough wet contact. film_cutoff_m may be

@@ -109,6 +109,9 @@ typedef struct {
   double eta_pa_s, tau_s, a0_m;
   const char *flow_factors; /* vl_simulation_flow_factors: a static name or NULL */
   double film_cutoff_m;
+  /* vl_simulation_shear_law_text: the stored pair's law that gave sigma_s
+   * ("": the scene's constant) */
+  char shear_law[VL_DB_TEXT_MAX + 512];
 } vl_study_result;
 
 /* Solves task i of s on db (a sweep, as vl_simulation_run) into *out

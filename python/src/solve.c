@@ -127,6 +127,7 @@ static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x
   Py_ssize_t grid = 0;
   vl_query_defaults(q);
   *x = (query_extra){NAN, VL_QUERY_FROM_PA_M, VL_QUERY_TO_PA_M, VL_QUERY_POINTS};
+  q->sigma_s_pa = NAN; /* not given: the stored pair's law, else the default */
   if (!PyArg_ParseTupleAndKeywords(args, kw, "sss|ddddzdndddn", kwlist, &q->compound, &q->surface,
                                    &q->fluid, &q->load_n_per_m, &q->radius_m, &q->sigma_s_pa,
                                    &q->temperature_c, &ff, &q->film_cutoff_m, &grid, &x->speed_m_s,
@@ -145,12 +146,16 @@ static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x
   }
   q->grid = (size_t)grid;
   q->at_temperature = !isnan(q->temperature_c);
+  q->sigma_s_given = !isnan(q->sigma_s_pa);
+  if (!q->sigma_s_given) q->sigma_s_pa = VL_QUERY_SIGMA_S_PA;
   return 0;
 }
 
 /* The result of friction: the point's columns and how it was computed. */
 static PyObject *friction_dict(const vl_query *q, const vl_query_result *r) {
-  vl_curve_meta meta = {r->eta_pa_s, 0.0, r->a0_m, r->flow_factors, r->film_cutoff_m};
+  vl_curve_meta meta = {r->eta_pa_s,      0.0,
+                        r->a0_m,          r->flow_factors,
+                        r->film_cutoff_m, r->has_pair ? r->shear_law_text : NULL};
   PyObject *d = PyDict_New();
   for (size_t c = 0; d && vl_curve_columns[c]; c++) {
     const char *name = vl_curve_columns[c];
@@ -173,6 +178,8 @@ static PyObject *friction_dict(const vl_query *q, const vl_query_result *r) {
        vlpy_set_text(d, "flow_factors", r->flow_factors) ||
        vlpy_set_double(d, "film_cutoff_m", r->film_cutoff_m) ||
        vlpy_set_double(d, "temperature_c", q->temperature_c) ||
+       vlpy_set_double(d, "sigma_s_pa", r->sigma_s_pa) ||
+       vlpy_set_text(d, "sigma_s_law", r->has_pair ? r->shear_law_text : NULL) ||
        vlpy_set(d, "points_solved", PyLong_FromSize_t(r->points_solved))))
     Py_CLEAR(d);
   return d;
@@ -283,7 +290,8 @@ static PyObject *curve_info(const vl_scene *sc, vl_simulation *sim, const vl_cur
        vlpy_set_text(d, "flow_factors", m->flow_factors) ||
        vlpy_set_double(d, "film_cutoff_m", m->film_cutoff_m) ||
        vlpy_set_double(d, "temperature_c", vl_simulation_temperature_c(sim)) ||
-       vlpy_set_double(d, "a_T", vl_simulation_shift_factor(sim))))
+       vlpy_set_double(d, "a_T", vl_simulation_shift_factor(sim)) ||
+       vlpy_set_text(d, "sigma_s_law", vl_simulation_shear_law_text(sim))))
     Py_CLEAR(d);
   return d;
 }
@@ -319,7 +327,9 @@ static PyObject *run_one(vl_db *db, const vl_scene *sc) {
     goto done;
   }
   vl_contact *c = vl_simulation_contact(s.sim);
-  vl_curve_meta m = {vl_simulation_eta(s.sim), vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0};
+  vl_curve_meta m = {
+      vl_simulation_eta(s.sim),           vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0,
+      vl_simulation_shear_law_text(s.sim)};
   m.flow_factors = vl_simulation_flow_factors(s.sim, &m.film_cutoff_m);
   ret = PyDict_New();
   if (ret && (vlpy_set(ret, "info", curve_info(sc, s.sim, &m)) ||

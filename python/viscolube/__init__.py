@@ -278,6 +278,26 @@ class Database:
         raw["warnings"] = [w for w in raw["warnings"].split(";") if w]
         return Point(raw)
 
+    def calibrate(self, compound, surface, fluid, measured=None, v=None, mu=None,
+                  law="constant", load=None, radius=None, temperature=None, save=False,
+                  description=None):
+        """Calibrates the sigma_s law of the pair (compound, surface, fluid)
+        on a measured Stribeck curve, as `viscolube pair calibrate`: a file
+        (measured: speed with its unit in the header, and mu) or the
+        sequences v (m/s) and mu; law 'constant', 'eyring' or 'dewetting';
+        the measurement's load (N/m, 117), radius (m, 1e-3), temperature
+        (C). Returns a dict: law, parameters, ci95 (95 % half-widths),
+        rms_log10_mu, fits (and why not), n_points, n_used,
+        unreached_v_m_s, uninformative_v_m_s, sweep_seconds, fit_seconds,
+        saved. save=True stores it as the pair (InputError when the law
+        does not fit; ExistsError when the pair exists)."""
+        kw = self._given(load_n_per_m=load, radius_m=radius, temperature_c=temperature,
+                         description=description)
+        return self._db.calibrate(
+            compound, surface, fluid, measured=_path(measured),
+            v_m_s=None if v is None else [float(x) for x in v],
+            mu=None if mu is None else [float(x) for x in mu], law=law, save=bool(save), **kw)
+
     def run(self, scene):
         """Runs a scene: a path to an INI file (cases/*.ini) or a dict
         {section: {key: value}} (see scene_text). Returns a Curve, or for a

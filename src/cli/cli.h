@@ -17,6 +17,9 @@ typedef struct {
 /* `compound|surface|fluid VERB ...` (argv[0] is the noun). Returns exit code. */
 int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv);
 
+/* `pair VERB ...` (cli_pair.c, argv[0] is "pair"). Returns exit code. */
+int vl_cli_pair(const vl_cli_globals *g, int argc, char **argv);
+
 /* `run SCENE [--out DIR] [--json]` (argv[0] is "run"). Returns exit code. */
 int vl_cli_run(const vl_cli_globals *g, int argc, char **argv);
 

@@ -66,8 +66,14 @@ static int do_remove(const vl_cli_noun *noun, const vl_cli_context *cx, const vl
   int rc = vl_cli_named_args(cx, g, argc, argv, NULL, 0, &name, &db);
   if (rc >= 0) return rc;
   vl_error err;
+  size_t pairs = 0; /* its pairs go with it (ON DELETE CASCADE): say so */
+  if (vl_db_pair_count(db, cx->noun, name, &pairs, &err) != VL_OK) pairs = 0;
   vl_status st = noun->remove(db, name, &err);
-  if (st == VL_OK) printf("removed %s '%s' from %s\n", cx->noun, name, vl_db_path(db));
+  if (st == VL_OK && pairs)
+    printf("removed %s '%s' from %s, and its %zu pair%s\n", cx->noun, name, vl_db_path(db), pairs,
+           pairs > 1 ? "s" : "");
+  else if (st == VL_OK)
+    printf("removed %s '%s' from %s\n", cx->noun, name, vl_db_path(db));
   vl_db_close(db);
   return st == VL_OK ? 0 : vl_cli_fail(cx, st, err.msg);
 }

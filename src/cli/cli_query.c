@@ -91,6 +91,7 @@ static size_t common_options(conditions *c, common_rules *r, vl_cli_option *opts
 static void common_given(vl_cli_parser *p, conditions *c, const common_rules *r) {
   if (vl_cli_find(p, "--grid")->given) c->q.grid = (size_t)r->grid_value;
   if (vl_cli_find(p, "--temperature")->given) c->q.at_temperature = true;
+  if (vl_cli_find(p, "--sigma-s")->given) c->q.sigma_s_given = true; /* over a stored pair */
 }
 
 /* Parses argv by p (its table: the common options and the command's);
@@ -240,7 +241,9 @@ static int friction_args(int argc, char **argv, conditions *c, const char **comp
 /* The point as JSON; with --temperature the temperature, shift and
  * viscosity come first in the same object. */
 static void friction_json(const conditions *c, const vl_query_result *r) {
-  vl_curve_meta meta = {r->eta_pa_s, 0.0, r->a0_m, r->flow_factors, r->film_cutoff_m};
+  vl_curve_meta meta = {r->eta_pa_s,      0.0,
+                        r->a0_m,          r->flow_factors,
+                        r->film_cutoff_m, r->has_pair ? r->shear_law_text : NULL};
   vl_json w;
   vl_json_init(&w, stdout, 10);
   vl_json_object_begin(&w, VL_JSON_INLINE);
@@ -265,6 +268,7 @@ static void friction_text(const conditions *c, const char *compound, double spee
     if (r->film_cutoff_m > 0.0) printf(" (film cut-off %g m)", r->film_cutoff_m);
     putchar('\n');
   }
+  if (r->has_pair) printf("  sigma_s: %s\n", r->shear_law_text);
   if (c->q.at_temperature)
     printf("  at %g C: compound times x a_T = %.4g (WLF), fluid viscosity %.4g Pa s\n",
            c->q.temperature_c, r->shift_factor, eta);
@@ -513,6 +517,13 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   *st = vl_simulation_run(sim, pts, NULL, NULL, &stats, err);
   cv->failed += stats.failed;
   if (*st == VL_OK) vl_manifest_add_counts(man, stats.converged, stats.failed);
+  const char *law = vl_simulation_shear_law_text(sim);
+  if (*st == VL_OK && law) { /* a stored pair's law gave sigma_s: say which */
+    char key[128];
+    snprintf(key, sizeof key, "sigma_s_%s", a->names[k]);
+    vl_manifest_add_text(man, key, law);
+    if (!a->c.json && !a->c.quiet) fprintf(stderr, "compare: %s: sigma_s: %s\n", a->names[k], law);
+  }
   char dir[4200], path[4300];
   snprintf(dir, sizeof dir, "%s/%s", a->out_dir, a->names[k]);
   if (*st == VL_OK && vl_cli_make_dirs(dir) != 0) {
@@ -520,8 +531,9 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
     *st = VL_EIO;
   }
   if (*st == VL_OK) {
-    vl_curve_meta meta = {cv->eta, vl_simulation_tau(sim),
-                          vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
+    vl_curve_meta meta = {
+        cv->eta, vl_simulation_tau(sim),           vl_contact_a0(vl_simulation_contact(sim)), NULL,
+        0.0,     vl_simulation_shear_law_text(sim)};
     meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
     snprintf(path, sizeof path, "%s/curve.csv", dir);
     /* a file that does not fit is noted and the others still written */
@@ -621,7 +633,7 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
     vl_json_number_digits(&w, axis_value(a, cv, i), 6);
   vl_json_end(&w);
   for (size_t k = 0; k < a->nc; k++) {
-    vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0};
+    vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0, NULL};
     meta.flow_factors = model_of(&a->c, &meta.film_cutoff_m);
     vl_json_key(&w, a->names[k]);
     vl_curve_json(&w, cv->n, cv->pts + k * cv->n, &meta);
@@ -655,7 +667,7 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
   vl_plot_curve curves[MAX_COMPOUNDS];
   for (size_t k = 0; k < a->nc; k++)
     curves[k] = (vl_plot_curve){
-        a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
+        a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0, NULL}, cv->hrms[k]};
   char title[MAX_COMPOUNDS * 80 + 32], subtitle[1024];
   int len = snprintf(title, sizeof title, "Stribeck curves: ");
   for (size_t k = 0; k < a->nc && len > 0 && (size_t)len < sizeof title; k++)

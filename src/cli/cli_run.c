@@ -358,8 +358,12 @@ static void curve_announce(const run_job *job, const vl_scene *scene, vl_simulat
 
 /* The curve's description for the writers, and its lines before the table. */
 static vl_curve_meta curve_meta(const run_job *job, const vl_scene *scene, vl_simulation *sim) {
-  vl_curve_meta meta = {vl_simulation_eta(sim), vl_simulation_tau(sim),
-                        vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
+  vl_curve_meta meta = {vl_simulation_eta(sim),
+                        vl_simulation_tau(sim),
+                        vl_contact_a0(vl_simulation_contact(sim)),
+                        NULL,
+                        0.0,
+                        vl_simulation_shear_law_text(sim)};
   meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
   if (!job->json && meta.flow_factors) print_flow_model(&meta);
   if (!job->json && scene->effects.temperature)
@@ -423,6 +427,12 @@ static vl_status run_one(run_job *job, const vl_scene *scene, const char *out_di
   ctx.t_start = vl_cli_now_s();
   curve_announce(job, scene, sim, fluid_key, n);
   vl_curve_meta meta = curve_meta(job, scene, sim);
+  if (meta.shear_law) { /* a stored pair's law gave sigma_s: say which */
+    char key[128];
+    snprintf(key, sizeof key, "sigma_s%s%s", fluid_key ? "_" : "", fluid_key ? fluid_key : "");
+    vl_manifest_add_text(job->man, key, meta.shear_law);
+    if (!job->json) printf("sigma_s: %s\n", meta.shear_law);
+  }
   vl_sweep_stats stats;
   st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, err);
   if (st != VL_OK) goto done;

@@ -25,6 +25,7 @@ static void usage(FILE *out) {
       "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
       "  study      many curves from a study file, serially, with --jobs N or under mpirun:\n"
       "             viscolube study STUDY --out DIR [--jobs N]\n"
+      "  pair       a compound/surface/fluid's sigma_s law: list, show, add, remove, calibrate\n"
       "  friction   one operating point of a stored compound/surface/fluid triple\n"
       "  compare    Stribeck curves of several compounds side by side\n"
       "  flattening viscous flattening of the asperities, epsilon_f vs u/h_rms (seed Figs. 19-20)\n"
@@ -102,6 +103,7 @@ static int dispatch(int argc, char **argv) {
   if (!strcmp(noun, "friction")) return vl_cli_friction(&g, argc - i, argv + i);
   if (!strcmp(noun, "compare")) return vl_cli_compare(&g, argc - i, argv + i);
   if (!strcmp(noun, "flattening")) return vl_cli_flattening(&g, argc - i, argv + i);
+  if (!strcmp(noun, "pair")) return vl_cli_pair(&g, argc - i, argv + i);
   fprintf(stderr, "viscolube: unknown noun '%s' (see viscolube --help)\n", noun);
   return 2;
 }

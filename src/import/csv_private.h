@@ -84,4 +84,18 @@ vl_status vl_csv_read_psd_text(const char *text, size_t len, const char *source,
                                vl_psd_file_kind kind, vl_psd *psd, vl_psd_read_report *report,
                                vl_error *err);
 
+/* ---- measured Stribeck curves ------------------------------------------
+ *
+ * A friction curve (`pair calibrate --measured FILE`): the delimiter,
+ * decimal-comma, comment and number rules above; a header naming a
+ * sliding-speed column with its unit in brackets or parentheses (v, v0,
+ * speed, velocity, sliding speed: m/s, mm/s, um/s, nm/s, cm/s, m/min,
+ * mm/min; or v_m_s) and a friction-coefficient column (mu, cof, friction,
+ * friction coefficient; unit '-' or '1' if any); other columns ignored.
+ * Values are read as written (signs are the caller's to judge); speeds in
+ * m/s. On success *v_m_s and *mu are malloc'd (caller frees) with *n rows.
+ * VL_EINPUT naming file, line and field; VL_EIO, VL_ENOMEM. */
+vl_status vl_friction_curve_read_text(const char *text, size_t len, const char *source,
+                                      double **v_m_s, double **mu, size_t *n, vl_error *err);
+
 #endif

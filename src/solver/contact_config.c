@@ -9,6 +9,7 @@
 #include "flow_factors_emt.h"
 #include "persson_internal.h"
 #include "rheology_internal.h"
+#include "shear_law_private.h"
 
 #include <math.h>
 #include <string.h>
@@ -47,6 +48,7 @@ static vl_status check_geometry(const vl_contact_config *cfg, vl_error *err) {
     vl_error_set(err, "load_n_per_m must be positive (got %g)", cfg->load_n_per_m);
     return VL_EINPUT;
   }
+  if (cfg->shear_law && vl_shear_law_validate(cfg->shear_law, err) != VL_OK) return VL_EINPUT;
   if (!(cfg->sigma_s_pa >= 0.0 && isfinite(cfg->sigma_s_pa))) {
     vl_error_set(err, "sigma_s_pa must be >= 0 (got %g)", cfg->sigma_s_pa);
     return VL_EINPUT;

@@ -115,7 +115,10 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   pt->x_centroid_m = (sum_pcx + sum_pfx) / fN;
   pt->mu_Rc = -sum_pcx / (fN * R);
   pt->mu_Rf = -sum_pfx / (fN * R);
-  pt->mu_Sc = cfg->sigma_s_pa * sum_area / fN;
+  /* the line contact slides at v0 everywhere: one sigma_s for all nodes */
+  double sigma_s =
+      cfg->shear_law ? vl_shear_law_eval(cfg->shear_law, c->v0, NULL) : cfg->sigma_s_pa;
+  pt->mu_Sc = sigma_s * sum_area / fN;
   pt->mu_Sf_couette = couette / fN;
   pt->mu_Sf_poiseuille = poiseuille / fN;
   pt->mu_Sf = pt->mu_Sf_couette + pt->mu_Sf_poiseuille;

@@ -59,6 +59,7 @@ static vl_contact *film_helper(vl_contact *c) {
     film.flattening = NULL;
     film.flattening_psd = NULL;
     film.sigma_s_pa = 0.0;
+    film.shear_law = NULL;
     film.grid_growth = 1.0;
     if (film.grid > FILM_START_GRID) film.grid = FILM_START_GRID;
     if (vl_contact_create(&film, &c->coarse, NULL) != VL_OK) c->coarse = NULL;

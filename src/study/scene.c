@@ -624,9 +624,13 @@ static vl_status scene_check(parse_state *ps) {
   if (ps->key_line[K_ELASTIC_MODULUS] && sc->effects.viscoelastic)
     return check_fail(ps, K_ELASTIC_MODULUS,
                       "applies to [effects] viscoelastic = off only (the rubber is viscoelastic)");
+  /* solid shear without the key: the stored pair's law (vl_simulation_create),
+   * else the seed's 1 MPa */
+  if (sc->effects.solid_shear && !ps->key_line[K_SIGMA_S]) sc->sigma_s_pa = VL_SCENE_SIGMA_S_PA;
   if (sc->effects.solid_shear && !(sc->sigma_s_pa > 0.0))
     return check_fail(ps, K_SOLID_SHEAR, "solid_shear = on needs [contact] sigma_s_pa > 0");
   if (!sc->effects.solid_shear) sc->sigma_s_pa = 0.0;
+  sc->sigma_s_given = ps->key_line[K_SIGMA_S] != 0;
   if (sc->effects.flow_factors != VL_FLOW_FACTORS_SMOOTH && !sc->effects.roughness)
     return check_fail(ps, K_FLOW_FACTORS, "%s needs [effects] roughness = on",
                       vl_flow_factors_name(sc->effects.flow_factors));

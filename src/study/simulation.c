@@ -1,5 +1,6 @@
 /* Scene -> solver (simulation.h). */
 #include "viscolube/simulation.h"
+#include "shear_law_private.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 
@@ -13,6 +14,7 @@
 #include "viscolube/flattening.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -32,6 +34,10 @@ struct vl_simulation {
    * NAN for a compound entered as a Prony series or an elastic scene */
   double window_min_rad_s, window_max_rad_s;
   vl_contact *contact;
+  bool has_pair;
+  vl_db_pair pair;
+  vl_shear_law shear_law; /* in use: the pair's at temperature, or the constant */
+  char shear_law_text[VL_DB_TEXT_MAX + 512];
   size_t n;
   double *v0;
   bool *fields;
@@ -128,6 +134,42 @@ vl_status vl_compound_at_temperature(const vl_db_compound *c, double t_c, vl_pro
   }
   *out = p;
   *a_T = a;
+  return VL_OK;
+}
+
+/* The stored pair's law when the scene leaves sigma_s to it (solid shear
+ * on, no sigma_s_pa given, a fluid and a surface named): at the scene's
+ * temperature and viscosity, with its provenance in shear_law_text. */
+static vl_status apply_pair(vl_simulation *sim, vl_db *db, vl_error *err) {
+  const vl_scene *sc = &sim->scene;
+  sim->shear_law = vl_shear_law_constant(sc->effects.solid_shear ? sc->sigma_s_pa : 0.0);
+  if (!sc->effects.solid_shear || sc->sigma_s_given || !sc->fluid[0] || !sc->surface[0])
+    return VL_OK;
+  bool found = false;
+  vl_status st = vl_db_pair_get(db, sc->compound, sc->surface, sc->fluid, &sim->pair, &found, err);
+  if (st != VL_OK) {
+    vl_error_prefix(err, "%s: the pair of its materials", sc->path);
+    return st;
+  }
+  if (!found) return VL_OK;
+  st = vl_shear_law_at(&sim->pair.law, sim->temperature_c, sim->eta_pa_s, &sim->shear_law, err);
+  if (st != VL_OK) return st;
+  sim->has_pair = true;
+  const vl_shear_law *l = &sim->shear_law;
+  size_t len = 0, size = sizeof sim->shear_law_text;
+  char *t = sim->shear_law_text;
+  len += (size_t)snprintf(t, size, "%s:", vl_shear_law_name(l->kind));
+  for (size_t k = 0; k < vl_shear_law_n_params(l->kind) && len < size; k++)
+    len += (size_t)snprintf(t + len, size - len, "%s %s = %.6g", k ? "," : "",
+                            vl_shear_law_param_name(l->kind, k), l->p[k]);
+  const vl_db_pair *p = &sim->pair;
+  if (len < size)
+    len += (size_t)snprintf(t + len, size - len, " (pair %s / %s / %s, %s %s", p->compound,
+                            p->surface, p->fluid, p->source, p->created_at);
+  if (len < size && !strcmp(p->source, VL_DB_SOURCE_CALIBRATED))
+    len += (size_t)snprintf(t + len, size - len, " from %s %s", p->measured_file,
+                            p->measured_fingerprint);
+  if (len < size) snprintf(t + len, size - len, ")");
   return VL_OK;
 }
 
@@ -236,6 +278,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
       }
     }
   }
+  if ((st = apply_pair(sim, db, err)) != VL_OK) goto fail;
   vl_contact_config cfg;
   vl_contact_config_defaults(&cfg);
   cfg.rubber = sim->rubber;
@@ -250,6 +293,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.radius_m = scene->radius_m;
   cfg.load_n_per_m = scene->load_n_per_m;
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
+  cfg.shear_law = sim->has_pair ? &sim->shear_law : NULL;
   cfg.roughness = sim->table;
   /* only a scene with the fluid effect gets fluid unknowns */
   cfg.eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
@@ -344,6 +388,21 @@ vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback
   run_ctx r = {sim, out, cb, user};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
   return vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
+}
+
+vl_status vl_simulation_run_speeds(vl_simulation *sim, size_t n, const double *v0_m_s,
+                                   vl_point *out, vl_sweep_stats *stats, vl_error *err) {
+  run_ctx r = {sim, out, NULL, NULL};
+  vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  return vl_sweep_run_auto(&sim->cfg, &o, n, v0_m_s, out, check_point, &r, stats, err);
+}
+
+const vl_db_pair *vl_simulation_pair(const vl_simulation *sim) {
+  return sim->has_pair ? &sim->pair : NULL;
+}
+const vl_shear_law *vl_simulation_shear_law(const vl_simulation *sim) { return &sim->shear_law; }
+const char *vl_simulation_shear_law_text(const vl_simulation *sim) {
+  return sim->has_pair ? sim->shear_law_text : NULL;
 }
 
 const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cutoff_m) {

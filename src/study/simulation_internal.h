@@ -30,4 +30,19 @@ const vl_scene *vl_simulation_scene(const vl_simulation *sim);
 /* The compound's Prony series at the scene's temperature. */
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim);
 
+/* The same sweep at the n speeds v0_m_s (positive, increasing) instead of
+ * the scene's: the calibration of a pair solves at the measured speeds. */
+vl_status vl_simulation_run_speeds(vl_simulation *sim, size_t n, const double *v0_m_s,
+                                   vl_point *out, vl_sweep_stats *stats, vl_error *err);
+
+/* The stored pair whose sigma_s law the contact uses (NULL: none; the
+ * scene's sigma_s_pa applies), and the law in use: the pair's at the
+ * scene's temperature and viscosity (vl_shear_law_at), else the constant
+ * sigma_s_pa (0 with solid_shear off). A pair is used when solid_shear is
+ * on, the scene did not give sigma_s_pa, and compound, surface and fluid
+ * have one. */
+const vl_db_pair *vl_simulation_pair(const vl_simulation *sim);
+
+const vl_shear_law *vl_simulation_shear_law(const vl_simulation *sim);
+
 #endif

@@ -51,6 +51,8 @@ static vl_status solve(const vl_study *s, size_t i, vl_db *db, vl_study_result *
     r->tau_s = vl_simulation_tau(sim);
     r->a0_m = vl_contact_a0(vl_simulation_contact(sim));
     r->flow_factors = vl_simulation_flow_factors(sim, &r->film_cutoff_m);
+    const char *law = vl_simulation_shear_law_text(sim);
+    snprintf(r->shear_law, sizeof r->shear_law, "%s", law ? law : "");
     o->points = r->n;
     o->converged = stats.converged;
     o->failed = stats.failed;

@@ -33,8 +33,14 @@ static void print_model_comment(FILE *out, const vl_curve_meta *meta) {
   fputc('\n', out);
 }
 
+/* The comment line that says which stored pair's law gave sigma_s. */
+static void print_shear_comment(FILE *out, const vl_curve_meta *meta) {
+  if (meta->shear_law) fprintf(out, "# sigma_s = %s\n", meta->shear_law);
+}
+
 void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta) {
   print_model_comment(out, meta);
+  print_shear_comment(out, meta);
   for (size_t c = 0; vl_curve_columns[c]; c++)
     fprintf(out, "%s%s", c ? "," : "", vl_curve_columns[c]);
   fputc('\n', out);
@@ -140,6 +146,7 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
     vl_json_key_string(w, "flow_factors", meta->flow_factors);
     if (meta->film_cutoff_m > 0.0) member(w, "film_cutoff_m", meta->film_cutoff_m, 1);
   }
+  if (meta->shear_law) vl_json_key_string(w, "sigma_s_law", meta->shear_law);
 }
 
 void vl_point_json(vl_json *w, const vl_point *p, const vl_curve_meta *meta) {

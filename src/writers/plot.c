@@ -1549,6 +1549,76 @@ vl_status vl_plot_modulus(const char *stem, const vl_plot_modulus_data *d,
   return render(stem, opt, draw_modulus, d, report, err);
 }
 
+/* ---- a pair's calibration ---------------------------------------------- */
+
+static void widen_positive(size_t n, const double *v, double *lo, double *hi) {
+  for (size_t i = 0; v && i < n; i++)
+    if (v[i] > 0 && isfinite(v[i])) *lo = fmin(*lo, v[i]), *hi = fmax(*hi, v[i]);
+}
+
+static void draw_calibration(fig *f, const void *vctx) {
+  const vl_plot_calibration_data *d = vctx;
+  layout_single(f);
+  sweep_x_axis(f, d->n, d->v_m_s);
+  double lo = INFINITY, hi = 0.0;
+  widen_positive(d->n, d->mu, &lo, &hi);
+  widen_positive(d->n, d->mu_fit, &lo, &hi);
+  widen_positive(d->n, d->mu_other, &lo, &hi);
+  widen_positive(d->n, d->mu_sc, &lo, &hi);
+  if (!(hi > 0)) lo = 0.01, hi = 1.0;
+  if (hi < 1.5 * lo) lo /= 1.5, hi *= 1.5;
+  f->y = log_axis(lo, hi, len_y(f), CH_TICK * f->ph, true);
+  draw_axes(f, "sliding speed #<0x11>v#<0x01> (m/s)", "friction coefficient #<0x11>μ#<0x01>", true);
+  use_data_area(f);
+  PLFLT *xs = malloc(d->n * sizeof *xs), *ys = malloc(d->n * sizeof *ys);
+  if (!xs || !ys) {
+    free(xs), free(ys);
+    return;
+  }
+  for (size_t i = 0; i < d->n; i++)
+    xs[i] = to_wx(f, d->v_m_s[i]);
+  const struct {
+    const double *y;
+    const char *label;
+    style st;
+  } lines[] = {{d->mu_fit, d->fit_label ? d->fit_label : "fitted μ", {PALETTE[0], 1, 2.2}},
+               {d->mu_sc, "μ#dSc#u of the fitted law", {PALETTE[1], 2, 1.6}},
+               {d->mu_other, "μ without σ#ds#u", {PALETTE[2], 3, 1.6}}};
+  for (size_t k = 0; k < sizeof lines / sizeof *lines; k++) {
+    if (!lines[k].y) continue;
+    for (size_t i = 0; i < d->n; i++)
+      ys[i] = isfinite(lines[k].y[i]) ? to_wy(f, lines[k].y[i]) : NAN;
+    draw_runs(f, d->n, xs, ys, lines[k].st);
+    add_legend(f, lines[k].label, true, lines[k].st, M_NONE, false, lines[k].st.color);
+    f->series++;
+  }
+  bool any_hollow = false;
+  for (size_t i = 0; i < d->n; i++) {
+    if (!(d->mu[i] > 0 && isfinite(d->mu[i]))) continue;
+    bool hollow = d->informative && !d->informative[i];
+    any_hollow |= hollow;
+    draw_marker(f, xs[i], to_wy(f, d->mu[i]), M_CIRCLE, 2.6, hollow ? WHITE : PALETTE[3],
+                PALETTE[3], !hollow);
+  }
+  style mst = {PALETTE[3], 1, 1.0};
+  add_legend(f, "measured", false, mst, M_CIRCLE, false, PALETTE[3]);
+  if (any_hollow)
+    add_legend(f, "measured, μ#dSc#u < 10 % of μ", false, mst, M_CIRCLE, true, PALETTE[3]);
+  f->series++;
+  draw_legend(f, f->vy1);
+  free(xs);
+  free(ys);
+}
+
+vl_status vl_plot_calibration(const char *stem, const vl_plot_calibration_data *d,
+                              const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
+  if (!d || d->n == 0 || !d->v_m_s || !d->mu || !positive_finite(d->n, d->v_m_s)) {
+    vl_error_set(err, "plot: no measured points, or a speed that is not positive");
+    return VL_EINPUT;
+  }
+  return render(stem, opt, draw_calibration, d, report, err);
+}
+
 /* ---- shift factors ----------------------------------------------------- */
 
 typedef struct {

@@ -92,7 +92,9 @@ vl_status vl_study_write_task(const vl_study *s, size_t i, const char *out_dir,
   if (st != VL_OK) return st;
   print_head(af.f, s, i, &r->outcome);
   if (r->outcome.state != VL_TASK_ERROR) {
-    const vl_curve_meta meta = {r->eta_pa_s, r->tau_s, r->a0_m, r->flow_factors, r->film_cutoff_m};
+    const vl_curve_meta meta = {r->eta_pa_s,      r->tau_s,
+                                r->a0_m,          r->flow_factors,
+                                r->film_cutoff_m, r->shear_law[0] ? r->shear_law : NULL};
     st = print_rows(af.f, vl_study_task_at(s, i), &r->scene, r->n, r->points, &meta, err);
     if (st != VL_OK) {
       vl_atomic_file_abort(&af);

@@ -145,6 +145,27 @@ class TestFriction(Scratch):
             compound="sbr-filled", surface="paper-1um", fluid="water", speed=0.3, load=200,
             radius=2e-3, sigma_s=5e5, temperature=30, flow_factors="patir-cheng")
 
+    def test_calibrate_recovers_and_stores_the_pair(self):
+        # a curve of sigma_s = 6e5 (given) is fitted back exactly; stored, it
+        # is the pair friction takes when sigma_s is not given (issue 34)
+        triple = ("sbr-unfilled", "paper-0.5um", "water")
+        with vl.Database(self.db_path) as db:
+            speeds = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2]
+            mu = [db.friction(*triple, v, sigma_s=6e5).mu for v in speeds]
+            self.assertIsNone(db.friction(*triple, 1e-4).sigma_s_law)
+            r = db.calibrate(*triple, v=speeds, mu=mu, save=True, description="test")
+            self.assertTrue(r["fits"] and r["saved"])
+            self.assertLess(abs(r["parameters"]["sigma_s_pa"] / 6e5 - 1), 1e-6)
+            self.assertLess(r["rms_log10_mu"], 1e-6)
+            p = db.friction(*triple, 1e-4)
+            self.assertIn("constant: sigma_s_pa = 600000", p.sigma_s_law)
+            self.assertIn("calibrated", p.sigma_s_law)
+            self.assertLess(abs(p.mu / mu[2] - 1), 1e-6)
+            with self.assertRaises(vl.InputError):
+                db.calibrate(*triple, v=speeds, mu=[0.1, -0.1, 0.1, 0.1, 0.1])
+            with self.assertRaises(vl.ExistsError):
+                db.calibrate(*triple, v=speeds, mu=mu, save=True)
+
 
 class TestScenes(Scratch):
     def test_run_equals_cli_curve_and_fields(self):
