@@ -491,7 +491,9 @@ static void test_cli_scene(void **state) {
   free(text);
   char *out = NULL, *err = NULL;
   int rc = vl_test_run(&out, &err, "run %s --out %s/out", scene, vl_test_dir);
-  if (rc != 0) fail_msg("run exited %d: %s", rc, err);
+  /* 488 cells (for the test's time) leave points above the 1 % target:
+   * every point converges, and the run says so with exit status 8 */
+  if (rc != 0 && rc != 8) fail_msg("run exited %d: %s", rc, err);
   free(out), free(err);
   char path[1400];
   snprintf(path, sizeof path, "%s/out/curve.csv", vl_test_dir);
