@@ -285,6 +285,26 @@ static void test_sigma_without_solid_shear(void **state) {
   assert_true(g_scene.effects.solid_shear && g_scene.sigma_s_pa == 2e6);
 }
 
+/* [contact] moving: rubber (the default, the paper's) or counterface (a seal:
+ * the rubber at rest, docs/MODEL.md section 11); a bad word and a deborah
+ * sweep (the memory a rubber at rest has not) are refused at their lines. */
+static void test_moving(void **state) {
+  (void)state;
+  parse_ok(BASE);
+  assert_int_equal(g_scene.moving, VL_MOVING_RUBBER);
+  const char *v0 = edit(BASE, "quantity = deborah", "quantity = v0");
+  parse_ok(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = counterface"));
+  assert_int_equal(g_scene.moving, VL_MOVING_COUNTERFACE);
+  parse_ok(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = rubber"));
+  assert_int_equal(g_scene.moving, VL_MOVING_RUBBER);
+  parse_fails(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = rod"), 9,
+              "[contact] moving", "expected rubber or counterface, got 'rod'");
+  parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = counterface"), 11,
+              "[sweep] quantity", "moving = rubber (line 9");
+  parse_fails(edit(v0, "radius_m = 0.01", "radius_m = 0.01\nmovng = rubber"), 8, "movng",
+              "did you mean 'moving'?");
+}
+
 /* fields_at at the ends of [from, to] and a single sweep point. */
 static void test_sweep_edges(void **state) {
   (void)state;
@@ -717,6 +737,7 @@ int main(void) {
       cmocka_unit_test(test_elastic_modulus),
       cmocka_unit_test(test_sigma_without_solid_shear),
       cmocka_unit_test(test_sweep_edges),
+      cmocka_unit_test(test_moving),
       cmocka_unit_test(test_shipped_cases),
       cmocka_unit_test(test_unknown_section_and_key),
       cmocka_unit_test(test_bad_numbers),

@@ -141,8 +141,28 @@ typedef enum {
 #define VL_WET_ROUGH_GRID 2928 /* 97.6 a0 / (a0/30) */
 #define VL_WET_GRID_GROWTH 1.05
 
+/* Which body moves through the contact (docs/MODEL.md section 11). Both are
+ * solved in the frame of the contact, the fluid entering from x < 0. */
+typedef enum {
+  /* The paper's: the rubber (and the fluid it drags) moves at +v0 under the
+   * rigid curved body; its macroscopic deformation carries the Prony memory
+   * (rolling friction mu_Rc, mu_Rf); friction is the force on the rigid body.
+   * The default: zero in a zeroed configuration. */
+  VL_MOVING_RUBBER = 0,
+  /* Seals, wipers: the rubber part (its profile f(x)) is at rest and a flat
+   * rigid rough counter-surface slides under it at +v0. The macroscopic
+   * deformation is static: elastic with the relaxed modulus (no memory, no
+   * Prony kernel); the asperity state is as with VL_MOVING_RUBBER (the
+   * counter-surface's asperities sweep the rubber at v0: |Er(wH)|); the
+   * Couette flux is the counter-surface's; the friction is the tangential
+   * force on the flat counter-surface, mu = mu_Sc + mu_Sf, and the rolling
+   * terms do not apply (vl_point.rolling_na). */
+  VL_MOVING_COUNTERFACE
+} vl_moving;
+
 typedef struct {
-  vl_prony rubber; /* n_terms = 0: elastic with E = e_inf_pa */
+  vl_prony rubber;  /* n_terms = 0: elastic with E = e_inf_pa */
+  vl_moving moving; /* VL_MOVING_RUBBER (0) or VL_MOVING_COUNTERFACE */
   double radius_m;
   double load_n_per_m;
   double sigma_s_pa;                /* shear stress in the real contact area; 0 = off */

@@ -18,6 +18,12 @@ typedef struct {
                     * failed continuation attempt and coarse-grid starts) */
   double residual; /* final scaled residual norm (max norm) */
   double mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf;
+  /* true when the rolling terms do not apply (a moving counter-surface,
+   * contact.h VL_MOVING_COUNTERFACE: the rubber at rest has no macroscopic
+   * hysteresis, and the flat counter-surface no slope for a pressure to push
+   * on): mu_Rc and mu_Rf then hold 0, and writers show them as not
+   * applicable (empty CSV cells, JSON null), not as computed zeros */
+  bool rolling_na;
   double u_min_m, u_central_m; /* min separation; separation at the pressure centroid */
   double x_centroid_m;         /* pressure centroid (negative: inlet side) */
   double contact_width_m;      /* extent where pc >= 1% of its maximum */

@@ -50,6 +50,7 @@ typedef struct {
   double elastic_modulus_pa;
   /* [contact] */
   double radius_m, load_n_per_m, sigma_s_pa;
+  vl_moving moving; /* which body moves (contact.h); VL_MOVING_RUBBER by default */
   /* [sweep] */
   vl_sweep_quantity quantity;
   double from, to;

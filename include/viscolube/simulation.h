@@ -49,7 +49,9 @@ const vl_scene *vl_simulation_scene(const vl_simulation *sim);
 double vl_simulation_eta(const vl_simulation *sim);             /* Pa s, 0 if no fluid named; with
                                                                  * [effects] temperature and fluid on:
                                                                  * at the scene's temperature */
-double vl_simulation_tau(const vl_simulation *sim);             /* s, one-term compounds, else 0 */
+double vl_simulation_tau(const vl_simulation *sim);             /* s, one-term compounds, else 0
+                                                                 * (and 0 with [contact] moving =
+                                                                 * counterface: no memory) */
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim); /* at the scene's temperature */
 /* [effects] temperature = on: the scene's temperature_c (C) and the WLF
  * shift factor a_T its compound's times were multiplied by (1 in an

@@ -52,6 +52,9 @@ static int column_number(const char *name, const vl_point *p, const vl_curve_met
   for (size_t k = 0; k < sizeof solved_columns / sizeof *solved_columns; k++)
     if (!strcmp(name, solved_columns[k].name)) {
       *v = p->converged ? *(const double *)((const char *)p + solved_columns[k].offset) : NAN;
+      /* rolling terms of a moving counter-surface: not applicable, as the
+       * CSV's empty cell */
+      if (p->rolling_na && !strncmp(name, "mu_R", 4)) *v = NAN;
       return 1;
     }
   return 0;

@@ -27,7 +27,10 @@ static void set_scales(vl_contact *c) {
   const vl_contact_config *cfg = &c->cfg;
   double red = vl_prony_reduced_factor(&cfg->rubber);
   c->er_ref = vl_prony_e0(&cfg->rubber) * red;
-  c->er_inf = cfg->rubber.e_inf_pa * red;
+  /* a moving counter-surface: the rubber at rest deforms statically, with
+   * the relaxed modulus and no memory (docs/MODEL.md section 11) */
+  c->nk = cfg->moving == VL_MOVING_COUNTERFACE ? 0 : cfg->rubber.n_terms;
+  c->er_inf = c->nk == cfg->rubber.n_terms ? cfg->rubber.e_inf_pa * red : c->er_ref;
   c->a0 = sqrt(4.0 * cfg->load_n_per_m * cfg->radius_m / (M_PI * c->er_ref));
   c->p0 = 2.0 * cfg->load_n_per_m / (M_PI * c->a0);
   c->uscale = c->a0 * c->a0 / cfg->radius_m;
@@ -36,7 +39,7 @@ static void set_scales(vl_contact *c) {
   c->v0 = NAN;
   c->u_ref = 1.0;
   c->kappa = 1.0;
-  if (c->wet && c->rough && cfg->rubber.n_terms > 0) {
+  if (c->wet && c->rough && c->nk > 0) {
     /* Q = v_GT / v_ML: v_GT = (loss-peak frequency) x (relaxed Hertz width
      * 2 a0), v_ML = 10 h_rms^2 Er0 / (R eta) (docs/MODEL.md section 8) */
     double wpk = 0.0;
@@ -50,7 +53,7 @@ static void set_scales(vl_contact *c) {
 /* The arrays of the state on the n cells, and the Prony strengths. No
  * allocation happens inside the Newton loop afterwards. */
 static vl_status alloc_state(vl_contact *c, vl_error *err) {
-  size_t n = c->n, nt = c->cfg.rubber.n_terms;
+  size_t n = c->n, nt = c->nk;
   c->A = malloc((nt ? nt : 1) * sizeof *c->A);
   c->beta = calloc(nt ? nt : 1, sizeof *c->beta);
   c->M = calloc(n * n, sizeof *c->M);
@@ -115,7 +118,7 @@ static vl_status create_helpers(vl_contact *c, vl_error *err) {
     free(spans);
     return st;
   }
-  if (c->cfg.rubber.n_terms > 0) {
+  if (c->nk > 0) {
     vl_contact_config dry = c->cfg;
     dry.eta_pa_s = 0.0;
     return vl_contact_create(&dry, &c->dry, err);

@@ -198,6 +198,10 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
                                                                 : (int)cfg->flow_factors);
     return VL_EINPUT;
   }
+  if ((unsigned)cfg->moving > VL_MOVING_COUNTERFACE) {
+    vl_error_set(err, "unknown moving body (%d)", (int)cfg->moving);
+    return VL_EINPUT;
+  }
   st = check_scales(cfg, err);
   if (st != VL_OK) return st;
   if (!(cfg->tolerance > 0.0 && cfg->tolerance < 1.0)) {

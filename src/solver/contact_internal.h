@@ -93,6 +93,8 @@ struct vl_contact {
    * the uniform Toeplitz coefficients. All NULL on a uniform grid (nv = n). */
   size_t nv, *first, *span;
   double *psum;
+  size_t nk;        /* Prony terms of the macroscopic kernel: cfg.rubber's, or 0 (elastic,
+                     * relaxed) when the counter-surface moves (vl_moving) */
   double *A, *beta; /* Prony strengths and v0 tau_k / a0 */
   vl_toeplitz kern;
   double *M; /* dense influence matrix, row-major: U_i += M[i n + j] P_j */

@@ -63,6 +63,7 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   double sum_pcx = 0.0, sum_pfx = 0.0, sum_pf = 0.0, sum_area = 0.0;
   double pmax = 0.0, pfmax = 0.0, umin = INFINITY, couette = 0.0, poiseuille = 0.0;
   size_t imax = 0, iumin = 0;
+  bool counterface = cfg->moving == VL_MOVING_COUNTERFACE;
   double *theta = c->theta;
   if (c->wet) film_fraction(c, y, theta);
   pt->eps_f_min = c->sf ? INFINITY : 1.0;
@@ -93,12 +94,19 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
       /* a smooth hard contact (u = 0) carries no fluid shear: sigma_s acts there */
       if (!(!c->rough && area > 0.0) && u > 0.0)
         couette += theta[i] * (v.phi_f + v.phi_fs) * cfg->eta_pa_s * c->v0 / u * dx;
-      poiseuille += -v.phi_fp * 0.5 * u * dpdx * dx;
+      /* on the rigid curved body: its wall shear; on a moving flat
+       * counter-surface: the same wall shear on the rubber plus the fluid
+       * pressure on the rubber's slope, -\int pf u' = \int u pf' (the film's
+       * tangential balance, docs/MODEL.md section 11) */
+      poiseuille += (counterface ? 1.0 - 0.5 * v.phi_fp : -0.5 * v.phi_fp) * u * dpdx * dx;
     }
   }
   pt->x_centroid_m = (sum_pcx + sum_pfx) / fN;
-  pt->mu_Rc = -sum_pcx / (fN * R);
-  pt->mu_Rf = -sum_pfx / (fN * R);
+  /* rolling terms: the pressures against the slope x/R of the rigid body;
+   * a flat counter-surface has none (docs/MODEL.md section 11) */
+  pt->rolling_na = counterface;
+  pt->mu_Rc = counterface ? 0.0 : -sum_pcx / (fN * R);
+  pt->mu_Rf = counterface ? 0.0 : -sum_pfx / (fN * R);
   pt->mu_Sc = cfg->sigma_s_pa * sum_area / fN;
   pt->mu_Sf_couette = couette / fN;
   pt->mu_Sf_poiseuille = poiseuille / fN;

@@ -31,6 +31,7 @@ typedef enum {
   K_RADIUS,
   K_LOAD,
   K_SIGMA_S,
+  K_MOVING,
   K_QUANTITY,
   K_FROM,
   K_TO,
@@ -67,6 +68,7 @@ static const struct {
     [K_RADIUS] = {"contact", "radius_m", true},
     [K_LOAD] = {"contact", "load_n_per_m", true},
     [K_SIGMA_S] = {"contact", "sigma_s_pa", false},
+    [K_MOVING] = {"contact", "moving", false},
     [K_QUANTITY] = {"sweep", "quantity", true},
     [K_FROM] = {"sweep", "from", true},
     [K_TO] = {"sweep", "to", true},
@@ -312,6 +314,14 @@ static int contact_key(parse_state *ps, key_id id, const char *section, const ch
   case K_SIGMA_S:
     if (!parse_double(value, &sc->sigma_s_pa) || sc->sigma_s_pa < 0.0)
       return fail(ps, section, key, "expected a number >= 0, got '%s'", value);
+    return 1;
+  case K_MOVING:
+    if (!strcmp(value, "rubber"))
+      sc->moving = VL_MOVING_RUBBER;
+    else if (!strcmp(value, "counterface"))
+      sc->moving = VL_MOVING_COUNTERFACE;
+    else
+      return fail(ps, section, key, "expected rubber or counterface, got '%s'", value);
     return 1;
   default: return fail(ps, section, key, "unknown key%s", "");
   }
@@ -620,6 +630,12 @@ static vl_status scene_check(parse_state *ps) {
     return check_fail(ps, K_QUANTITY,
                       "deborah needs [effects] viscoelastic = on (line %d sets it off)",
                       ps->key_line[K_VISCOELASTIC]);
+  /* v0 tau/a0 measures the macroscopic memory, which a rubber at rest has not */
+  if (sc->quantity == VL_SWEEP_DEBORAH && sc->moving == VL_MOVING_COUNTERFACE)
+    return check_fail(ps, K_QUANTITY,
+                      "deborah needs [contact] moving = rubber (line %d: with a moving "
+                      "counter-surface the rubber deforms statically, without memory)",
+                      ps->key_line[K_MOVING]);
   if (ps->key_line[K_ELASTIC_MODULUS] && sc->effects.viscoelastic)
     return check_fail(ps, K_ELASTIC_MODULUS,
                       "applies to [effects] viscoelastic = off only (the rubber is viscoelastic)");

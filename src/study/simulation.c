@@ -247,6 +247,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.radius_m = scene->radius_m;
   cfg.load_n_per_m = scene->load_n_per_m;
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
+  cfg.moving = scene->moving;
   cfg.roughness = sim->table;
   /* only a scene with the fluid effect gets fluid unknowns */
   cfg.eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
@@ -307,7 +308,10 @@ vl_contact *vl_simulation_contact(vl_simulation *sim) { return sim->contact; }
 const vl_scene *vl_simulation_scene(const vl_simulation *sim) { return &sim->scene; }
 double vl_simulation_eta(const vl_simulation *sim) { return sim->eta_pa_s; }
 double vl_simulation_tau(const vl_simulation *sim) {
-  return sim->rubber.n_terms == 1 ? sim->rubber.tau_s[0] : 0.0;
+  /* a rubber at rest (moving counter-surface) has no macroscopic memory:
+   * no Deborah number v0 tau/a0 */
+  bool memory = sim->scene.moving == VL_MOVING_RUBBER;
+  return sim->rubber.n_terms == 1 && memory ? sim->rubber.tau_s[0] : 0.0;
 }
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim) { return &sim->rubber; }
 double vl_simulation_temperature_c(const vl_simulation *sim) { return sim->temperature_c; }

@@ -44,8 +44,9 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->v0_m_s * meta->eta_pa_s, meta->eta_pa_s > 0);
     cell(out, p->v0_m_s * meta->tau_s / meta->a0_m, meta->tau_s > 0 && meta->a0_m > 0);
     cell(out, p->mu, ok);
-    cell(out, p->mu_Rc, ok);
-    cell(out, p->mu_Rf, ok);
+    /* not applicable (a moving counter-surface): empty, not a computed 0 */
+    cell(out, p->mu_Rc, ok && !p->rolling_na);
+    cell(out, p->mu_Rf, ok && !p->rolling_na);
     cell(out, p->mu_Sc, ok);
     cell(out, p->mu_Sf, ok);
     cell(out, p->u_min_m, ok);
@@ -112,8 +113,8 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "deborah", meta->a0_m > 0 ? p->v0_m_s * meta->tau_s / meta->a0_m : 0,
          meta->tau_s > 0 && meta->a0_m > 0);
   member(w, "mu", p->mu, ok);
-  member(w, "mu_Rc", p->mu_Rc, ok);
-  member(w, "mu_Rf", p->mu_Rf, ok);
+  member(w, "mu_Rc", p->mu_Rc, ok && !p->rolling_na);
+  member(w, "mu_Rf", p->mu_Rf, ok && !p->rolling_na);
   member(w, "mu_Sc", p->mu_Sc, ok);
   member(w, "mu_Sf", p->mu_Sf, ok);
   member(w, "u_min_m", p->u_min_m, ok);
