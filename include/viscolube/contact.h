@@ -211,6 +211,14 @@ typedef struct {
    * sets as it solves), so nothing outside it changes under it. */
   const vl_flattening_config *flattening;
   const vl_psd *flattening_psd;
+  /* Fluid pressure at the inlet end (x_min) and at the outlet end (x_max) of
+   * the domain (Pa, >= 0, wet contacts only; 0 and 0: the paper's flooded
+   * contact). A seal's sealed pressure on its oil side (docs/MODEL.md
+   * section 12): the rubber's surface on that side of the tip x = 0 is
+   * bathed in it, so the deformation and the load balance count the fluid
+   * pressure above it there (the ambient: p_inlet_pa for x < 0, p_outlet_pa
+   * for x > 0), and fN is the lip's force above that ambient. */
+  double p_inlet_pa, p_outlet_pa;
 } vl_contact_config;
 
 /* Sets the numerics of cfg (grid, grid_growth, domain, tolerance,

@@ -35,9 +35,14 @@ typedef struct {
   double peak_pressure_pa, x_peak_m;
   double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
   double x_min_film_m; /* where u is smallest (EHL constriction: outlet side, x > 0) */
-  int regime;          /* vl_regime */
-  double eps_f_min;    /* smallest epsilon_f(u) over the grid (viscous flattening);
-                        * 1 when the effect is off */
+  /* fluid flux per unit length (m^2/s) through the film along +x (the
+   * direction of the moving surface), the flux through the inlet end of
+   * the domain: constant along the full film (docs/MODEL.md section 5);
+   * 0 when dry */
+  double flux_m2_s;
+  int regime;       /* vl_regime */
+  double eps_f_min; /* smallest epsilon_f(u) over the grid (viscous flattening);
+                     * 1 when the effect is off */
   /* relative error of mu estimated from a coarser solve (sweep.h; the
    * point on cells three times as wide); NAN when none was made or it failed */
   double error_estimate;

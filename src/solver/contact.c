@@ -81,6 +81,12 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
     for (size_t i = 0; i < n; i++)
       c->sf[i] = 1.0, c->dsf[i] = 0.0;
   }
+  if (c->cfg.p_inlet_pa > 0.0 || c->cfg.p_outlet_pa > 0.0) {
+    c->pamb = malloc(n * sizeof *c->pamb);
+    if (!c->pamb) return vl_contact_nomem(c, err);
+    for (size_t i = 0; i < n; i++)
+      c->pamb[i] = (c->xi[i] < 0.0 ? c->cfg.p_inlet_pa : c->cfg.p_outlet_pa) / c->p0;
+  }
   c->dg = c->g + n;
   c->cf = c->g + 2 * n;
   c->dcf = c->g + 3 * n;
@@ -205,6 +211,7 @@ void vl_contact_free(vl_contact *c) {
   free(c->Jf);
   free(c->rw);
   free(c->sf);
+  free(c->pamb);
   free(c->film_work);
   free(c);
 }

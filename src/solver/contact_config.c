@@ -212,6 +212,16 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
     vl_error_set(err, "viscosity must be >= 0 (got %g Pa s)", cfg->eta_pa_s);
     return VL_EINPUT;
   }
+  if (!(cfg->p_inlet_pa >= 0.0 && isfinite(cfg->p_inlet_pa) && cfg->p_outlet_pa >= 0.0 &&
+        isfinite(cfg->p_outlet_pa))) {
+    vl_error_set(err, "end pressures must be >= 0 (got %g Pa at the inlet, %g Pa at the outlet)",
+                 cfg->p_inlet_pa, cfg->p_outlet_pa);
+    return VL_EINPUT;
+  }
+  if ((cfg->p_inlet_pa > 0.0 || cfg->p_outlet_pa > 0.0) && !(cfg->eta_pa_s > 0.0)) {
+    vl_error_set(err, "a sealed pressure needs a fluid (the contact is dry)");
+    return VL_EINPUT;
+  }
   st = check_flow_table(cfg, err);
   if (st != VL_OK) return st;
   return check_flattening(cfg, err);

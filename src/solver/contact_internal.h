@@ -119,6 +119,8 @@ struct vl_contact {
   double *sf, *dsf;          /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
                               * NULL when off */
   double *theta;             /* film fraction (report only) */
+  double *pamb;              /* ambient fluid pressure per cell (p0) with a sealed pressure
+                              * (cfg.p_inlet_pa for x < 0, p_outlet_pa beyond), else NULL */
   double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */
   bool film_correct;         /* Newton's steps get the film pressure of contact_film.c (during
                               * the Newton variants that continue a converged rough film) */
@@ -197,6 +199,11 @@ void vl_contact_eval_state(vl_contact *c, const double *y);
 
 /* \int (pf + pc) dx / fN from the current state (needs vl_contact_eval_state). */
 double vl_contact_load_sum(const vl_contact *c);
+
+/* The fluid pressure beyond the inlet and outlet ends of the domain, in
+ * the units of the fluid unknowns (kappa p0): the sealed pressures of
+ * cfg, 0 without. */
+void vl_contact_end_pressures(const vl_contact *c, double *pin, double *pout);
 
 /* Reynolds row i before complementarity (needs vl_contact_eval_state). */
 double vl_contact_reynolds_residual(const vl_contact *c, size_t i);

@@ -70,8 +70,13 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   if (c->sf)
     for (size_t i = 0; i < n; i++)
       pt->eps_f_min = fmin(pt->eps_f_min, c->sf[i] * c->sf[i]);
+  double pin, pout; /* beyond the ends: a sealed side's pressure, else 0 (kappa p0) */
+  vl_contact_end_pressures(c, &pin, &pout);
+  pin *= c->kappa, pout *= c->kappa;
   for (size_t i = 0; i < n; i++) {
-    double pc = c->P[i] * c->p0, pf = c->F[i] * c->p0, x = c->xi[i] * c->a0;
+    /* pf above a sealed side's ambient: what the rubber and the load see */
+    double amb = c->pamb ? c->pamb[i] : 0.0;
+    double pc = c->P[i] * c->p0, pf = (c->F[i] - amb) * c->p0, x = c->xi[i] * c->a0;
     double dx = c->wc[i] * c->a0;
     sum_pcx += pc * x * dx;
     sum_pfx += pf * x * dx;
@@ -88,8 +93,8 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
       vl_flow_factors_eval_table(cfg->flow_factors, cfg->flow_table, u,
                                  c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
       /* node gradient: mean of the two face gradients (pf = 0 beyond the ends) */
-      double left = (c->F[i] - (i > 0 ? c->F[i - 1] : 0.0)) / (c->hf[i] * c->a0);
-      double right = ((i + 1 < n ? c->F[i + 1] : 0.0) - c->F[i]) / (c->hf[i + 1] * c->a0);
+      double left = (c->F[i] - (i > 0 ? c->F[i - 1] : pin)) / (c->hf[i] * c->a0);
+      double right = ((i + 1 < n ? c->F[i + 1] : pout) - c->F[i]) / (c->hf[i + 1] * c->a0);
       double dpdx = 0.5 * (left + right) * c->p0;
       /* a smooth hard contact (u = 0) carries no fluid shear: sigma_s acts there */
       if (!(!c->rough && area > 0.0) && u > 0.0)
@@ -123,7 +128,7 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   pt->u_central_m = fmax((1 - w) * c->U[k] + w * c->U[k + 1], 0.0) * c->uscale;
   /* contact extent where the total pressure >= 1% of its peak, interpolated */
   double thr = 0.01 * pmax / c->p0;
-#define PTOT(j) (c->P[j] + c->F[j])
+#define PTOT(j) (c->P[j] + c->F[j] - (c->pamb ? c->pamb[j] : 0.0))
   size_t lo = imax, hi = imax;
   while (lo > 0 && PTOT(lo - 1) >= thr)
     lo--;
@@ -135,6 +140,7 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   pt->contact_width_m = pmax > 0 ? (xr - xl) * c->a0 : 0.0;
   pt->fluid_load_fraction = sum_pf / fN;
   pt->load_error = fabs(vl_contact_load_sum(c) - 1.0);
+  pt->flux_m2_s = c->wet ? c->Jf[0] * 0.5 * c->v0 * c->uscale : 0.0;
   pt->E_wH_pa = c->e_abs;
   pt->a_H_m = c->a_h;
   pt->Q = c->q_rolling;
