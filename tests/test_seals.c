@@ -20,6 +20,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "contact_test.h"
 #include "viscolube/contact.h"
@@ -277,12 +278,74 @@ static void test_sealed_pressure_flux(void **state) {
   }
 }
 
+/* ---- strokes through a scene -----------------------------------------------
+ * `viscolube run` on a [seal] stroke = both scene: a soft elastic O-ring-like
+ * contact on a smooth rod, with zero sealed pressure. The cylinder is
+ * symmetric, so the instroke (the profile mirrored, the sealed pressure at
+ * the outlet) is the outstroke's film: the two strokes must agree (asserted
+ * 1e-12 on mu, the film and the flux; the same solve) and the volumes per
+ * cycle are pi D L q/v each. With a sealed pressure of 0.1 p0 the outstroke
+ * carries more out than the instroke brings back (the sealed pressure's
+ * flow is with the outstroke and against the instroke). */
+static const char *seal_scene(double sealed_pa) {
+  static char buf[1024];
+  snprintf(buf, sizeof buf,
+           "[materials]\ncompound = model-rubber\nfluid = model-1e-1\n"
+           "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\nmoving = counterface\n"
+           "sealed_pressure_pa = %g\n"
+           "[sweep]\nquantity = v0\nfrom = 0.01\nto = 1\npoints = 3\n"
+           "[effects]\nviscoelastic = off\nfluid = on\n"
+           "[numerics]\ngrid = 256\ndomain_a0 = -3, 1.5\n"
+           "[seal]\nstroke = both\nrod_diameter_m = 0.02\nstroke_length_m = 0.1\n",
+           sealed_pa);
+  return buf;
+}
+
+static void test_strokes_scene(void **state) {
+  (void)state;
+  for (int k = 0; k < 2; k++) {
+    double ps = k ? 3.9e4 : 0.0;
+    const char *scene = vl_test_scratch(k ? "sealed.ini" : "open.ini", seal_scene(ps));
+    char *out = NULL, *err = NULL;
+    int rc = vl_test_run(&out, &err, "run %s --out %s/out%d --json --quiet", scene, vl_test_dir, k);
+    if (rc != 0) fail_msg("run exited %d: %s", rc, err);
+    size_t objects = 0;
+    assert_true(vl_test_json_array_valid(out, &objects));
+    assert_int_equal(objects, 3);
+    for (size_t i = 0; i < 3; i++) {
+      double v = vl_test_json_number(out, "v0_m_s", i), mu = vl_test_json_number(out, "mu", i);
+      double mu_in = vl_test_json_number(out, "mu_in", i);
+      double q = vl_test_json_number(out, "flux_m2_s", i);
+      double q_in = vl_test_json_number(out, "flux_in_m2_s", i);
+      double u = vl_test_json_number(out, "u_min_m", i),
+             u_in = vl_test_json_number(out, "u_min_in_m", i);
+      double vo = vl_test_json_number(out, "volume_out_m3", i);
+      double vb = vl_test_json_number(out, "volume_back_m3", i);
+      printf("  p_s %g Pa, v0 %g m/s: mu %.8g / %.8g, u_min %.6g / %.6g m, flux %.8g / %.8g m^2/s, "
+             "volumes %.4g out, %.4g back\n",
+             ps, v, mu, mu_in, u, u_in, q, q_in, vo, vb);
+      assert_true(fabs(vo / (M_PI * 0.02 * 0.1 * q / v) - 1.0) < 1e-12);
+      assert_true(fabs(vb / (M_PI * 0.02 * 0.1 * q_in / v) - 1.0) < 1e-12);
+      if (k == 0) {
+        assert_true(fabs(mu_in / mu - 1.0) < 1e-12);
+        assert_true(fabs(u_in / u - 1.0) < 1e-12);
+        assert_true(fabs(q_in / q - 1.0) < 1e-12);
+        assert_non_null(strstr(out, "\"tight\": true"));
+      } else {
+        assert_true(q > q_in);
+      }
+    }
+    free(out), free(err);
+  }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_elastic_smooth_frames),
       cmocka_unit_test(test_viscoelastic_counterface_relaxed),
       cmocka_unit_test(test_rough_asperity_state),
       cmocka_unit_test(test_sealed_pressure_flux),
+      cmocka_unit_test_setup(test_strokes_scene, vl_test_setup_db),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

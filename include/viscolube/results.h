@@ -10,6 +10,29 @@
 
 #define VL_WARN_MAX 256
 
+/* The strokes of a seal (a scene's [seal] stroke; docs/MODEL.md section 12):
+ * outstroke, the rod moving from the oil side to the air side (the sealed
+ * pressure at the film's inlet); instroke, from air to oil (the profile
+ * mirrored, the sealed pressure at the outlet). */
+typedef enum { VL_STROKE_NONE = 0, VL_STROKE_OUT, VL_STROKE_IN, VL_STROKE_BOTH } vl_stroke;
+
+/* A seal's results at one speed, beside the point's own (which are those of
+ * the outstroke for VL_STROKE_BOTH, else of its one stroke). */
+typedef struct {
+  int stroke;              /* vl_stroke; VL_STROKE_NONE: not a seal scene (no seal columns) */
+  double friction_n_per_m; /* mu fN of the point's stroke */
+  /* VL_STROKE_BOTH: the instroke at the same speed (flux along its own
+   * motion, air to oil) */
+  bool in_converged;
+  double in_mu, in_mu_Sc, in_mu_Sf, in_u_min_m, in_flux_m2_s, in_friction_n_per_m;
+  /* VL_STROKE_BOTH with a rod diameter D and a stroke length L: the fluid
+   * carried out per cycle pi D L q_out/v and back pi D L q_in/v (m^3), and
+   * whether the seal is tight (back >= out: 1, else 0); NAN and -1 when not
+   * known (no D and L, or a stroke did not converge) */
+  double volume_out_m3, volume_back_m3;
+  int tight;
+} vl_seal_result;
+
 /* Result of one operating point, SI units. */
 typedef struct {
   double v0_m_s;
@@ -47,6 +70,7 @@ typedef struct {
    * point on cells three times as wide); NAN when none was made or it failed */
   double error_estimate;
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
+  vl_seal_result seal;        /* stroke VL_STROKE_NONE unless a seal scene */
 } vl_point;
 
 /* Lubrication regime by the share of the load carried by the fluid. */

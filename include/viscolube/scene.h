@@ -50,7 +50,13 @@ typedef struct {
   double elastic_modulus_pa;
   /* [contact] */
   double radius_m, load_n_per_m, sigma_s_pa;
-  vl_moving moving; /* which body moves (contact.h); VL_MOVING_RUBBER by default */
+  vl_moving moving;          /* which body moves (contact.h); VL_MOVING_RUBBER by default */
+  double sealed_pressure_pa; /* fluid pressure on the oil side (Pa; 0: none) */
+  /* [seal]: a seal's strokes (results.h vl_stroke; VL_STROKE_NONE without
+   * the section), the rod diameter and stroke length (m; 0: not given, no
+   * volumes per cycle) */
+  int stroke;
+  double rod_diameter_m, stroke_length_m;
   /* [sweep] */
   vl_sweep_quantity quantity;
   double from, to;

@@ -15,7 +15,8 @@
 
 struct vl_simulation {
   vl_scene scene;
-  vl_contact_config cfg; /* as given to the contact (the assumption checks read it) */
+  vl_contact_config cfg;    /* as given to the contact (the assumption checks read it) */
+  vl_contact_config cfg_in; /* [seal] stroke = both: the instroke's (mirrored, sealed outlet) */
   vl_prony rubber;
   bool have_psd;
   vl_psd psd;
@@ -248,6 +249,12 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.load_n_per_m = scene->load_n_per_m;
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
   cfg.moving = scene->moving;
+  /* the sealed pressure on the oil side: the film's inlet on an outstroke,
+   * its outlet on an instroke (the profile mirrored, docs/MODEL.md section 12) */
+  if (scene->stroke == VL_STROKE_IN)
+    cfg.p_outlet_pa = scene->sealed_pressure_pa;
+  else
+    cfg.p_inlet_pa = scene->sealed_pressure_pa;
   cfg.roughness = sim->table;
   /* only a scene with the fluid effect gets fluid unknowns */
   cfg.eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
@@ -274,6 +281,8 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     cfg.flattening_psd = &sim->psd;
   }
   sim->cfg = cfg;
+  sim->cfg_in = cfg;
+  sim->cfg_in.p_inlet_pa = 0.0, sim->cfg_in.p_outlet_pa = scene->sealed_pressure_pa;
   st = vl_contact_create(&cfg, &sim->contact, err);
   if (st != VL_OK) {
     vl_error_prefix(err, "%s", scene->path);
@@ -329,6 +338,21 @@ typedef struct {
 
 /* Every point gets the model-assumption warnings (assumptions.h) in its
  * warning column before the caller sees it. */
+/* The instroke's points: the assumption checks only. */
+typedef struct {
+  vl_simulation *sim;
+  vl_point *out;
+} vl_simulation_run_ctx_in;
+
+static void check_point_in(void *user, size_t i, size_t total, const vl_point *pt,
+                           const vl_contact *c) {
+  vl_simulation_run_ctx_in *r = user;
+  vl_point *p = &r->out[i];
+  vl_assumptions_check(&r->sim->cfg_in, vl_simulation_psd(r->sim), p, p->warnings,
+                       sizeof p->warnings);
+  (void)pt, (void)total, (void)c;
+}
+
 static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
                         const vl_contact *c) {
   run_ctx *r = user;
@@ -340,11 +364,63 @@ static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
   if (r->cb) r->cb(r->user, i, total, p, c);
 }
 
+/* The seal's results of point p (its stroke's friction force), with the
+ * instroke q at the same speed for stroke = both: the volumes carried out
+ * and back per cycle and whether the seal is tight. */
+static void seal_result(const vl_scene *sc, vl_point *p, const vl_point *q) {
+  vl_seal_result *s = &p->seal;
+  *s = (vl_seal_result){.stroke = sc->stroke, .volume_out_m3 = NAN, .volume_back_m3 = NAN};
+  s->tight = -1;
+  s->friction_n_per_m = p->mu * sc->load_n_per_m;
+  if (!q) return;
+  s->in_converged = q->converged;
+  s->in_mu = q->mu, s->in_mu_Sc = q->mu_Sc, s->in_mu_Sf = q->mu_Sf;
+  s->in_u_min_m = q->u_min_m, s->in_flux_m2_s = q->flux_m2_s;
+  s->in_friction_n_per_m = q->mu * sc->load_n_per_m;
+  if (sc->rod_diameter_m > 0.0 && sc->stroke_length_m > 0.0 && p->converged && q->converged) {
+    /* a stroke of length L at speed v lasts L/v; q per unit circumference */
+    double per_flux = M_PI * sc->rod_diameter_m * sc->stroke_length_m / p->v0_m_s;
+    s->volume_out_m3 = per_flux * p->flux_m2_s;
+    s->volume_back_m3 = per_flux * q->flux_m2_s;
+    s->tight = s->volume_back_m3 >= s->volume_out_m3;
+  }
+}
+
+/* [seal] stroke = both: the instroke's sweep at the same speeds (its points'
+ * warnings checked too, no callback: the curve's rows are the outstroke's),
+ * merged into the outstroke's points. */
+static vl_status run_instroke(vl_simulation *sim, vl_point *out, vl_error *err) {
+  vl_point *in = calloc(sim->n, sizeof *in);
+  if (!in) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  vl_simulation_run_ctx_in ctx = {sim, in};
+  vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  vl_sweep_stats st;
+  vl_status s =
+      vl_sweep_run_auto(&sim->cfg_in, &o, sim->n, sim->v0, in, check_point_in, &ctx, &st, err);
+  if (s == VL_OK || s == VL_ENOCONV)
+    for (size_t i = 0; i < sim->n; i++)
+      seal_result(&sim->scene, &out[i], &in[i]);
+  free(in);
+  return s == VL_ENOCONV ? VL_OK : s;
+}
+
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err) {
   run_ctx r = {sim, out, cb, user};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
-  return vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
+  vl_status st =
+      vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
+  if (sim->scene.stroke == VL_STROKE_NONE || (st != VL_OK && st != VL_ENOCONV)) return st;
+  if (sim->scene.stroke != VL_STROKE_BOTH) {
+    for (size_t i = 0; i < sim->n; i++)
+      seal_result(&sim->scene, &out[i], NULL);
+    return st;
+  }
+  vl_status si = run_instroke(sim, out, err);
+  return si != VL_OK ? si : st;
 }
 
 const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cutoff_m) {

@@ -2,6 +2,7 @@
 #include "viscolube/output.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 
 #include "viscolube/atomic_file.h"
@@ -12,6 +13,28 @@ const char *const vl_curve_columns[] = {
     "regime",    "E_wH_pa",     "a_H_m",    "Q",           "x_centroid_m",    "load_error",
     "converged", "iterations",  "residual", "eps_f_min",   "error_estimate",  "warnings",
     NULL};
+
+/* The columns a seal scene adds after these ([seal] stroke; FORMATS.md):
+ * the point's stroke, its flux and friction force, and with stroke = both
+ * the instroke's and the volumes per cycle. */
+static const char *const seal_columns[] = {"stroke",
+                                           "flux_m2_s",
+                                           "friction_n_per_m",
+                                           "converged_in",
+                                           "mu_in",
+                                           "mu_Sc_in",
+                                           "mu_Sf_in",
+                                           "u_min_in_m",
+                                           "flux_in_m2_s",
+                                           "friction_in_n_per_m",
+                                           "volume_out_m3",
+                                           "volume_back_m3",
+                                           "tight",
+                                           NULL};
+
+static const char *stroke_name(int s) {
+  return s == VL_STROKE_OUT ? "out" : s == VL_STROKE_IN ? "in" : s == VL_STROKE_BOTH ? "both" : "";
+}
 
 /* -0 (a sum of zeros with a minus sign, e.g. mu_Rf of a dry contact) is
  * written as 0: readers compare text, and "-0" looks like a sign. */
@@ -32,10 +55,38 @@ static void print_model_comment(FILE *out, const vl_curve_meta *meta) {
   fputc('\n', out);
 }
 
+/* The seal columns of p (after its warnings). */
+static void seal_cells(FILE *out, const vl_point *p) {
+  const vl_seal_result *s = &p->seal;
+  int ok = p->converged, both = s->stroke == VL_STROKE_BOTH, in = both && s->in_converged;
+  fprintf(out, ",%s", stroke_name(s->stroke));
+  cell(out, p->flux_m2_s, ok);
+  cell(out, s->friction_n_per_m, ok);
+  if (both)
+    fprintf(out, ",%d", s->in_converged ? 1 : 0);
+  else
+    fputc(',', out);
+  cell(out, s->in_mu, in);
+  cell(out, s->in_mu_Sc, in);
+  cell(out, s->in_mu_Sf, in);
+  cell(out, s->in_u_min_m, in);
+  cell(out, s->in_flux_m2_s, in);
+  cell(out, s->in_friction_n_per_m, in);
+  cell(out, s->volume_out_m3, 1);
+  cell(out, s->volume_back_m3, 1);
+  if (s->tight >= 0)
+    fprintf(out, ",%d", s->tight);
+  else
+    fputc(',', out);
+}
+
 void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta) {
   print_model_comment(out, meta);
+  bool seal = n > 0 && pts[0].seal.stroke != VL_STROKE_NONE;
   for (size_t c = 0; vl_curve_columns[c]; c++)
     fprintf(out, "%s%s", c ? "," : "", vl_curve_columns[c]);
+  for (size_t c = 0; seal && seal_columns[c]; c++)
+    fprintf(out, ",%s", seal_columns[c]);
   fputc('\n', out);
   for (size_t i = 0; i < n; i++) {
     const vl_point *p = &pts[i];
@@ -67,7 +118,9 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     /* empty when no estimate could be made (the coarse solve failed) */
     cell(out, p->error_estimate, ok);
     /* warnings never contain commas or quotes (contact.c writes them) */
-    fprintf(out, ",%s\n", p->warnings);
+    fprintf(out, ",%s", p->warnings);
+    if (seal) seal_cells(out, p);
+    fputc('\n', out);
   }
 }
 
@@ -134,6 +187,30 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "eps_f_min", p->eps_f_min, ok);
   member(w, "error_estimate", p->error_estimate, ok && isfinite(p->error_estimate));
   vl_json_key_string(w, "warnings", p->warnings);
+  const vl_seal_result *s = &p->seal;
+  if (s->stroke != VL_STROKE_NONE) {
+    int both = s->stroke == VL_STROKE_BOTH, in = both && s->in_converged;
+    vl_json_key_string(w, "stroke", stroke_name(s->stroke));
+    member(w, "flux_m2_s", p->flux_m2_s, ok);
+    member(w, "friction_n_per_m", s->friction_n_per_m, ok);
+    if (both) {
+      vl_json_key(w, "converged_in");
+      vl_json_bool(w, s->in_converged);
+      member(w, "mu_in", s->in_mu, in);
+      member(w, "mu_Sc_in", s->in_mu_Sc, in);
+      member(w, "mu_Sf_in", s->in_mu_Sf, in);
+      member(w, "u_min_in_m", s->in_u_min_m, in);
+      member(w, "flux_in_m2_s", s->in_flux_m2_s, in);
+      member(w, "friction_in_n_per_m", s->in_friction_n_per_m, in);
+      member(w, "volume_out_m3", s->volume_out_m3, isfinite(s->volume_out_m3));
+      member(w, "volume_back_m3", s->volume_back_m3, isfinite(s->volume_back_m3));
+      vl_json_key(w, "tight");
+      if (s->tight >= 0)
+        vl_json_bool(w, s->tight);
+      else
+        vl_json_null(w);
+    }
+  }
   if (meta->flow_factors) {
     vl_json_key_string(w, "flow_factors", meta->flow_factors);
     if (meta->film_cutoff_m > 0.0) member(w, "film_cutoff_m", meta->film_cutoff_m, 1);
