@@ -160,6 +160,11 @@ typedef enum {
   VL_MOVING_COUNTERFACE
 } vl_moving;
 
+/* Largest slope of a tabulated profile in the pressure zone before a point
+ * warns (the half-space model of docs/MODEL.md section 3 wants small
+ * slopes), in radians. */
+#define VL_PROFILE_SLOPE_MAX 0.3
+
 typedef struct {
   vl_prony rubber;  /* n_terms = 0: elastic with E = e_inf_pa */
   vl_moving moving; /* VL_MOVING_RUBBER (0) or VL_MOVING_COUNTERFACE */
@@ -219,6 +224,17 @@ typedef struct {
    * pressure above it there (the ambient: p_inlet_pa for x < 0, p_outlet_pa
    * for x > 0), and fN is the lip's force above that ambient. */
   double p_inlet_pa, p_outlet_pa;
+  /* The rubber's profile f(x) (docs/MODEL.md section 13; NULL: the
+   * cylinder's parabola x^2/(2 R)): profile_points >= 3 points (x_m, z_m),
+   * any order, distinct x, the height above the counter-surface of the
+   * undeformed rubber. Shifted so that its lowest point sits at x = 0, z = 0
+   * (the tip), interpolated by cubic Hermite with three-point slopes (exact
+   * for a parabola), continued straight beyond its ends. profile_mirror:
+   * f(-x) (an instroke). radius_m still sets the scales (a0, the domain):
+   * give the tip radius. Copied by vl_contact_create. */
+  const double *profile_x_m, *profile_z_m;
+  size_t profile_points;
+  bool profile_mirror;
 } vl_contact_config;
 
 /* Sets the numerics of cfg (grid, grid_growth, domain, tolerance,

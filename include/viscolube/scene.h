@@ -52,6 +52,10 @@ typedef struct {
   double radius_m, load_n_per_m, sigma_s_pa;
   vl_moving moving;          /* which body moves (contact.h); VL_MOVING_RUBBER by default */
   double sealed_pressure_pa; /* fluid pressure on the oil side (Pa; 0: none) */
+  /* the rubber's profile (x_m, z_m table, docs/FORMATS.md), the path as
+   * given joined to the scene's folder; empty: the cylinder's parabola */
+  char profile_file[2048];
+  int profile_line; /* the key's line in the scene (for messages) */
   /* [seal]: a seal's strokes (results.h vl_stroke; VL_STROKE_NONE without
    * the section), the rod diameter and stroke length (m; 0: not given, no
    * volumes per cycle) */

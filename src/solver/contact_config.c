@@ -218,6 +218,25 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
                  cfg->p_inlet_pa, cfg->p_outlet_pa);
     return VL_EINPUT;
   }
+  if (cfg->profile_x_m || cfg->profile_z_m) {
+    if (!cfg->profile_x_m || !cfg->profile_z_m || cfg->profile_points < 3) {
+      vl_error_set(err, "a profile needs x and z of at least 3 points (got %zu)",
+                   cfg->profile_points);
+      return VL_EINPUT;
+    }
+    for (size_t k = 0; k < cfg->profile_points; k++) {
+      if (!isfinite(cfg->profile_x_m[k]) || !isfinite(cfg->profile_z_m[k])) {
+        vl_error_set(err, "profile point %zu is not finite", k);
+        return VL_EINPUT;
+      }
+      for (size_t j = 0; j < k; j++)
+        if (cfg->profile_x_m[j] == cfg->profile_x_m[k]) {
+          vl_error_set(err, "profile points %zu and %zu have the same x (%g m)", j, k,
+                       cfg->profile_x_m[k]);
+          return VL_EINPUT;
+        }
+    }
+  }
   if ((cfg->p_inlet_pa > 0.0 || cfg->p_outlet_pa > 0.0) && !(cfg->eta_pa_s > 0.0)) {
     vl_error_set(err, "a sealed pressure needs a fluid (the contact is dry)");
     return VL_EINPUT;

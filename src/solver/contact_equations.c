@@ -180,7 +180,7 @@ static void eval_gap(vl_contact *c, const double *y) {
   double w1 = 1.0, w0 = 0.0;
   dgemv_("T", &ni, &ni, &w1, c->M, &ni, c->q, &one, &w0, G, &one, 1);
   for (size_t i = 0; i < n; i++)
-    G[i] += h0 + 0.5 * c->xi[i] * c->xi[i];
+    G[i] += h0 + (c->fprof ? c->fprof[i] : 0.5 * c->xi[i] * c->xi[i]);
   if (c->rough) {
     for (size_t i = 0; i < n; i++) {
       c->U[i] = y[i];

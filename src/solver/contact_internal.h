@@ -119,6 +119,10 @@ struct vl_contact {
   double *sf, *dsf;          /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
                               * NULL when off */
   double *theta;             /* film fraction (report only) */
+  double *fprof, *sprof;     /* a tabulated profile at the nodes (contact.h): f/(a0^2/R) and its
+                              * slope f'; NULL for the parabola */
+  double *ptab;              /* the contact's copy of the profile's table (cfg points to it, so
+                              * that the helper contacts it creates later may read it) */
   double *pamb;              /* ambient fluid pressure per cell (p0) with a sealed pressure
                               * (cfg.p_inlet_pa for x < 0, p_outlet_pa beyond), else NULL */
   double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */

@@ -61,6 +61,7 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   const vl_contact_config *cfg = &c->cfg;
   double fN = cfg->load_n_per_m, R = cfg->radius_m;
   double sum_pcx = 0.0, sum_pfx = 0.0, sum_pf = 0.0, sum_area = 0.0;
+  double sum_pcs = 0.0, sum_pfs = 0.0; /* a tabulated profile: the pressures against f' */
   double pmax = 0.0, pfmax = 0.0, umin = INFINITY, couette = 0.0, poiseuille = 0.0;
   size_t imax = 0, iumin = 0;
   bool counterface = cfg->moving == VL_MOVING_COUNTERFACE;
@@ -80,6 +81,7 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
     double dx = c->wc[i] * c->a0;
     sum_pcx += pc * x * dx;
     sum_pfx += pf * x * dx;
+    if (c->sprof) sum_pcs += pc * c->sprof[i] * dx, sum_pfs += pf * c->sprof[i] * dx;
     sum_pf += pf * dx;
     double area = area_at(c, i);
     sum_area += area * dx;
@@ -110,8 +112,8 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   /* rolling terms: the pressures against the slope x/R of the rigid body;
    * a flat counter-surface has none (docs/MODEL.md section 11) */
   pt->rolling_na = counterface;
-  pt->mu_Rc = counterface ? 0.0 : -sum_pcx / (fN * R);
-  pt->mu_Rf = counterface ? 0.0 : -sum_pfx / (fN * R);
+  pt->mu_Rc = counterface ? 0.0 : c->sprof ? -sum_pcs / fN : -sum_pcx / (fN * R);
+  pt->mu_Rf = counterface ? 0.0 : c->sprof ? -sum_pfs / fN : -sum_pfx / (fN * R);
   pt->mu_Sc = cfg->sigma_s_pa * sum_area / fN;
   pt->mu_Sf_couette = couette / fN;
   pt->mu_Sf_poiseuille = poiseuille / fN;
@@ -138,6 +140,17 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   if (lo > 0) xl -= c->hf[lo] * (PTOT(lo) - thr) / (PTOT(lo) - PTOT(lo - 1));
   if (hi + 1 < n) xr += c->hf[hi + 1] * (PTOT(hi) - thr) / (PTOT(hi) - PTOT(hi + 1));
   pt->contact_width_m = pmax > 0 ? (xr - xl) * c->a0 : 0.0;
+  /* the half-space model wants small slopes (docs/MODEL.md section 13) */
+  double smax = 0.0;
+  for (size_t i = lo; c->sprof && i <= hi; i++)
+    smax = fmax(smax, fabs(c->sprof[i]));
+  if (atan(smax) > VL_PROFILE_SLOPE_MAX) {
+    char msg[96];
+    snprintf(msg, sizeof msg,
+             "profile slope %.2g rad > %.1f in the pressure zone (half-space model)", atan(smax),
+             VL_PROFILE_SLOPE_MAX);
+    add_warning(pt, msg);
+  }
   pt->fluid_load_fraction = sum_pf / fN;
   pt->load_error = fabs(vl_contact_load_sum(c) - 1.0);
   pt->flux_m2_s = c->wet ? c->Jf[0] * 0.5 * c->v0 * c->uscale : 0.0;

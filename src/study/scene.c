@@ -33,6 +33,7 @@ typedef enum {
   K_SIGMA_S,
   K_MOVING,
   K_SEALED_PRESSURE,
+  K_PROFILE_FILE,
   K_STROKE,
   K_ROD_DIAMETER,
   K_STROKE_LENGTH,
@@ -74,6 +75,7 @@ static const struct {
     [K_SIGMA_S] = {"contact", "sigma_s_pa", false},
     [K_MOVING] = {"contact", "moving", false},
     [K_SEALED_PRESSURE] = {"contact", "sealed_pressure_pa", false},
+    [K_PROFILE_FILE] = {"contact", "profile_file", false},
     [K_STROKE] = {"seal", "stroke", false},
     [K_ROD_DIAMETER] = {"seal", "rod_diameter_m", false},
     [K_STROKE_LENGTH] = {"seal", "stroke_length_m", false},
@@ -333,6 +335,16 @@ static int contact_key(parse_state *ps, key_id id, const char *section, const ch
     else
       return fail(ps, section, key, "expected rubber or counterface, got '%s'", value);
     return 1;
+  case K_PROFILE_FILE: {
+    /* relative to the scene file's folder */
+    const char *slash = strrchr(ps->path, '/');
+    int dir = value[0] != '/' && slash ? (int)(slash - ps->path + 1) : 0;
+    if (!*value || strlen(value) + (size_t)dir >= sizeof sc->profile_file)
+      return fail(ps, section, key, "bad file name '%s'", value);
+    snprintf(sc->profile_file, sizeof sc->profile_file, "%.*s%s", dir, ps->path, value);
+    sc->profile_line = ps->line;
+    return 1;
+  }
   case K_SEALED_PRESSURE:
     if (!parse_double(value, &sc->sealed_pressure_pa) || sc->sealed_pressure_pa < 0.0)
       return fail(ps, section, key, "expected a pressure >= 0 (Pa), got '%s'", value);

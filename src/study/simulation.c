@@ -9,9 +9,14 @@
 
 #include "viscolube/flattening.h"
 
+#include <ctype.h>
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "slurp.h"
 
 struct vl_simulation {
   vl_scene scene;
@@ -33,7 +38,110 @@ struct vl_simulation {
   size_t n;
   double *v0;
   bool *fields;
+  double *profile; /* [contact] profile_file: x (m) then z (m), profile_n each; NULL without */
+  size_t profile_n;
 };
+
+/* Largest profile table (points) and file a scene may name. */
+#define VL_PROFILE_MAX_POINTS 100000
+#define VL_PROFILE_MAX_BYTES (16u << 20)
+
+/* One row "x, z" of a profile table: two finite numbers separated by a
+ * comma (blanks around them allowed). */
+static bool profile_row(const char *line, double *x, double *z) {
+  char *end;
+  errno = 0;
+  *x = strtod(line, &end);
+  if (end == line || errno) return false;
+  while (*end == ' ' || *end == '\t')
+    end++;
+  if (*end != ',') return false;
+  const char *p = end + 1;
+  *z = strtod(p, &end);
+  if (end == p || errno) return false;
+  while (*end == ' ' || *end == '\t' || *end == '\r')
+    end++;
+  return *end == '\0' && isfinite(*x) && isfinite(*z);
+}
+
+/* Reads the scene's profile table (docs/FORMATS.md: '#' comments, blank
+ * lines, the header x_m,z_m, then rows x,z in metres) into sim->profile.
+ * Errors name FILE:LINE. */
+static vl_status read_profile(vl_simulation *sim, vl_error *err) {
+  const vl_scene *sc = &sim->scene;
+  char *text = NULL;
+  size_t len = 0;
+  vl_status st =
+      vl_slurp(sc->profile_file, VL_PROFILE_MAX_BYTES, "a profile table", &text, &len, err);
+  if (st == VL_OK) st = vl_text_refuse_nul(text, len, sc->profile_file, err);
+  if (st != VL_OK) {
+    free(text);
+    vl_error_prefix(err, "%s:%d: [contact] profile_file", sc->path, sc->profile_line);
+    return st;
+  }
+  size_t cap = 1024, n = 0;
+  double *x = malloc(cap * sizeof *x), *z = malloc(cap * sizeof *z);
+  bool header = false;
+  int line = 0;
+  st = x && z ? VL_OK : VL_ENOMEM;
+  for (char *s = text, *next; st == VL_OK && s && *s; s = next) {
+    line++;
+    next = strchr(s, '\n');
+    if (next) *next++ = '\0';
+    while (*s == ' ' || *s == '\t')
+      s++;
+    size_t l = strlen(s);
+    while (l && (s[l - 1] == '\r' || s[l - 1] == ' ' || s[l - 1] == '\t'))
+      s[--l] = '\0';
+    if (!*s || *s == '#') continue;
+    if (!header) {
+      header = true;
+      if (strcmp(s, "x_m,z_m") && strcmp(s, "x_m, z_m")) {
+        vl_error_set(err, "%s:%d: expected the header x_m,z_m (metres), got '%.40s'",
+                     sc->profile_file, line, s);
+        st = VL_EINPUT;
+      }
+      continue;
+    }
+    if (n == cap) {
+      double *nx = n < VL_PROFILE_MAX_POINTS ? realloc(x, 2 * cap * sizeof *x) : NULL;
+      if (nx) x = nx;
+      double *nz = nx ? realloc(z, 2 * cap * sizeof *z) : NULL;
+      if (nz) z = nz, cap *= 2;
+      if (!nx || !nz) {
+        vl_error_set(err, "%s:%d: more than %d points or out of memory", sc->profile_file, line,
+                     VL_PROFILE_MAX_POINTS);
+        st = VL_EINPUT;
+        break;
+      }
+    }
+    if (!profile_row(s, &x[n], &z[n])) {
+      vl_error_set(err, "%s:%d: expected 'x, z' (two numbers in m), got '%.40s'", sc->profile_file,
+                   line, s);
+      st = VL_EINPUT;
+      break;
+    }
+    for (size_t k = 0; k < n; k++)
+      if (x[k] == x[n]) {
+        vl_error_set(err, "%s:%d: x = %g m given twice", sc->profile_file, line, x[n]);
+        st = VL_EINPUT;
+      }
+    n++;
+  }
+  if (st == VL_OK && n < 3) {
+    vl_error_set(err, "%s: a profile needs at least 3 points (got %zu)", sc->profile_file, n);
+    st = VL_EINPUT;
+  }
+  if (st == VL_OK && !(sim->profile = malloc(2 * n * sizeof *sim->profile))) st = VL_ENOMEM;
+  if (st == VL_OK) {
+    memcpy(sim->profile, x, n * sizeof *x);
+    memcpy(sim->profile + n, z, n * sizeof *z);
+    sim->profile_n = n;
+  }
+  if (st == VL_ENOMEM) vl_error_set(err, "%s: out of memory", sc->profile_file);
+  free(x), free(z), free(text);
+  return st;
+}
 
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
@@ -249,6 +357,12 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.load_n_per_m = scene->load_n_per_m;
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
   cfg.moving = scene->moving;
+  if (scene->profile_file[0]) {
+    if ((st = read_profile(sim, err)) != VL_OK) goto fail;
+    cfg.profile_x_m = sim->profile, cfg.profile_z_m = sim->profile + sim->profile_n;
+    cfg.profile_points = sim->profile_n;
+    cfg.profile_mirror = scene->stroke == VL_STROKE_IN;
+  }
   /* the sealed pressure on the oil side: the film's inlet on an outstroke,
    * its outlet on an instroke (the profile mirrored, docs/MODEL.md section 12) */
   if (scene->stroke == VL_STROKE_IN)
@@ -283,6 +397,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   sim->cfg = cfg;
   sim->cfg_in = cfg;
   sim->cfg_in.p_inlet_pa = 0.0, sim->cfg_in.p_outlet_pa = scene->sealed_pressure_pa;
+  sim->cfg_in.profile_mirror = true;
   st = vl_contact_create(&cfg, &sim->contact, err);
   if (st != VL_OK) {
     vl_error_prefix(err, "%s", scene->path);
@@ -305,6 +420,7 @@ void vl_simulation_free(vl_simulation *sim) {
   if (sim->have_psd) vl_psd_free(&sim->psd);
   free(sim->v0);
   free(sim->fields);
+  free(sim->profile);
   free(sim);
 }
 
