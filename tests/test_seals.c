@@ -217,7 +217,7 @@ static void test_rough_asperity_state(void **state) {
  * A sealed pressure p_s at the inlet end (the oil side of an outstroke,
  * docs/MODEL.md section 12) on the soft elastic film of the tests above,
  * moving counter-surface, p_s = 0, 0.1 and 0.25 p0. Checked: the reported
- * flux is the face flux, constant over the pressurised faces (the
+ * flux is every pressurised face's flux, constant over them (the
  * conservative Reynolds rows to the solver's tolerance: asserted 1e-8,
  * measured 1e-11 to 1.6e-9, as tests/test_validation_wet.c); the pressure of the
  * first cell is the sealed one (the inlet film is thick: its pressure
@@ -254,19 +254,19 @@ static void test_sealed_pressure_flux(void **state) {
     vl_fields f = {n, buf, pf, buf + n, buf + 2 * n, buf + 3 * n, buf + 4 * n, NULL};
     vl_contact_fields(c, &f);
     assert_int_equal(vl_contact_face_fluxes(c, J, n + 1), n + 1);
-    double pmax = pt.peak_pressure_pa, jmin = INFINITY, jmax = -INFINITY;
+    double pmax = pt.peak_pressure_pa, jmin = INFINITY, jmax = -INFINITY, off = 0.0;
     for (size_t i = 1; i < n; i++)
       if (pf[i - 1] > 1e-6 * pmax && pf[i] > 1e-6 * pmax) {
         jmin = fmin(jmin, J[i]);
         jmax = fmax(jmax, J[i]);
+        off = fmax(off, fabs(J[i] / pt.flux_m2_s - 1.0));
       }
     double spread = (jmax - jmin) / jmax;
-    printf("  p_s = %.3g Pa (%.2f p0): flux %.6e m^2/s (faces %.2e apart, J[0] %.2e off), "
+    printf("  p_s = %.3g Pa (%.2f p0): flux %.6e m^2/s (faces %.2e apart, reported %.2e off), "
            "pf of the first cell %.6g Pa, u_min %.4g m, mu %.5g, load error %.1e\n",
-           ps, frac[k], pt.flux_m2_s, spread, fabs(J[0] / pt.flux_m2_s - 1.0), pf[0], pt.u_min_m,
-           pt.mu, pt.load_error);
+           ps, frac[k], pt.flux_m2_s, spread, off, pf[0], pt.u_min_m, pt.mu, pt.load_error);
     assert_true(spread < 1e-8);
-    assert_true(fabs(J[0] / pt.flux_m2_s - 1.0) < 1e-12);
+    assert_true(off < 1e-8);
     assert_true(pt.load_error < 1e-8);
     if (ps > 0.0) assert_true(fabs(pf[0] / ps - 1.0) < 0.01);
     if (k == 0) prev = pt.flux_m2_s;
@@ -498,6 +498,99 @@ static void test_profile_scene(void **state) {
   free(out), free(err);
 }
 
+/* ---- the shipped cases (cases/seals/, docs/CASES.md "seals") -------------
+ * Runs a case with `viscolube run --json` on a fresh database; returns the
+ * JSON (caller frees). */
+static char *run_case(const char *name) {
+  char *out = NULL, *err = NULL;
+  int rc = vl_test_run(&out, &err, "run %s --out %s/%s --json --quiet", vl_test_source_path(name),
+                       vl_test_dir, strrchr(name, '/') + 1);
+  if (rc != 0) fail_msg("%s exited %d: %s", name, rc, err);
+  free(err);
+  size_t objects = 0;
+  assert_true(vl_test_json_array_valid(out, &objects));
+  return out;
+}
+
+/* The points' common statements: converged, the rolling terms not
+ * applicable (null), mu = mu_Sc + mu_Sf, a flux that is positive and grows
+ * with speed. */
+static void check_counterface_curve(const char *json, size_t n) {
+  double prev = 0.0;
+  for (size_t i = 0; i < n; i++) {
+    double mu = vl_test_json_number(json, "mu", i), sc = vl_test_json_number(json, "mu_Sc", i);
+    double sf = vl_test_json_number(json, "mu_Sf", i),
+           q = vl_test_json_number(json, "flux_m2_s", i);
+    assert_true(isnan(vl_test_json_number(json, "mu_Rc", i)));
+    assert_true(isnan(vl_test_json_number(json, "mu_Rf", i)));
+    assert_true(fabs(mu - sc - sf) <= 1e-12 * mu);
+    assert_true(q > prev);
+    prev = q;
+  }
+}
+
+/* O-ring (R 1.75 mm, 80 N/m, oil 0.046 Pa s, steel rod h_rms 0.2 um, 1e-5 to
+ * 1 m/s, both strokes on a 20 mm rod, 0.1 m stroke). Statements: a Stribeck
+ * curve: boundary-dominated friction at 1e-5 m/s (mu_Sc > 90 % of mu,
+ * measured 99.9 %), a minimum inside the range (measured 0.0227 at 0.056
+ * m/s), hydrodynamic at 1 m/s (mu_Sc < 1e-6 of mu) with mu rising again;
+ * the symmetric O-ring without sealed pressure carries back what it
+ * carries out (the two strokes agree to 1e-9; tight). */
+static void test_case_oring(void **state) {
+  (void)state;
+  char *json = run_case("cases/seals/oring.ini");
+  size_t n = 21, imin = 0;
+  check_counterface_curve(json, n);
+  double mu[21];
+  for (size_t i = 0; i < n; i++) {
+    mu[i] = vl_test_json_number(json, "mu", i);
+    if (mu[i] < mu[imin]) imin = i;
+    double vo = vl_test_json_number(json, "volume_out_m3", i);
+    double vb = vl_test_json_number(json, "volume_back_m3", i);
+    assert_true(fabs(vb / vo - 1.0) < 1e-9);
+  }
+  double sc0 = vl_test_json_number(json, "mu_Sc", 0),
+         scn = vl_test_json_number(json, "mu_Sc", n - 1);
+  printf("  O-ring: mu %.4g at 1e-5 m/s (mu_Sc %.1f %%), minimum %.4g at %.3g m/s, %.4g at 1 m/s "
+         "(mu_Sc %.1e of mu); %.3g m^3 carried out and back per cycle at 1 m/s\n",
+         mu[0], 100.0 * sc0 / mu[0], mu[imin], vl_test_json_number(json, "v0_m_s", imin), mu[n - 1],
+         scn / mu[n - 1], vl_test_json_number(json, "volume_out_m3", n - 1));
+  assert_true(sc0 > 0.9 * mu[0]);
+  assert_true(imin > 0 && imin < n - 1);
+  assert_true(scn < 1e-6 * mu[n - 1]);
+  assert_true(mu[n - 1] > 2.0 * mu[imin]);
+  assert_non_null(strstr(json, "\"regime\": \"hydrodynamic\""));
+  assert_null(strstr(json, "\"tight\": false"));
+  free(json);
+}
+
+/* Wiper edge (R 20 um, 15 N/m, glass h_rms 10 nm, water, 1e-4 to 3 m/s).
+ * Statements: boundary friction when the blade creeps (1e-4 m/s: the fluid
+ * carries under 5 % of the load, mu_Sc > 99 % of mu); at wiping speeds
+ * (1-3 m/s) a water film several times the glass roughness (u_min > 3
+ * h_rms, measured 4.4-8.9) and friction mostly the film's shear (mu_Sf >
+ * 90 % of mu). The mean-field and half-space assumptions are stretched
+ * (a_H < 5 roll-off wavelengths, contact half-width ~0.5 R: warnings), and
+ * the error estimate exceeds its target at 0.03-1 m/s: shapes, not digits. */
+static void test_case_wiper(void **state) {
+  (void)state;
+  char *json = run_case("cases/seals/wiper.ini");
+  size_t n = 19;
+  check_counterface_curve(json, n);
+  double mu0 = vl_test_json_number(json, "mu", 0), sc0 = vl_test_json_number(json, "mu_Sc", 0);
+  assert_true(vl_test_json_number(json, "fluid_load_fraction", 0) < 0.05);
+  assert_true(sc0 > 0.99 * mu0);
+  for (size_t i = n - 3; i < n; i++) {
+    double v = vl_test_json_number(json, "v0_m_s", i), u = vl_test_json_number(json, "u_min_m", i);
+    double mu = vl_test_json_number(json, "mu", i), sf = vl_test_json_number(json, "mu_Sf", i);
+    printf("  wiper at %.3g m/s: u_min %.3g m = %.2f h_rms, mu %.4g (film shear %.1f %%)\n", v, u,
+           u / 10e-9, mu, 100.0 * sf / mu);
+    assert_true(u > 3.0 * 10e-9);
+    assert_true(sf > 0.9 * mu);
+  }
+  free(json);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_elastic_smooth_frames),
@@ -508,6 +601,8 @@ int main(void) {
       cmocka_unit_test(test_parabola_table),
       cmocka_unit_test_setup(test_profile_scene, vl_test_setup_db),
       cmocka_unit_test(test_lip_pumps_back),
+      cmocka_unit_test_setup(test_case_oring, vl_test_setup_db),
+      cmocka_unit_test_setup(test_case_wiper, vl_test_setup_db),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

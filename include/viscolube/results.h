@@ -59,9 +59,9 @@ typedef struct {
   double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
   double x_min_film_m; /* where u is smallest (EHL constriction: outlet side, x > 0) */
   /* fluid flux per unit length (m^2/s) through the film along +x (the
-   * direction of the moving surface), the flux through the inlet end of
-   * the domain: constant along the full film (docs/MODEL.md section 5);
-   * 0 when dry */
+   * direction of the moving surface), through the face at the fluid
+   * pressure's maximum (constant along the full film, docs/MODEL.md
+   * section 12); 0 when dry */
   double flux_m2_s;
   int regime;       /* vl_regime */
   double eps_f_min; /* smallest epsilon_f(u) over the grid (viscous flattening);
