@@ -17,20 +17,20 @@ const char *const vl_curve_columns[] = {
 /* The columns a seal scene adds after these ([seal] stroke; FORMATS.md):
  * the point's stroke, its flux and friction force, and with stroke = both
  * the instroke's and the volumes per cycle. */
-static const char *const seal_columns[] = {"stroke",
-                                           "flux_m2_s",
-                                           "friction_n_per_m",
-                                           "converged_in",
-                                           "mu_in",
-                                           "mu_Sc_in",
-                                           "mu_Sf_in",
-                                           "u_min_in_m",
-                                           "flux_in_m2_s",
-                                           "friction_in_n_per_m",
-                                           "volume_out_m3",
-                                           "volume_back_m3",
-                                           "tight",
-                                           NULL};
+const char *const vl_seal_columns[] = {"stroke",
+                                       "flux_m2_s",
+                                       "friction_n_per_m",
+                                       "converged_in",
+                                       "mu_in",
+                                       "mu_Sc_in",
+                                       "mu_Sf_in",
+                                       "u_min_in_m",
+                                       "flux_in_m2_s",
+                                       "friction_in_n_per_m",
+                                       "volume_out_m3",
+                                       "volume_back_m3",
+                                       "tight",
+                                       NULL};
 
 static const char *stroke_name(int s) {
   return s == VL_STROKE_OUT ? "out" : s == VL_STROKE_IN ? "in" : s == VL_STROKE_BOTH ? "both" : "";
@@ -53,6 +53,25 @@ static void print_model_comment(FILE *out, const vl_curve_meta *meta) {
   fprintf(out, "# flow_factors = %s", meta->flow_factors);
   if (meta->film_cutoff_m > 0.0) fprintf(out, ", film_cutoff_m = %.6g", meta->film_cutoff_m);
   fputc('\n', out);
+}
+
+double vl_seal_column_value(const vl_point *p, size_t k) {
+  const vl_seal_result *s = &p->seal;
+  bool ok = p->converged, both = s->stroke == VL_STROKE_BOTH, in = both && s->in_converged;
+  double v[] = {NAN,
+                ok ? p->flux_m2_s : NAN,
+                ok ? s->friction_n_per_m : NAN,
+                both ? (s->in_converged ? 1.0 : 0.0) : NAN,
+                in ? s->in_mu : NAN,
+                in ? s->in_mu_Sc : NAN,
+                in ? s->in_mu_Sf : NAN,
+                in ? s->in_u_min_m : NAN,
+                in ? s->in_flux_m2_s : NAN,
+                in ? s->in_friction_n_per_m : NAN,
+                s->volume_out_m3,
+                s->volume_back_m3,
+                s->tight >= 0 ? (double)s->tight : NAN};
+  return k < sizeof v / sizeof *v ? v[k] : NAN;
 }
 
 /* The seal columns of p (after its warnings). */
@@ -85,8 +104,8 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
   bool seal = n > 0 && pts[0].seal.stroke != VL_STROKE_NONE;
   for (size_t c = 0; vl_curve_columns[c]; c++)
     fprintf(out, "%s%s", c ? "," : "", vl_curve_columns[c]);
-  for (size_t c = 0; seal && seal_columns[c]; c++)
-    fprintf(out, ",%s", seal_columns[c]);
+  for (size_t c = 0; seal && vl_seal_columns[c]; c++)
+    fprintf(out, ",%s", vl_seal_columns[c]);
   fputc('\n', out);
   for (size_t i = 0; i < n; i++) {
     const vl_point *p = &pts[i];
