@@ -285,6 +285,64 @@ static void test_sigma_without_solid_shear(void **state) {
   assert_true(g_scene.effects.solid_shear && g_scene.sigma_s_pa == 2e6);
 }
 
+/* [contact] moving: rubber (the default, the paper's) or counterface (a seal:
+ * the rubber at rest, docs/MODEL.md section 11); a bad word and a deborah
+ * sweep (the memory a rubber at rest has not) are refused at their lines. */
+static void test_moving(void **state) {
+  (void)state;
+  parse_ok(BASE);
+  assert_int_equal(g_scene.moving, VL_MOVING_RUBBER);
+  const char *v0 = edit(BASE, "quantity = deborah", "quantity = v0");
+  parse_ok(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = counterface"));
+  assert_int_equal(g_scene.moving, VL_MOVING_COUNTERFACE);
+  parse_ok(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = rubber"));
+  assert_int_equal(g_scene.moving, VL_MOVING_RUBBER);
+  parse_fails(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = rod"), 9,
+              "[contact] moving", "expected rubber or counterface, got 'rod'");
+  parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = counterface"), 11,
+              "[sweep] quantity", "moving = rubber (line 9");
+  parse_fails(edit(v0, "radius_m = 0.01", "radius_m = 0.01\nmovng = rubber"), 8, "movng",
+              "did you mean 'moving'?");
+}
+
+/* [contact] sealed_pressure_pa and [seal] (docs/MODEL.md section 12): a
+ * seal's strokes need a fluid and a moving counter-surface; the rod's
+ * diameter and the stroke length go together. Errors name their lines. */
+static void test_seal_keys(void **state) {
+  (void)state;
+  /* copies: edit() reuses four buffers */
+  static char v0[2048], wet[2048], seal[2048], text[4096];
+  snprintf(v0, sizeof v0, "%s", edit(BASE, "quantity = deborah", "quantity = v0"));
+  snprintf(wet, sizeof wet, "%s",
+           edit(edit(v0, "compound = model-rubber", "compound = model-rubber\nfluid = f"),
+                "viscoelastic = on", "viscoelastic = on\nfluid = on"));
+  snprintf(seal, sizeof seal, "%s",
+           edit(wet, "load_n_per_m = 1000",
+                "load_n_per_m = 1000\nmoving = counterface\nsealed_pressure_pa = 1e5"));
+  snprintf(text, sizeof text,
+           "%s[seal]\nstroke = both\nrod_diameter_m = 0.02\n"
+           "stroke_length_m = 0.1\n",
+           seal);
+  parse_ok(text);
+  assert_int_equal(g_scene.stroke, VL_STROKE_BOTH);
+  assert_true(g_scene.sealed_pressure_pa == 1e5 && g_scene.rod_diameter_m == 0.02 &&
+              g_scene.stroke_length_m == 0.1);
+  snprintf(text, sizeof text, "%s[seal]\nstroke = sideways\n", seal);
+  parse_fails(text, 23, "[seal] stroke", "expected out, in or both");
+  snprintf(text, sizeof text, "%s[seal]\nstroke = in\nrod_diameter_m = 0.02\n", seal);
+  parse_fails(text, 24, "[seal] rod_diameter_m", "both rod_diameter_m and stroke_length_m");
+  snprintf(text, sizeof text, "%s[seal]\nstroke_length_m = 0.1\n", seal);
+  parse_fails(text, 23, "[seal] stroke_length_m", "needs [seal] stroke");
+  snprintf(text, sizeof text, "%s[seal]\nstroke = out\n", wet);
+  parse_fails(text, 21, "[seal] stroke", "moving = counterface");
+  parse_fails(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nsealed_pressure_pa = 1"), 9,
+              "[contact] sealed_pressure_pa", "fluid = on");
+  parse_fails(edit(wet, "load_n_per_m = 1000", "load_n_per_m = 1000\nsealed_pressure_pa = -1"), 10,
+              "[contact] sealed_pressure_pa", ">= 0");
+  parse_ok(wet);
+  assert_int_equal(g_scene.stroke, VL_STROKE_NONE);
+}
+
 /* fields_at at the ends of [from, to] and a single sweep point. */
 static void test_sweep_edges(void **state) {
   (void)state;
@@ -719,6 +777,8 @@ int main(void) {
       cmocka_unit_test(test_elastic_modulus),
       cmocka_unit_test(test_sigma_without_solid_shear),
       cmocka_unit_test(test_sweep_edges),
+      cmocka_unit_test(test_moving),
+      cmocka_unit_test(test_seal_keys),
       cmocka_unit_test(test_shipped_cases),
       cmocka_unit_test(test_unknown_section_and_key),
       cmocka_unit_test(test_bad_numbers),

@@ -142,8 +142,33 @@ typedef enum {
 #define VL_WET_ROUGH_GRID 2928 /* 97.6 a0 / (a0/30) */
 #define VL_WET_GRID_GROWTH 1.05
 
+/* Which body moves through the contact (docs/MODEL.md section 11). Both are
+ * solved in the frame of the contact, the fluid entering from x < 0. */
+typedef enum {
+  /* The paper's: the rubber (and the fluid it drags) moves at +v0 under the
+   * rigid curved body; its macroscopic deformation carries the Prony memory
+   * (rolling friction mu_Rc, mu_Rf); friction is the force on the rigid body.
+   * The default: zero in a zeroed configuration. */
+  VL_MOVING_RUBBER = 0,
+  /* Seals, wipers: the rubber part (its profile f(x)) is at rest and a flat
+   * rigid rough counter-surface slides under it at +v0. The macroscopic
+   * deformation is static: elastic with the relaxed modulus (no memory, no
+   * Prony kernel); the asperity state is as with VL_MOVING_RUBBER (the
+   * counter-surface's asperities sweep the rubber at v0: |Er(wH)|); the
+   * Couette flux is the counter-surface's; the friction is the tangential
+   * force on the flat counter-surface, mu = mu_Sc + mu_Sf, and the rolling
+   * terms do not apply (vl_point.rolling_na). */
+  VL_MOVING_COUNTERFACE
+} vl_moving;
+
+/* Largest slope of a tabulated profile in the pressure zone before a point
+ * warns (the half-space model of docs/MODEL.md section 3 wants small
+ * slopes), in radians. */
+#define VL_PROFILE_SLOPE_MAX 0.3
+
 typedef struct {
-  vl_prony rubber; /* n_terms = 0: elastic with E = e_inf_pa */
+  vl_prony rubber;  /* n_terms = 0: elastic with E = e_inf_pa */
+  vl_moving moving; /* VL_MOVING_RUBBER (0) or VL_MOVING_COUNTERFACE */
   double radius_m;
   double load_n_per_m;
   double sigma_s_pa; /* shear stress in the real contact area; 0 = off */
@@ -197,6 +222,25 @@ typedef struct {
    * sets as it solves), so nothing outside it changes under it. */
   const vl_flattening_config *flattening;
   const vl_psd *flattening_psd;
+  /* Fluid pressure at the inlet end (x_min) and at the outlet end (x_max) of
+   * the domain (Pa, >= 0, wet contacts only; 0 and 0: the paper's flooded
+   * contact). A seal's sealed pressure on its oil side (docs/MODEL.md
+   * section 12): the rubber's surface on that side of the tip x = 0 is
+   * bathed in it, so the deformation and the load balance count the fluid
+   * pressure above it there (the ambient: p_inlet_pa for x < 0, p_outlet_pa
+   * for x > 0), and fN is the lip's force above that ambient. */
+  double p_inlet_pa, p_outlet_pa;
+  /* The rubber's profile f(x) (docs/MODEL.md section 13; NULL: the
+   * cylinder's parabola x^2/(2 R)): profile_points >= 3 points (x_m, z_m),
+   * any order, distinct x, the height above the counter-surface of the
+   * undeformed rubber. Shifted so that its lowest point sits at x = 0, z = 0
+   * (the tip), interpolated by cubic Hermite with three-point slopes (exact
+   * for a parabola), continued straight beyond its ends. profile_mirror:
+   * f(-x) (an instroke). radius_m still sets the scales (a0, the domain):
+   * give the tip radius. Copied by vl_contact_create. */
+  const double *profile_x_m, *profile_z_m;
+  size_t profile_points;
+  bool profile_mirror;
 } vl_contact_config;
 
 /* Sets the numerics of cfg (grid, grid_growth, domain, tolerance,

@@ -31,6 +31,12 @@ typedef struct {
 
 /* CSV columns of the curve, in order (a NULL-terminated list). */
 extern const char *const vl_curve_columns[];
+/* The columns a seal scene ([seal] stroke; vl_point.seal) adds after them,
+ * NULL-terminated (docs/FORMATS.md). */
+extern const char *const vl_seal_columns[];
+/* The number in seal column k (an index of vl_seal_columns, from 1: column 0,
+ * `stroke`, is a word) of p, NAN where the CSV cell is empty. */
+double vl_seal_column_value(const vl_point *p, size_t k);
 
 /* Writes the curve to path through a temporary renamed into place
  * (atomic_file.h), so a crash leaves no half-written file. VL_EIO with a

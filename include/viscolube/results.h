@@ -10,6 +10,29 @@
 
 #define VL_WARN_MAX 256
 
+/* The strokes of a seal (a scene's [seal] stroke; docs/MODEL.md section 12):
+ * outstroke, the rod moving from the oil side to the air side (the sealed
+ * pressure at the film's inlet); instroke, from air to oil (the profile
+ * mirrored, the sealed pressure at the outlet). */
+typedef enum { VL_STROKE_NONE = 0, VL_STROKE_OUT, VL_STROKE_IN, VL_STROKE_BOTH } vl_stroke;
+
+/* A seal's results at one speed, beside the point's own (which are those of
+ * the outstroke for VL_STROKE_BOTH, else of its one stroke). */
+typedef struct {
+  int stroke;              /* vl_stroke; VL_STROKE_NONE: not a seal scene (no seal columns) */
+  double friction_n_per_m; /* mu fN of the point's stroke */
+  /* VL_STROKE_BOTH: the instroke at the same speed (flux along its own
+   * motion, air to oil) */
+  bool in_converged;
+  double in_mu, in_mu_Sc, in_mu_Sf, in_u_min_m, in_flux_m2_s, in_friction_n_per_m;
+  /* VL_STROKE_BOTH with a rod diameter D and a stroke length L: the fluid
+   * carried out per cycle pi D L q_out/v and back pi D L q_in/v (m^3), and
+   * whether the seal is tight (back >= out: 1, else 0); NAN and -1 when not
+   * known (no D and L, or a stroke did not converge) */
+  double volume_out_m3, volume_back_m3;
+  int tight;
+} vl_seal_result;
+
 /* Result of one operating point, SI units. */
 typedef struct {
   double v0_m_s;
@@ -18,6 +41,12 @@ typedef struct {
                     * failed continuation attempt and coarse-grid starts) */
   double residual; /* final scaled residual norm (max norm) */
   double mu, mu_Rc, mu_Rf, mu_Sc, mu_Sf;
+  /* true when the rolling terms do not apply (a moving counter-surface,
+   * contact.h VL_MOVING_COUNTERFACE: the rubber at rest has no macroscopic
+   * hysteresis, and the flat counter-surface no slope for a pressure to push
+   * on): mu_Rc and mu_Rf then hold 0, and writers show them as not
+   * applicable (empty CSV cells, JSON null), not as computed zeros */
+  bool rolling_na;
   double u_min_m, u_central_m; /* min separation; separation at the pressure centroid */
   double x_centroid_m;         /* pressure centroid (negative: inlet side) */
   double contact_width_m;      /* extent where pc >= 1% of its maximum */
@@ -29,14 +58,20 @@ typedef struct {
   double peak_pressure_pa, x_peak_m;
   double mu_Sf_couette, mu_Sf_poiseuille; /* the two parts of mu_Sf */
   double x_min_film_m; /* where u is smallest (EHL constriction: outlet side, x > 0) */
-  int regime;          /* vl_regime */
-  double eps_f_min;    /* smallest epsilon_f(u) over the grid (viscous flattening);
-                        * 1 when the effect is off */
+  /* fluid flux per unit length (m^2/s) through the film along +x (the
+   * direction of the moving surface), through the face at the fluid
+   * pressure's maximum (constant along the full film, docs/MODEL.md
+   * section 12); 0 when dry */
+  double flux_m2_s;
+  int regime;       /* vl_regime */
+  double eps_f_min; /* smallest epsilon_f(u) over the grid (viscous flattening);
+                     * 1 when the effect is off */
   /* relative error of mu estimated from a coarser solve (sweep.h; the
    * point on cells three times as wide); NAN when none was made or it failed */
   double error_estimate;
   int accuracy;               /* vl_accuracy: the estimate against the point's target */
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
+  vl_seal_result seal;        /* stroke VL_STROKE_NONE unless a seal scene */
 } vl_point;
 
 /* How a converged point's error estimate compares with its target (the

@@ -58,6 +58,17 @@ typedef struct {
    * a scene with solid_shear takes the law of the stored pair of its
    * compound, surface and fluid when there is one (vl_simulation_create) */
   bool sigma_s_given;
+  vl_moving moving;          /* which body moves (contact.h); VL_MOVING_RUBBER by default */
+  double sealed_pressure_pa; /* fluid pressure on the oil side (Pa; 0: none) */
+  /* the rubber's profile (x_m, z_m table, docs/FORMATS.md), the path as
+   * given joined to the scene's folder; empty: the cylinder's parabola */
+  char profile_file[2048];
+  int profile_line; /* the key's line in the scene (for messages) */
+  /* [seal]: a seal's strokes (results.h vl_stroke; VL_STROKE_NONE without
+   * the section), the rod diameter and stroke length (m; 0: not given, no
+   * volumes per cycle) */
+  int stroke;
+  double rod_diameter_m, stroke_length_m;
   /* [sweep] */
   vl_sweep_quantity quantity;
   double from, to;

@@ -36,7 +36,9 @@ vl_contact *vl_simulation_contact(vl_simulation *sim);
 double vl_simulation_eta(const vl_simulation *sim); /* Pa s, 0 if no fluid named; with
                                                      * [effects] temperature and fluid on:
                                                      * at the scene's temperature */
-double vl_simulation_tau(const vl_simulation *sim); /* s, one-term compounds, else 0 */
+double vl_simulation_tau(const vl_simulation *sim); /* s, one-term compounds, else 0 (and 0
+                                                     * with [contact] moving = counterface:
+                                                     * no memory) */
 /* [effects] temperature = on: the scene's temperature_c (C) and the WLF
  * shift factor a_T its compound's times were multiplied by (1 in an
  * elastic scene). Off: NAN and 1 (every material at its reference

@@ -52,6 +52,9 @@ static int column_number(const char *name, const vl_point *p, const vl_curve_met
   for (size_t k = 0; k < sizeof solved_columns / sizeof *solved_columns; k++)
     if (!strcmp(name, solved_columns[k].name)) {
       *v = p->converged ? *(const double *)((const char *)p + solved_columns[k].offset) : NAN;
+      /* rolling terms of a moving counter-surface: not applicable, as the
+       * CSV's empty cell */
+      if (p->rolling_na && !strncmp(name, "mu_R", 4)) *v = NAN;
       return 1;
     }
   return 0;
@@ -106,6 +109,25 @@ static PyObject *curve_dict(size_t n, const vl_point *pts, const vl_curve_meta *
   PyObject *d = PyDict_New();
   for (size_t c = 0; d && vl_curve_columns[c]; c++)
     if (vlpy_set(d, vl_curve_columns[c], column(vl_curve_columns[c], n, pts, m)) < 0) Py_CLEAR(d);
+  /* a seal scene's columns: `stroke` a list of words, the others numbers
+   * (NaN where the CSV cell is empty; converged_in and tight 1/0) */
+  for (size_t c = 0; d && n && pts[0].seal.stroke != VL_STROKE_NONE && vl_seal_columns[c]; c++) {
+    npy_intp dims[1] = {(npy_intp)n};
+    PyObject *o = c == 0 ? PyList_New((Py_ssize_t)n) : PyArray_SimpleNew(1, dims, NPY_DOUBLE);
+    static const char *const words[] = {"", "out", "in", "both"};
+    for (size_t i = 0; o && i < n; i++) {
+      if (c > 0) {
+        ((double *)PyArray_DATA((PyArrayObject *)o))[i] = vl_seal_column_value(&pts[i], c);
+        continue;
+      }
+      PyObject *t = PyUnicode_FromString(words[pts[i].seal.stroke & 3]);
+      if (!t)
+        Py_CLEAR(o);
+      else
+        PyList_SET_ITEM(o, (Py_ssize_t)i, t);
+    }
+    if (vlpy_set(d, vl_seal_columns[c], o) < 0) Py_CLEAR(d);
+  }
   return d;
 }
 

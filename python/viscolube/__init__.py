@@ -93,6 +93,10 @@ class Curve(dict):
     point); the property `reliable` (bool array) is True where a point
     converged and is known to its error target: the points the program marks
     '!' are False.
+    A seal scene ([seal] stroke) adds the seal columns of curve.csv
+    (docs/FORMATS.md): `stroke` (str), flux_m2_s, friction_n_per_m, the
+    instroke's *_in columns, volume_out_m3, volume_back_m3, and
+    converged_in, tight as 1.0/0.0 (NaN when not known).
 
     .info    the curve's context: compound, surface, fluid, quantity,
              eta_pa_s, tau_s, a0_m, p0_pa, hrms_m, flow_factors,

@@ -172,6 +172,9 @@ static void eval_gap(vl_contact *c, const double *y) {
   double *G = c->rough ? c->D : c->U;
   for (size_t j = 0; j < n; j++)
     c->q[j] = c->P[j] + c->F[j];
+  if (c->pamb) /* a sealed side: the pressure above its ambient deforms the rubber */
+    for (size_t j = 0; j < n; j++)
+      c->q[j] -= c->pamb[j];
   /* M is row-major: the column-major n x n matrix M^T, transposed (BLAS:
    * a plain loop is bound by the latency of its one running sum, about
    * 4x slower at n = 400, where it was a third of a dry point's time) */
@@ -179,7 +182,7 @@ static void eval_gap(vl_contact *c, const double *y) {
   double w1 = 1.0, w0 = 0.0;
   dgemv_("T", &ni, &ni, &w1, c->M, &ni, c->q, &one, &w0, G, &one, 1);
   for (size_t i = 0; i < n; i++)
-    G[i] += h0 + 0.5 * c->xi[i] * c->xi[i];
+    G[i] += h0 + (c->fprof ? c->fprof[i] : 0.5 * c->xi[i] * c->xi[i]);
   if (c->rough) {
     for (size_t i = 0; i < n; i++) {
       c->U[i] = y[i];
@@ -247,14 +250,15 @@ double vl_contact_face_poiseuille(const vl_contact *c, size_t f) {
 void vl_contact_eval_fluxes(vl_contact *c, const double *y) {
   size_t n = c->n;
   const double *pf = y + c->of, *hf = c->hf;
-  double L = c->lambda;
+  double L = c->lambda, pin, pout;
+  vl_contact_end_pressures(c, &pin, &pout);
   for (size_t f = 0; f <= n; f++) {
     size_t k[3];
     double w[3];
     int m;
     double jc = couette_face(c, f, k, w, &m), dl, dr;
-    double jp = f == 0   ? -L * c->g[0] * pf[0] / hf[0]
-                : f == n ? L * c->g[n - 1] * pf[n - 1] / hf[n]
+    double jp = f == 0   ? -L * c->g[0] * (pf[0] - pin) / hf[0]
+                : f == n ? L * c->g[n - 1] * (pf[n - 1] - pout) / hf[n]
                          : -L * face_g(c, f, &dl, &dr) * (pf[f] - pf[f - 1]) / hf[f];
     c->Jf[f] = jp + jc;
   }
@@ -276,7 +280,16 @@ double vl_contact_load_sum(const vl_contact *c) {
   double s = 0.0;
   for (size_t i = 0; i < c->n; i++)
     s += (c->P[i] + c->F[i]) * c->wc[i];
+  if (c->pamb)
+    for (size_t i = 0; i < c->n; i++)
+      s -= c->pamb[i] * c->wc[i];
   return s / (0.5 * M_PI);
+}
+
+void vl_contact_end_pressures(const vl_contact *c, double *pin, double *pout) {
+  double unit = c->kappa * c->p0;
+  *pin = c->cfg.p_inlet_pa > 0.0 ? c->cfg.p_inlet_pa / unit : 0.0;
+  *pout = c->cfg.p_outlet_pa > 0.0 ? c->cfg.p_outlet_pa / unit : 0.0;
 }
 
 /* Reynolds row i before complementarity: rw_i (J_{i+1/2} - J_{i-1/2}), see
@@ -438,7 +451,8 @@ static void jacobian_contact_rows(vl_contact *c, double *Jd) {
 static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, size_t i) {
   size_t n = c->n, of = c->of, ld = c->nunk;
   const double *pf = y + of, *hf = c->hf;
-  double L = c->lambda;
+  double L = c->lambda, pin, pout;
+  vl_contact_end_pressures(c, &pin, &pout);
   size_t row = of + i;
   double da, db;
   vl_contact_reynolds_row(c, y, i, &da, &db);
@@ -452,10 +466,10 @@ static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, si
     double sg = side ? s : -s;
     if (f == 0) {
       dpf[1] += sg * (-L * c->g[0] / hf[0]);
-      du[2] += sg * (-L * c->dg[0] * pf[0] / hf[0]);
+      du[2] += sg * (-L * c->dg[0] * (pf[0] - pin) / hf[0]);
     } else if (f == n) {
       dpf[1] += sg * (L * c->g[n - 1] / hf[n]);
-      du[2] += sg * (L * c->dg[n - 1] * pf[n - 1] / hf[n]);
+      du[2] += sg * (L * c->dg[n - 1] * (pf[n - 1] - pout) / hf[n]);
     } else {
       double dl, dr, gf = face_g(c, f, &dl, &dr), dp = (pf[f] - pf[f - 1]) / hf[f];
       /* cells f-1 and f are i-1, i (left face) or i, i+1 (right face) */

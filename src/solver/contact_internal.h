@@ -93,6 +93,8 @@ struct vl_contact {
    * the uniform Toeplitz coefficients. All NULL on a uniform grid (nv = n). */
   size_t nv, *first, *span;
   double *psum;
+  size_t nk;        /* Prony terms of the macroscopic kernel: cfg.rubber's, or 0 (elastic,
+                     * relaxed) when the counter-surface moves (vl_moving) */
   double *A, *beta; /* Prony strengths and v0 tau_k / a0 */
   vl_toeplitz kern;
   double *M; /* dense influence matrix, row-major: U_i += M[i n + j] P_j */
@@ -122,6 +124,12 @@ struct vl_contact {
   double *state_y;           /* smooth dry: the y of the last vl_contact_eval_state, else NULL */
   size_t kernel_builds;      /* influence matrices built (vl_contact_set_speed) */
   size_t state_kernel;       /* the one state_y was evaluated with */
+  double *fprof, *sprof;     /* a tabulated profile at the nodes (contact.h): f/(a0^2/R) and its
+                              * slope f'; NULL for the parabola */
+  double *ptab;              /* the contact's copy of the profile's table (cfg points to it, so
+                              * that the helper contacts it creates later may read it) */
+  double *pamb;              /* ambient fluid pressure per cell (p0) with a sealed pressure
+                              * (cfg.p_inlet_pa for x < 0, p_outlet_pa beyond), else NULL */
   double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */
   bool film_correct;         /* Newton's steps get the film pressure of contact_film.c (during
                               * the Newton variants that continue a converged rough film) */
@@ -200,6 +208,11 @@ void vl_contact_eval_state(vl_contact *c, const double *y);
 
 /* \int (pf + pc) dx / fN from the current state (needs vl_contact_eval_state). */
 double vl_contact_load_sum(const vl_contact *c);
+
+/* The fluid pressure beyond the inlet and outlet ends of the domain, in
+ * the units of the fluid unknowns (kappa p0): the sealed pressures of
+ * cfg, 0 without. */
+void vl_contact_end_pressures(const vl_contact *c, double *pin, double *pout);
 
 /* Reynolds row i before complementarity (needs vl_contact_eval_state). */
 double vl_contact_reynolds_residual(const vl_contact *c, size_t i);

@@ -32,6 +32,12 @@ typedef enum {
   K_RADIUS,
   K_LOAD,
   K_SIGMA_S,
+  K_MOVING,
+  K_SEALED_PRESSURE,
+  K_PROFILE_FILE,
+  K_STROKE,
+  K_ROD_DIAMETER,
+  K_STROKE_LENGTH,
   K_QUANTITY,
   K_FROM,
   K_TO,
@@ -68,6 +74,12 @@ static const struct {
     [K_RADIUS] = {"contact", "radius_m", true},
     [K_LOAD] = {"contact", "load_n_per_m", true},
     [K_SIGMA_S] = {"contact", "sigma_s_pa", false},
+    [K_MOVING] = {"contact", "moving", false},
+    [K_SEALED_PRESSURE] = {"contact", "sealed_pressure_pa", false},
+    [K_PROFILE_FILE] = {"contact", "profile_file", false},
+    [K_STROKE] = {"seal", "stroke", false},
+    [K_ROD_DIAMETER] = {"seal", "rod_diameter_m", false},
+    [K_STROKE_LENGTH] = {"seal", "stroke_length_m", false},
     [K_QUANTITY] = {"sweep", "quantity", true},
     [K_FROM] = {"sweep", "from", true},
     [K_TO] = {"sweep", "to", true},
@@ -112,6 +124,7 @@ static int contact_key(parse_state *, key_id, const char *, const char *, const 
 static int sweep_key(parse_state *, key_id, const char *, const char *, const char *);
 static int effects_key(parse_state *, key_id, const char *, const char *, const char *);
 static int numerics_key(parse_state *, key_id, const char *, const char *, const char *);
+static int seal_key(parse_state *, key_id, const char *, const char *, const char *);
 
 static const struct {
   const char *name;
@@ -119,6 +132,7 @@ static const struct {
 } sections[] = {
     {"scene", scene_key}, {"materials", materials_key}, {"contact", contact_key},
     {"sweep", sweep_key}, {"effects", effects_key},     {"numerics", numerics_key},
+    {"seal", seal_key},
 };
 
 const char *vl_sweep_quantity_name(vl_sweep_quantity q) {
@@ -231,7 +245,7 @@ static void unknown_section(parse_state *ps, const char *section) {
       snprintf(hint, sizeof hint, " (did you mean [%s]?)", sections[s].name);
   vl_error_set(ps->err,
                "%s:%d: unknown section [%s]%s (known: scene, materials, contact, "
-               "sweep, effects, numerics)",
+               "sweep, effects, numerics, seal)",
                ps->path, ps->line, section, hint);
   ps->status = VL_EINPUT;
   ps->err_line = ps->line;
@@ -314,6 +328,28 @@ static int contact_key(parse_state *ps, key_id id, const char *section, const ch
     if (!parse_double(value, &sc->sigma_s_pa) || sc->sigma_s_pa < 0.0)
       return fail(ps, section, key, "expected a number >= 0, got '%s'", value);
     return 1;
+  case K_MOVING:
+    if (!strcmp(value, "rubber"))
+      sc->moving = VL_MOVING_RUBBER;
+    else if (!strcmp(value, "counterface"))
+      sc->moving = VL_MOVING_COUNTERFACE;
+    else
+      return fail(ps, section, key, "expected rubber or counterface, got '%s'", value);
+    return 1;
+  case K_PROFILE_FILE: {
+    /* relative to the scene file's folder */
+    const char *slash = strrchr(ps->path, '/');
+    int dir = value[0] != '/' && slash ? (int)(slash - ps->path + 1) : 0;
+    if (!*value || strlen(value) + (size_t)dir >= sizeof sc->profile_file)
+      return fail(ps, section, key, "bad file name '%s'", value);
+    snprintf(sc->profile_file, sizeof sc->profile_file, "%.*s%s", dir, ps->path, value);
+    sc->profile_line = ps->line;
+    return 1;
+  }
+  case K_SEALED_PRESSURE:
+    if (!parse_double(value, &sc->sealed_pressure_pa) || sc->sealed_pressure_pa < 0.0)
+      return fail(ps, section, key, "expected a pressure >= 0 (Pa), got '%s'", value);
+    return 1;
   default: return fail(ps, section, key, "unknown key%s", "");
   }
 }
@@ -385,6 +421,27 @@ static int effects_key(parse_state *ps, key_id id, const char *section, const ch
     if (!parse_double(value, &sc->effects.temperature_c) || sc->effects.temperature_c < -273.15)
       return fail(ps, section, key, "expected a temperature in C, got '%s'", value);
     return 1;
+  default: return fail(ps, section, key, "unknown key%s", "");
+  }
+}
+
+/* A seal's strokes and the rod (docs/MODEL.md section 12). */
+static int seal_key(parse_state *ps, key_id id, const char *section, const char *key,
+                    const char *value) {
+  vl_scene *sc = ps->scene;
+  switch (id) {
+  case K_STROKE:
+    if (!strcmp(value, "out"))
+      sc->stroke = VL_STROKE_OUT;
+    else if (!strcmp(value, "in"))
+      sc->stroke = VL_STROKE_IN;
+    else if (!strcmp(value, "both"))
+      sc->stroke = VL_STROKE_BOTH;
+    else
+      return fail(ps, section, key, "expected out, in or both, got '%s'", value);
+    return 1;
+  case K_ROD_DIAMETER: POSITIVE(rod_diameter_m);
+  case K_STROKE_LENGTH: POSITIVE(stroke_length_m);
   default: return fail(ps, section, key, "unknown key%s", "");
   }
 }
@@ -621,6 +678,26 @@ static vl_status scene_check(parse_state *ps) {
     return check_fail(ps, K_QUANTITY,
                       "deborah needs [effects] viscoelastic = on (line %d sets it off)",
                       ps->key_line[K_VISCOELASTIC]);
+  if (sc->sealed_pressure_pa > 0.0 && !sc->effects.fluid)
+    return check_fail(ps, K_SEALED_PRESSURE, "a sealed pressure needs [effects] fluid = on");
+  if ((ps->key_line[K_ROD_DIAMETER] || ps->key_line[K_STROKE_LENGTH]) && !ps->key_line[K_STROKE])
+    return check_fail(ps, ps->key_line[K_ROD_DIAMETER] ? K_ROD_DIAMETER : K_STROKE_LENGTH,
+                      "needs [seal] stroke");
+  if (!ps->key_line[K_ROD_DIAMETER] != !ps->key_line[K_STROKE_LENGTH])
+    return check_fail(ps, ps->key_line[K_ROD_DIAMETER] ? K_ROD_DIAMETER : K_STROKE_LENGTH,
+                      "the volumes per cycle need both rod_diameter_m and stroke_length_m");
+  if (sc->stroke != VL_STROKE_NONE && !sc->effects.fluid)
+    return check_fail(ps, K_STROKE, "a seal's strokes need [effects] fluid = on");
+  if (sc->stroke != VL_STROKE_NONE && sc->moving != VL_MOVING_COUNTERFACE)
+    return check_fail(ps, K_STROKE,
+                      "a seal's strokes need [contact] moving = counterface (the seal at rest, "
+                      "the rod moving)");
+  /* v0 tau/a0 measures the macroscopic memory, which a rubber at rest has not */
+  if (sc->quantity == VL_SWEEP_DEBORAH && sc->moving == VL_MOVING_COUNTERFACE)
+    return check_fail(ps, K_QUANTITY,
+                      "deborah needs [contact] moving = rubber (line %d: with a moving "
+                      "counter-surface the rubber deforms statically, without memory)",
+                      ps->key_line[K_MOVING]);
   if (ps->key_line[K_ELASTIC_MODULUS] && sc->effects.viscoelastic)
     return check_fail(ps, K_ELASTIC_MODULUS,
                       "applies to [effects] viscoelastic = off only (the rubber is viscoelastic)");

@@ -964,8 +964,11 @@ static bool draw_half_load(fig *f, const curve_ctx *c, const double *wx, const d
   return true;
 }
 
+/* Series c of the Stribeck figure: mu, its four components, and (a seal's
+ * both strokes) the instroke's mu (NAN where it did not converge). */
 static double component(const vl_point *p, int c) {
   switch (c) {
+  case 5: return p->seal.in_converged ? p->seal.in_mu : NAN;
   case 0: return p->mu;
   case 1: return p->mu_Rc;
   case 2: return p->mu_Rf;
@@ -976,18 +979,19 @@ static double component(const vl_point *p, int c) {
 
 static void draw_stribeck(fig *f, const void *vctx) {
   const curve_ctx *c = vctx;
-  static const char *const names[5] = {
-      "#<0x11>μ#<0x01> total", "#<0x11>μ#<0x01>#dRc#u rolling, contact",
-      "#<0x11>μ#<0x01>#dRf#u rolling, fluid", "#<0x11>μ#<0x01>#dSc#u sliding, contact",
-      "#<0x11>μ#<0x01>#dSf#u sliding, fluid"};
-  /* total in the seed's red, rolling dashed, contact blue, fluid orange */
-  const style styles[5] = {{PALETTE[1], 1, 3.0},
-                           {PALETTE[0], 3, 2.0},
-                           {PALETTE[4], 3, 2.0},
-                           {PALETTE[2], 1, 2.0},
-                           {PALETTE[3], 1, 2.0}};
+  static const char *const names[6] = {"#<0x11>μ#<0x01> total",
+                                       "#<0x11>μ#<0x01>#dRc#u rolling, contact",
+                                       "#<0x11>μ#<0x01>#dRf#u rolling, fluid",
+                                       "#<0x11>μ#<0x01>#dSc#u sliding, contact",
+                                       "#<0x11>μ#<0x01>#dSf#u sliding, fluid",
+                                       "#<0x11>μ#<0x01> total, instroke"};
+  /* total in the seed's red, rolling dashed, contact blue, fluid orange; a
+   * seal's instroke (the rows are the outstroke) dashed black */
+  const style styles[6] = {{PALETTE[1], 1, 3.0}, {PALETTE[0], 3, 2.0}, {PALETTE[4], 3, 2.0},
+                           {PALETTE[2], 1, 2.0}, {PALETTE[3], 1, 2.0}, {BLACK, 3, 2.5}};
   size_t n = c->n;
-  double *wx = calloc(n, sizeof *wx), *wy = calloc(6 * n, sizeof *wy);
+  int series = n && c->pts[0].seal.stroke == VL_STROKE_BOTH ? 6 : 5;
+  double *wx = calloc(n, sizeof *wx), *wy = calloc(7 * n, sizeof *wy);
   bool *ok = calloc(n, sizeof *ok);
   if (!wx || !wy || !ok) {
     free(wx), free(wy), free(ok);
@@ -996,13 +1000,13 @@ static void draw_stribeck(fig *f, const void *vctx) {
   layout_single(f);
   for (size_t i = 0; i < n; i++)
     ok[i] = c->pts[i].converged;
-  double *xv = wy + 5 * n;
+  double *xv = wy + 6 * n;
   for (size_t i = 0; i < n; i++)
     xv[i] = x_value(&c->pts[i], c->meta, c->q);
   sweep_x_axis(f, n, xv);
-  bool shown[5] = {true, false, false, false, false};
+  bool shown[6] = {true, false, false, false, false, false};
   double lo = NAN, hi = NAN;
-  for (int k = 0; k < 5; k++) {
+  for (int k = 0; k < series; k++) {
     double *y = wy + (size_t)k * n;
     for (size_t i = 0; i < n; i++) {
       y[i] = ok[i] ? component(&c->pts[i], k) : NAN;
@@ -1033,17 +1037,22 @@ static void draw_stribeck(fig *f, const void *vctx) {
   draw_axes(f, x_title(c->q), "friction coefficient #<0x11>μ#<0x01>", true);
   use_data_area(f);
   bool half = draw_half_load(f, c, wx, wy);
-  /* the components first, the total over them */
-  for (int k = 4; k >= 0; k--) {
+  /* the components first, the total over them, a seal's instroke (dashed)
+   * over that */
+  for (int j = 0; j < series; j++) {
+    int k = j < 5 ? 4 - j : j;
     if (!shown[k]) continue;
     double *y = wy + (size_t)k * n;
     draw_runs(f, n, wx, y, styles[k]);
   }
-  for (int k = 0; k < 5; k++) {
+  for (int k = 0; k < series; k++) {
     if (!shown[k]) continue;
     char label[2 * TEXT_MAX];
     if (k == 0 && alone)
-      snprintf(label, sizeof label, "#<0x11>μ#<0x01> = %s", names[alone]);
+      snprintf(label, sizeof label, "#<0x11>μ#<0x01>%s = %s", series == 6 ? " outstroke" : "",
+               names[alone]);
+    else if (k == 0 && series == 6)
+      snprintf(label, sizeof label, "%s, outstroke", names[0]);
     else
       snprintf(label, sizeof label, "%s", names[k]);
     add_legend(f, label, true, styles[k], M_NONE, false, BLACK);

@@ -199,6 +199,40 @@ class TestScenes(Scratch):
         for name in vl.CURVE_COLUMNS:
             np.testing.assert_array_equal(a[name], b[name], name)
 
+    def test_seal_scene_equals_cli(self):
+        # a seal's strokes (docs/MODEL.md sections 11-12): the seal columns
+        # after curve.csv's, every cell as the CLI writes it; the rolling
+        # terms not applicable (NaN)
+        scene = os.path.join(self.dir, "seal.ini")
+        with open(scene, "w") as f:
+            f.write("[materials]\ncompound = model-rubber\nfluid = model-1e-1\n"
+                    "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
+                    "moving = counterface\nsealed_pressure_pa = 3e4\n"
+                    "[sweep]\nquantity = v0\nfrom = 0.01\nto = 1\npoints = 3\n"
+                    "[effects]\nviscoelastic = off\nfluid = on\n"
+                    "[numerics]\ngrid = 256\ndomain_a0 = -3, 1.5\n"
+                    "[seal]\nstroke = both\nrod_diameter_m = 0.02\n"
+                    "stroke_length_m = 0.1\n")
+        out = os.path.join(self.dir, "out")
+        cli("--db", self.db_path, "run", scene, "--out", out, "--quiet")
+        with vl.Database(self.db_path) as db:
+            curve = db.run(scene)
+        header, rows = read_csv(os.path.join(out, "curve.csv"))
+        self.assertEqual(list(curve.keys()), header)
+        self.assertEqual(header[len(vl.CURVE_COLUMNS)], "stroke")
+        for i, row in enumerate(rows):
+            self.assertTrue(math.isnan(curve["mu_Rc"][i]) and math.isnan(curve["mu_Rf"][i]))
+            for name, cell in list(zip(header, row))[len(vl.CURVE_COLUMNS):]:
+                v = curve[name][i]
+                if name == "stroke":
+                    self.assertEqual(cell, v)
+                elif name in ("converged_in", "tight"):
+                    self.assertEqual(cell, "" if math.isnan(v) else str(int(v)), name)
+                elif cell == "":
+                    self.assertTrue(math.isnan(v), (name, i, v))
+                else:
+                    self.assertEqual(cell, text10(v), (name, i))
+
     def test_compare_equals_cli(self):
         out = os.path.join(self.dir, "cmp")
         cli("--db", self.db_path, "compare", "--compounds", "sbr-unfilled,sbr-filled",
