@@ -297,7 +297,8 @@ static const char *seal_scene_with(double sealed_pa, const char *extra) {
            "sealed_pressure_pa = %g\n%s"
            "[sweep]\nquantity = v0\nfrom = 0.01\nto = 1\npoints = 3\n"
            "[effects]\nviscoelastic = off\nfluid = on\n"
-           "[numerics]\ngrid = 256\ndomain_a0 = -3, 1.5\n"
+           /* coarse cells, for the test's time: a target they meet */
+           "[numerics]\ngrid = 256\ndomain_a0 = -3, 1.5\ntarget_error = 0.5\n"
            "[seal]\nstroke = both\nrod_diameter_m = 0.02\nstroke_length_m = 0.1\n",
            sealed_pa, extra);
   return buf;
@@ -507,7 +508,9 @@ static char *run_case(const char *name) {
   char *out = NULL, *err = NULL;
   int rc = vl_test_run(&out, &err, "run %s --out %s/%s --json --quiet", vl_test_source_path(name),
                        vl_test_dir, strrchr(name, '/') + 1);
-  if (rc != 0) fail_msg("%s exited %d: %s", name, rc, err);
+  /* 8: every point converged, some above their 1 % target (the wiper's
+   * nanometre films: docs/CASES.md); the statements below hold either way */
+  if (rc != 0 && rc != 8) fail_msg("%s exited %d: %s", name, rc, err);
   free(err);
   size_t objects = 0;
   assert_true(vl_test_json_array_valid(out, &objects));
