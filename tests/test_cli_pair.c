@@ -52,6 +52,9 @@ static void test_add_show_remove(void **state) {
   vl_test_expect_fail(2, "needs sigma_wet_pa", NULL,
                       "pair add " TRIPLE " --law dewetting --sigma-dry 1e6 --v-d 1");
   vl_test_expect_fail(2, "unknown shear-stress law", NULL, "pair add " TRIPLE " --law eyrin");
+  /* a mistyped option gets the nearest one, as in the other commands */
+  vl_test_expect_fail(2, "unknown option '--sigma-ss'", "did you mean --sigma-s?",
+                      "pair add " TRIPLE " --law constant --sigma-ss 1e6");
   /* removing the fluid removes the pair, and says so */
   assert_int_equal(vl_test_run(&out, &err, "fluid remove water"), 0);
   assert_non_null(strstr(out, "removed fluid 'water'"));

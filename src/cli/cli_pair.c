@@ -3,6 +3,7 @@
  * its own option loop, so that the command line's shared parser can take
  * it over later. */
 #include "cli.h"
+#include "viscolube/edit_distance.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -85,6 +86,33 @@ static const char **text_slot(pair_args *a, const char *o) {
                                        : NULL;
 }
 
+/* An unknown option, with the nearest known one when it is within two
+ * edits (a swap of neighbours counting as one), as the other commands say. */
+static int unknown_option(const char *o) {
+  static const char *const known[] = {"--sigma-s",      "--sigma-0",
+                                      "--sigma-dry",    "--sigma-e",
+                                      "--sigma-wet",    "--v-e",
+                                      "--v-d",          "--load",
+                                      "--radius",       "--temperature",
+                                      "--eta-ref",      "--check-load",
+                                      "--check-radius", "--check-temperature",
+                                      "--compound",     "--surface",
+                                      "--fluid",        "--law",
+                                      "--measured",     "--check",
+                                      "--out",          "--plot",
+                                      "--description",  "--save",
+                                      "--json"};
+  const char *best = NULL;
+  size_t best_d = 3;
+  for (size_t k = 0; k < sizeof known / sizeof *known; k++) {
+    size_t d = vl_edit_distance(o, strlen(o), known[k], strlen(known[k]), true);
+    if (d < best_d) best_d = d, best = known[k];
+  }
+  if (!best) return usage_error("unknown option '%s'", o);
+  fprintf(stderr, "viscolube pair: unknown option '%s' (did you mean %s?)\n", o, best);
+  return vl_status_exit_code(VL_EINPUT);
+}
+
 static int parse_args(int argc, char **argv, pair_args *a) {
   memset(a, 0, sizeof *a);
   a->load = VL_QUERY_LOAD_N_PER_M, a->radius = VL_QUERY_RADIUS_M;
@@ -103,7 +131,7 @@ static int parse_args(int argc, char **argv, pair_args *a) {
     int param;
     double *num = number_slot(a, o, &param);
     const char **txt = num ? NULL : text_slot(a, o);
-    if (!num && !txt) return usage_error("unknown option '%s'", o);
+    if (!num && !txt) return unknown_option(o);
     if (i + 1 >= argc) return usage_error("option %s needs a value", o);
     const char *v = argv[++i];
     if (txt) {
