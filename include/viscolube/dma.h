@@ -67,7 +67,13 @@
  * ignored columns, the shear conversion (or a generic name read as
  * tensile), bridged pairs; lines starting "warning: " for a WLF residual
  * above VL_DMA_WARN_WLF_RMS, a fit error above VL_DMA_WARN_FIT_RMS in E'
- * or E'', and isotherms too far apart to join.
+ * or E'', and isotherms too far apart to join; and (dma_quality.c) a
+ * note with the measured ranges (E', frequencies, temperatures), then
+ * warnings for neighbouring isotherms that do not join (VL_DMA_WARN_JOIN_*,
+ * naming both temperatures), a rise of tan delta at the top of the
+ * isotherms' windows (VL_DMA_WARN_TAN_RISE, naming each isotherm and the
+ * frequency) and Einf or E0 beyond VL_DMA_WARN_EXTRAPOLATION times the
+ * measured E' (extrapolated).
  *
  * Refused, with FILE:LINE: column 'NAME' (field K) where a row is at fault
  * (every such row at once): everything csv.h refuses; misspelt, duplicate

@@ -44,7 +44,7 @@ def cli(*args, expect=0):
 # The members of a point in the CLI's JSON (output.c, 17 digits).
 POINT_NUMBERS = {"v0_m_s", "v0_eta_pa_m", "deborah", "mu", "mu_Rc", "mu_Rf", "mu_Sc",
                  "mu_Sf", "u_min_m", "u_central_m", "contact_width_m", "fluid_load_fraction",
-                 "E_wH_pa", "a_H_m", "Q", "x_centroid_m", "load_error", "residual",
+                 "u_min_over_h_rms", "E_wH_pa", "a_H_m", "Q", "x_centroid_m", "load_error", "residual",
                  "eps_f_min", "error_estimate", "film_cutoff_m"}
 
 
