@@ -8,7 +8,9 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#define VL_WARN_MAX 256
+/* room for the solver's, the model checks' and the temperature warnings
+ * together (256 could leave the last one out) */
+#define VL_WARN_MAX 512
 
 /* Result of one operating point, SI units. */
 typedef struct {
