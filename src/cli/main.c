@@ -7,7 +7,8 @@
 #include <string.h>
 
 #include "cli.h"
-#include "vl_version.h" /* generated at configure time (src/CMakeLists.txt) */
+#include "viscolube/manifest.h" /* vl_manifest_interrupt */
+#include "vl_version.h"         /* generated at configure time (src/CMakeLists.txt) */
 
 /* `flattening ...` (src/cli/cli_flattening.c); belongs in cli.h */
 int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
@@ -117,5 +118,9 @@ static int check_stdout(int rc) {
 
 int main(int argc, char **argv) {
   signal(SIGPIPE, SIG_IGN);
+  /* issue 32: Ctrl-C (or a kill) during a run puts the earlier complete
+   * run back in its folder (manifest.h) */
+  signal(SIGINT, vl_manifest_interrupt);
+  signal(SIGTERM, vl_manifest_interrupt);
   return check_stdout(dispatch(argc, argv));
 }
