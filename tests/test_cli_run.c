@@ -42,12 +42,32 @@ static double hertz_a(double e_pa) {
 }
 
 /* The columns README and output.h document, in order. */
-static const char *const COLUMNS[] = {
-    "v0_m_s",    "v0_eta_pa_m", "deborah",  "mu",          "mu_Rc",           "mu_Rf",
-    "mu_Sc",     "mu_Sf",       "u_min_m",  "u_central_m", "contact_width_m", "fluid_load_fraction",
-    "regime",    "E_wH_pa",     "a_H_m",    "Q",           "x_centroid_m",    "load_error",
-    "converged", "iterations",  "residual", "eps_f_min",   "error_estimate",  "accuracy",
-    "warnings"};
+static const char *const COLUMNS[] = {"v0_m_s",
+                                      "v0_eta_pa_m",
+                                      "deborah",
+                                      "mu",
+                                      "mu_Rc",
+                                      "mu_Rf",
+                                      "mu_Sc",
+                                      "mu_Sf",
+                                      "u_min_m",
+                                      "u_central_m",
+                                      "contact_width_m",
+                                      "fluid_load_fraction",
+                                      "u_min_over_h_rms",
+                                      "regime",
+                                      "E_wH_pa",
+                                      "a_H_m",
+                                      "Q",
+                                      "x_centroid_m",
+                                      "load_error",
+                                      "converged",
+                                      "iterations",
+                                      "residual",
+                                      "eps_f_min",
+                                      "error_estimate",
+                                      "accuracy",
+                                      "warnings"};
 #define NCOL (sizeof COLUMNS / sizeof COLUMNS[0])
 static const char *const FIELD_COLUMNS =
     "x_m,x_over_a0,p_f_pa,p_c_pa,u_m,area_ratio,film_fraction,cell_width_m";

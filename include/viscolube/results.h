@@ -8,7 +8,9 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#define VL_WARN_MAX 256
+/* room for the solver's, the model checks' and the temperature warnings
+ * together (256 could leave the last one out) */
+#define VL_WARN_MAX 512
 
 /* The strokes of a seal (a scene's [seal] stroke; docs/MODEL.md section 12):
  * outstroke, the rod moving from the oil side to the air side (the sealed
@@ -51,6 +53,7 @@ typedef struct {
   double x_centroid_m;         /* pressure centroid (negative: inlet side) */
   double contact_width_m;      /* extent where pc >= 1% of its maximum */
   double fluid_load_fraction;  /* \int pf / fN */
+  double u_min_over_h_rms;     /* film ratio lambda = u_min / h_rms; NAN on smooth surfaces */
   double load_error;           /* |\int p - fN| / fN */
   double E_wH_pa;              /* |Er(wH)| (rough) or Er of the relaxed state */
   double a_H_m;                /* Hertz half-width with |Er(wH)| */
@@ -93,13 +96,30 @@ const char *vl_accuracy_name(int accuracy);
 /* True when pt converged but is above its error target or has no estimate. */
 bool vl_point_unreliable(const vl_point *pt);
 
-/* Lubrication regime by the share of the load carried by the fluid. */
+/* Lubrication regime by the share of the load the fluid carries AND the
+ * film ratio lambda = u_min / h_rms (docs/MODEL.md section 9): the two
+ * must agree for a pure regime, else the point is mixed.
+ *   hydrodynamic  fluid carries > 95 % of the load and lambda >= 3 (the
+ *                 surfaces stand three rms heights apart where closest:
+ *                 asperities seldom touch, Tallian's full-film ratio)
+ *   boundary      fluid carries < 5 % and lambda < 3 (the solids carry the
+ *                 load, and stand close enough for their asperities to
+ *                 touch: a soft rubber in Persson contact sits at 1 to 2
+ *                 h_rms)
+ *   mixed         anything else, including a load share and a film that
+ *                 disagree (the fluid carrying 99 % through a film of
+ *                 0.6 h_rms, or 2 % across 3.8 h_rms)
+ * On smooth surfaces (h_rms = 0, lambda undefined) the load share alone
+ * decides. Failed points are "boundary" (they carry no solved state). */
 typedef enum {
   VL_REGIME_DRY = 0,     /* no fluid */
-  VL_REGIME_BOUNDARY,    /* fluid carries < 5 % of the load */
-  VL_REGIME_MIXED,       /* 5 % ... 95 % */
-  VL_REGIME_HYDRODYNAMIC /* > 95 % */
+  VL_REGIME_BOUNDARY,    /* fluid carries < 5 % of the load and lambda < 3 */
+  VL_REGIME_MIXED,       /* neither */
+  VL_REGIME_HYDRODYNAMIC /* > 95 % and lambda >= 3 */
 } vl_regime;
+#define VL_REGIME_LOAD_BOUNDARY 0.05     /* fluid load share below: boundary */
+#define VL_REGIME_LOAD_HYDRODYNAMIC 0.95 /* above: hydrodynamic */
+#define VL_REGIME_FILM_FULL 3.0          /* lambda at or above: hydrodynamic, below: boundary */
 
 /* "dry", "boundary", "mixed", "hydrodynamic"; "?" for anything else. */
 const char *vl_regime_name(int regime);

@@ -25,6 +25,7 @@ static const struct {
     {"u_central_m", offsetof(vl_point, u_central_m)},
     {"contact_width_m", offsetof(vl_point, contact_width_m)},
     {"fluid_load_fraction", offsetof(vl_point, fluid_load_fraction)},
+    {"u_min_over_h_rms", offsetof(vl_point, u_min_over_h_rms)},
     {"E_wH_pa", offsetof(vl_point, E_wH_pa)},
     {"a_H_m", offsetof(vl_point, a_H_m)},
     {"Q", offsetof(vl_point, Q)},

@@ -17,16 +17,36 @@ OutOfMemoryError, InternalError) with `.status` (the library's code) and
 
 import math
 import os
+import sys
+import warnings
 
-import numpy as np
-
-from . import _core
+try:
+    import numpy as np
+except ImportError as _e:  # say what is missing, for which interpreter
+    raise ImportError(
+        "viscolube needs NumPy, which is not installed for this interpreter "
+        f"({sys.executable}): install it (Debian: python3-numpy), or use the "
+        "interpreter the package was built for (cmake prints it: 'the Python "
+        "package (target vl_python_core) is built for ...')") from _e
+try:
+    from . import _core
+except ImportError as _e:
+    # Python words a missing extension module as "cannot import name '_core'
+    # from partially initialized module (most likely due to a circular
+    # import)": it is simply not there
+    _why = "" if "partially initialized" in str(_e) else f"; import error: {_e}"
+    raise ImportError(
+        "viscolube's extension viscolube._core is not built or not built for this "
+        f"interpreter ({sys.executable}, Python {sys.version_info.major}."
+        f"{sys.version_info.minor}): build the target vl_python_core (cmake --build "
+        "build --target vl_python_core) and put build/python on PYTHONPATH"
+        f"{_why}") from _e
 from ._core import (DatabaseError, Error, ExistsError, FileError, InputError,
                     InternalError, NoConvergenceError, NotFoundError,
                     OutOfMemoryError)
 
 __version__ = _core.PROJECT_VERSION
-__all__ = ["Database", "Curve", "Point", "scene_text", "CURVE_COLUMNS", "Error",
+__all__ = ["FitWarning", "Database", "Curve", "Point", "scene_text", "CURVE_COLUMNS", "Error",
            "InputError", "NotFoundError", "ExistsError", "DatabaseError",
            "FileError", "NoConvergenceError", "OutOfMemoryError",
            "InternalError"]
@@ -36,6 +56,12 @@ CURVE_COLUMNS = tuple(_core.curve_columns())
 
 # the library's "not given" for optional numbers
 _ABSENT = math.nan
+
+
+class FitWarning(UserWarning):
+    """What an import of measured data warns of (the lines `compound add
+    --measured` prints as 'warning: ...'): isotherms that do not join, a tan
+    delta rise at the top of the window, Einf extrapolated, a rough fit."""
 
 
 def _input_error(msg):
@@ -214,8 +240,10 @@ class Database:
         measured=DMA file (fitted; freq_unit, modulus_unit, temp_unit,
         tref_c, nu, terms_per_decade, fit_weights as `compound add
         --measured`). tref_c defaults to 20 C for a Prony series. Nothing
-        is stored when anything is refused."""
-        self._db.add_compound(
+        is stored when anything is refused. The import's warnings (as the
+        CLI prints them) are raised as FitWarning (warnings.warn); its
+        notes, one sentence a line, are returned (None for a Prony series)."""
+        notes = self._db.add_compound(
             name, prony=_path(prony), tau_s=tau_s, A=A, e_inf_pa=_num(e_inf_pa),
             nu=_num(nu), measured=_path(measured), class_name=class_name,
             description=description, tref_c=_num(tref_c), wlf_c1=_num(wlf_c1),
@@ -223,14 +251,20 @@ class Database:
             modulus_unit=modulus_unit, temp_unit=temp_unit,
             terms_per_decade=0.0 if terms_per_decade is None else float(terms_per_decade),
             fit_weights=fit_weights)
+        for line in (notes or "").splitlines():
+            if line.startswith("warning: "):
+                warnings.warn(f"{name}: {line[9:]}", FitWarning, stacklevel=2)
+        return notes
 
     def add_surface(self, name, psd=None, hurst=None, q0_per_m=None,
-                    q1_per_m=None, hrms_m=None, description=None):
-        """Adds a surface: psd=CSV file (q, C), or self-affine with hurst,
-        q0_per_m, q1_per_m and hrms_m."""
+                    q1_per_m=None, hrms_m=None, description=None, topography=None):
+        """Adds a surface: psd=CSV file (q, C), topography=a measured height
+        map or profile (its power spectrum, as `surface add --topography`),
+        or self-affine with hurst, q0_per_m, q1_per_m and hrms_m."""
         self._db.add_surface(name, psd=_path(psd), hurst=_num(hurst),
                              q0_per_m=_num(q0_per_m), q1_per_m=_num(q1_per_m),
-                             hrms_m=_num(hrms_m), description=description)
+                             hrms_m=_num(hrms_m), description=description,
+                             topography=_path(topography))
 
     def add_fluid(self, name, viscosity_pa_s, tref_c=20.0, vogel_b_k=None,
                   vogel_c_k=None, law_range_c=None, description=""):

@@ -8,7 +8,8 @@
 
 #include "cli.h"
 #include "cli_options.h"
-#include "vl_version.h" /* generated at configure time (src/CMakeLists.txt) */
+#include "viscolube/manifest.h" /* vl_manifest_interrupt */
+#include "vl_version.h"         /* generated at configure time (src/CMakeLists.txt) */
 
 static void usage(FILE *out) {
   fputs(
@@ -129,5 +130,9 @@ static int check_stdout(int rc) {
 
 int main(int argc, char **argv) {
   signal(SIGPIPE, SIG_IGN);
+  /* issue 32: Ctrl-C (or a kill) during a run puts the earlier complete
+   * run back in its folder (manifest.h) */
+  signal(SIGINT, vl_manifest_interrupt);
+  signal(SIGTERM, vl_manifest_interrupt);
   return check_stdout(dispatch(argc, argv));
 }

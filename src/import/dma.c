@@ -282,6 +282,9 @@ void vl_measured_free(vl_measured *m) {
   free(m->iso_temperature_c);
   free(m->iso_log10_a_t);
   free(m->iso_points);
+  free(m->iso_join_rms);
+  free(m->iso_join_step);
+  free(m->iso_tan_delta_rise);
   memset(m, 0, sizeof *m);
 }
 
@@ -1599,7 +1602,9 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
   } else if (m->n_isotherms == 1) {
     m->iso_log10_a_t[0] = 0.0;
   }
-  if ((st = fit_master_curve(m, &o, err)) == VL_OK) fit_warnings(m);
+  if ((st = fit_master_curve(m, &o, err)) != VL_OK) goto cleanup;
+  fit_warnings(m);
+  st = vl_dma_quality(m, err);
 
 cleanup:
   free(ord);

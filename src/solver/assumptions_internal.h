@@ -11,6 +11,11 @@
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"
 
+/* Appends the warning w to the ';'-separated warnings (capacity cap) as
+ * the checks below do: not repeated, left out when it does not fit whole.
+ * w holds no commas, quotes or ';'. */
+void vl_warnings_append(char *warnings, size_t cap, const char *w);
+
 /* Checks the point pt, solved with configuration cfg, against the
  * assumptions of vl_assumption. psd is the surface behind cfg->roughness, or NULL
  * (smooth, or not at hand: the rms slope then comes from the Persson table,

@@ -25,6 +25,11 @@ double vl_contact_viscosity(const vl_contact *c); /* Pa s */
 vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa_s,
                                      double max_ratio, vl_point *pt, vl_error *err);
 
+/* The regime (vl_regime, results.h) of a point of a contact with a fluid
+ * (wet) or without, from the fluid's share of the load and the film ratio
+ * u_min / h_rms (NAN on smooth surfaces: the load share alone decides). */
+int vl_regime_of(int wet, double fluid_load_fraction, double u_min_over_h_rms);
+
 /* Resets the internal state to the Hertz (relaxed) guess. */
 void vl_contact_reset(vl_contact *c);
 

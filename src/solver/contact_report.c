@@ -5,6 +5,7 @@
  * Poiseuille), the derived quantities of a point (films, centroid, contact
  * width, fluid load share, regime, warnings), and the fields on the grid. */
 #include "contact_internal.h"
+#include "contact_private.h"
 #include "flow_factors_internal.h"
 
 #include <math.h>
@@ -34,6 +35,18 @@ const char *vl_regime_name(int regime) {
   case VL_REGIME_HYDRODYNAMIC: return "hydrodynamic";
   }
   return "?";
+}
+
+int vl_regime_of(int wet, double fluid_load_fraction, double u_min_over_h_rms) {
+  if (!wet) return VL_REGIME_DRY;
+  int smooth = isnan(u_min_over_h_rms);
+  if (fluid_load_fraction > VL_REGIME_LOAD_HYDRODYNAMIC &&
+      (smooth || u_min_over_h_rms >= VL_REGIME_FILM_FULL))
+    return VL_REGIME_HYDRODYNAMIC;
+  if (fluid_load_fraction < VL_REGIME_LOAD_BOUNDARY &&
+      (smooth || u_min_over_h_rms < VL_REGIME_FILM_FULL))
+    return VL_REGIME_BOUNDARY;
+  return VL_REGIME_MIXED;
 }
 
 static void add_warning(vl_point *pt, const char *w) {
@@ -183,10 +196,8 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   pt->Q = c->q_rolling;
   pt->peak_pressure_pa = pmax;
   pt->x_peak_m = c->xi[imax] * c->a0;
-  pt->regime = !c->wet                          ? VL_REGIME_DRY
-               : pt->fluid_load_fraction < 0.05 ? VL_REGIME_BOUNDARY
-               : pt->fluid_load_fraction > 0.95 ? VL_REGIME_HYDRODYNAMIC
-                                                : VL_REGIME_MIXED;
+  pt->u_min_over_h_rms = c->hrms > 0.0 ? pt->u_min_m / c->hrms : NAN;
+  pt->regime = vl_regime_of(c->wet, pt->fluid_load_fraction, pt->u_min_over_h_rms);
   if (pmax > 0 && (PTOT(0) > 1e-3 * pmax / c->p0 || PTOT(n - 1) > 1e-3 * pmax / c->p0))
     add_warning(pt, "pressure reaches the domain edge (domain too short)");
   /* a smooth film is fed from far upstream: with the inlet end less than 5

@@ -296,6 +296,7 @@ static vl_status solve_failed(vl_contact *c, const attempt *a, vl_point *pt, vl_
   pt->iterations = a->nni;
   pt->residual = isfinite(a->fnorm) ? a->fnorm : DBL_MAX;
   pt->regime = c->wet ? VL_REGIME_BOUNDARY : VL_REGIME_DRY;
+  pt->u_min_over_h_rms = NAN;
   return VL_ENOCONV;
 }
 

@@ -7,6 +7,7 @@
 #include "flow_factors_emt.h"
 
 #include "viscolube/assumptions.h"
+#include "viscolube/dma.h"
 
 #include "assumptions_internal.h"
 #include "rheology_internal.h"
@@ -38,6 +39,9 @@ struct vl_simulation {
   /* the measured master curve's window at the temperature used (rad/s);
    * NAN for a compound entered as a Prony series or an elastic scene */
   double window_min_rad_s, window_max_rad_s;
+  /* the measured isotherms' temperatures (C); NAN for a compound entered
+   * as a Prony series or measured as one master curve */
+  double measured_tmin_c, measured_tmax_c;
   vl_contact *contact;
   bool has_pair;
   vl_db_pair pair;
@@ -329,6 +333,10 @@ static vl_status measured_window(vl_simulation *sim, vl_db *db, vl_error *err) {
     sim->window_min_rad_s = f.omega_min_rad_s / sim->a_T;
     sim->window_max_rad_s = f.omega_max_rad_s / sim->a_T;
   }
+  if (st == VL_OK && f.has_fit && f.n_shifts > 0) {
+    sim->measured_tmin_c = f.shift_temperature_c[0];
+    sim->measured_tmax_c = f.shift_temperature_c[f.n_shifts - 1];
+  }
   vl_db_compound_fit_free(&f);
   return st;
 }
@@ -345,6 +353,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   sim->temperature_c = NAN;
   sim->a_T = 1.0;
   sim->window_min_rad_s = sim->window_max_rad_s = NAN;
+  sim->measured_tmin_c = sim->measured_tmax_c = NAN;
   vl_status st = vl_db_compound_get(db, scene->compound, &sim->rubber, err);
   if (st != VL_OK) {
     if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] compound", scene->path);
@@ -498,8 +507,6 @@ typedef struct {
   void *user;
 } run_ctx;
 
-/* Every point gets the model-assumption warnings (assumptions.h) in its
- * warning column before the caller sees it. */
 /* The instroke's points: the assumption checks only. */
 typedef struct {
   vl_simulation *sim;
@@ -515,10 +522,28 @@ static void check_point_in(void *user, size_t i, size_t total, const vl_point *p
   (void)pt, (void)total, (void)c;
 }
 
+/* A compound used at a temperature over VL_DMA_ISOTHERM_TOL_K outside its
+ * measured isotherms: its WLF shift is extrapolated there (the warning
+ * of every point; nothing for a compound without measured isotherms). */
+static void temperature_warning(const vl_simulation *sim, char *warnings, size_t cap) {
+  double t = sim->temperature_c, lo = sim->measured_tmin_c, hi = sim->measured_tmax_c;
+  if (isnan(t) || isnan(lo) || (t >= lo - VL_DMA_ISOTHERM_TOL_K && t <= hi + VL_DMA_ISOTHERM_TOL_K))
+    return;
+  char w[200];
+  snprintf(w, sizeof w,
+           "temperature %.4g C %s the measured isotherms (%.4g to %.4g C): the WLF shift is "
+           "extrapolated %.3g K beyond them",
+           t, t < lo ? "below" : "above", lo, hi, t < lo ? lo - t : t - hi);
+  vl_warnings_append(warnings, cap, w);
+}
+
+/* Every point gets the model-assumption warnings (assumptions.h) and the
+ * temperature warning in its warning column before the caller sees it. */
 static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
                         const vl_contact *c) {
   run_ctx *r = user;
   vl_point *p = &r->out[i]; /* pt == &out[i]: the sweep fills the caller's array */
+  temperature_warning(r->sim, p->warnings, sizeof p->warnings); /* first: it must fit */
   vl_assumptions_check(&r->sim->cfg, vl_simulation_psd(r->sim), p, p->warnings, sizeof p->warnings);
   vl_assumptions_check_window(&r->sim->cfg, vl_simulation_psd(r->sim), p, r->sim->window_min_rad_s,
                               r->sim->window_max_rad_s, p->warnings, sizeof p->warnings);

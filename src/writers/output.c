@@ -8,12 +8,33 @@
 #include "output_internal.h"
 #include "viscolube/atomic_file.h"
 
-const char *const vl_curve_columns[] = {
-    "v0_m_s",    "v0_eta_pa_m", "deborah",  "mu",          "mu_Rc",           "mu_Rf",
-    "mu_Sc",     "mu_Sf",       "u_min_m",  "u_central_m", "contact_width_m", "fluid_load_fraction",
-    "regime",    "E_wH_pa",     "a_H_m",    "Q",           "x_centroid_m",    "load_error",
-    "converged", "iterations",  "residual", "eps_f_min",   "error_estimate",  "accuracy",
-    "warnings",  NULL};
+const char *const vl_curve_columns[] = {"v0_m_s",
+                                        "v0_eta_pa_m",
+                                        "deborah",
+                                        "mu",
+                                        "mu_Rc",
+                                        "mu_Rf",
+                                        "mu_Sc",
+                                        "mu_Sf",
+                                        "u_min_m",
+                                        "u_central_m",
+                                        "contact_width_m",
+                                        "fluid_load_fraction",
+                                        "u_min_over_h_rms",
+                                        "regime",
+                                        "E_wH_pa",
+                                        "a_H_m",
+                                        "Q",
+                                        "x_centroid_m",
+                                        "load_error",
+                                        "converged",
+                                        "iterations",
+                                        "residual",
+                                        "eps_f_min",
+                                        "error_estimate",
+                                        "accuracy",
+                                        "warnings",
+                                        NULL};
 
 /* The columns a seal scene adds after these ([seal] stroke; FORMATS.md):
  * the point's stroke, its flux and friction force, and with stroke = both
@@ -130,6 +151,7 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->u_central_m, ok);
     cell(out, p->contact_width_m, ok);
     cell(out, p->fluid_load_fraction, ok);
+    cell(out, p->u_min_over_h_rms, ok); /* empty on smooth surfaces */
     fprintf(out, ",%s", ok ? vl_regime_name(p->regime) : "");
     /* derived from the solved state: a failed point has none (its struct
      * holds zeros, which read as values) */
@@ -201,6 +223,8 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "u_central_m", p->u_central_m, ok);
   member(w, "contact_width_m", p->contact_width_m, ok);
   member(w, "fluid_load_fraction", p->fluid_load_fraction, ok);
+  member(w, "u_min_over_h_rms", p->u_min_over_h_rms,
+         ok && !isnan(p->u_min_over_h_rms)); /* null: smooth */
   vl_json_key_string(w, "regime", ok ? vl_regime_name(p->regime) : NULL);
   member(w, "E_wH_pa", p->E_wH_pa, ok);
   member(w, "a_H_m", p->a_H_m, ok);

@@ -44,7 +44,7 @@ def cli(*args, expect=0):
 # The members of a point in the CLI's JSON (output.c, 17 digits).
 POINT_NUMBERS = {"v0_m_s", "v0_eta_pa_m", "deborah", "mu", "mu_Rc", "mu_Rf", "mu_Sc",
                  "mu_Sf", "u_min_m", "u_central_m", "contact_width_m", "fluid_load_fraction",
-                 "E_wH_pa", "a_H_m", "Q", "x_centroid_m", "load_error", "residual",
+                 "u_min_over_h_rms", "E_wH_pa", "a_H_m", "Q", "x_centroid_m", "load_error", "residual",
                  "eps_f_min", "error_estimate", "film_cutoff_m"}
 
 
@@ -378,6 +378,109 @@ class TestProcess(Scratch):
                            env=env, cwd=self.dir)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertGreater(float(p.stdout), 0)
+
+
+REAL = [os.path.join(SRC, "..", "shared", "data", "real"),
+        os.path.join(SRC, "..", "..", "shared", "data", "real")]
+
+
+def real_file(name):
+    """../shared/data/real/name beside the source tree (or its worktree's
+    parent), or None: the real files are never copied into the project."""
+    for d in REAL:
+        p = os.path.join(d, name)
+        if os.path.exists(p):
+            return p
+    return None
+
+
+def hn_isotherms(path, top_loss=1.0):
+    """A synthetic DMA export: Havriliak-Negami E (E0 2 MPa, Einf 2 GPa)
+    with WLF shifts (C1 12.57, C2 71.6 K at 20 C), isotherms 0..100 C at
+    0.1..100 Hz, noise-free; E'' at 100 Hz times top_loss (a resonance)."""
+    rows = ["f,E_stor,E_loss,T", "Hz,Pa,Pa,C"]
+    for j in range(21):
+        t = 5.0 * j
+        at = 10.0 ** (-12.57 * (t - 20.0) / (71.6 + t - 20.0))
+        for k in range(13):
+            f = 10.0 ** (-1.0 + 0.25 * k)
+            e = 2e9 + (2e6 - 2e9) / (1 + (1j * 2 * math.pi * f * at * 2.5e-3) ** 0.6) ** 0.35
+            loss = e.imag * (top_loss if k == 12 else 1.0)
+            rows.append("%.17g,%.17g,%.17g,%g" % (f, e.real, loss, t))
+    with open(path, "w") as fh:
+        fh.write("\n".join(rows) + "\n")
+
+
+class TestImports(Scratch):
+    """add_compound(measured=) raises the import's warnings as FitWarning,
+    as the CLI prints them, and none for a clean compound; add_surface(
+    topography=) registers a measured height map as `surface add
+    --topography`; the import error names what is missing."""
+
+    def fit_warnings(self, db, name, path):
+        import warnings
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter("always")
+            notes = db.add_compound(name, measured=path)
+        return notes, [str(x.message) for x in w if issubclass(x.category, vl.FitWarning)]
+
+    def test_measured_warnings(self):
+        clean = os.path.join(self.dir, "clean.csv")
+        hn_isotherms(clean)
+        res = os.path.join(self.dir, "resonance.csv")
+        hn_isotherms(res, top_loss=1.3)
+        with vl.Database(self.db_path) as db:
+            notes, w = self.fit_warnings(db, "clean", clean)
+            self.assertEqual(w, [])
+            self.assertIn("measured: E' ", notes)
+            notes, w = self.fit_warnings(db, "res", res)
+            rise = [x for x in w if x.startswith("res: tan delta rises at the top")]
+            self.assertEqual(len(rise), 1, w)
+        # the CLI prints the same warnings
+        out, err = cli("--db", os.path.join(self.dir, "cli.db"), "compound", "add", "res",
+                       "--measured", res)
+        for x in w:
+            self.assertIn("warning: " + x[len("res: "):], err)
+
+    def test_measured_warnings_real_epdm(self):
+        path = real_file("marcusni96_epdm_70_tf_015p.csv")
+        if not path:
+            self.skipTest("no ../shared/data/real/marcusni96_epdm_70_tf_015p.csv beside %s"
+                          % SRC)
+        with vl.Database(self.db_path) as db:
+            _, w = self.fit_warnings(db, "epdm", path)
+        text = "\n".join(w)
+        self.assertIn("isotherms at 18.4 and 25.2 C do not join", text)
+        self.assertIn("tan delta rises at the top", text)
+        self.assertIn("the fitted Einf", text)
+
+    def test_topography(self):
+        path = real_file("surfacetopography_matrix-3_afm.txt")
+        if not path:
+            self.skipTest("no ../shared/data/real/surfacetopography_matrix-3_afm.txt beside %s"
+                          % SRC)
+        with vl.Database(self.db_path) as db:
+            db.add_surface("afm", topography=path)
+            with self.assertRaises(vl.InputError):
+                db.add_surface("both", topography=path, psd=path)
+        db_cli = os.path.join(self.dir, "cli.db")
+        cli("--db", db_cli, "surface", "add", "afm", "--topography", path)
+        # the same spectrum as the CLI's
+        a, _ = cli("--db", self.db_path, "surface", "show", "afm")
+        b, _ = cli("--db", db_cli, "surface", "show", "afm")
+        strip = lambda t: [l for l in t.splitlines() if "materials" not in l and ".db" not in l]
+        self.assertEqual(strip(a), strip(b))
+
+    def test_import_error_names_the_target(self):
+        pkg = os.path.join(self.dir, "site", "viscolube")
+        os.makedirs(pkg)
+        shutil.copy(vl.__file__, pkg)  # the package without its extension
+        p = subprocess.run([sys.executable, "-c", "import viscolube"], capture_output=True,
+                           text=True, env=dict(os.environ, PYTHONPATH=os.path.dirname(pkg)))
+        self.assertNotEqual(p.returncode, 0)
+        self.assertIn("extension viscolube._core is not built", p.stderr)
+        self.assertIn("vl_python_core", p.stderr)
+        self.assertNotIn("circular import", p.stderr.splitlines()[-1])
 
 
 if __name__ == "__main__":
