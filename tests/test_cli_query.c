@@ -210,6 +210,54 @@ static void test_compare_range_either_way(void **state) {
   free(csv[1]);
 }
 
+/* The same range in m/s (--from-speed/--to-speed; water: eta 1e-3 Pa s)
+ * gives the same speeds and friction as in v0 eta, and says both; mixing
+ * the units, or one end alone, is bad input. */
+static void test_compare_range_in_speed(void **state) {
+  (void)state;
+  const char *range[2] = {"--from 1e-12 --to 1e-9", "--from-speed 1e-9 --to-speed 1e-6"};
+  char *out[2];
+  for (int k = 0; k < 2; k++) {
+    char dir[2048], args[8192], *err = NULL;
+    snprintf(dir, sizeof dir, "%s/speed%d", vl_test_tmpdir(), k);
+    snprintf(args, sizeof args,
+             "--db %s compare --compounds model-rubber --surface paper-3um --fluid water %s "
+             "--points 4 --grid 64 --target-error 0.5 --out %s --quiet",
+             g_db, range[k], dir);
+    int rc = vl_test_cli(NULL, args, &out[k], &err);
+    if (rc != 0) fail_msg("%s: exit %d: %s", range[k], rc, err);
+    free(err);
+    assert_non_null(strstr(out[k], "speeds: 1e-09 .. 1e-06 m/s (v0 eta 1e-12 .. 1e-09 Pa m"));
+  }
+  /* the table's rows: speed and mu, to the digits printed (speeds 1 ulp apart
+   * at most: v0 eta / eta against the given m/s) */
+  const char *r0 = strstr(out[0], "\n       1e-09"), *r1 = strstr(out[1], "\n       1e-09");
+  assert_non_null(r0);
+  assert_non_null(r1);
+  double v0, mu0, v1, mu1;
+  assert_int_equal(sscanf(r0, "%lf %lf", &v0, &mu0), 2);
+  assert_int_equal(sscanf(r1, "%lf %lf", &v1, &mu1), 2);
+  assert_true(v0 == v1 && fabs(mu0 / mu1 - 1.0) < 1e-4);
+  free(out[0]);
+  free(out[1]);
+  char args[8192];
+  snprintf(args, sizeof args,
+           "--db %s compare --compounds model-rubber --surface paper-3um --fluid water "
+           "--from 1e-12 --from-speed 1e-9 --to-speed 1e-6",
+           g_db);
+  char *o = NULL, *e = NULL;
+  assert_int_equal(vl_test_cli(NULL, args, &o, &e), 2);
+  assert_non_null(strstr(e, "not both"));
+  free(o), free(e), o = e = NULL;
+  snprintf(args, sizeof args,
+           "--db %s compare --compounds model-rubber --surface paper-3um --fluid water "
+           "--from-speed 1e-9",
+           g_db);
+  assert_int_equal(vl_test_cli(NULL, args, &o, &e), 2);
+  assert_non_null(strstr(e, "go together"));
+  free(o), free(e);
+}
+
 /* A point above its error target is a result of its own: exit status 8,
  * listed on stderr with its estimate, `accuracy` in the JSON, the text form
  * saying so; the same point with a target it meets exits 0. */
@@ -247,6 +295,7 @@ int main(void) {
       cmocka_unit_test(test_friction_bad_input),
       cmocka_unit_test(test_compare_filled_unfilled),
       cmocka_unit_test(test_compare_range_either_way),
+      cmocka_unit_test(test_compare_range_in_speed),
   };
   return cmocka_run_group_tests(tests, setup, NULL);
 }

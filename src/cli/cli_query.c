@@ -344,7 +344,8 @@ done:
 
 static void compare_usage(FILE *out) {
   fputs("usage: viscolube compare --compounds A,B[,...] --surface S --fluid F\n"
-        "                         [--from V0ETA] [--to V0ETA] [--points N] [--out DIR]\n"
+        "                         [--from V0ETA --to V0ETA | --from-speed M_S --to-speed M_S]\n"
+        "                         [--points N] [--out DIR]\n"
         "                         [--axis speed|v0eta] [--load N_PER_M] [--radius M]\n"
         "                         [--sigma-s PA] [--flow-factors persson-emt|patir-cheng|smooth]\n"
         "                         [--film-cutoff M] [--grid N] [--json] [--plot]\n"
@@ -354,6 +355,8 @@ static void compare_usage(FILE *out) {
         "mu and u_min/h_rms per compound. The sweep runs over v0*eta from --from to --to\n"
         "(Pa m, whatever the axis: in water, 1e-12 .. 0.1 Pa m is 1 nm/s .. 100 m/s);\n"
         "given either way round, it runs upward, from the boundary regime.\n"
+        "--from-speed/--to-speed give the range in m/s instead (the fluid's viscosity\n"
+        "then does not matter, at --temperature or not).\n"
         "--axis: the first column of the table and of compare.csv, the JSON's axis and the\n"
         "figures' x axis: speed (v0_m_s, m/s; the default) or v0eta (v0_eta_pa_m, Pa m).\n"
         "Writes DIR/compare.csv (one row per speed; the axis, then mu, mu_Rc, mu_Rf, mu_Sc,\n"
@@ -394,6 +397,8 @@ typedef struct {
   char *names[MAX_COMPOUNDS];
   size_t nc;
   double from, to, points;
+  double from_speed, to_speed; /* --from-speed/--to-speed (m/s); NAN: the range is in v0 eta */
+  int from_given;              /* --from or --to given */
   const char *out_dir;
   int axis_v0eta; /* --axis v0eta; else speed (one fluid: the speed reads directly) */
 } compare_args;
@@ -434,10 +439,15 @@ static int compare_parse(int argc, char **argv, compare_args *a) {
   opts[n++] =
       (vl_cli_option){.name = "--to", .kind = VL_CLI_NUMBER, .dest = &a->to, .rule = &positive};
   opts[n++] = (vl_cli_option){
+      .name = "--from-speed", .kind = VL_CLI_NUMBER, .dest = &a->from_speed, .rule = &positive};
+  opts[n++] = (vl_cli_option){
+      .name = "--to-speed", .kind = VL_CLI_NUMBER, .dest = &a->to_speed, .rule = &positive};
+  opts[n++] = (vl_cli_option){
       .name = "--points", .kind = VL_CLI_NUMBER, .dest = &a->points, .rule = &positive};
   vl_cli_parser p = {.cmd = "compare", .opts = opts, .n_opts = n};
   int rc = parse_command(&p, argc, argv, &a->c, &r, compare_usage);
   if (rc < 0 && compounds) snprintf(a->list, sizeof a->list, "%s", compounds);
+  a->from_given = vl_cli_find(&p, "--from")->given || vl_cli_find(&p, "--to")->given;
   return rc;
 }
 
@@ -459,6 +469,17 @@ static int compare_check(compare_args *a) {
   if (!valid_name("compare", "--surface", a->c.q.surface) ||
       !valid_name("compare", "--fluid", a->c.q.fluid))
     return 2;
+  bool speeds = !isnan(a->from_speed) || !isnan(a->to_speed);
+  if (speeds && (isnan(a->from_speed) || isnan(a->to_speed))) {
+    fprintf(stderr, "viscolube compare: --from-speed and --to-speed go together\n");
+    return 2;
+  }
+  if (speeds && a->from_given) {
+    fprintf(stderr, "viscolube compare: give the range in m/s (--from-speed, --to-speed) or in "
+                    "v0 eta (--from, --to), not both\n");
+    return 2;
+  }
+  if (speeds) a->from = a->from_speed, a->to = a->to_speed; /* in m/s from here on */
   if (a->to < a->from) { /* the same speeds, swept upward (the scene's rule) */
     double high = a->from;
     a->from = a->to, a->to = high;
@@ -501,6 +522,7 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   vl_scene sc;
   if (!make_scene("compare", &a->c, a->names[k], &sc)) return 2;
   sc.from = a->from, sc.to = a->to, sc.points = cv->n;
+  if (!isnan(a->from_speed)) sc.quantity = VL_SWEEP_V0; /* the range in m/s */
   vl_simulation *sim = NULL;
   *st = vl_simulation_create(&sc, db, &sim, err);
   if (*st != VL_OK) return -1;
@@ -599,6 +621,10 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
   if (a->c.q.at_temperature)
     printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.q.temperature_c,
            cv->eta);
+  if (cv->n) /* the range in both units, whichever was given */
+    printf("speeds: %.4g .. %.4g m/s (v0 eta %.4g .. %.4g Pa m at eta %.4g Pa s)\n",
+           cv->pts[0].v0_m_s, cv->pts[cv->n - 1].v0_m_s, cv->pts[0].v0_m_s * cv->eta,
+           cv->pts[cv->n - 1].v0_m_s * cv->eta, cv->eta);
   printf("%12s", axis_column(a));
   for (size_t k = 0; k < a->nc; k++)
     printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
@@ -708,9 +734,12 @@ static void compare_manifest(vl_manifest *m, vl_db *db, const compare_args *a) {
   const struct {
     const char *key;
     double value;
-  } nums[] = {{"from_v0_eta_pa_m", a->from}, {"to_v0_eta_pa_m", a->to},
-              {"points", a->points},         {"load_n_per_m", a->c.q.load_n_per_m},
-              {"radius_m", a->c.q.radius_m}, {"sigma_s_pa", a->c.q.sigma_s_pa}};
+  } nums[] = {{isnan(a->from_speed) ? "from_v0_eta_pa_m" : "from_v0_m_s", a->from},
+              {isnan(a->from_speed) ? "to_v0_eta_pa_m" : "to_v0_m_s", a->to},
+              {"points", a->points},
+              {"load_n_per_m", a->c.q.load_n_per_m},
+              {"radius_m", a->c.q.radius_m},
+              {"sigma_s_pa", a->c.q.sigma_s_pa}};
   for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
     snprintf(v, sizeof v, "%.10g", nums[k].value);
     vl_manifest_add_option(m, nums[k].key, v);
@@ -779,6 +808,8 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   compare_args a = {.c = conditions_default(g),
                     .from = VL_QUERY_FROM_PA_M,
                     .to = VL_QUERY_TO_PA_M,
+                    .from_speed = NAN,
+                    .to_speed = NAN,
                     .points = VL_QUERY_POINTS,
                     .out_dir = "out/compare"};
   int rc = compare_parse(argc, argv, &a);
