@@ -163,6 +163,9 @@ vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err) {
     /* the default on a dry smooth contact: only the cells in contact are
      * coupled (linsol_reduced.h) */
     inner = vl_linsol_reduced_create((long)c->nunk, c->ctx);
+    /* min(P, U): the rows of the cells out of contact are exact identity
+     * rows, known from the Jacobian's d/dU (no scan of the matrix) */
+    if (inner && c->min_rows) vl_linsol_reduced_set_rows(inner, c->fb_work + c->n, (long)c->n, &c->min_rows);
   } else {
     inner = vl_linsol_lapack_create((long)c->nunk, c->ctx);
   }

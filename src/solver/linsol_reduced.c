@@ -39,6 +39,9 @@ typedef struct {
   int *piv;
   double *rhs; /* m */
   sunindextype last_flag;
+  const double *hint_du; /* set_rows: rows i < hint_n with hint_du[i] == 0 are free */
+  const bool *hint_on;   /* ... while *hint_on */
+  int hint_n;
 } reduced_content;
 
 static SUNLinearSolver_Type reduced_gettype(SUNLinearSolver S) {
@@ -54,10 +57,18 @@ static int reduced_initialize(SUNLinearSolver S) {
   return SUNLS_SUCCESS;
 }
 
+static void mark_rows(reduced_content *c, const double *J);
+
 /* Marks the rows whose off-diagonal entries are negligible (read down the
  * columns: the matrix is column-major). */
 static void find_free_rows(reduced_content *c, const double *J) {
   int n = c->n;
+  if (c->hint_on && *c->hint_on) {
+    for (int i = 0; i < n; i++)
+      c->off[i] = i < c->hint_n && c->hint_du[i] == 0.0 ? 0.0 : INFINITY;
+    mark_rows(c, J);
+    return;
+  }
   for (int i = 0; i < n; i++)
     c->off[i] = 0.0;
   double *off = c->off;
@@ -72,6 +83,13 @@ static void find_free_rows(reduced_content *c, const double *J) {
       off[i] = a > off[i] ? a : off[i];
     }
   }
+  mark_rows(c, J);
+}
+
+/* The free rows from off (the largest off-diagonal magnitude per row), the
+ * coupled ones as runs. */
+static void mark_rows(reduced_content *c, const double *J) {
+  int n = c->n;
   c->m = 0, c->nruns = 0;
   for (int i = 0; i < n; i++) {
     double d = fabs(J[(size_t)i * (size_t)n + (size_t)i]);
@@ -230,6 +248,11 @@ static int reduced_free(SUNLinearSolver S) {
   }
   SUNLinSolFreeEmpty(S);
   return SUNLS_SUCCESS;
+}
+
+void vl_linsol_reduced_set_rows(SUNLinearSolver S, const double *du, long n, const bool *on) {
+  reduced_content *c = S->content;
+  c->hint_du = du, c->hint_n = (int)n, c->hint_on = on;
 }
 
 long vl_linsol_reduced_size(SUNLinearSolver S) { return ((reduced_content *)S->content)->m; }
