@@ -436,12 +436,19 @@ static void jacobian_contact_rows(vl_contact *c, double *Jd) {
      * the general branch below adds, at a fifth of its time) */
     double *dp = c->fb_work, *du = c->fb_work + n, mk = -c->kfac;
     hard_contact_derivatives(c, dp, du);
+    size_t lo = 0, hi = n; /* rows lo..hi-1 written in full */
+    if (c->gap_rows_only) {
+      while (lo < n && du[lo] == 0.0)
+        lo++;
+      while (hi > lo && du[hi - 1] == 0.0)
+        hi--;
+    }
     for (size_t j = 0; j < n; j++) {
       double *col = Jd + j * ld;
       const double *t = c->kern.coef + (n - 1 - j);
-      for (size_t i = 0; i < n; i++) /* + 0.0: a zero du gives +0, as the zeroed matrix */
+      for (size_t i = lo; i < hi; i++) /* + 0.0: a zero du gives +0, as the zeroed matrix */
         col[i] = du[i] * (mk * t[i]) + 0.0;
-      col[j] += dp[j];
+      col[j] = (j >= lo && j < hi ? col[j] : 0.0) + dp[j];
       col[ih] = 0.0; /* the load row: vl_contact_jacobian */
     }
     double *col = Jd + ih * ld; /* d/d(h0) */

@@ -140,7 +140,10 @@ struct vl_contact {
   vl_contact_timing timing;  /* cost counters (vl_contact_timing_get) */
   SUNContext ctx;
   N_Vector y, y_saved, y_outer, ones, fwork;
-  N_Vector y_min; /* min_rows: the start of the active-set Newton, for its fallback */
+  bool reduced_rows;  /* min_rows and the reduced solver knows the rows from d/dU */
+  bool gap_rows_only; /* min_rows, KINSOL's Jacobian for the reduced solver: the identity rows
+                       * get their diagonal only (the solver reads no more of them) */
+  N_Vector y_min;     /* min_rows: the start of the active-set Newton, for its fallback */
   SUNMatrix J;
   SUNLinearSolver LS;
   SUNLinearSolver schur; /* the inner solver of LS when VL_LINSOL_SCHUR applies (not owned) */

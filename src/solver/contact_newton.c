@@ -114,7 +114,9 @@ int vl_contact_jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_
   (void)fv, (void)t1, (void)t2;
   vl_contact *c = user;
   double t0 = vl_contact_now_s();
+  c->gap_rows_only = c->min_rows && c->reduced_rows;
   vl_contact_jacobian(c, N_VGetArrayPointer(yv), SUNDenseMatrix_Data(J));
+  c->gap_rows_only = false;
   c->timing.t_jacobian_s += vl_contact_now_s() - t0;
   c->timing.jacobians++;
   return 0;
@@ -165,7 +167,10 @@ vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err) {
     inner = vl_linsol_reduced_create((long)c->nunk, c->ctx);
     /* min(P, U): the rows of the cells out of contact are exact identity
      * rows, known from the Jacobian's d/dU (no scan of the matrix) */
-    if (inner && c->min_rows) vl_linsol_reduced_set_rows(inner, c->fb_work + c->n, (long)c->n, &c->min_rows);
+    if (inner && c->min_rows) {
+      vl_linsol_reduced_set_rows(inner, c->fb_work + c->n, (long)c->n, &c->min_rows);
+      c->reduced_rows = true;
+    }
   } else {
     inner = vl_linsol_lapack_create((long)c->nunk, c->ctx);
   }
