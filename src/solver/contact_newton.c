@@ -168,7 +168,8 @@ vl_status vl_contact_kinsol_init(vl_contact *c, vl_error *err) {
     /* min(P, U): the rows of the cells out of contact are exact identity
      * rows, known from the Jacobian's d/dU (no scan of the matrix) */
     if (inner && c->min_rows) {
-      vl_linsol_reduced_set_rows(inner, c->fb_work + c->n, (long)c->n, &c->min_rows);
+      vl_linsol_reduced_set_rows(inner, c->fb_work + c->n, (long)c->n, &c->min_rows,
+                                 &c->kernel_builds);
       c->reduced_rows = true;
     }
   } else {
