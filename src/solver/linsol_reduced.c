@@ -49,7 +49,8 @@ typedef struct {
   const size_t *gen;
   size_t gen0;
   bool have0;
-  int mode, m0, kr, kn;
+  int mode, m0, kr, kn, zk; /* zk: valid columns of Z */
+  char *zin;                /* n: base position a has its column in Z */
   int *c0, *pos0, *posn, *rpos, *nidx, *piv0, *pivc, *pivs;
   double *LU0, *Z, *cap, *AB, *Cm, *Sm, *y0, *yr;
 } reduced_content;
@@ -140,7 +141,8 @@ static int setup_base(reduced_content *c) {
     c->c0[a] = c->coupled[a], c->pos0[c->coupled[a]] = a;
   memcpy(c->LU0, c->R, (size_t)m * (size_t)m * sizeof *c->R);
   dgetrf_(&m, &m, c->LU0, &m, c->piv0, &info);
-  c->have0 = info == 0, c->gen0 = *c->gen, c->mode = 1, c->kr = c->kn = 0;
+  memset(c->zin, 0, (size_t)c->n);
+  c->have0 = info == 0, c->gen0 = *c->gen, c->mode = 1, c->kr = c->kn = c->zk = 0;
   c->last_flag = info;
   if (info < 0) return SUNLS_PACKAGE_FAIL_UNREC;
   return info > 0 ? SUNLS_LUFACT_FAIL : SUNLS_SUCCESS;
@@ -168,12 +170,24 @@ static void apply_inverse(reduced_content *c, double *Y, int k) {
  * false when the base does not apply or too many changed. */
 static bool set_changes(reduced_content *c) {
   if (!c->have0 || *c->gen != c->gen0) return false;
-  c->kr = c->kn = 0;
-  for (int a = 0; a < c->m0; a++)
-    if (c->free_row[c->c0[a]]) {
-      if (c->kr == UPDATE_MAX) return false;
-      c->rpos[c->kr++] = a;
+  size_t M0 = (size_t)c->m0;
+  int k = 0;
+  for (int p = 0; p < c->zk; p++) { /* Z's columns of cells still out, in order */
+    int a = c->rpos[p];
+    if (!c->free_row[c->c0[a]]) {
+      c->zin[a] = 0;
+      continue;
     }
+    if (k != p) memcpy(c->Z + (size_t)k * M0, c->Z + (size_t)p * M0, M0 * sizeof *c->Z);
+    c->rpos[k++] = a;
+  }
+  c->zk = k; /* the columns still valid; the new ones follow */
+  for (int a = 0; a < c->m0; a++)
+    if (c->free_row[c->c0[a]] && !c->zin[a]) {
+      if (k == UPDATE_MAX) return false;
+      c->rpos[k++] = a, c->zin[a] = 1;
+    }
+  c->kr = k, c->kn = 0;
   for (int a = 0; a < c->m; a++) {
     int i = c->coupled[a];
     if (c->pos0[i] >= 0) continue;
@@ -183,18 +197,24 @@ static bool set_changes(reduced_content *c) {
   return true;
 }
 
-/* The update of the base for the set's changes (mode 2): Z = B0^-1 E_R and
- * its capacitance matrix, then the joined cells' bordering: AB = A^-1
- * J[C0, N] (rows R zero), Cm = J[N, C0], Sm = J[N, N] - Cm AB, factorised. */
+/* The update of the base for the set's changes (mode 2): Z = B0^-1 E_R (the
+ * columns of the cells that left, kept from step to step: the set mostly
+ * shrinks within a speed) and its capacitance matrix, then the joined
+ * cells' bordering: AB = A^-1 J[C0, N] (rows R zero), Cm = J[N, C0],
+ * Sm = J[N, N] - Cm AB, factorised. */
 static int setup_update(reduced_content *c, const double *J) {
   if (!set_changes(c)) return setup_base(c);
-  int m0 = c->m0, kr = c->kr, kn = c->kn, n = c->n, info = 0;
+  int m0 = c->m0, kr = c->kr, kn = c->kn, n = c->n, info = 0, fresh = kr - c->zk;
   size_t M0 = (size_t)m0;
+  if (fresh > 0) {
+    double *Zf = c->Z + (size_t)c->zk * M0;
+    memset(Zf, 0, M0 * (size_t)fresh * sizeof *Zf);
+    for (int p = 0; p < fresh; p++)
+      Zf[(size_t)c->rpos[c->zk + p] + (size_t)p * M0] = 1.0;
+    dgetrs_("N", &m0, &fresh, c->LU0, &m0, c->piv0, Zf, &m0, &info, 1);
+  }
+  c->zk = kr;
   if (kr > 0) {
-    memset(c->Z, 0, M0 * (size_t)kr * sizeof *c->Z);
-    for (int p = 0; p < kr; p++)
-      c->Z[(size_t)c->rpos[p] + (size_t)p * M0] = 1.0;
-    dgetrs_("N", &m0, &kr, c->LU0, &m0, c->piv0, c->Z, &m0, &info, 1);
     for (int q = 0; q < kr; q++)
       for (int p = 0; p < kr; p++)
         c->cap[p + q * kr] = c->Z[(size_t)c->rpos[p] + (size_t)q * M0];
@@ -412,6 +432,7 @@ static int reduced_free(SUNLinearSolver S) {
     free(c->pos0);
     free(c->nidx);
     free(c->LU0);
+    free(c->zin);
     free(c->Z);
     free(c);
     S->content = NULL;
@@ -461,6 +482,7 @@ SUNLinearSolver vl_linsol_reduced_create(long n, SUNContext ctx) {
   c->pivc = c->nidx ? c->nidx + K : NULL;
   c->pivs = c->nidx ? c->nidx + 2 * K : NULL;
   c->LU0 = malloc(N * N * sizeof *c->LU0);
+  c->zin = calloc(N, 1);
   c->Z = malloc((3 * N * K + 3 * K * K + 2 * N) * sizeof *c->Z);
   c->AB = c->Z ? c->Z + N * K : NULL;
   c->Cm = c->Z ? c->Z + 2 * N * K : NULL;
@@ -471,7 +493,7 @@ SUNLinearSolver vl_linsol_reduced_create(long n, SUNContext ctx) {
   if (c->pos0)
     for (size_t i = 0; i < N; i++)
       c->pos0[i] = -1;
-  if (!c->c0 || !c->pos0 || !c->nidx || !c->LU0 || !c->Z || !c->coupled || !c->runs ||
+  if (!c->c0 || !c->zin || !c->pos0 || !c->nidx || !c->LU0 || !c->Z || !c->coupled || !c->runs ||
       !c->free_row || !c->off || !c->R || !c->RS || !c->rf || !c->x || !c->piv || !c->rhs) {
     reduced_free(S);
     return NULL;
