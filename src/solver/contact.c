@@ -80,6 +80,7 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
     if (!c->fb_work) return vl_contact_nomem(c, err);
     c->state_y = c->fb_work + 2 * n;
     c->state_kernel = (size_t)-1; /* no state yet */
+    c->min_rows = true;
   }
   if (c->rough && c->wet) {
     c->film_work = malloc((2 * c->nunk + 3 * n) * sizeof *c->film_work);
@@ -238,7 +239,9 @@ static vl_status create_helpers(vl_contact *c, vl_error *err) {
   if (c->nk > 0) {
     vl_contact_config dry = c->cfg;
     dry.eta_pa_s = 0.0;
-    return vl_contact_create(&dry, &c->dry, err);
+    vl_status st = vl_contact_create(&dry, &c->dry, err);
+    if (st == VL_OK) c->dry->min_rows = false; /* the smooth film's starts stay as they were */
+    return st;
   }
   return VL_OK;
 }
@@ -300,6 +303,7 @@ void vl_contact_free(vl_contact *c) {
   if (c->fwork) N_VDestroy(c->fwork);
   if (c->y_saved) N_VDestroy(c->y_saved);
   if (c->y_outer) N_VDestroy(c->y_outer);
+  if (c->y_min) N_VDestroy(c->y_min);
   if (c->y) N_VDestroy(c->y);
   if (c->ctx) SUNContext_Free(&c->ctx);
   vl_toeplitz_free(&c->kern);

@@ -32,6 +32,18 @@ static double fb(double a, double b, double *da, double *db) {
   return fb_eps(a, b, FB_EPS, da, db);
 }
 
+/* The hard contact of a smooth dry cell, P >= 0, U >= 0, P U = 0: min(P, U)
+ * (exact; its Newton step is the active-set step: the gap row where U < P,
+ * the row P = 0 elsewhere, so the steps converge in a few set changes), or
+ * Fischer-Burmeister (smoothed) where min_rows is off. */
+static double hard_contact(const vl_contact *c, double p, double u, double *dp, double *du) {
+  if (!c->min_rows) return fb(p, u, dp, du);
+  bool gap = u < p;
+  if (dp) *dp = gap ? 0.0 : 1.0;
+  if (du) *du = gap ? 1.0 : 0.0;
+  return gap ? u : p;
+}
+
 /* Couette film carried across face f (0..n; face f lies between cells f-1
  * and f): returns its value and writes the cells k[q] and the partial
  * derivatives w[q] = d(value)/d(cf[k[q]]); returns the number m of terms
@@ -349,7 +361,10 @@ int vl_contact_residual(vl_contact *c, const double *y, double *f) {
   size_t nc = c->nc, nf = c->nf, of = c->of;
   vl_contact_eval_state(c, y);
   for (size_t i = 0; i < nc; i++)
-    f[i] = c->rough ? c->D[i] : fb(c->P[i], c->U[i], NULL, NULL);
+    f[i] = c->rough ? c->D[i] : hard_contact(c, c->P[i], c->U[i], NULL, NULL);
+  if (c->warm_set) /* the rows of the set {P > 0}: the first step solves that set exactly */
+    for (size_t i = 0; i < nc; i++)
+      f[i] = c->P[i] > 0.0 ? c->U[i] : c->P[i];
   for (size_t i = 0; i < nf; i++)
     f[of + i] = vl_contact_reynolds_row(c, y, i, NULL, NULL);
   f[c->ih] = vl_contact_load_sum(c) - 1.0;
@@ -380,6 +395,18 @@ static void add_dU(vl_contact *c, double *Jd, size_t ld, size_t row, size_t k, d
   for (size_t j = 0; j < c->nf; j++)
     col[j * ld] += wk * mrow[j];
   Jd[c->ih * ld + row] += w;
+}
+
+/* d/dP and d/dU of every smooth dry cell's complementarity row. The first
+ * Jacobian of an active-set solve (warm_set) takes the set {P > 0} of the
+ * state, the previous solution's (as vl_contact_residual's rows then do). */
+static void hard_contact_derivatives(vl_contact *c, double *dp, double *du) {
+  for (size_t i = 0; i < c->n; i++)
+    hard_contact(c, c->P[i], c->U[i], &dp[i], &du[i]);
+  if (c->warm_set)
+    for (size_t i = 0; i < c->n; i++)
+      dp[i] = c->P[i] > 0.0 ? 0.0 : 1.0, du[i] = 1.0 - dp[i];
+  c->warm_set = false;
 }
 
 /* The rows of the contact unknowns: elasticity (rough) or complementarity
@@ -421,14 +448,20 @@ static void jacobian_contact_rows(vl_contact *c, double *Jd) {
      * graded_influence builds M, so the same values as the rows of M
      * the general branch below adds, at a fifth of its time) */
     double *dp = c->fb_work, *du = c->fb_work + n, mk = -c->kfac;
-    for (size_t i = 0; i < n; i++)
-      fb(c->P[i], c->U[i], &dp[i], &du[i]);
+    hard_contact_derivatives(c, dp, du);
+    size_t lo = 0, hi = n; /* rows lo..hi-1 written in full */
+    if (c->gap_rows_only) {
+      while (lo < n && du[lo] == 0.0)
+        lo++;
+      while (hi > lo && du[hi - 1] == 0.0)
+        hi--;
+    }
     for (size_t j = 0; j < n; j++) {
       double *col = Jd + j * ld;
       const double *t = c->kern.coef + (n - 1 - j);
-      for (size_t i = 0; i < n; i++) /* + 0.0: a zero du gives +0, as the zeroed matrix */
+      for (size_t i = lo; i < hi; i++) /* + 0.0: a zero du gives +0, as the zeroed matrix */
         col[i] = du[i] * (mk * t[i]) + 0.0;
-      col[j] += dp[j];
+      col[j] = (j >= lo && j < hi ? col[j] : 0.0) + dp[j];
       col[ih] = 0.0; /* the load row: vl_contact_jacobian */
     }
     double *col = Jd + ih * ld; /* d/d(h0) */
@@ -437,11 +470,11 @@ static void jacobian_contact_rows(vl_contact *c, double *Jd) {
     col[ih] = 0.0;
   } else {
     memset(Jd, 0, ld * ld * sizeof *Jd);
+    double *dp = c->fb_work, *du = c->fb_work + n;
+    if (nc) hard_contact_derivatives(c, dp, du);
     for (size_t i = 0; i < nc; i++) { /* smooth contact: complementarity rows */
-      double dfdp, dfdu;
-      fb(c->P[i], c->U[i], &dfdp, &dfdu);
-      add_dU(c, Jd, ld, i, i, dfdu);
-      Jd[i * ld + i] += dfdp;
+      add_dU(c, Jd, ld, i, i, du[i]);
+      Jd[i * ld + i] += dp[i];
     }
   }
 }

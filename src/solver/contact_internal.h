@@ -122,6 +122,11 @@ struct vl_contact {
   double *fb_work;           /* smooth dry: d FB/dp and d FB/du per node (2 n, Jacobian work),
                               * else NULL */
   double *state_y;           /* smooth dry: the y of the last vl_contact_eval_state, else NULL */
+  bool min_rows;             /* smooth dry: complementarity min(P, U) (a semismooth, active-set
+                              * Newton) instead of Fischer-Burmeister; off on the dry helper of a
+                              * smooth film (its results stay those of FB) */
+  bool warm_set;             /* min_rows: the next Jacobian takes the contact set {P > 0} of the
+                              * state (the last converged solution), whatever the gap */
   size_t kernel_builds;      /* influence matrices built (vl_contact_set_speed) */
   size_t state_kernel;       /* the one state_y was evaluated with */
   double *fprof, *sprof;     /* a tabulated profile at the nodes (contact.h): f/(a0^2/R) and its
@@ -143,6 +148,10 @@ struct vl_contact {
   vl_contact_timing timing;  /* cost counters (vl_contact_timing_get) */
   SUNContext ctx;
   N_Vector y, y_saved, y_outer, ones, fwork;
+  bool reduced_rows;  /* min_rows and the reduced solver knows the rows from d/dU */
+  bool gap_rows_only; /* min_rows, KINSOL's Jacobian for the reduced solver: the identity rows
+                       * get their diagonal only (the solver reads no more of them) */
+  N_Vector y_min;     /* min_rows: the start of the active-set Newton, for its fallback */
   SUNMatrix J;
   SUNLinearSolver LS;
   SUNLinearSolver schur; /* the inner solver of LS when VL_LINSOL_SCHUR applies (not owned) */

@@ -24,4 +24,10 @@ extern void dgemv_(const char *trans, const int *m, const int *n, const double *
                    const double *a, const int *lda, const double *x, const int *incx,
                    const double *beta, double *y, const int *incy, size_t trans_len);
 
+/* C = alpha op(A) op(B) + beta C. */
+extern void dgemm_(const char *transa, const char *transb, const int *m, const int *n, const int *k,
+                   const double *alpha, const double *a, const int *lda, const double *b,
+                   const int *ldb, const double *beta, double *c, const int *ldc, size_t transa_len,
+                   size_t transb_len);
+
 #endif
