@@ -170,7 +170,11 @@ static void test_shift_equals_speed(void **state) {
            cases[k].t_c, cases[k].v0, a_T, ph.mu_Rc, pr.mu_Rc, rel);
     assert_true(pr.mu_Rc > 1e-3);
     assert_true(rel < 1e-7);
-    assert_true(fabs(ph.u_min_m - pr.u_min_m) <= 1e-7 * fabs(pr.u_min_m));
+    /* u_min of this smooth dry contact is 0 up to round-off (the gap inside
+     * the contact: ~1e-20 m or exactly 0 as the active set ends): compared
+     * with a floor of 1e-12 of the gap scale a0^2/R (~1e-4 m here) */
+    double floor_m = 1e-12 * 1e-4;
+    assert_true(fabs(ph.u_min_m - pr.u_min_m) <= 1e-7 * fabs(pr.u_min_m) + floor_m);
   }
   /* the direction (tts.h): warmer = shorter times, a_T < 1 */
   vl_db_compound c;
