@@ -420,7 +420,8 @@ static int compare_parse(int argc, char **argv, compare_args *a) {
   static const char *const axes[] = {"speed", "v0eta", NULL};
   common_rules r;
   const char *compounds = NULL;
-  vl_cli_option opts[N_COMMON + 7];
+  enum { N_COMPARE = 9 }; /* the options below: room for each */
+  vl_cli_option opts[N_COMMON + N_COMPARE];
   size_t n = common_options(&a->c, &r, opts);
   opts[n++] = (vl_cli_option){.name = "--plot", .kind = VL_CLI_FLAG, .dest = &a->c.plot};
   opts[n++] = (vl_cli_option){.name = "--compounds",
@@ -444,6 +445,7 @@ static int compare_parse(int argc, char **argv, compare_args *a) {
       .name = "--to-speed", .kind = VL_CLI_NUMBER, .dest = &a->to_speed, .rule = &positive};
   opts[n++] = (vl_cli_option){
       .name = "--points", .kind = VL_CLI_NUMBER, .dest = &a->points, .rule = &positive};
+  if (n > sizeof opts / sizeof *opts) abort(); /* N_COMPARE is short: a bug */
   vl_cli_parser p = {.cmd = "compare", .opts = opts, .n_opts = n};
   int rc = parse_command(&p, argc, argv, &a->c, &r, compare_usage);
   if (rc < 0 && compounds) snprintf(a->list, sizeof a->list, "%s", compounds);
