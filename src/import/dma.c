@@ -765,12 +765,7 @@ static vl_status resolve_units(layout *lay, const vl_dma_options *o, vl_error *e
   return VL_OK;
 }
 
-/* One point's place for sorting: isotherm, then frequency. */
-typedef struct {
-  size_t iso;
-  double omega;
-  size_t idx;
-} order_key;
+typedef vl_dma_order order_key;
 
 static int cmp_key(const void *pa, const void *pb) {
   const order_key *a = pa, *b = pb;
@@ -1604,7 +1599,7 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
   }
   if ((st = fit_master_curve(m, &o, err)) != VL_OK) goto cleanup;
   fit_warnings(m);
-  st = vl_dma_quality(m, err);
+  st = vl_dma_quality(m, ord, err);
 
 cleanup:
   free(ord);

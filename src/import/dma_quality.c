@@ -22,18 +22,6 @@
 /* A rise counts when it also exceeds this many times the trend's scatter. */
 #define TAN_RISE_SIGMAS 4.0
 
-typedef struct {
-  size_t iso;
-  double omega;
-  size_t k;
-} point_key;
-
-static int cmp_point(const void *pa, const void *pb) {
-  const point_key *a = pa, *b = pb;
-  if (a->iso != b->iso) return a->iso < b->iso ? -1 : 1;
-  return (a->omega > b->omega) - (a->omega < b->omega);
-}
-
 static void note(vl_measured *m, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void note(vl_measured *m, const char *fmt, ...) {
   va_list ap;
@@ -228,32 +216,28 @@ static void extrapolation_notes(vl_measured *m) {
   }
 }
 
-vl_status vl_dma_quality(vl_measured *m, vl_error *err) {
+vl_status vl_dma_quality(vl_measured *m, const vl_dma_order *ord, vl_error *err) {
   vl_status st = VL_OK;
   size_t n = m->n, ni = m->n_isotherms;
-  point_key *key = malloc(n * sizeof *key);
   size_t *start = calloc(ni + 2, sizeof *start);
   double *xr = malloc(n * sizeof *xr), *xw = malloc(n * sizeof *xw);
   double *ls = malloc(n * sizeof *ls), *lt = malloc(n * sizeof *lt);
   m->iso_join_rms = ni > 1 ? malloc((ni - 1) * sizeof *m->iso_join_rms) : NULL;
   m->iso_join_step = ni > 1 ? malloc((ni - 1) * sizeof *m->iso_join_step) : NULL;
   m->iso_tan_delta_rise = malloc(ni * sizeof *m->iso_tan_delta_rise);
-  if (!key || !start || !xr || !xw || !ls || !lt ||
-      (ni > 1 && (!m->iso_join_rms || !m->iso_join_step)) || !m->iso_tan_delta_rise) {
+  if (!start || !xr || !xw || !ls || !lt || (ni > 1 && (!m->iso_join_rms || !m->iso_join_step)) ||
+      !m->iso_tan_delta_rise) {
     vl_error_set(err, "%s: out of memory", m->source);
     st = VL_ENOMEM;
     goto cleanup;
   }
-  for (size_t k = 0; k < n; k++)
-    key[k] = (point_key){m->isotherm[k], m->omega_rad_s[k], k};
-  qsort(key, n, sizeof *key, cmp_point);
   for (size_t i = 0; i < n; i++) {
-    size_t k = key[i].k;
+    size_t k = ord[i].idx;
     xr[i] = log10(m->reduced_omega_rad_s[k]);
     xw[i] = log10(m->omega_rad_s[k]);
     ls[i] = log10(m->storage_pa[k]);
     lt[i] = log10(m->loss_pa[k] / m->storage_pa[k]);
-    start[key[i].iso + 1]++;
+    start[ord[i].iso + 1]++;
   }
   for (size_t g = 0; g < ni; g++)
     start[g + 1] += start[g];
@@ -273,7 +257,6 @@ vl_status vl_dma_quality(vl_measured *m, vl_error *err) {
   extrapolation_notes(m);
 
 cleanup:
-  free(key);
   free(start);
   free(xr);
   free(xw);
