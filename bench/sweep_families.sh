@@ -150,7 +150,7 @@ scene_get() {
 }
 
 # scene_edit (bench/scene_edit.sh): a scene with keys replaced or deleted
-source "$(dirname "${BASH_SOURCE[0]}")/scene_edit.sh"
+source "$SCRIPT_DIR/scene_edit.sh"
 
 # expected_points SCENE: points of the sweep plus the fields_at values that are not
 # sweep points (merged within 1e-9 relative), times the number of fluids
