@@ -286,6 +286,13 @@ void vl_contact_guess_smooth_film(vl_contact *c, double v0, const vl_contact *dr
 /* A smooth film's start from the solution of the coarser level cc. */
 void vl_contact_guess_from_coarse(vl_contact *c, vl_contact *cc);
 
+/* A smooth dry contact's start at the speed its companion e (the same
+ * contact on other cells) has just been solved at, from e_before, e's
+ * contact pressures at c's converged speed (e's earlier state): c's own
+ * contact set, except at the nodes where e's set changed from e_before to
+ * its solution, which take e's (its pressure interpolated, or 0). */
+void vl_contact_guess_from_companion(vl_contact *c, const vl_contact *e, const double *e_before);
+
 /* Predictor of a continuation step to speed v0 (rough films). */
 void vl_contact_predict_state(vl_contact *c, double v0);
 

@@ -206,6 +206,20 @@ void vl_contact_predict_state(vl_contact *c, double v0) {
     y[c->of + i] *= grow;
 }
 
+/* Only the set matters: the first step of the active-set Newton solves
+ * the set {P > 0} of its start exactly (the equations are linear for a
+ * fixed set). Where e's set did not change, c's own set holds its edges to
+ * a cell; where it did, e's puts them within about one of e's cells. */
+void vl_contact_guess_from_companion(vl_contact *c, const vl_contact *e, const double *e_before) {
+  double *y = N_VGetArrayPointer(c->y);
+  const double *ye = N_VGetArrayPointer(e->y);
+  for (size_t i = 0; i < c->nc; i++) {
+    double now = interpolate(ye, e->xi, e->n, c->xi[i]);
+    double before = interpolate(e_before, e->xi, e->n, c->xi[i]);
+    if ((now > 0.0) != (before > 0.0)) y[i] = now > 0.0 ? now : 0.0;
+  }
+}
+
 void vl_contact_guess_from_dry(vl_contact *c, const vl_contact *d) {
   /* the same cells and scales (a0, a0^2/R): the separations and the rigid
    * approach carry over; no fluid pressure yet */
