@@ -81,7 +81,10 @@ static int dump_point(const char *dir, size_t k, const vl_point *pt, const vl_co
     if (write_bin(dir, "xi", (size_t)-1, c->xi, n) || write_bin(dir, "wc", (size_t)-1, c->wc, n))
       return -1;
   }
-  if (write_bin(dir, "M", k, c->M, n * n) || write_bin(dir, "P", k, c->P, n)) return -1;
+  /* the active-set Newton keeps M as its Toeplitz coefficients: built here
+   * (the point's results are already out) */
+  const double *M = vl_contact_influence_matrix((vl_contact *)c);
+  if (write_bin(dir, "M", k, M, n * n) || write_bin(dir, "P", k, c->P, n)) return -1;
   snprintf(path, sizeof path, "%s/points.txt", dir);
   FILE *f = fopen(path, k == 0 ? "w" : "a");
   if (!f) return -1;

@@ -81,7 +81,10 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
     c->state_y = c->fb_work + 2 * n;
     c->state_kernel = (size_t)-1; /* no state yet */
     c->min_rows = true;
+    if (!c->span && !(c->mcoef = malloc((2 * n - 1) * sizeof *c->mcoef)))
+      return vl_contact_nomem(c, err);
   }
+  c->m_kernel = (size_t)-1; /* not built yet */
   if (c->rough && c->wet) {
     c->film_work = malloc((2 * c->nunk + 3 * n) * sizeof *c->film_work);
     if (!c->film_work) return vl_contact_nomem(c, err);
@@ -316,6 +319,7 @@ void vl_contact_free(vl_contact *c) {
   free(c->A);
   free(c->beta);
   free(c->M);
+  free(c->mcoef);
   free(c->P);
   free(c->q);
   free(c->U);

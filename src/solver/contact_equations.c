@@ -187,12 +187,22 @@ static void eval_gap(vl_contact *c, const double *y) {
   if (c->pamb) /* a sealed side: the pressure above its ambient deforms the rubber */
     for (size_t j = 0; j < n; j++)
       c->q[j] -= c->pamb[j];
-  /* M is row-major: the column-major n x n matrix M^T, transposed (BLAS:
-   * a plain loop is bound by the latency of its one running sum, about
-   * 4x slower at n = 400, where it was a third of a dry point's time) */
   int ni = (int)n, one = 1;
-  double w1 = 1.0, w0 = 0.0;
-  dgemv_("T", &ni, &ni, &w1, c->M, &ni, c->q, &one, &w0, G, &one, 1);
+  if (c->mcoef && c->min_rows) {
+    /* the active-set Newton of a smooth dry contact on a uniform grid:
+     * column j of M is mcoef from n - 1 - j on, and only the cells in
+     * contact carry a load (BLAS axpy per loaded cell: 6-16 us against 20
+     * for the product with M at n = 400, and M is not written at all) */
+    memset(G, 0, n * sizeof *G);
+    for (size_t j = 0; j < n; j++)
+      if (c->q[j] != 0.0) daxpy_(&ni, &c->q[j], c->mcoef + (n - 1 - j), &one, G, &one);
+  } else {
+    /* M is row-major: the column-major n x n matrix M^T, transposed (BLAS:
+     * a plain loop is bound by the latency of its one running sum, about
+     * 4x slower at n = 400, where it was a third of a dry point's time) */
+    double w1 = 1.0, w0 = 0.0;
+    dgemv_("T", &ni, &ni, &w1, vl_contact_influence_matrix(c), &ni, c->q, &one, &w0, G, &one, 1);
+  }
   for (size_t i = 0; i < n; i++)
     G[i] += h0 + (c->fprof ? c->fprof[i] : 0.5 * c->xi[i] * c->xi[i]);
   if (c->rough) {

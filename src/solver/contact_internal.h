@@ -97,7 +97,13 @@ struct vl_contact {
                      * relaxed) when the counter-surface moves (vl_moving) */
   double *A, *beta; /* Prony strengths and v0 tau_k / a0 */
   vl_toeplitz kern;
-  double *M; /* dense influence matrix, row-major: U_i += M[i n + j] P_j */
+  double *M; /* dense influence matrix, row-major: U_i += M[i n + j] P_j; built with every
+              * kernel, except where mcoef is set: then when first read
+              * (vl_contact_influence_matrix) */
+  double *mcoef;   /* a smooth dry contact on a uniform grid: M as its 2n - 1 Toeplitz
+                    * coefficients, M_ij = mcoef[i - j + n - 1] (the gap of the active-set
+                    * Newton is summed from them), else NULL */
+  size_t m_kernel; /* the kernel_builds M was built for */
   double v0; /* speed the kernel is built for (NAN: not yet) */
   bool kernel_ready;
   double e_abs, a_h, omega_h, sfac; /* asperity state; P = sfac * s(u) */
@@ -192,6 +198,10 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err);
 double vl_contact_film_estimate(const vl_contact_config *cfg, double v0);
 
 /* contact_grid.c */
+
+/* The dense influence matrix M of the current kernel, built first when it
+ * is not (a contact with mcoef builds it only on demand). */
+const double *vl_contact_influence_matrix(vl_contact *c);
 
 /* Lays out the cells of c->cfg's grid (uniform, or graded when grid_growth
  * > 1): sets n, nv, span, first, xi, wc, hf, dxi and allocates psum.

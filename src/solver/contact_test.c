@@ -192,7 +192,7 @@ void vl_contact_cell(const vl_contact *c, size_t i, double *x_a0, double *width_
 }
 double vl_contact_influence(vl_contact *c, double v0_m_s, size_t i, size_t j) {
   vl_contact_set_speed(c, v0_m_s);
-  return c->M[i * c->n + j];
+  return vl_contact_influence_matrix(c)[i * c->n + j];
 }
 
 const vl_flattening *vl_contact_flattening(const vl_contact *c) { return c->flattening; }

@@ -24,6 +24,10 @@ extern void dgemv_(const char *trans, const int *m, const int *n, const double *
                    const double *a, const int *lda, const double *x, const int *incx,
                    const double *beta, double *y, const int *incy, size_t trans_len);
 
+/* y = alpha x + y. */
+extern void daxpy_(const int *n, const double *alpha, const double *x, const int *incx, double *y,
+                   const int *incy);
+
 /* C = alpha op(A) op(B) + beta C. */
 extern void dgemm_(const char *transa, const char *transb, const int *m, const int *n, const int *k,
                    const double *alpha, const double *a, const int *lda, const double *b,
