@@ -36,6 +36,8 @@ typedef struct {
   double *x, *r;    /* m: the refined solution and its residual */
   double anrm;      /* ||R||_inf */
   bool single;      /* RS holds the LU (else R does) */
+  bool have_R;      /* R holds the block of the last set-up (the active-set Newton's set-up
+                     * leaves it in the matrix: block_residual, copy_block) */
   int *piv;
   double *rhs; /* m */
   sunindextype last_flag;
@@ -130,16 +132,44 @@ static int factorise_double(reduced_content *c) {
   return info;
 }
 
+/* The coupled block of J (column-major, n x n), run by run (contiguous
+ * reads): copied into B (m x m, column-major) and RS (single precision)
+ * when not NULL, its infinity norm into c->anrm. */
+static void copy_block(reduced_content *c, const double *J, double *B, float *RS) {
+  size_t M = (size_t)c->m;
+  double *rowsum = c->off; /* free again after find_free_rows */
+  for (size_t a = 0; a < M; a++)
+    rowsum[a] = 0.0;
+  for (size_t b = 0; b < M; b++) {
+    const double *col = J + (size_t)c->coupled[b] * (size_t)c->n;
+    for (int k = 0; k < c->nruns; k++) {
+      const int *run = c->runs + 3 * k;
+      const double *src = col + run[0];
+      size_t at = b * M + (size_t)run[1], len = (size_t)run[2];
+      double *sum = rowsum + run[1];
+      if (B) memcpy(B + at, src, len * sizeof *src);
+      if (RS)
+        for (size_t a = 0; a < len; a++)
+          RS[at + a] = (float)src[a];
+      for (size_t a = 0; a < len; a++)
+        sum[a] += fabs(src[a]);
+    }
+  }
+  c->anrm = 0.0;
+  for (size_t a = 0; a < M; a++)
+    c->anrm = rowsum[a] > c->anrm ? rowsum[a] : c->anrm;
+}
+
 /* A new base: the block's double LU, kept while the matrix generation and
  * most of the set stay (mode 1). */
-static int setup_base(reduced_content *c) {
+static int setup_base(reduced_content *c, const double *J) {
   int m = c->m, info = 0;
   for (int a = 0; a < c->m0; a++)
     c->pos0[c->c0[a]] = -1;
   c->m0 = m;
   for (int a = 0; a < m; a++)
     c->c0[a] = c->coupled[a], c->pos0[c->coupled[a]] = a;
-  memcpy(c->LU0, c->R, (size_t)m * (size_t)m * sizeof *c->R);
+  copy_block(c, J, c->LU0, NULL);
   dgetrf_(&m, &m, c->LU0, &m, c->piv0, &info);
   memset(c->zin, 0, (size_t)c->n);
   c->have0 = info == 0, c->gen0 = *c->gen, c->mode = 1, c->kr = c->kn = c->zk = 0;
@@ -203,7 +233,7 @@ static bool set_changes(reduced_content *c) {
  * cells' bordering: AB = A^-1 J[C0, N] (rows R zero), Cm = J[N, C0],
  * Sm = J[N, N] - Cm AB, factorised. */
 static int setup_update(reduced_content *c, const double *J) {
-  if (!set_changes(c)) return setup_base(c);
+  if (!set_changes(c)) return setup_base(c, J);
   int m0 = c->m0, kr = c->kr, kn = c->kn, n = c->n, info = 0, fresh = kr - c->zk;
   size_t M0 = (size_t)m0;
   if (fresh > 0) {
@@ -219,7 +249,7 @@ static int setup_update(reduced_content *c, const double *J) {
       for (int p = 0; p < kr; p++)
         c->cap[p + q * kr] = c->Z[(size_t)c->rpos[p] + (size_t)q * M0];
     dgetrf_(&kr, &kr, c->cap, &kr, c->pivc, &info);
-    if (info != 0) return setup_base(c);
+    if (info != 0) return setup_base(c, J);
   }
   for (int q = 0; q < kn; q++) {
     const double *col = J + (size_t)c->nidx[q] * (size_t)n;
@@ -239,17 +269,43 @@ static int setup_update(reduced_content *c, const double *J) {
     double minus = -1.0, one = 1.0;
     dgemm_("N", "N", &kn, &kn, &m0, &minus, c->Cm, &kn, c->AB, &m0, &one, c->Sm, &kn, 1, 1);
     dgetrf_(&kn, &kn, c->Sm, &kn, c->pivs, &info);
-    if (info != 0) return setup_base(c);
+    if (info != 0) return setup_base(c, J);
   }
+  copy_block(c, J, NULL, NULL); /* its norm, for the check of solve_update */
   c->mode = 2;
   c->last_flag = 0;
   return SUNLS_SUCCESS;
 }
 
+/* Runs of coupled rows up to which block_residual reads the block in J
+ * (runs^2 products); more (a set in many pieces), it is copied into R. */
+#define RESIDUAL_RUNS_MAX 4
+
+/* res := res - R x for the coupled block R of J, x in the order of the
+ * coupled unknowns. */
+static void block_residual(reduced_content *c, const double *J, const double *x, double *res) {
+  int m = c->m, n = c->n, one = 1;
+  double minus = -1.0, plus = 1.0;
+  if (c->nruns > RESIDUAL_RUNS_MAX) {
+    if (!c->have_R) copy_block(c, J, c->R, NULL);
+    c->have_R = true;
+    dgemv_("N", &m, &m, &minus, c->R, &m, x, &one, &plus, res, &one, 1);
+    return;
+  }
+  for (int k = 0; k < c->nruns; k++) { /* column run k, row run l */
+    const int *cr = c->runs + 3 * k;
+    for (int l = 0; l < c->nruns; l++) {
+      const int *rr = c->runs + 3 * l;
+      const double *blk = J + (size_t)cr[0] * (size_t)n + (size_t)rr[0];
+      dgemv_("N", &rr[2], &cr[2], &minus, blk, &n, x + cr[1], &one, &plus, res + rr[1], &one, 1);
+    }
+  }
+}
+
 /* The coupled unknowns through the base LU (mode 1) or its update (mode
  * 2), checked against the block itself (R): the block's own double LU
  * where the update lost accuracy. */
-static int solve_update(reduced_content *c, double *x) {
+static int solve_update(reduced_content *c, const double *J, double *x) {
   int m = c->m, m0 = c->m0, kn = c->kn, one = 1, info = 0;
   double *y0 = c->y0, *xn = c->y0 + m0, minus = -1.0, plus = 1.0;
   memcpy(c->r, c->rhs, (size_t)m * sizeof *c->r);
@@ -278,7 +334,7 @@ static int solve_update(reduced_content *c, double *x) {
      * double LU's backward error) */
     double *res = c->x;
     memcpy(res, c->r, (size_t)m * sizeof *res);
-    dgemv_("N", &m, &m, &minus, c->R, &m, c->rhs, &one, &plus, res, &one, 1);
+    block_residual(c, J, c->rhs, res);
     double rnrm = 0.0, xnrm = 0.0;
     for (int a = 0; a < m; a++) {
       rnrm = fabs(res[a]) > rnrm ? fabs(res[a]) : rnrm;
@@ -286,6 +342,8 @@ static int solve_update(reduced_content *c, double *x) {
     }
     if (!(rnrm <= 1e3 * c->anrm * xnrm * DBL_EPSILON * sqrt((double)m))) {
       memcpy(c->rhs, c->r, (size_t)m * sizeof *c->rhs);
+      if (!c->have_R) copy_block(c, J, c->R, NULL);
+      c->have_R = true;
       if (factorise_double(c) != 0) return SUNLS_PACKAGE_FAIL_UNREC;
       dgetrs_("N", &m, &one, c->R, &m, c->piv, c->rhs, &m, &info, 1);
     }
@@ -303,29 +361,13 @@ static int reduced_setup(SUNLinearSolver S, SUNMatrix A) {
   const double *J = SUNDenseMatrix_Data(A);
   find_free_rows(c, J);
   int m = c->m, info = 0;
-  size_t M = (size_t)m;
-  double *rowsum = c->off; /* free again */
-  for (size_t a = 0; a < M; a++)
-    rowsum[a] = 0.0;
-  for (size_t b = 0; b < M; b++) { /* the block, run by run (contiguous copies) */
-    const double *col = J + (size_t)c->coupled[b] * (size_t)c->n;
-    for (int k = 0; k < c->nruns; k++) {
-      const int *run = c->runs + 3 * k;
-      const double *src = col + run[0];
-      size_t at = b * M + (size_t)run[1], len = (size_t)run[2];
-      double *R = c->R + at, *sum = rowsum + run[1];
-      float *RS = c->RS + at;
-      for (size_t a = 0; a < len; a++) {
-        R[a] = src[a], RS[a] = (float)src[a];
-        sum[a] += fabs(src[a]);
-      }
-    }
-  }
-  c->anrm = 0.0;
-  for (size_t a = 0; a < M; a++)
-    c->anrm = rowsum[a] > c->anrm ? rowsum[a] : c->anrm;
   c->mode = 0;
+  /* the active-set Newton: the block stays in J (the base LU is made from
+   * it, the update reads its columns, the check multiplies by it) */
+  c->have_R = false;
   if (m > 0 && c->gen && c->hint_on && *c->hint_on) return setup_update(c, J);
+  copy_block(c, J, c->R, c->RS);
+  c->have_R = true;
   c->single = true;
   if (m > 0) sgetrf_(&m, &m, c->RS, &m, c->piv, &info);
   if (m > 0 && info != 0) info = factorise_double(c);
@@ -382,6 +424,9 @@ static int reduced_solve(SUNLinearSolver S, SUNMatrix A, N_Vector xv, N_Vector b
     if (!c->free_row[j]) continue;
     const double *col = J + (size_t)j * (size_t)n;
     x[j] = b[j] / col[j];
+    /* the active-set Newton's cells out of contact mostly carry no
+     * pressure already: nothing to move (an exact zero) */
+    if (c->mode && x[j] == 0.0) continue;
     for (int k = 0; k < c->nruns; k++) {
       const int *run = c->runs + 3 * k;
       const double *src = col + run[0];
@@ -390,7 +435,7 @@ static int reduced_solve(SUNLinearSolver S, SUNMatrix A, N_Vector xv, N_Vector b
         rhs[a] -= src[a] * x[j];
     }
   }
-  if (c->mode) return solve_update(c, x);
+  if (c->mode) return solve_update(c, J, x);
   if (m > 0 && c->single && !refine(c) && factorise_double(c) != 0) {
     c->last_flag = 1;
     return SUNLS_PACKAGE_FAIL_UNREC;
