@@ -52,6 +52,7 @@ typedef struct {
   size_t gen0;
   bool have0;
   int mode, m0, kr, kn, zk; /* zk: valid columns of Z */
+  long fallbacks;           /* solve_update's checks that failed */
   char *zin;                /* n: base position a has its column in Z */
   int *c0, *pos0, *posn, *rpos, *nidx, *piv0, *pivc, *pivs;
   double *LU0, *Z, *cap, *AB, *Cm, *Sm, *y0, *yr;
@@ -341,6 +342,7 @@ static int solve_update(reduced_content *c, const double *J, double *x) {
       xnrm = fabs(c->rhs[a]) > xnrm ? fabs(c->rhs[a]) : xnrm;
     }
     if (!(rnrm <= 1e3 * c->anrm * xnrm * DBL_EPSILON * sqrt((double)m))) {
+      c->fallbacks++;
       memcpy(c->rhs, c->r, (size_t)m * sizeof *c->rhs);
       if (!c->have_R) copy_block(c, J, c->R, NULL);
       c->have_R = true;
@@ -493,6 +495,15 @@ void vl_linsol_reduced_set_rows(SUNLinearSolver S, const double *du, long n, con
 }
 
 long vl_linsol_reduced_size(SUNLinearSolver S) { return ((reduced_content *)S->content)->m; }
+
+vl_reduced_setup vl_linsol_reduced_last_setup(SUNLinearSolver S) {
+  int mode = ((reduced_content *)S->content)->mode;
+  return mode == 2 ? VL_REDUCED_UPDATED : mode == 1 ? VL_REDUCED_BASE : VL_REDUCED_FACTORISED;
+}
+
+long vl_linsol_reduced_fallbacks(SUNLinearSolver S) {
+  return ((reduced_content *)S->content)->fallbacks;
+}
 
 SUNLinearSolver vl_linsol_reduced_create(long n, SUNContext ctx) {
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);

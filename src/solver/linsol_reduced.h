@@ -35,4 +35,16 @@ void vl_linsol_reduced_set_rows(SUNLinearSolver S, const double *du, long n, con
 /* The size of the last set-up's reduced system (n when no row was free). */
 long vl_linsol_reduced_size(SUNLinearSolver S);
 
+/* What the last set-up did with the coupled block (set_rows on): */
+typedef enum {
+  VL_REDUCED_FACTORISED, /* its own LU (single precision, refined; no hint) */
+  VL_REDUCED_BASE,       /* a new base LU (new matrix generation, or too many changes) */
+  VL_REDUCED_UPDATED     /* the base LU updated for the cells that changed set */
+} vl_reduced_setup;
+vl_reduced_setup vl_linsol_reduced_last_setup(SUNLinearSolver S);
+
+/* Solves through an update whose check failed, since creation (each then
+ * factorised the block in double). */
+long vl_linsol_reduced_fallbacks(SUNLinearSolver S);
+
 #endif
