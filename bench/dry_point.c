@@ -9,10 +9,13 @@
  * uniform grid of N cells (default 400). Each repeat times one
  * vl_simulation_run over the K speeds, what `viscolube run` does between
  * reading the database and writing the files: it creates the contact, and
- * per speed builds the influence matrix, solves (KINSOL), reports, solves
- * again on cells three times as wide for the error estimate and checks the
- * model's assumptions. Prints the median of R repeats per point, after one
- * untimed warm-up run, and the cost split of the last run.
+ * per speed builds the influence coefficients, solves the companion on
+ * cells three times as wide (the start of the active-set Newton from the
+ * second speed on), solves (KINSOL), reports, solves the companion again
+ * from the point for the error estimate and checks the model's
+ * assumptions. Prints the median of R repeats per point, after one untimed
+ * warm-up run, and the cost split of the last run: the N contact's and its
+ * companion's (both of its solves).
  *
  * --dump DIR writes, from the warm-up run, what defines each point's
  * discrete problem and viscolube's solution of it (raw little-endian
@@ -39,7 +42,7 @@
 typedef struct {
   const char *dump;         /* NULL: no dump */
   vl_contact_timing main;   /* the last point's counters: the N contact */
-  vl_contact_timing coarse; /* and its error-estimate contact */
+  vl_contact_timing coarse; /* and its companion (start and error estimate) */
   int failed;
 } run_state;
 
@@ -110,7 +113,7 @@ static void on_point(void *user, size_t k, size_t total, const vl_point *pt, con
 
 static void print_split(const char *name, const vl_contact_timing *t, size_t points) {
   double k = 1e3 / (double)points;
-  printf("  %-8s per point: newton %.3f ms (jacobian %.3f, LU set-up %.3f, solves %.3f, "
+  printf("  %-9s per point: newton %.3f ms (jacobian %.3f, LU set-up %.3f, solves %.3f, "
          "residuals %.3f), kernel %.3f ms; %.1f Newton steps, %.1f residuals\n",
          name, t->t_newton_s * k, t->t_jacobian_s * k, t->t_setup_s * k, t->t_solve_s * k,
          t->t_residual_s * k, t->t_kernel_s * k, (double)t->jacobians / (double)points,
@@ -174,7 +177,7 @@ int main(int argc, char **argv) {
     if (r == repeats - 1) {
       printf("# %s, N %zu, %zu speeds, repeats %d\n", case_path, grid, points, repeats);
       print_split("N", &st.main, points);
-      print_split("estimate", &st.coarse, points);
+      print_split("companion", &st.coarse, points);
     }
   }
   qsort(sec, (size_t)repeats, sizeof *sec, cmp_double);

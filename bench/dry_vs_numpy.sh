@@ -16,8 +16,9 @@
 # the ratio viscolube/numpy.
 #
 # What is timed: viscolube, one vl_simulation_run over the S speeds (contact
-# creation, the influence matrix at every speed, KINSOL's solve, the point's
-# report and its error estimate, a second solve on cells three times as wide);
+# creation, the influence coefficients at every speed, the companion on cells
+# three times as wide solved first (the start), KINSOL's solve, the point's
+# report and its error estimate, the companion solved again from the point);
 # numpy, the S active-set solves in sequence with the matrices already in
 # memory (neither the interpreter's start-up, numpy's import nor the matrices'
 # construction or loading). Both also report their CPU time (on a loaded
@@ -31,7 +32,7 @@ while (($#)); do
     --repeats) REPEATS=$2; shift 2 ;;
     --grid) GRID=$2; shift 2 ;;
     --points) POINTS=$2; shift 2 ;;
-    -h|--help) sed -n '2,29p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,26p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) BUILDS+=("$1"); shift ;;
   esac
 done
