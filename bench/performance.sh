@@ -4,7 +4,7 @@
 #
 # Usage:
 #   bench/performance.sh [--repeats K] [--bin PATH] [--doc FILE] [--out DIR]
-#                        [--no-study] [--timeout S] [--print]
+#                        [--no-study] [--no-dry] [--timeout S] [--print]
 #
 #   --repeats K   timing repeats, medians reported (default 3)
 #   --bin PATH    the program (default build/viscolube; built with
@@ -14,6 +14,8 @@
 #                 folder, removed at the end)
 #   --no-study    leave out the study (studies/example.ini serially and --jobs 2,
 #                 about 20 s a repeat on an idle 2-core machine)
+#   --no-dry      leave out the dry point against numpy (bench/dry_vs_numpy.sh with
+#                 K rounds, on the bench/dry_point next to the program; about 5 s)
 #   --timeout S   wall-clock limit of any one command (default 300 s)
 #   --print       print the tables, do not rewrite the file
 #
@@ -33,11 +35,12 @@ BIN=""
 DOC=""
 OUT=""
 STUDY=1
+DRY=1
 TIMEOUT=300
 PRINT=0
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 
-usage() { sed -n '5,17p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '5,19p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 
 while (($#)); do
   case $1 in
@@ -46,6 +49,7 @@ while (($#)); do
     --doc) DOC=${2:?--doc needs a value}; shift 2 ;;
     --out) OUT=${2:?--out needs a value}; shift 2 ;;
     --no-study) STUDY=0; shift ;;
+    --no-dry) DRY=0; shift ;;
     --timeout) TIMEOUT=${2:?--timeout needs a value}; shift 2 ;;
     --print) PRINT=1; shift ;;
     -h|--help) usage; exit 0 ;;
@@ -157,21 +161,39 @@ for ((REP = 1; REP <= REPEATS; REP++)); do
   log "repeat $REP/$REPEATS"
   one_round
 done
+# the dry smooth point against the numpy active set, in one run (bench/dry_vs_numpy.sh):
+# the bench/dry_point built beside the program, Debian's python3 with numpy
+DRY_NOTE=""
+if ((DRY)); then
+  DRY_BUILD=$(cd "$(dirname "$BIN")" && pwd)
+  if [[ ! -x $DRY_BUILD/bench/dry_point ]]; then
+    DRY_NOTE="no \`bench/dry_point\` beside the program (build the target \`dry_point\`)"
+  elif ! "${PYTHON:-/usr/bin/python3}" -c 'import numpy' 2>/dev/null; then
+    DRY_NOTE="no numpy for ${PYTHON:-/usr/bin/python3} (Debian's python3-numpy)"
+  else
+    log "the dry point against numpy ($REPEATS rounds)"
+    "$ROOT/bench/dry_vs_numpy.sh" --rounds "$REPEATS" "$DRY_BUILD" >"$OUT/dry.txt" 2>"$OUT/logs/dry.err" ||
+      DRY_NOTE="bench/dry_vs_numpy.sh failed (see its log)"
+  fi
+else
+  DRY_NOTE="not measured in the last run: \`--no-dry\`"
+fi
 LOAD1=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo "?")
 T_END=$(date +%s)
 
 # ------------------------------------------------------------------ summaries
 median() { sort -g | awk '{ a[NR] = $1 } END { if (NR == 0) exit; if (NR % 2) print a[(NR + 1) / 2]; else printf "%.6g\n", (a[NR / 2] + a[NR / 2 + 1]) / 2 }'; }
 # item_stat NAME: "median min max ok runs conv tot iters summary_ms" (seconds over runs
-# with exit 0 or 7; summary_ms: median of the summary lines' ms per point, NA if none)
+# with exit 0, 7 (failed points) or 8 (points above their error target): the run
+# completed; summary_ms: median of the summary lines' ms per point, NA if none)
 item_stat() {
   local med mn mx sms
-  med=$(awk -v n="$1" '$1 == n && ($3 == 0 || $3 == 7) { print $4 }' "$RAW" | median)
-  mn=$(awk -v n="$1" '$1 == n && ($3 == 0 || $3 == 7) { print $4 }' "$RAW" | sort -g | head -1)
-  mx=$(awk -v n="$1" '$1 == n && ($3 == 0 || $3 == 7) { print $4 }' "$RAW" | sort -g | tail -1)
-  sms=$(awk -v n="$1" '$1 == n && ($3 == 0 || $3 == 7) && $8 != "NA" { print $8 }' "$RAW" | median)
+  med=$(awk -v n="$1" '$1 == n && ($3 == 0 || $3 == 7 || $3 == 8) { print $4 }' "$RAW" | median)
+  mn=$(awk -v n="$1" '$1 == n && ($3 == 0 || $3 == 7 || $3 == 8) { print $4 }' "$RAW" | sort -g | head -1)
+  mx=$(awk -v n="$1" '$1 == n && ($3 == 0 || $3 == 7 || $3 == 8) { print $4 }' "$RAW" | sort -g | tail -1)
+  sms=$(awk -v n="$1" '$1 == n && ($3 == 0 || $3 == 7 || $3 == 8) && $8 != "NA" { print $8 }' "$RAW" | median)
   awk -v n="$1" -v med="${med:-NA}" -v mn="${mn:-NA}" -v mx="${mx:-NA}" -v sms="${sms:-NA}" '
-    $1 == n { runs++; if ($3 == 0 || $3 == 7) ok++; conv = $5; tot = $6; it = $7 }
+    $1 == n { runs++; if ($3 == 0 || $3 == 7 || $3 == 8) ok++; conv = $5; tot = $6; it = $7 }
     END { printf "%s %s %s %d %d %s %s %s %s\n", med, mn, mx, ok, runs, conv, tot, it, sms }' "$RAW"
 }
 f3() { awk -v v="$1" 'BEGIN { if (v == "NA" || v == "") printf "-"; else printf "%.3f", v }'; }
@@ -252,8 +274,30 @@ mkdir -p "$TAB"
   fi
 } >"$TAB/study"
 
+{
+  if [[ -z $DRY_NOTE ]]; then
+    d=$OUT/dry.txt
+    # "numpy: 3.4 ms per point (CPU time 3.3 ms); 58 LAPACK solves for 13 speeds"
+    read -r np npc nsolves < <(sed -n 's/^numpy: \([0-9.]*\) ms per point (CPU time \([0-9.]*\) ms); \([0-9]*\) LAPACK.*/\1 \2 \3/p' "$d")
+    # "...: viscolube 1.2 ms per point (...; CPU time 1.1 ms), numpy ...: viscolube/numpy 0.35 (CPU time 0.33)"
+    read -r vl vlc r rc < <(sed -n 's/.*viscolube \([0-9.]*\) ms per point (with its error estimate; CPU time \([0-9.]*\) ms).*viscolube\/numpy \([0-9.]*\) (CPU time \([0-9.]*\)).*/\1 \2 \3 \4/p' "$d")
+    stepsN=$(sed -n 's/^ *N .*; \([0-9.]*\) Newton steps.*/\1/p' "$d")
+    stepsC=$(sed -n 's/^ *companion .*; \([0-9.]*\) Newton steps.*/\1/p' "$d")
+    agree=$(sed -n 's/.*numpy_vs_viscolube max |dP|\/max P \([0-9.e+-]*\), max |d mu_Rc|\/mu_Rc \([0-9.e+-]*\).*/\1 \2/p' "$d" | head -1)
+    npp=$(awk -v s="${nsolves:-0}" 'BEGIN { printf "%.1f", s / 13 }')
+    echo "| \`cases/fig03-smooth.ini\` at N 400, 13 speeds, per point | ms (wall, median) | CPU ms (median) | linear systems per point |"
+    echo "|---|---|---|---|"
+    echo "| numpy/LAPACK active set (\`bench/dry_active_set.py\`, matrices in memory) | ${np:--} | ${npc:--} | $npp LU solves |"
+    echo "| viscolube with its error estimate (\`bench/dry_point\`: one \`vl_simulation_run\`) | ${vl:--} | ${vlc:--} | ${stepsN:--} Newton steps; the companion ${stepsC:--} (cells 3x as wide) |"
+    echo "| **viscolube / numpy** | **${r:--}** | **${rc:--}** | |"
+    echo "| the two solutions | max \|dP\|/max P ${agree%% *}, \|d mu_Rc\|/mu_Rc ${agree##* } | | |"
+  else
+    echo "($DRY_NOTE)"
+  fi
+} >"$TAB/dry"
+
 if ((PRINT)); then
-  for t in machine sweeps friction study; do echo "## $t"; cat "$TAB/$t"; echo; done
+  for t in machine sweeps friction study dry; do echo "## $t"; cat "$TAB/$t"; echo; done
   exit 0
 fi
 
