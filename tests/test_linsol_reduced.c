@@ -222,20 +222,21 @@ static void update_step(update_case *u, const bool *in, vl_reduced_setup want, d
  * cells coming back, a hole, more changes than the update takes (a new
  * base), a new matrix generation (a new base). */
 static void update_sequence(update_case *u, double bound) {
-  int nc = u->nc, q = nc / 8;
+  int nc = u->nc, q = nc / 8; /* 240 cells: q = 30 */
+  assert_int_equal(nc, 240);
   bool *in = calloc((size_t)nc, sizeof *in);
   assert_non_null(in);
   set_range(in, nc, 2 * q, 6 * q); /* half the cells: the base */
   update_step(u, in, VL_REDUCED_BASE, bound, 1u);
   set_range(in, nc, 2 * q + 3, 6 * q - 2); /* 5 leave */
   update_step(u, in, VL_REDUCED_UPDATED, bound, 2u);
-  set_range(in, nc, 2 * q + 6, 6 * q + 4); /* 3 more leave, 6 join */
+  set_range(in, nc, 2 * q + 6, 6 * q + 4); /* 3 more leave, 2 come back, 4 join */
   update_step(u, in, VL_REDUCED_UPDATED, bound, 3u);
   set_range(in, nc, 2 * q + 1, 6 * q + 4); /* 5 of those that left come back */
-  in[4 * q] = in[4 * q + 1] = false;         /* a hole: two runs */
+  in[4 * q] = in[4 * q + 1] = false;       /* a hole: two runs */
   update_step(u, in, VL_REDUCED_UPDATED, bound, 4u);
-  set_range(in, nc, q, 7 * q); /* 2q joined: up to the update's 64 */
-  update_step(u, in, q <= 32 ? VL_REDUCED_UPDATED : VL_REDUCED_BASE, bound, 5u);
+  set_range(in, nc, q, 7 * q); /* 60 joined the base's set: the update takes 64 */
+  update_step(u, in, VL_REDUCED_UPDATED, bound, 5u);
   set_range(in, nc, 5 * q, 8 * q); /* most of them left: a new base */
   update_step(u, in, VL_REDUCED_BASE, bound, 6u);
   set_range(in, nc, 5 * q + 2, 8 * q);

@@ -97,14 +97,14 @@ struct vl_contact {
                      * relaxed) when the counter-surface moves (vl_moving) */
   double *A, *beta; /* Prony strengths and v0 tau_k / a0 */
   vl_toeplitz kern;
-  double *M; /* dense influence matrix, row-major: U_i += M[i n + j] P_j; built with every
-              * kernel, except where mcoef is set: then when first read
-              * (vl_contact_influence_matrix) */
+  double *M;       /* dense influence matrix, row-major: U_i += M[i n + j] P_j; built with every
+                    * kernel, except where mcoef is set: then when first read
+                    * (vl_contact_influence_matrix) */
   double *mcoef;   /* a smooth dry contact on a uniform grid: M as its 2n - 1 Toeplitz
                     * coefficients, M_ij = mcoef[i - j + n - 1] (the gap of the active-set
                     * Newton is summed from them), else NULL */
   size_t m_kernel; /* the kernel_builds M was built for */
-  double v0; /* speed the kernel is built for (NAN: not yet) */
+  double v0;       /* speed the kernel is built for (NAN: not yet) */
   bool kernel_ready;
   double e_abs, a_h, omega_h, sfac; /* asperity state; P = sfac * s(u) */
   /* fluid scales of the current solve: pf = kappa p0 Pf; flux in units of

@@ -289,7 +289,7 @@ static const struct rung {
     {"smooth film, fresh start", smooth_fresh, start_smooth_film, VL_NEWTON_PLAIN},
     {"dry contact from its companion at this speed (cells three times as wide)", dry_companion,
      start_companion, VL_NEWTON_PLAIN},
-    {"dry contact or smooth film from the state as it is", dry_or_smooth_continued,
+    {"dry contact or smooth film from the state as it was", dry_or_smooth_continued,
      start_as_it_was, VL_NEWTON_PLAIN},
     /* then, while the point has not converged, in this order */
     {"rough film, continued from the state as it was", rough_continued, start_unpredicted,
