@@ -281,7 +281,7 @@ static const struct rung {
   int newton; /* vl_newton_kind, or NEWTON_THICKENED */
 } LADDER[] = {
     /* the first attempt: exactly one of these four applies, the dry
-     * contact's companion start before the state as it is when it can */
+     * contact's companion start before the state as it was when it can */
     {"rough film, continued from the predicted state", rough_continued, start_predicted,
      VL_NEWTON_CONTINUED},
     {"rough film from the Hertz guess (vl_contact_reset)", rough_fresh, start_as_is,
