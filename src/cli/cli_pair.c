@@ -361,10 +361,13 @@ static vl_query calibration_query(const pair_args *a, double load, double radius
   return q;
 }
 
-/* A measured curve's sweep: the file read, its fingerprint, the sweep. */
-static vl_status measured_sweep(vl_db *db, const char *path, const vl_query *q,
-                                vl_calibration_sweep *s, char fingerprint[VL_DB_FINGERPRINT_MAX],
-                                vl_error *err) {
+/* A measured curve's sweep: the file read, its fingerprint, the sweep.
+ * The reader's messages name the file; the sweep's are about the
+ * materials and conditions (the file's points are checked by then), with
+ * option (NULL: none; "--check") in front, once. */
+static vl_status measured_sweep(vl_db *db, const char *option, const char *path,
+                                const vl_query *q, vl_calibration_sweep *s,
+                                char fingerprint[VL_DB_FINGERPRINT_MAX], vl_error *err) {
   double *v = NULL, *mu = NULL;
   size_t n = 0;
   vl_status st = vl_friction_curve_read_file(path, &v, &mu, &n, err);
@@ -373,7 +376,7 @@ static vl_status measured_sweep(vl_db *db, const char *path, const vl_query *q,
   if (text) vl_db_fingerprint_bytes(text, strlen(text), fingerprint);
   free(text);
   st = vl_calibration_sweep_run(db, q, n, v, mu, s, err);
-  if (st != VL_OK) vl_error_prefix(err, "%s", path);
+  if (st != VL_OK && option) vl_error_prefix(err, "%s", option);
   free(v);
   free(mu);
   return st;
@@ -543,7 +546,7 @@ int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet) {
   vl_calibration_fit f = {0};
   char fingerprint[VL_DB_FINGERPRINT_MAX] = "", check_fp[VL_DB_FINGERPRINT_MAX];
   double check_rms = NAN;
-  if ((st = measured_sweep(db, a->measured, &q, &s, fingerprint, &err)) != VL_OK)
+  if ((st = measured_sweep(db, NULL, a->measured, &q, &s, fingerprint, &err)) != VL_OK)
     return fail(st, &err);
   st = vl_calibration_fit_law(&s, kind, &f, &err);
   if (st == VL_OK && a->check) {
@@ -551,7 +554,7 @@ int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet) {
         calibration_query(a, isfinite(a->check_load) ? a->check_load : a->load,
                           isfinite(a->check_radius) ? a->check_radius : a->radius,
                           isfinite(a->check_temperature) ? a->check_temperature : a->temperature);
-    st = measured_sweep(db, a->check, &cq, &cs, check_fp, &err);
+    st = measured_sweep(db, "--check", a->check, &cq, &cs, check_fp, &err);
     if (st == VL_OK) check_rms = vl_calibration_misfit(&cs, &f.law);
   }
   if (st == VL_OK && a->out && (st = write_fit_csv(a->out, &s, &f, &err)) != VL_OK)

@@ -111,7 +111,8 @@ static int parse_command(vl_cli_parser *p, int argc, char **argv, conditions *c,
  * option. */
 static vl_status fluid_eta(vl_db *db, const conditions *c, double *eta, vl_error *err) {
   vl_status st = vl_query_fluid_eta(db, &c->q, eta, err);
-  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature %g", c->q.temperature_c);
+  /* the message names the fluid and the temperature: the option, once */
+  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature");
   return st;
 }
 
@@ -119,7 +120,7 @@ static vl_status fluid_eta(vl_db *db, const conditions *c, double *eta, vl_error
  * anything is computed so the message names the option. Without: VL_OK. */
 static vl_status compound_at(vl_db *db, const conditions *c, const char *compound, vl_error *err) {
   vl_status st = vl_query_check_compound(db, &c->q, compound, err);
-  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature %g", c->q.temperature_c);
+  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature");
   return st;
 }
 
@@ -153,7 +154,7 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
             cmd);
     return 0;
   }
-  if (vl_query_scene(&q, cmd, sc, &err) != VL_OK) {
+  if (vl_query_scene(&q, NULL, sc, &err) != VL_OK) {
     fprintf(stderr, "viscolube %s: %s\n", cmd, err.msg);
     return 0;
   }
