@@ -40,6 +40,14 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
  * errno set). */
 int vl_cli_make_dirs(const char *path);
 
+/* "s" unless n is 1 ("%zu point%s"). */
+const char *vl_cli_plural(size_t n);
+
+/* A temperature for a title or a line of text, to 0.1 C ("18.4" for a
+ * stored 18.4029, "20", "-10"): what a reader can use, not the digits a
+ * fit happened to give. Returns buf. */
+const char *vl_cli_celsius(char *buf, size_t size, double t_c);
+
 /* Monotonic wall clock (s), for progress lines and timings. */
 double vl_cli_now_s(void);
 

@@ -290,8 +290,10 @@ static void quality_text(FILE *out, const vl_db_compound_fit *f) {
 static void fit_report_text(FILE *out, const vl_db_compound *c, const vl_db_compound_fit *f) {
   fprintf(out, "  fit to data   %zu points (%s), %zu isotherm%s, %s weights\n", f->n_points,
           f->input_kind, f->n_isotherms, f->n_isotherms == 1 ? "" : "s", f->weights);
-  fprintf(out, "  window        %.4g to %.4g rad/s at %.6g C (%.2f decades)\n", f->omega_min_rad_s,
-          f->omega_max_rad_s, c->tref_c, log10(f->omega_max_rad_s / f->omega_min_rad_s));
+  char tref[32];
+  fprintf(out, "  window        %.4g to %.4g rad/s at %s C (%.2f decades)\n", f->omega_min_rad_s,
+          f->omega_max_rad_s, vl_cli_celsius(tref, sizeof tref, c->tref_c),
+          log10(f->omega_max_rad_s / f->omega_min_rad_s));
   fprintf(out, "  terms         %zu kept of a grid of %zu (%g per decade)\n", c->prony.n_terms,
           f->n_grid, f->terms_per_decade);
   fprintf(out, "  error E'      rms %.3g %%, max %.3g %%\n", 100.0 * f->rms_rel_storage,
@@ -501,8 +503,10 @@ static void measured_report(vl_db *db, const vl_db_compound *c, const vl_db_comp
   printf("added compound '%s' to %s: fitted to %s\n", c->name, vl_db_path(db), file);
   printf("  E0            %.6g Pa, Einf %.6g Pa, nu %.6g\n", vl_prony_e0(&c->prony),
          c->prony.e_inf_pa, c->prony.nu);
+  char tref[32];
   if (!isnan(c->wlf_c1))
-    printf("  WLF           C1 %.6g, C2 %.6g K at %.6g C\n", c->wlf_c1, c->wlf_c2_k, c->tref_c);
+    printf("  WLF           C1 %.6g, C2 %.6g K at %s C\n", c->wlf_c1, c->wlf_c2_k,
+           vl_cli_celsius(tref, sizeof tref, c->tref_c));
   fit_report_text(stdout, c, f);
 }
 

@@ -218,8 +218,9 @@ static void pair_text(const vl_db_pair *p) {
   printf("%s / %s / %s: %s\n", p->compound, p->surface, p->fluid, law);
   printf("  %s %s", p->source, p->created_at);
   if (!strcmp(p->source, VL_DB_SOURCE_CALIBRATED)) {
-    printf(" from %s (%s, %zu points) at %g N/m, R %g m", p->measured_file, p->measured_fingerprint,
-           p->n_points, p->load_n_per_m, p->radius_m);
+    printf(" from %s (%s, %zu point%s) at %g N/m, R %g m", p->measured_file,
+           p->measured_fingerprint, p->n_points, vl_cli_plural(p->n_points), p->load_n_per_m,
+           p->radius_m);
     if (isfinite(p->temperature_c)) printf(", %g C", p->temperature_c);
     printf(", rms %.3g in log10 mu", p->rms_log10_mu);
   }
@@ -449,8 +450,8 @@ static void print_fit(const pair_args *a, const vl_calibration_sweep *s,
                       const vl_calibration_fit *f, double check_rms) {
   char law[512], list[1024];
   law_text(&f->law, f->ci95, law, sizeof law);
-  printf("%s / %s / %s on %s (%zu points, %zu used):\n  %s (95 %% intervals)\n", a->compound,
-         a->surface, a->fluid, a->measured, s->n, f->n_used, law);
+  printf("%s / %s / %s on %s (%zu point%s, %zu used):\n  %s (95 %% intervals)\n", a->compound,
+         a->surface, a->fluid, a->measured, s->n, vl_cli_plural(s->n), f->n_used, law);
   printf("  rms misfit %.4g in log10 mu (a factor %.3f)\n", f->rms_log10_mu,
          pow(10.0, f->rms_log10_mu));
   if (f->n_unreached) {
@@ -463,8 +464,8 @@ static void print_fit(const pair_args *a, const vl_calibration_sweep *s,
            100 * VL_CALIBRATION_MIN_SC_SHARE, list);
   }
   if (a->check) printf("  prediction of %s: rms misfit %.4g in log10 mu\n", a->check, check_rms);
-  printf("  cost: one sweep %.2f s, fit %.3g s (%d iterations)\n", s->seconds, f->seconds,
-         f->iterations);
+  printf("  cost: one sweep %.2f s, fit %.3g s (%d iteration%s)\n", s->seconds, f->seconds,
+         f->iterations, vl_cli_plural((size_t)f->iterations));
   if (!f->fits) printf("  DOES NOT FIT: %s\n", f->why);
 }
 

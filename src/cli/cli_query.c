@@ -278,11 +278,15 @@ static void friction_text(const conditions *c, const char *compound, double spee
          "  mu_Sc   = %.5g   (shear in the real contact area)\n"
          "  mu_Sf   = %.5g   (fluid shear)\n",
          pt->mu, pt->mu_Rc + 0.0, pt->mu_Rf + 0.0, pt->mu_Sc + 0.0, pt->mu_Sf + 0.0);
+  char how[96] = "a direct solve";
+  if (r->points_solved > 1)
+    snprintf(how, sizeof how, "continuation from the boundary regime over %zu points",
+             r->points_solved);
   printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
-         "regime: %s\n  Q = %.3g; %ld Newton iterations, residual %.2g (%zu continuation "
-         "points)\n",
+         "regime: %s\n  Q = %.3g; %ld Newton iteration%s, residual %.2g (%s)\n",
          pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
-         vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual, r->points_solved);
+         vl_regime_name(pt->regime), pt->Q, pt->iterations,
+         vl_cli_plural((size_t)pt->iterations), pt->residual, how);
   if (isfinite(pt->error_estimate))
     printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)%s\n",
            100.0 * pt->error_estimate,
@@ -332,8 +336,9 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
   if (!r.point.converged) {
     fprintf(stderr,
             "viscolube friction: the solve did not converge at v0 = %g m/s "
-            "(%ld iterations, residual %.3g)\n",
-            speed, r.point.iterations, r.point.residual);
+            "(%ld iteration%s, residual %.3g)\n",
+            speed, r.point.iterations, vl_cli_plural((size_t)r.point.iterations),
+            r.point.residual);
     rc = vl_status_exit_code(VL_ENOCONV);
   } else if (vl_cli_print_unreliable(stderr, "friction", NULL, 1, &r.point)) {
     rc = VL_CLI_EXIT_UNRELIABLE;

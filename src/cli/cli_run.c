@@ -351,10 +351,10 @@ static void curve_announce(const run_job *job, const vl_scene *scene, vl_simulat
   else
     snprintf(numerics, sizeof numerics, "grid %zu on [%g, %g] a0", scene->grid,
              scene->domain_min_a0, scene->domain_max_a0);
-  printf("scene %s%s%s%s%s: %zu points, %s, a0 = %.4g m, p0 = %.4g Pa\n", job->scene_path,
+  printf("scene %s%s%s%s%s: %zu point%s, %s, a0 = %.4g m, p0 = %.4g Pa\n", job->scene_path,
          scene->title[0] ? " - " : "", scene->title, scene->effects.fluid ? ", fluid " : "",
-         scene->effects.fluid ? scene->fluid : "", n, numerics, vl_contact_a0(contact),
-         vl_contact_p0(contact));
+         scene->effects.fluid ? scene->fluid : "", n, vl_cli_plural(n), numerics,
+         vl_contact_a0(contact), vl_contact_p0(contact));
 }
 
 /* The curve's description for the writers, and its lines before the table. */

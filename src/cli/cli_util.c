@@ -36,6 +36,7 @@ typedef struct {
   size_t n_slots;
   double lo[SLOTS_MAX], hi[SLOTS_MAX];
   char literal[SLOTS_MAX][32]; /* a number as written, shown when constant */
+  int digits[SLOTS_MAX];       /* the most significant digits it was written with */
   size_t count, first_point;
   double v_lo, v_hi;     /* the speeds of the points, m/s */
   unsigned char *points; /* n flags */
@@ -50,6 +51,17 @@ static int number_at(const char *s, size_t i) {
   if (i == 0) return 1;
   unsigned char p = (unsigned char)s[i - 1];
   return !(isalnum(p) || p == '_');
+}
+
+/* The significant digits of a number as written ("0.2004" 4, "1e-09" 1). */
+static int sig_digits(const char *lit) {
+  int n = 0, started = 0;
+  for (const char *c = lit; *c && *c != 'e' && *c != 'E'; c++) {
+    if (!isdigit((unsigned char)*c)) continue;
+    started |= *c != '0';
+    n += started;
+  }
+  return n;
 }
 
 /* Cuts one warning into its key and numbers (at most SLOTS_MAX; further
@@ -98,7 +110,9 @@ static void point_runs(const unsigned char *flags, size_t n, char *buf, size_t c
 }
 
 /* The warning with each number that varies over the points shown as its
- * range ("a_H = 0.21..1.7 lambda0 < 5 (...)"). */
+ * range ("a_H = 0.21..1.7 lambda0 < 5 (...)"), its ends to the digits the
+ * points wrote it with (at least 2): a value the warning set apart from
+ * its limit stays apart ("0.2004..0.25 R > 0.2 R"). */
 static void warn_text(const warn_kind *k, char *buf, size_t cap) {
   size_t len = 0, slot = 0;
   for (const char *p = k->key; *p && len + 1 < cap; p++) {
@@ -108,7 +122,8 @@ static void warn_text(const warn_kind *k, char *buf, size_t cap) {
     }
     int w = k->lo[slot] == k->hi[slot]
                 ? snprintf(buf + len, cap - len, "%s", k->literal[slot])
-                : snprintf(buf + len, cap - len, "%.2g..%.2g", k->lo[slot], k->hi[slot]);
+                : snprintf(buf + len, cap - len, "%.*g..%.*g", k->digits[slot], k->lo[slot],
+                           k->digits[slot], k->hi[slot]);
     slot++;
     if (w < 0) break;
     len += (size_t)w;
@@ -140,11 +155,14 @@ static int warn_add(warn_kind *kinds, size_t *n_kinds, size_t n, size_t i, const
     for (size_t s = 0; s < n_num; s++) {
       k->lo[s] = k->hi[s] = num[s];
       memcpy(k->literal[s], lit[s], sizeof lit[s]);
+      k->digits[s] = 2;
     }
   }
   for (size_t s = 0; s < n_num && s < k->n_slots; s++) {
     k->lo[s] = fmin(k->lo[s], num[s]);
     k->hi[s] = fmax(k->hi[s], num[s]);
+    int d = sig_digits(lit[s]);
+    if (d > k->digits[s]) k->digits[s] = d;
   }
   if (!k->points[i]) k->count++;
   k->points[i] = 1;
@@ -234,8 +252,9 @@ size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size
       fprintf(out, "  ... and %zu more\n", failed - shown);
       break;
     }
-    fprintf(out, "  point %zu: v0 = %.4g m/s, %ld iterations, residual %.3g\n", i + 1,
-            pts[i].v0_m_s, pts[i].iterations, pts[i].residual);
+    fprintf(out, "  point %zu: v0 = %.4g m/s, %ld iteration%s, residual %.3g\n", i + 1,
+            pts[i].v0_m_s, pts[i].iterations, vl_cli_plural((size_t)pts[i].iterations),
+            pts[i].residual);
     shown++;
   }
   return failed;
@@ -266,6 +285,16 @@ vl_status vl_cli_check_out_dir(const char *option, const char *path, vl_error *e
   close(fd);
   unlink(probe);
   return VL_OK;
+}
+
+const char *vl_cli_plural(size_t n) { return n == 1 ? "" : "s"; }
+
+const char *vl_cli_celsius(char *buf, size_t size, double t_c) {
+  snprintf(buf, size, "%.1f", t_c);
+  size_t len = strlen(buf);
+  if (len > 2 && !strcmp(buf + len - 2, ".0")) buf[len - 2] = '\0';
+  if (!strcmp(buf, "-0")) snprintf(buf, size, "0");
+  return buf;
 }
 
 double vl_cli_now_s(void) {
