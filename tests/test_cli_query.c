@@ -179,6 +179,18 @@ static void test_compare_filled_unfilled(void **state) {
   char *png = vl_test_read_file(path);
   assert_true(png && !memcmp(png, "\x89PNG\r\n\x1a\n", 8));
   free(png);
+  /* each figure titled by what it shows and of which compounds, the
+   * conditions under it (issue 32) */
+  const char *titles[2][2] = {
+      {"compare-mu.svg", "<title>Friction coefficient — sbr-unfilled vs sbr-filled</title>"},
+      {"compare-umin.svg", "<title>Minimum separation — sbr-unfilled vs sbr-filled</title>"}};
+  for (size_t i = 0; i < 2; i++) {
+    snprintf(path, sizeof path, "%s/%s", dir, titles[i][0]);
+    char *svg = vl_test_read_file(path);
+    assert_non_null(strstr(svg, titles[i][1]));
+    assert_non_null(strstr(svg, "<desc>on paper-0.5um in water (η = 0.001 Pa s) · fN = 117 N/m"));
+    free(svg);
+  }
   free(out);
   free(err);
 }

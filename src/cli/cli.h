@@ -48,6 +48,12 @@ const char *vl_cli_plural(size_t n);
  * fit happened to give. Returns buf. */
 const char *vl_cli_celsius(char *buf, size_t size, double t_c);
 
+/* --out names a folder in every command (one meaning per option, issue
+ * 32); `surface flow-factors` and `pair calibrate` once took a file there.
+ * VL_OK, else VL_EINPUT when path ends as such a file would (.csv, .png,
+ * .svg), with a message naming files, what goes into the folder now. */
+vl_status vl_cli_out_is_folder(const char *path, const char *files, vl_error *err);
+
 /* Monotonic wall clock (s), for progress lines and timings. */
 double vl_cli_now_s(void);
 

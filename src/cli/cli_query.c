@@ -702,10 +702,11 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
   for (size_t k = 0; k < a->nc; k++)
     curves[k] = (vl_plot_curve){
         a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0, NULL}, cv->hrms[k]};
-  char title[MAX_COMPOUNDS * 80 + 32], subtitle[1024];
-  int len = snprintf(title, sizeof title, "Stribeck curves: ");
-  for (size_t k = 0; k < a->nc && len > 0 && (size_t)len < sizeof title; k++)
-    len += snprintf(title + len, sizeof title - (size_t)len, "%s%s", k ? " vs " : "", a->names[k]);
+  char names[MAX_COMPOUNDS * 80], title[MAX_COMPOUNDS * 80 + 64], subtitle[1024];
+  int len = 0;
+  names[0] = '\0';
+  for (size_t k = 0; k < a->nc && len >= 0 && (size_t)len < sizeof names; k++)
+    len += snprintf(names + len, sizeof names - (size_t)len, "%s%s", k ? " vs " : "", a->names[k]);
   compare_subtitle(a, cv, subtitle, sizeof subtitle);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
@@ -714,12 +715,15 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
   opt.subtitle = subtitle;
   vl_sweep_quantity x = a->axis_v0eta ? VL_SWEEP_V0_ETA : VL_SWEEP_V0;
   static const struct {
-    const char *name;
+    const char *name, *kind;
     vl_plot_y y;
-  } figs[] = {{"compare-mu", VL_PLOT_Y_MU}, {"compare-umin", VL_PLOT_Y_U_MIN}};
+  } figs[] = {{"compare-mu", "Friction coefficient", VL_PLOT_Y_MU},
+              {"compare-umin", "Minimum separation", VL_PLOT_Y_U_MIN}};
   for (size_t k = 0; k < 2; k++) {
     char stem[4300];
     snprintf(stem, sizeof stem, "%s/%s", a->out_dir, figs[k].name);
+    /* what it shows, then of what: "Friction coefficient — sbr-unfilled vs sbr-filled" */
+    snprintf(title, sizeof title, "%s — %s", figs[k].kind, names);
     vl_status st = vl_plot_compare(stem, a->nc, curves, x, figs[k].y, &opt, NULL, err);
     vl_cli_manifest_figure(man, stem, st, err);
     if (st != VL_OK && st != VL_EIO) return st;

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -284,6 +285,20 @@ vl_status vl_cli_check_out_dir(const char *option, const char *path, vl_error *e
   }
   close(fd);
   unlink(probe);
+  return VL_OK;
+}
+
+vl_status vl_cli_out_is_folder(const char *path, const char *files, vl_error *err) {
+  static const char *const ext[] = {".csv", ".png", ".svg"};
+  size_t len = strlen(path);
+  for (size_t k = 0; k < sizeof ext / sizeof ext[0]; k++) {
+    if (len < 4 || strcasecmp(path + len - 4, ext[k])) continue;
+    vl_error_set(err,
+                 "--out names a folder, as in every command (got '%s', a file's name): %s go "
+                 "into it",
+                 path, files);
+    return VL_EINPUT;
+  }
   return VL_OK;
 }
 
