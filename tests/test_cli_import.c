@@ -198,13 +198,14 @@ static void test_psd_kind_and_plot(void **state) {
   free(out);
   svg_text = vl_test_read_file(vl_test_scratch("out/surface-paper-0.1um/psd.svg", NULL));
   assert_non_null(svg_text);
-  assert_non_null(strstr(svg_text, "<title>Roughness power spectrum — surface paper-0.1um</title>"));
+  assert_non_null(
+      strstr(svg_text, "<title>Roughness power spectrum — surface paper-0.1um</title>"));
   assert_non_null(strstr(svg_text, "<desc>self-affine, H 0.8"));
   free(svg_text);
   vl_test_expect_fail(2, "unknown option '--curve'", NULL, "surface show tab --curve x.csv");
   /* the old spelling --plot FILE: said what changed, nothing written */
-  vl_test_expect_fail(2, "--plot takes no file: it draws DIR/psd.png and .svg",
-                      "(got 'psd.png')", "surface show tab --plot psd.png");
+  vl_test_expect_fail(2, "--plot takes no file: it draws DIR/psd.png and .svg", "(got 'psd.png')",
+                      "surface show tab --plot psd.png");
   vl_test_expect_fail(2, "--plot takes no file", "(got 'psd')", "surface show --plot psd tab");
   vl_test_expect_fail(2, "option --out goes with --plot", NULL, "surface show tab --out d");
 }

@@ -146,7 +146,8 @@ static void test_calibrate_refused(void **state) {
   vl_test_expect_fail(2, "--plot takes no file: it draws DIR/calibration.png and .svg",
                       "(got 'fit')", "pair calibrate " TRIPLE " --measured m.csv --plot fit");
   vl_test_expect_fail(2, "--out names a folder, as in every command (got 'fit.csv'",
-                      "calibration.csv", "pair calibrate " TRIPLE " --measured m.csv --out fit.csv");
+                      "calibration.csv",
+                      "pair calibrate " TRIPLE " --measured m.csv --out fit.csv");
   const char *few = vl_test_scratch("few.csv", "v [m/s],mu\n1e-5,0.2\n1e-4,0.1\n1e-3,0.08\n");
   vl_test_expect_fail(2, "at least 4 points", NULL,
                       "pair calibrate " TRIPLE " --measured %s --law eyring --save", few);

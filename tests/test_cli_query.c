@@ -281,7 +281,7 @@ static void test_friction_above_target(void **state) {
   snprintf(args, sizeof args, "--db %s %s --target-error 1e-6 --json", g_db, point);
   assert_int_equal(vl_test_cli(NULL, args, &out, &err), 8);
   assert_non_null(strstr(out, "\"accuracy\": \"above_target\""));
-  assert_non_null(strstr(err, "1 of 1 points are not known to their error target"));
+  assert_non_null(strstr(err, "friction: the point is not known to its error target"));
   assert_non_null(strstr(err, "point 1: v0 = 0.01 m/s, error estimate"));
   double est = json_number(out, "error_estimate");
   free(out), free(err), out = err = NULL;

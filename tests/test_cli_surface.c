@@ -202,7 +202,8 @@ static void test_flow_factors_other_models(void **state) {
 static void test_flow_factors_plot(void **state) {
   (void)state;
   /* --out DIR, as in every command: the table and the figure in it */
-  char *out = run_ok("surface flow-factors paper-0.5um --points 40 --out %s/fig --plot", vl_test_dir);
+  char *out =
+      run_ok("surface flow-factors paper-0.5um --points 40 --out %s/fig --plot", vl_test_dir);
   assert_non_null(strstr(out, "fig/flow-factors.png and "));
   free(out);
   const char *ext[3] = {"png", "svg", "csv"};
@@ -236,9 +237,9 @@ static void test_flow_factors_plot(void **state) {
       access(vl_test_scratch("out/flow-factors-paper-1um/flow-factors.png", NULL), F_OK), 0);
   assert_int_equal(
       access(vl_test_scratch("out/flow-factors-paper-1um/flow-factors.svg", NULL), F_OK), 0);
-  assert_int_not_equal(access(vl_test_scratch("out/flow-factors-paper-1um/flow-factors.csv", NULL),
-                              F_OK),
-                       0); /* the table only with --out */
+  assert_int_not_equal(
+      access(vl_test_scratch("out/flow-factors-paper-1um/flow-factors.csv", NULL), F_OK),
+      0); /* the table only with --out */
 }
 
 static void test_flow_factors_refusals(void **state) {

@@ -166,7 +166,7 @@ static void check_svg_title(const char *path, const char *title, const char *des
   const char *t = strstr(s, want);
   if (!t) fail_msg("%s: no '%s'", path, want);
   assert_true(strstr(s, "<svg") < t && t < strstr(s, "<defs>")); /* first in <svg> */
-  assert_null(strstr(t + strlen(want), "<title>")); /* once */
+  assert_null(strstr(t + strlen(want), "<title>"));              /* once */
   if (desc) {
     snprintf(want, sizeof want, "</title>\n<desc>%s</desc>", desc);
     if (!strstr(s, want)) fail_msg("%s: no '%s'", path, want);

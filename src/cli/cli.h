@@ -40,6 +40,15 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
  * errno set). */
 int vl_cli_make_dirs(const char *path);
 
+/* A command given without what it needs (a noun, a verb, a scene): the
+ * message first ("viscolube run: missing SCENE"), then the command's short
+ * usage (the first paragraph of help, its "usage:" lines, or the text
+ * usage writes when help is NULL) and where the rest is ("see `viscolube
+ * run --help`"), all on stderr. cmd is "" at the top level. Returns the
+ * exit status of bad input (2). */
+int vl_cli_usage_error(const char *cmd, const char *help, void (*usage)(FILE *), const char *fmt,
+                       ...) __attribute__((format(printf, 4, 5)));
+
 /* "s" unless n is 1 ("%zu point%s"). */
 const char *vl_cli_plural(size_t n);
 

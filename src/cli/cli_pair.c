@@ -35,7 +35,7 @@
   "(defaults: friction's), in log10 mu, with 95 % intervals; --check predicts another\n"           \
   "measured curve; --out DIR writes measured, fitted mu and its parts as\n"                        \
   "DIR/calibration.csv, --plot draws them as DIR/calibration.png and .svg (DIR default\n"          \
-  "out/calibration-C-S-F); --save stores the result (refused when the law does not fit).\n"       \
+  "out/calibration-C-S-F); --save stores the result (refused when the law does not fit).\n"        \
   "Removing a compound, surface or fluid removes its pairs.\n"
 
 typedef struct {
@@ -333,9 +333,12 @@ static int do_add(vl_db *db, const pair_args *a, int quiet) {
 int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet);
 
 int vl_cli_pair(const vl_cli_globals *g, int argc, char **argv) {
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-    fputs(PAIR_HELP, argc < 2 ? stderr : stdout);
-    return argc < 2 ? vl_status_exit_code(VL_EINPUT) : 0;
+  if (argc < 2)
+    return vl_cli_usage_error("pair", PAIR_HELP, NULL,
+                              "missing VERB (list, show, add, remove or calibrate)");
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    fputs(PAIR_HELP, stdout);
+    return 0;
   }
   pair_args a;
   int rc = parse_args(argc, argv, &a);
@@ -374,9 +377,9 @@ static vl_query calibration_query(const pair_args *a, double load, double radius
  * The reader's messages name the file; the sweep's are about the
  * materials and conditions (the file's points are checked by then), with
  * option (NULL: none; "--check") in front, once. */
-static vl_status measured_sweep(vl_db *db, const char *option, const char *path,
-                                const vl_query *q, vl_calibration_sweep *s,
-                                char fingerprint[VL_DB_FINGERPRINT_MAX], vl_error *err) {
+static vl_status measured_sweep(vl_db *db, const char *option, const char *path, const vl_query *q,
+                                vl_calibration_sweep *s, char fingerprint[VL_DB_FINGERPRINT_MAX],
+                                vl_error *err) {
   double *v = NULL, *mu = NULL;
   size_t n = 0;
   vl_status st = vl_friction_curve_read_file(path, &v, &mu, &n, err);
@@ -559,8 +562,10 @@ int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet) {
   /* the folder of the files, checked before the sweep: --out DIR, else
    * with --plot out/calibration-C-S-F */
   char dir[4096], csv[4200], stem[4200];
-  if (a->out && (st = vl_cli_out_is_folder(a->out, "calibration.csv and, with --plot, "
-                                           "calibration.png and .svg", &err)) != VL_OK)
+  if (a->out && (st = vl_cli_out_is_folder(a->out,
+                                           "calibration.csv and, with --plot, "
+                                           "calibration.png and .svg",
+                                           &err)) != VL_OK)
     return usage_error("%s", err.msg);
   snprintf(dir, sizeof dir, "%s", a->out ? a->out : "");
   if (!a->out && a->plot)

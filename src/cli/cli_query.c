@@ -285,8 +285,8 @@ static void friction_text(const conditions *c, const char *compound, double spee
   printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
          "regime: %s\n  Q = %.3g; %ld Newton iteration%s, residual %.2g (%s)\n",
          pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
-         vl_regime_name(pt->regime), pt->Q, pt->iterations,
-         vl_cli_plural((size_t)pt->iterations), pt->residual, how);
+         vl_regime_name(pt->regime), pt->Q, pt->iterations, vl_cli_plural((size_t)pt->iterations),
+         pt->residual, how);
   if (isfinite(pt->error_estimate))
     printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)%s\n",
            100.0 * pt->error_estimate,
@@ -337,8 +337,7 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
     fprintf(stderr,
             "viscolube friction: the solve did not converge at v0 = %g m/s "
             "(%ld iteration%s, residual %.3g)\n",
-            speed, r.point.iterations, vl_cli_plural((size_t)r.point.iterations),
-            r.point.residual);
+            speed, r.point.iterations, vl_cli_plural((size_t)r.point.iterations), r.point.residual);
     rc = vl_status_exit_code(VL_ENOCONV);
   } else if (vl_cli_print_unreliable(stderr, "friction", NULL, 1, &r.point)) {
     rc = VL_CLI_EXIT_UNRELIABLE;

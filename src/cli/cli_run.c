@@ -190,8 +190,8 @@ static void plot_marks(const vl_scene *scene, const vl_point *pts, const vl_curv
  * recorded in the manifest and appended to list (length *len). */
 static vl_status plot_field_figures(const char *out_dir, const vl_scene *scene, vl_simulation *sim,
                                     double h_rms, const run_ctx *ctx, const char **label_ptrs,
-                                    const char *subject, const vl_plot_options *opt_in,
-                                    char *list, size_t list_size, size_t *len, vl_error *err) {
+                                    const char *subject, const vl_plot_options *opt_in, char *list,
+                                    size_t list_size, size_t *len, vl_error *err) {
   const vl_contact *c = vl_simulation_contact(sim);
   vl_plot_scales sc = {vl_contact_a0(c), vl_contact_p0(c), h_rms};
   static const struct {
@@ -225,8 +225,7 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
   char subject[1536], title[1600], subtitle[1024], stem[4200];
   scene_subject(scene, subject, sizeof subject);
   if (fluid_key) /* one of several fluids: which */
-    snprintf(subject + strlen(subject), sizeof subject - strlen(subject), " | fluid %s",
-             fluid_key);
+    snprintf(subject + strlen(subject), sizeof subject - strlen(subject), " | fluid %s", fluid_key);
   scene_subtitle(scene, sim, meta, subtitle, sizeof subtitle);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
@@ -610,10 +609,7 @@ static int run_options(int argc, char **argv, const char **scene_path, const cha
                                         "one scene at a time (got '%s' and '%s')", run_usage);
   int rc = vl_cli_parse(&p, argc, argv, 1);
   if (rc >= 0) return rc;
-  if (!*scene_path) {
-    run_usage(stderr);
-    return 2;
-  }
+  if (!*scene_path) return vl_cli_usage_error("run", NULL, run_usage, "missing SCENE");
   return -1;
 }
 

@@ -204,8 +204,9 @@ static int plot_surface(const vl_cli_context *cx, vl_db *db, const char *name, c
     char title[256], subtitle[256];
     snprintf(title, sizeof title, "Roughness power spectrum — surface %s", name);
     if (tab)
-      snprintf(subtitle, sizeof subtitle, "tabulated, %zu points · h_rms %.3g m · q %.3g to %.3g 1/m",
-               p.n, vl_psd_hrms(&p), p.q0, p.q1);
+      snprintf(subtitle, sizeof subtitle,
+               "tabulated, %zu points · h_rms %.3g m · q %.3g to %.3g 1/m", p.n, vl_psd_hrms(&p),
+               p.q0, p.q1);
     else
       snprintf(subtitle, sizeof subtitle, "self-affine, H %.3g · h_rms %.3g m · q %.3g to %.3g 1/m",
                h, vl_psd_hrms(&p), p.q0, p.q1);
@@ -275,8 +276,10 @@ static int ff_check(const vl_cli_context *cx, const ff_args *a, ff_request *r) {
   }
   if (a->out && strlen(a->out) >= 4000) /* PATH_MAX, with room for the files' names */
     return vl_cli_failf(cx, VL_EINPUT, "option --out: folder name longer than 3999 characters");
-  if (a->out && vl_cli_out_is_folder(a->out, "flow-factors.csv and, with --plot, "
-                                     "flow-factors.png and .svg", &err) != VL_OK)
+  if (a->out && vl_cli_out_is_folder(a->out,
+                                     "flow-factors.csv and, with --plot, "
+                                     "flow-factors.png and .svg",
+                                     &err) != VL_OK)
     return vl_cli_fail(cx, VL_EINPUT, err.msg);
   return -1;
 }
@@ -749,8 +752,8 @@ static int surface_show(const vl_cli_context *cx, const vl_cli_globals *g, int a
                         "--out (default out/surface-NAME), as in every command (got '%s')",
                         old);
   if (rc < 0 && n_pos > 1)
-    return vl_cli_failf(cx, VL_EINPUT, "unexpected argument '%s' (see viscolube surface show --help)",
-                        pos[1]);
+    return vl_cli_failf(cx, VL_EINPUT,
+                        "unexpected argument '%s' (see viscolube surface show --help)", pos[1]);
   if (rc < 0) rc = vl_cli_need_name(cx, pos, n_pos, &name);
   if (rc < 0 && out && !plot) rc = vl_cli_fail(cx, VL_EINPUT, "option --out goes with --plot");
   if (rc >= 0) return rc;

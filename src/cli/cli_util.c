@@ -1,7 +1,9 @@
 /* Small helpers shared by the command's nouns. */
+#define _POSIX_C_SOURCE 200809L /* open_memstream, strcasecmp */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -217,10 +219,14 @@ size_t vl_cli_print_unreliable(FILE *out, const char *cmd, const char *label, si
   for (size_t i = 0; i < n; i++)
     count += vl_point_unreliable(&pts[i]);
   if (!count) return 0;
-  fprintf(out,
-          "viscolube %s: %s%s%zu of %zu points are not known to their error target "
-          "(marked '!'; exit status %d):\n",
-          cmd, label ? label : "", label ? ": " : "", count, n, VL_CLI_EXIT_UNRELIABLE);
+  char how_many[96];
+  if (n == 1)
+    snprintf(how_many, sizeof how_many, "the point is not known to its error target");
+  else
+    snprintf(how_many, sizeof how_many, "%zu of %zu points %s not known to their error target",
+             count, n, count == 1 ? "is" : "are");
+  fprintf(out, "viscolube %s: %s%s%s (marked '!'; exit status %d):\n", cmd, label ? label : "",
+          label ? ": " : "", how_many, VL_CLI_EXIT_UNRELIABLE);
   for (size_t i = 0; i < n && shown < 10; i++) {
     if (!vl_point_unreliable(&pts[i])) continue;
     if (pts[i].accuracy == VL_ACCURACY_NO_ESTIMATE)
@@ -244,9 +250,14 @@ size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size
   for (size_t i = 0; i < n; i++)
     failed += !pts[i].converged;
   if (!failed) return 0;
-  fprintf(out, "viscolube %s: %s%s%zu of %zu points did not converge (exit status %d)%s%s\n", cmd,
-          label ? label : "", label ? ": " : "", failed, n, vl_status_exit_code(VL_ENOCONV),
-          where ? "; " : "", where ? where : "");
+  char how_many[96];
+  if (n == 1)
+    snprintf(how_many, sizeof how_many, "the point did not converge");
+  else
+    snprintf(how_many, sizeof how_many, "%zu of %zu points did not converge", failed, n);
+  fprintf(out, "viscolube %s: %s%s%s (exit status %d)%s%s\n", cmd, label ? label : "",
+          label ? ": " : "", how_many, vl_status_exit_code(VL_ENOCONV), where ? "; " : "",
+          where ? where : "");
   for (size_t i = 0; i < n; i++) {
     if (pts[i].converged) continue;
     if (shown == 10) {
@@ -300,6 +311,30 @@ vl_status vl_cli_out_is_folder(const char *path, const char *files, vl_error *er
     return VL_EINPUT;
   }
   return VL_OK;
+}
+
+int vl_cli_usage_error(const char *cmd, const char *help, void (*usage)(FILE *), const char *fmt,
+                       ...) {
+  fprintf(stderr, "viscolube%s%s: ", cmd[0] ? " " : "", cmd);
+  va_list ap;
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fputc('\n', stderr);
+  char *text = NULL;
+  size_t len = 0;
+  FILE *mem = !help && usage ? open_memstream(&text, &len) : NULL;
+  if (mem) {
+    usage(mem);
+    fclose(mem);
+    help = text;
+  }
+  /* the usage lines only: up to the first blank line */
+  const char *end = help ? strstr(help, "\n\n") : NULL;
+  if (help) fprintf(stderr, "%.*s\n", end ? (int)(end - help) : (int)strlen(help), help);
+  fprintf(stderr, "see `viscolube%s%s --help`\n", cmd[0] ? " " : "", cmd);
+  free(text);
+  return vl_status_exit_code(VL_EINPUT);
 }
 
 const char *vl_cli_plural(size_t n) { return n == 1 ? "" : "s"; }

@@ -1502,10 +1502,10 @@ static void draw_compare(fig *f, const void *vctx) {
 
 /* The default titles of the comparisons, by quantity. */
 static const char *const COMPARE_KIND[8] = {
-    "Friction coefficient",     "Hysteresis friction under the contact",
-    "Fluid-pressure friction",  "Shear friction in the real contact area",
-    "Fluid shear friction",     "Rolling friction",
-    "Minimum separation",       "Share of the load on the fluid"};
+    "Friction coefficient",    "Hysteresis friction under the contact",
+    "Fluid-pressure friction", "Shear friction in the real contact area",
+    "Fluid shear friction",    "Rolling friction",
+    "Minimum separation",      "Share of the load on the fluid"};
 
 vl_status vl_plot_compare(const char *stem, size_t k, const vl_plot_curve *curves,
                           vl_sweep_quantity x, vl_plot_y y, const vl_plot_options *opt,

@@ -324,9 +324,12 @@ static void test_digits_beside_the_limit(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_rms_slope),  cmocka_unit_test(test_homogenisation),
-      cmocka_unit_test(test_each_check), cmocka_unit_test(test_prony_window),
-      cmocka_unit_test(test_column),     cmocka_unit_test(test_solved_point),
+      cmocka_unit_test(test_rms_slope),
+      cmocka_unit_test(test_homogenisation),
+      cmocka_unit_test(test_each_check),
+      cmocka_unit_test(test_prony_window),
+      cmocka_unit_test(test_column),
+      cmocka_unit_test(test_solved_point),
       cmocka_unit_test(test_digits_beside_the_limit),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
