@@ -199,6 +199,10 @@ static void test_friction_wording(void **state) {
   assert_true(strstr(out, "(a direct solve)\n") || strstr(out, "(continuation from the boundary "
                                                                "regime over "));
   assert_null(strstr(out, "continuation points"));
+  /* the regime label says what it means, next to u_min/h_rms (1.86 here) */
+  assert_non_null(strstr(out, " h_rms)\n  solid contact carries 100.0 % of the load; regime: "
+                              "boundary (the fluid carries under 5 % of the load and u_min < 3 "
+                              "h_rms)\n"));
   assert_non_null(strstr(err, "viscolube friction: the point is not known to its error target"));
   assert_null(strstr(err, "1 of 1 points"));
   free(out), free(err);

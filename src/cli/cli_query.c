@@ -258,6 +258,27 @@ static void friction_json(const conditions *c, const vl_query_result *r) {
   fputc('\n', stdout);
 }
 
+/* What the regime label means, where it is printed (results.h: the load
+ * share and the film ratio together; the share alone when smooth). */
+static void regime_meaning(char *buf, size_t size, int regime, bool rough) {
+  double lo = 100.0 * VL_REGIME_LOAD_BOUNDARY, hi = 100.0 * VL_REGIME_LOAD_HYDRODYNAMIC;
+  if (regime == VL_REGIME_HYDRODYNAMIC)
+    snprintf(buf, size,
+             rough ? "the fluid carries over %g %% of the load and u_min >= %g h_rms"
+                   : "the fluid carries over %g %% of the load",
+             hi, VL_REGIME_FILM_FULL);
+  else if (regime == VL_REGIME_BOUNDARY)
+    snprintf(buf, size,
+             rough ? "the fluid carries under %g %% of the load and u_min < %g h_rms"
+                   : "the fluid carries under %g %% of the load",
+             lo, VL_REGIME_FILM_FULL);
+  else if (regime == VL_REGIME_MIXED)
+    snprintf(buf, size, "neither boundary nor hydrodynamic%s",
+             rough ? ": load share and film ratio disagree or lie between" : "");
+  else
+    snprintf(buf, size, "no fluid");
+}
+
 static void friction_text(const conditions *c, const char *compound, double speed,
                           const vl_query_result *r) {
   const vl_point *pt = &r->point;
@@ -282,11 +303,13 @@ static void friction_text(const conditions *c, const char *compound, double spee
   if (r->points_solved > 1)
     snprintf(how, sizeof how, "continuation from the boundary regime over %zu points",
              r->points_solved);
+  char meaning[128];
+  regime_meaning(meaning, sizeof meaning, pt->regime, hrms > 0);
   printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
-         "regime: %s\n  Q = %.3g; %ld Newton iteration%s, residual %.2g (%s)\n",
+         "regime: %s (%s)\n  Q = %.3g; %ld Newton iteration%s, residual %.2g (%s)\n",
          pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
-         vl_regime_name(pt->regime), pt->Q, pt->iterations, vl_cli_plural((size_t)pt->iterations),
-         pt->residual, how);
+         vl_regime_name(pt->regime), meaning, pt->Q, pt->iterations,
+         vl_cli_plural((size_t)pt->iterations), pt->residual, how);
   if (isfinite(pt->error_estimate))
     printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)%s\n",
            100.0 * pt->error_estimate,
