@@ -668,6 +668,28 @@ static void test_cli_run_plot(void **state) {
   char jdir[4300];
   snprintf(jdir, sizeof jdir, "%s/j", dir);
   check_png(path_in(jdir, "stribeck.png"), 1000, 750);
+  /* two fluids: the figures with every fluid on one axis, titled too */
+  snprintf(scene, sizeof scene, "%s/two.ini", dir);
+  vl_test_write_file(scene, "[materials]\ncompound = model-rubber\nsurface = paper-3um\n"
+                            "fluid = model-1e-4, model-1e-3\n"
+                            "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\nsigma_s_pa = 1e6\n"
+                            "[sweep]\nquantity = v0_eta\nfrom = 1e-8\nto = 1e-4\npoints = 3\n"
+                            "[effects]\nviscoelastic = on\nroughness = on\nfluid = on\n"
+                            "solid_shear = on\nflow_factors = patir-cheng\n"
+                            "[numerics]\ngrid = 64\ndomain_a0 = -3, 1.6\ntarget_error = 0.5\n");
+  snprintf(args, sizeof args, "--quiet run %s --out %s/two --plot", scene, dir);
+  rc = vl_test_cli(env, args, NULL, NULL);
+  assert_true(rc == 0 || rc == 8);
+  snprintf(jdir, sizeof jdir, "%s/two", dir);
+  /* no scene title: the materials name what the figures are of */
+  check_svg_title(
+      path_in(jdir, "stribeck-all.svg"),
+      "Friction coefficient in each fluid — model-rubber on paper-3um in several fluids", NULL);
+  check_svg_title(path_in(jdir, "rolling-all.svg"),
+                  "Rolling friction in each fluid — model-rubber on paper-3um in several fluids",
+                  NULL);
+  check_svg_title(path_in(jdir, "model-1e-3/stribeck.svg"),
+                  "Stribeck curve — model-rubber on paper-3um in model-1e-3", NULL);
 }
 
 /* `viscolube compound show NAME --plot --out DIR` on the shipped compounds:

@@ -224,7 +224,7 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
                              size_t list_size, vl_error *err) {
   char subject[1536], title[1600], subtitle[1024], stem[4200];
   scene_subject(scene, subject, sizeof subject);
-  if (fluid_key) /* one of several fluids: which */
+  if (fluid_key && scene->title[0]) /* one of several fluids: which (the materials name it) */
     snprintf(subject + strlen(subject), sizeof subject - strlen(subject), " | fluid %s", fluid_key);
   scene_subtitle(scene, sim, meta, subtitle, sizeof subtitle);
   vl_plot_options opt;
