@@ -223,8 +223,8 @@ size_t vl_cli_print_unreliable(FILE *out, const char *cmd, const char *label, si
   if (n == 1)
     snprintf(how_many, sizeof how_many, "the point is not known to its error target");
   else
-    snprintf(how_many, sizeof how_many, "%zu of %zu points %s not known to their error target",
-             count, n, count == 1 ? "is" : "are");
+    snprintf(how_many, sizeof how_many, "%zu of %zu points %s not known to %s error target", count,
+             n, count == 1 ? "is" : "are", count == 1 ? "its" : "their");
   fprintf(out, "viscolube %s: %s%s%s (marked '!'; exit status %d):\n", cmd, label ? label : "",
           label ? ": " : "", how_many, VL_CLI_EXIT_UNRELIABLE);
   for (size_t i = 0; i < n && shown < 10; i++) {
