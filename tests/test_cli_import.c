@@ -3,7 +3,7 @@
  * stderr and takes --moduli; surface add --psd-kind; compound show the loss
  * peak within the measured window and the model's outside it; friction's
  * warning when a point's frequencies leave that window; surface show
- * --plot FILE. Refusals leave the database unchanged. */
+ * --plot [--out DIR]. Refusals leave the database unchanged. */
 #define _POSIX_C_SOURCE 200809L
 
 #include <setjmp.h>
@@ -169,26 +169,45 @@ static void test_psd_kind_and_plot(void **state) {
   }
   snprintf(args, sizeof args, "surface add tab --psd %s", vl_test_scratch("tab.csv", text));
   free(run2(&err, 0, args)), free(err);
-  const char *stem = vl_test_scratch("psd-tab", NULL);
-  snprintf(args, sizeof args, "surface show tab --plot %s.png", stem);
+  /* --plot is a flag and --out DIR its folder, as in every command */
+  const char *dir = vl_test_scratch("psd-tab", NULL);
+  snprintf(args, sizeof args, "surface show tab --plot --out %s", dir);
   out = run2(&err, 0, args);
   assert_non_null(strstr(out, "(self-affine fit: H 0.7, rms"));
   free(out), free(err);
   char png[1200], svg[1200];
-  snprintf(png, sizeof png, "%s.png", stem);
-  snprintf(svg, sizeof svg, "%s.svg", stem);
+  snprintf(png, sizeof png, "%s/psd.png", dir);
+  snprintf(svg, sizeof svg, "%s/psd.svg", dir);
   struct stat sb;
   assert_int_equal(stat(png, &sb), 0);
   assert_true(sb.st_size > 1000);
   assert_int_equal(stat(svg, &sb), 0);
-  /* a self-affine surface draws its own law */
-  snprintf(args, sizeof args, "surface show paper-0.1um --plot %s", vl_test_scratch("sa", NULL));
-  out = run2(&err, 0, args);
-  assert_non_null(strstr(out, "wrote "));
+  /* the figure has a title naming the surface (the PSD had none) */
+  char *svg_text = vl_test_read_file(svg);
+  assert_non_null(strstr(svg_text, "<title>Roughness power spectrum — surface tab</title>"));
+  assert_non_null(strstr(svg_text, "<desc>tabulated, 21 points"));
+  free(svg_text);
+  /* a self-affine surface draws its own law; without --out the figure goes
+   * to out/surface-NAME, as compound show's to out/compound-NAME */
+  char env[1400];
+  snprintf(env, sizeof env, "cd %s && env -u VISCOLUBE_DB", vl_test_dir);
+  snprintf(args, sizeof args, "--db %s surface show paper-0.1um --plot", vl_test_db);
+  assert_int_equal(vl_test_cli(env, args, &out, NULL), 0);
+  assert_non_null(strstr(out, "plot (png, svg) in out/surface-paper-0.1um: psd"));
   assert_null(strstr(out, "fit"));
-  free(out), free(err);
+  free(out);
+  svg_text = vl_test_read_file(vl_test_scratch("out/surface-paper-0.1um/psd.svg", NULL));
+  assert_non_null(svg_text);
+  assert_non_null(
+      strstr(svg_text, "<title>Roughness power spectrum — surface paper-0.1um</title>"));
+  assert_non_null(strstr(svg_text, "<desc>self-affine, H 0.8"));
+  free(svg_text);
   vl_test_expect_fail(2, "unknown option '--curve'", NULL, "surface show tab --curve x.csv");
-  vl_test_expect_fail(2, "--plot needs a value", NULL, "surface show tab --plot");
+  /* the old spelling --plot FILE: said what changed, nothing written */
+  vl_test_expect_fail(2, "--plot takes no file: it draws DIR/psd.png and .svg", "(got 'psd.png')",
+                      "surface show tab --plot psd.png");
+  vl_test_expect_fail(2, "--plot takes no file", "(got 'psd')", "surface show --plot psd tab");
+  vl_test_expect_fail(2, "option --out goes with --plot", NULL, "surface show tab --out d");
 }
 
 int main(void) {

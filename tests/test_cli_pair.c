@@ -104,11 +104,27 @@ static void test_calibrate_save(void **state) {
   free(out), free(err);
   /* nothing stored without --save */
   vl_test_expect_fail(3, "no pair", NULL, "pair show " TRIPLE);
-  assert_int_equal(vl_test_run(&out, &err, "pair calibrate " TRIPLE " --measured %s --save", file),
+  /* --out DIR and --plot, as in every command: DIR/calibration.{csv,png,svg} */
+  assert_int_equal(vl_test_run(&out, &err,
+                               "pair calibrate " TRIPLE " --measured %s --save --out %s/cal --plot",
+                               file, vl_test_dir),
                    0);
   assert_non_null(strstr(out, "95 % intervals"));
   assert_non_null(strstr(out, "stored as the pair"));
+  assert_non_null(strstr(out, "cal/calibration.csv\n"));
+  assert_non_null(strstr(out, "cal/calibration.png and "));
   free(out), free(err);
+  char *csv = vl_test_read_file(vl_test_scratch("cal/calibration.csv", NULL));
+  assert_non_null(csv);
+  assert_non_null(strstr(csv, "v_m_s,mu_measured,mu_fit"));
+  free(csv);
+  /* the figure names the triple and the law (it said only the rms) */
+  char *svg = vl_test_read_file(vl_test_scratch("cal/calibration.svg", NULL));
+  assert_non_null(svg);
+  assert_non_null(strstr(svg, "<title>Calibration of sbr-unfilled / paper-0.5um / water — "
+                              "constant law</title>"));
+  assert_non_null(strstr(svg, "· fN = 117 N/m · R = 1 mm</desc>"));
+  free(svg);
   assert_int_equal(vl_test_run(&out, &err, "pair show " TRIPLE), 0);
   assert_non_null(strstr(out, "calibrated"));
   assert_non_null(strstr(out, "fnv1a64:"));
@@ -126,6 +142,12 @@ static void test_calibrate_refused(void **state) {
   /* the database and its Persson and flow-factor caches exist before the snapshots */
   assert_int_equal(vl_test_run(&out, &err, "friction " TRIPLE " --speed 1e-3"), 0);
   free(out), free(err);
+  /* the old spellings --plot STEM and --out FILE.csv, refused before the sweep */
+  vl_test_expect_fail(2, "--plot takes no file: it draws DIR/calibration.png and .svg",
+                      "(got 'fit')", "pair calibrate " TRIPLE " --measured m.csv --plot fit");
+  vl_test_expect_fail(2, "--out names a folder, as in every command (got 'fit.csv'",
+                      "calibration.csv",
+                      "pair calibrate " TRIPLE " --measured m.csv --out fit.csv");
   const char *few = vl_test_scratch("few.csv", "v [m/s],mu\n1e-5,0.2\n1e-4,0.1\n1e-3,0.08\n");
   vl_test_expect_fail(2, "at least 4 points", NULL,
                       "pair calibrate " TRIPLE " --measured %s --law eyring --save", few);

@@ -179,6 +179,18 @@ static void test_compare_filled_unfilled(void **state) {
   char *png = vl_test_read_file(path);
   assert_true(png && !memcmp(png, "\x89PNG\r\n\x1a\n", 8));
   free(png);
+  /* each figure titled by what it shows and of which compounds, the
+   * conditions under it (issue 32) */
+  const char *titles[2][2] = {
+      {"compare-mu.svg", "<title>Friction coefficient — sbr-unfilled vs sbr-filled</title>"},
+      {"compare-umin.svg", "<title>Minimum separation — sbr-unfilled vs sbr-filled</title>"}};
+  for (size_t i = 0; i < 2; i++) {
+    snprintf(path, sizeof path, "%s/%s", dir, titles[i][0]);
+    char *svg = vl_test_read_file(path);
+    assert_non_null(strstr(svg, titles[i][1]));
+    assert_non_null(strstr(svg, "<desc>on paper-0.5um in water (η = 0.001 Pa s) · fN = 117 N/m"));
+    free(svg);
+  }
   free(out);
   free(err);
 }
@@ -258,6 +270,49 @@ static void test_compare_range_in_speed(void **state) {
   free(o), free(e);
 }
 
+/* The printed range of `compare ... --temperature T` (line "speeds: A .. B
+ * m/s (v0 eta C .. D Pa m at eta E Pa s)") into r[0..4]; 0 when absent. */
+static int range_line(const char *out, double r[5]) {
+  const char *p = strstr(out, "speeds: ");
+  return p && sscanf(p, "speeds: %lf .. %lf m/s (v0 eta %lf .. %lf Pa m at eta %lf Pa s)", &r[0],
+                     &r[1], &r[2], &r[3], &r[4]) == 5;
+}
+
+/* compare with --temperature converts its range at the viscosity of that
+ * temperature (issue 32): water at 40 C by its stored Vogel law,
+ * eta = 1e-3 Pa s x 10^(B/(T - C) - B/(293.15 K - C)), B 247.8 K,
+ * C 140 K (docs/CLI.md section 8), 0.6503 mPa s: a range in m/s prints
+ * v0 eta = v0 x that eta, and a range in v0 eta prints the speeds v0 eta /
+ * eta; without --temperature the same v0 eta range is other speeds (eta
+ * 1 mPa s at 20 C). To the 4 digits printed. */
+static void test_compare_range_at_temperature(void **state) {
+  (void)state;
+  const double eta40 = 1e-3 * pow(10.0, 247.8 / (313.15 - 140.0) - 247.8 / (293.15 - 140.0));
+  const char *ranges[3] = {"--temperature 40 --from-speed 1e-6 --to-speed 1e-3",
+                           "--temperature 40 --from 6.503e-10 --to 6.503e-7",
+                           "--from 6.503e-10 --to 6.503e-7"};
+  const double eta[3] = {eta40, eta40, 1e-3};
+  for (int k = 0; k < 3; k++) {
+    char dir[2048], args[8192], *out = NULL, *err = NULL;
+    snprintf(dir, sizeof dir, "%s/t%d", vl_test_tmpdir(), k);
+    snprintf(args, sizeof args,
+             "--db %s compare --compounds sbr-unfilled --surface paper-0.5um --fluid water %s "
+             "--points 2 --grid 64 --target-error 0.5 --flow-factors smooth --out %s --quiet",
+             g_db, ranges[k], dir);
+    int rc = vl_test_cli(NULL, args, &out, &err);
+    if (rc != 0) fail_msg("%s: exit %d: %s", ranges[k], rc, err);
+    double r[5];
+    if (!range_line(out, r)) fail_msg("%s: no range line in %s", ranges[k], out);
+    printf("  %s: %g .. %g m/s, v0 eta %g .. %g Pa m at eta %g Pa s (expected eta %.6g)\n",
+           ranges[k], r[0], r[1], r[2], r[3], r[4], eta[k]);
+    assert_true(fabs(r[4] / eta[k] - 1.0) < 1e-4);
+    assert_true(fabs(r[2] / (r[0] * eta[k]) - 1.0) < 1e-3);
+    assert_true(fabs(r[3] / (r[1] * eta[k]) - 1.0) < 1e-3);
+    if (k < 2) assert_true(fabs(r[0] / 1e-6 - 1.0) < 1e-3 && fabs(r[1] / 1e-3 - 1.0) < 1e-3);
+    free(out), free(err);
+  }
+}
+
 /* A point above its error target is a result of its own: exit status 8,
  * listed on stderr with its estimate, `accuracy` in the JSON, the text form
  * saying so; the same point with a target it meets exits 0. */
@@ -269,7 +324,7 @@ static void test_friction_above_target(void **state) {
   snprintf(args, sizeof args, "--db %s %s --target-error 1e-6 --json", g_db, point);
   assert_int_equal(vl_test_cli(NULL, args, &out, &err), 8);
   assert_non_null(strstr(out, "\"accuracy\": \"above_target\""));
-  assert_non_null(strstr(err, "1 of 1 points are not known to their error target"));
+  assert_non_null(strstr(err, "friction: the point is not known to its error target"));
   assert_non_null(strstr(err, "point 1: v0 = 0.01 m/s, error estimate"));
   double est = json_number(out, "error_estimate");
   free(out), free(err), out = err = NULL;
@@ -296,6 +351,7 @@ int main(void) {
       cmocka_unit_test(test_compare_filled_unfilled),
       cmocka_unit_test(test_compare_range_either_way),
       cmocka_unit_test(test_compare_range_in_speed),
+      cmocka_unit_test(test_compare_range_at_temperature),
   };
   return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -93,11 +93,12 @@ static double at(const table *t, size_t i, size_t k) { return t->v[i * N_COLS + 
 
 static void test_flow_factors_persson_emt(void **state) {
   (void)state;
-  const char *csv = vl_test_scratch("ff.csv", NULL);
+  const char *dir = vl_test_scratch("ff", NULL);
+  const char *csv = vl_test_scratch("ff/flow-factors.csv", NULL);
   /* from below the percolation point (x_p = 6.30e-4, docs/FLOW_FACTORS.md)
    * to the Tripp regime */
   char *out =
-      run_ok("surface flow-factors paper-0.5um --u-range 1e-5,30 --points 120 --out %s", csv);
+      run_ok("surface flow-factors paper-0.5um --u-range 1e-5,30 --points 120 --out %s", dir);
   assert_non_null(strstr(out, "surface paper-0.5um, model persson-emt: h_rms 5e-07 m, film "
                               "cut-off 1e-09 m, percolation at u/h_rms = 0.00063"));
   assert_non_null(strstr(out, " u_over_hrms contact_fraction        phi_p        phi_s"));
@@ -165,8 +166,9 @@ static void test_flow_factors_persson_emt(void **state) {
 
 static void test_flow_factors_other_models(void **state) {
   (void)state;
-  const char *csv = vl_test_scratch("smooth.csv", NULL);
-  char *out = run_ok("surface flow-factors paper-0.5um --model smooth --points 7 --out %s", csv);
+  const char *csv = vl_test_scratch("smooth/flow-factors.csv", NULL);
+  char *out = run_ok("surface flow-factors paper-0.5um --model smooth --points 7 --out %s/smooth",
+                     vl_test_dir);
   assert_non_null(strstr(out, "model smooth: h_rms 5e-07 m\n"));
   free(out);
   table t = read_csv(csv);
@@ -199,20 +201,30 @@ static void test_flow_factors_other_models(void **state) {
 
 static void test_flow_factors_plot(void **state) {
   (void)state;
+  /* --out DIR, as in every command: the table and the figure in it */
   char *out =
-      run_ok("surface flow-factors paper-0.5um --points 40 --out %s/fig.csv --plot", vl_test_dir);
-  assert_non_null(strstr(out, "fig.png and "));
+      run_ok("surface flow-factors paper-0.5um --points 40 --out %s/fig --plot", vl_test_dir);
+  assert_non_null(strstr(out, "fig/flow-factors.png and "));
   free(out);
-  const char *ext[2] = {"png", "svg"};
-  for (int k = 0; k < 2; k++) {
-    char name[32];
-    snprintf(name, sizeof name, "fig.%s", ext[k]);
+  const char *ext[3] = {"png", "svg", "csv"};
+  for (int k = 0; k < 3; k++) {
+    char name[48];
+    snprintf(name, sizeof name, "fig/flow-factors.%s", ext[k]);
     char *bytes = vl_test_read_file(vl_test_scratch(name, NULL));
     if (!bytes) fail_msg("%s not written", name);
-    assert_true(k == 0 ? !memcmp(bytes, "\x89PNG", 4) : strstr(bytes, "</svg>") != NULL);
+    assert_true(k == 0   ? !memcmp(bytes, "\x89PNG", 4)
+                : k == 1 ? strstr(bytes, "</svg>") != NULL
+                         : !strncmp(bytes, "# flow factors", 14));
+    /* the figure names what it shows and of which surface (issue 32) */
+    if (k == 1)
+      assert_non_null(strstr(bytes, "<title>Flow factors — surface paper-0.5um (persson-emt)"
+                                    "</title>"));
     free(bytes);
   }
-  /* without --out: flow-factors-NAME.{png,svg} in the current directory */
+  /* the file --out once named is refused, saying what changed */
+  vl_test_expect_fail(2, "--out names a folder, as in every command (got 'x.csv'",
+                      "flow-factors.csv", "surface flow-factors paper-0.5um --out x.csv");
+  /* without --out: out/flow-factors-NAME/flow-factors.{png,svg} */
   char env[1400], args[1400];
   snprintf(env, sizeof env, "cd %s && env -u VISCOLUBE_DB", vl_test_dir);
   snprintf(args, sizeof args, "--db %s surface flow-factors paper-1um --model smooth --plot --json",
@@ -221,8 +233,13 @@ static void test_flow_factors_plot(void **state) {
   assert_int_equal(vl_test_cli(env, args, &out, NULL), 0);
   assert_true(vl_test_json_valid(out)); /* nothing else on stdout */
   free(out);
-  assert_int_equal(access(vl_test_scratch("flow-factors-paper-1um.png", NULL), F_OK), 0);
-  assert_int_equal(access(vl_test_scratch("flow-factors-paper-1um.svg", NULL), F_OK), 0);
+  assert_int_equal(
+      access(vl_test_scratch("out/flow-factors-paper-1um/flow-factors.png", NULL), F_OK), 0);
+  assert_int_equal(
+      access(vl_test_scratch("out/flow-factors-paper-1um/flow-factors.svg", NULL), F_OK), 0);
+  assert_int_not_equal(
+      access(vl_test_scratch("out/flow-factors-paper-1um/flow-factors.csv", NULL), F_OK),
+      0); /* the table only with --out */
 }
 
 static void test_flow_factors_refusals(void **state) {
@@ -256,8 +273,10 @@ static void test_flow_factors_refusals(void **state) {
   vl_test_expect_fail(3, "no surface named 'paper-0.5'", "did you mean",
                       "surface flow-factors "
                       "paper-0.5");
-  /* an unwritable CSV: nothing on stdout */
-  vl_test_expect_fail(6, "nodir/ff.csv", NULL, "%s --out %s/nodir/ff.csv", ff, vl_test_dir);
+  /* a folder that cannot be made (a file in the way): nothing on stdout */
+  vl_test_scratch("afile", "x");
+  vl_test_expect_fail(6, "afile/ff: cannot create the folder", NULL, "%s --out %s/afile/ff", ff,
+                      vl_test_dir);
   char *out, *err;
   assert_int_equal(vl_test_run(&out, &err, "surface flow-factors --help"), 0);
   assert_non_null(strstr(out, "contact_fraction, phi_p, phi_s, phi_fp, phi_fs, phi_f"));

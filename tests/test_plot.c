@@ -156,6 +156,24 @@ static const char *path_in(const char *dir, const char *name) {
   return buf[k];
 }
 
+/* The SVG at path names the figure: <title>title</title> as the first
+ * child of <svg> (plot.h), then <desc>desc</desc> when desc is not NULL
+ * (both as escaped in XML). */
+static void check_svg_title(const char *path, const char *title, const char *desc) {
+  char *s = read_svg(path);
+  char want[1024];
+  snprintf(want, sizeof want, ">\n<title>%s</title>", title);
+  const char *t = strstr(s, want);
+  if (!t) fail_msg("%s: no '%s'", path, want);
+  assert_true(strstr(s, "<svg") < t && t < strstr(s, "<defs>")); /* first in <svg> */
+  assert_null(strstr(t + strlen(want), "<title>"));              /* once */
+  if (desc) {
+    snprintf(want, sizeof want, "</title>\n<desc>%s</desc>", desc);
+    if (!strstr(s, want)) fail_msg("%s: no '%s'", path, want);
+  }
+  free(s);
+}
+
 /* ---- data --------------------------------------------------------------- */
 
 #define NPTS 25
@@ -228,6 +246,8 @@ static void test_stribeck_files_and_series(void **state) {
   assert_int_equal(r.series, 5);
   assert_int_equal(r.failed_markers, 0);
   check_png(path_in(dir, "s.png"), 1000, 750);
+  check_svg_title(path_in(dir, "s.svg"), "a # title with PLplot&apos;s escape character", NULL);
+  assert_string_equal(r.title, "a # title with PLplot's escape character");
   svg_stats s = svg_file_stats(path_in(dir, "s.svg"));
   assert_int_equal(s.n_series, 5);    /* mu and its four components */
   assert_int_equal(s.white_fills, 0); /* no hollow marker */
@@ -255,6 +275,9 @@ static void test_stribeck_files_and_series(void **state) {
                                     NULL, &r, &err),
                    VL_OK);
   assert_int_equal(r.series, 3);
+  /* no title given: what the figure shows (issue 32: every figure has one) */
+  assert_string_equal(r.title, "Stribeck curve");
+  check_svg_title(path_in(dir, "dry.svg"), "Stribeck curve", NULL);
   assert_int_equal(svg_file_stats(path_in(dir, "dry.svg")).n_series, 3);
 
   /* dry and smooth: mu is mu_Rc alone, one series */
@@ -374,6 +397,9 @@ static void test_fields(void **state) {
     assert_int_equal(s.white_fills, 1); /* the legend's hollow marker */
     snprintf(name, sizeof name, "%s.png", stem);
     check_png(path_in(dir, name), 1000, 750);
+    static const char *const kinds[4] = {"Contact pressure", "Fluid pressure", "Separation",
+                                         "Contact area"};
+    assert_string_equal(r.title, kinds[q]);
   }
 }
 
@@ -450,9 +476,22 @@ static void test_compare(void **state) {
   check_png(path_in(dir, "cmp.png"), 1000, 750);
   /* other quantities and axes */
   static const vl_plot_y ys[] = {VL_PLOT_Y_MU_ROLLING, VL_PLOT_Y_U_MIN, VL_PLOT_Y_FLUID_LOAD};
-  for (size_t q = 0; q < 3; q++)
+  static const char *const kinds[] = {"Rolling friction", "Minimum separation",
+                                      "Share of the load on the fluid"};
+  for (size_t q = 0; q < 3; q++) {
     assert_int_equal(
         vl_plot_compare(path_in(dir, "q"), 2, c, VL_SWEEP_DEBORAH, ys[q], NULL, &r, &err), VL_OK);
+    assert_string_equal(r.title, kinds[q]);
+  }
+  /* a title and subtitle of the caller's, with XML's specials: escaped in
+   * the SVG's <title> and <desc>, the file well formed (read_svg) */
+  opt.title = "μ of <unfilled> & \"filled\"";
+  opt.subtitle = "on paper-3um in water · 20 °C";
+  assert_int_equal(
+      vl_plot_compare(path_in(dir, "esc"), 2, c, VL_SWEEP_V0_ETA, VL_PLOT_Y_MU, &opt, &r, &err),
+      VL_OK);
+  check_svg_title(path_in(dir, "esc.svg"), "μ of &lt;unfilled&gt; &amp; &quot;filled&quot;",
+                  "on paper-3um in water · 20 °C");
 }
 
 static void test_modulus_and_shifts(void **state) {
@@ -476,6 +515,7 @@ static void test_modulus_and_shifts(void **state) {
   vl_error err = {{0}};
   assert_int_equal(vl_plot_modulus(path_in(dir, "m"), &d, NULL, &r, &err), VL_OK);
   assert_int_equal(r.series, 6); /* E', E'', tan delta: measured and fitted */
+  check_svg_title(path_in(dir, "m.svg"), "Storage and loss moduli", NULL);
   svg_stats s = svg_file_stats(path_in(dir, "m.svg"));
   assert_int_equal(s.n_series, 3); /* the fitted lines; measured are filled markers */
   check_png(path_in(dir, "m.png"), 1000, 750);
@@ -491,9 +531,40 @@ static void test_modulus_and_shifts(void **state) {
                    VL_OK);
   assert_int_equal(r.series, 2);
   assert_int_equal(svg_file_stats(path_in(dir, "wlf.svg")).n_series, 1); /* the WLF line */
+  check_svg_title(path_in(dir, "wlf.svg"), "Time-temperature shift factors", NULL);
   assert_int_equal(vl_plot_shifts(path_in(dir, "nowlf"), 5, t, a, 20, NAN, NAN, NULL, &r, &err),
                    VL_OK);
   assert_int_equal(r.series, 1);
+}
+
+/* The figures the CLI draws for `surface show`, `surface flow-factors` and
+ * `pair calibrate`, without a title of the caller's: each names what it
+ * shows (the PSD figure had no title at all). */
+static void test_default_titles(void **state) {
+  (void)state;
+  const char *dir = vl_test_tmpdir();
+  enum { N = 12 };
+  double q[N], c[N], x[N], one[N], zero[N], mu[N], fit[N], other[N], sc[N];
+  for (int i = 0; i < N; i++) {
+    q[i] = 1e5 * pow(10.0, 0.4 * i), c[i] = 1e-25 * pow(q[i] / 1e5, -3.6);
+    x[i] = 1e-3 * pow(10.0, 0.4 * i), one[i] = 1.0, zero[i] = 0.0;
+    mu[i] = 0.5 / (1 + i), fit[i] = 0.5 / (1 + i), other[i] = 0.1 / (1 + i), sc[i] = 0.4 / (1 + i);
+  }
+  vl_plot_report r;
+  vl_error err = {{0}};
+  vl_plot_psd_data psd = {N, q, c, NULL, 0, NULL, NULL, NULL};
+  assert_int_equal(vl_plot_psd(path_in(dir, "psd"), &psd, NULL, &r, &err), VL_OK);
+  assert_string_equal(r.title, "Roughness power spectrum");
+  check_svg_title(path_in(dir, "psd.svg"), "Roughness power spectrum", NULL);
+  vl_plot_flow_factor_data ff = {N, x, one, zero, one, zero, one, NULL, NAN};
+  assert_int_equal(vl_plot_flow_factors(path_in(dir, "ff"), &ff, NULL, &r, &err), VL_OK);
+  check_svg_title(path_in(dir, "ff.svg"), "Flow factors", NULL);
+  double v[N];
+  for (int i = 0; i < N; i++)
+    v[i] = 1e-6 * pow(10.0, 0.5 * i);
+  vl_plot_calibration_data cal = {N, v, mu, fit, other, sc, NULL, NULL};
+  assert_int_equal(vl_plot_calibration(path_in(dir, "cal"), &cal, NULL, &r, &err), VL_OK);
+  check_svg_title(path_in(dir, "cal.svg"), "Calibration of a sigma_s law", NULL);
 }
 
 static void test_bad_input(void **state) {
@@ -572,13 +643,20 @@ static void test_cli_run_plot(void **state) {
   static const char *const figs[] = {"stribeck", "separation", "fields-pc", "fields-pf",
                                      "fields-u"};
   static const size_t series[] = {5, 1, 2, 2, 2};
+  /* each titled by what it shows, then the scene; the conditions under it */
+  static const char *const kinds[] = {"Stribeck curve", "Minimum separation", "Contact pressure",
+                                      "Fluid pressure", "Separation"};
   for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
-    char name[64];
+    char name[64], title[128];
     snprintf(name, sizeof name, "%s.png", figs[k]);
     check_png(path_in(out_dir, name), 1000, 750);
     snprintf(name, sizeof name, "%s.svg", figs[k]);
     svg_stats s = svg_file_stats(path_in(out_dir, name));
     assert_int_equal(s.n_series, series[k]);
+    snprintf(title, sizeof title, "%s — small wet scene", kinds[k]);
+    check_svg_title(path_in(out_dir, name), title,
+                    "model-rubber on paper-3um in model-1e-4 (η = 10⁻⁴ Pa s) · fN = 1000 N/m · "
+                    "R = 10 mm · flow factors patir-cheng");
   }
   /* --json: stdout stays one JSON array, figures written all the same */
   snprintf(args, sizeof args, "run %s --out %s/j --plot --json", scene, dir);
@@ -590,6 +668,28 @@ static void test_cli_run_plot(void **state) {
   char jdir[4300];
   snprintf(jdir, sizeof jdir, "%s/j", dir);
   check_png(path_in(jdir, "stribeck.png"), 1000, 750);
+  /* two fluids: the figures with every fluid on one axis, titled too */
+  snprintf(scene, sizeof scene, "%s/two.ini", dir);
+  vl_test_write_file(scene, "[materials]\ncompound = model-rubber\nsurface = paper-3um\n"
+                            "fluid = model-1e-4, model-1e-3\n"
+                            "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\nsigma_s_pa = 1e6\n"
+                            "[sweep]\nquantity = v0_eta\nfrom = 1e-8\nto = 1e-4\npoints = 3\n"
+                            "[effects]\nviscoelastic = on\nroughness = on\nfluid = on\n"
+                            "solid_shear = on\nflow_factors = patir-cheng\n"
+                            "[numerics]\ngrid = 64\ndomain_a0 = -3, 1.6\ntarget_error = 0.5\n");
+  snprintf(args, sizeof args, "--quiet run %s --out %s/two --plot", scene, dir);
+  rc = vl_test_cli(env, args, NULL, NULL);
+  assert_true(rc == 0 || rc == 8);
+  snprintf(jdir, sizeof jdir, "%s/two", dir);
+  /* no scene title: the materials name what the figures are of */
+  check_svg_title(
+      path_in(jdir, "stribeck-all.svg"),
+      "Friction coefficient in each fluid — model-rubber on paper-3um in several fluids", NULL);
+  check_svg_title(path_in(jdir, "rolling-all.svg"),
+                  "Rolling friction in each fluid — model-rubber on paper-3um in several fluids",
+                  NULL);
+  check_svg_title(path_in(jdir, "model-1e-3/stribeck.svg"),
+                  "Stribeck curve — model-rubber on paper-3um in model-1e-3", NULL);
 }
 
 /* `viscolube compound show NAME --plot --out DIR` on the shipped compounds:
@@ -612,6 +712,13 @@ static void test_cli_compound_plot(void **state) {
   free(errs);
   check_png(path_in(out_dir, "moduli.png"), 1000, 750);
   check_png(path_in(out_dir, "shifts.png"), 1000, 750);
+  check_svg_title(path_in(out_dir, "moduli.svg"),
+                  "Moduli of compound sbr-filled — master curve at 20 °C", NULL);
+  check_svg_title(path_in(out_dir, "shifts.svg"), "Shift factors of compound sbr-filled — to 20 °C",
+                  NULL);
+  char *svg = vl_test_read_file(path_in(out_dir, "shifts.svg"));
+  assert_non_null(strstr(svg, "</title>\n<desc>21 isotherms · WLF C1 "));
+  free(svg);
   assert_int_equal(svg_file_stats(path_in(out_dir, "moduli.svg")).n_series, 3);
   assert_int_equal(svg_file_stats(path_in(out_dir, "shifts.svg")).n_series, 1);
 
@@ -639,6 +746,7 @@ int main(void) {
       cmocka_unit_test(test_fields_window),
       cmocka_unit_test(test_compare),
       cmocka_unit_test(test_modulus_and_shifts),
+      cmocka_unit_test(test_default_titles),
       cmocka_unit_test(test_bad_input),
       cmocka_unit_test(test_cli_run_plot),
       cmocka_unit_test(test_cli_compound_plot),

@@ -6,7 +6,9 @@
  * moduli) and labels. Every function writes STEM.png and STEM.svg (or the
  * formats the options select), each through a temporary renamed into place
  * (atomic_file.h) once PLplot has closed it and the file is checked
- * complete, so a failure leaves no half-written figure.
+ * complete, so a failure leaves no half-written figure. Every figure has a
+ * title (the options', else what it shows), and the SVG carries the title
+ * and subtitle as text too, as its <title> and <desc> elements.
  *
  * Conventions in every figure: axis titles carry units; a legend right of
  * the plot area (never over the data) names each series; logarithmic axes
@@ -40,7 +42,8 @@ typedef enum { VL_PLOT_PNG = 1u, VL_PLOT_SVG = 2u } vl_plot_format;
 typedef struct {
   unsigned formats;        /* VL_PLOT_PNG | VL_PLOT_SVG; 0 = both */
   int width_px, height_px; /* 0 = 1000 x 750 (SVG: points) */
-  const char *title;       /* line above the plot; NULL or "" = none */
+  const char *title;       /* line above the plot; NULL or "" = what the figure shows
+                              ("Stribeck curve", "Roughness power spectrum", ...) */
   bool mark_half_load;     /* curves: mark where the fluid starts to carry half
                               of the load (fluid_load_fraction crosses 0.5) */
   const char *subtitle;    /* smaller line under the title (the conditions: materials,
@@ -53,9 +56,11 @@ typedef struct {
   size_t failed_markers; /* hollow markers for points that did not converge */
   size_t files;          /* files written */
   double x_lo, x_hi;     /* the x axis drawn, in data units (fields: x/a0) */
+  char title[256];       /* the title drawn (the options', else what the figure shows) */
 } vl_plot_report;
 
-/* Both formats, 1000 x 750, no title or subtitle, no half-load marks. */
+/* Both formats, 1000 x 750, no title of the caller's (the figure's kind)
+ * or subtitle, no half-load marks. */
 void vl_plot_options_defaults(vl_plot_options *opt);
 
 /* True when PLplot has both cairo drivers; otherwise false and err says

@@ -79,8 +79,10 @@ const char *vl_query_flow_factors(const vl_query *q, double *film_cutoff_m);
 /* The wet rough scene of q for q->compound (sweep quantity v0*eta; the
  * caller sets from, to and points). VL_EINPUT naming the field
  * (load_n_per_m, radius_m, sigma_s_pa, grid, film_cutoff_m, temperature_c,
- * a material name) when q is out of range; label names the scene in the
- * simulation's messages (its path field). */
+ * a material name) when q is out of range. label (may be NULL) is the
+ * scene's title. The scene has no path: the simulation's messages about it
+ * name no scene file or key ("no surface named 'x' in DB"), so that the
+ * caller adds its own context (a command, an option) once. */
 vl_status vl_query_scene(const vl_query *q, const char *label, vl_scene *scene, vl_error *err);
 
 /* With q->at_temperature: VL_OK if compound can be taken there (WLF
@@ -102,7 +104,8 @@ vl_status vl_query_fluid_eta(vl_db *db, const vl_query *q, double *eta_pa_s, vl_
  * VL_OK with out->point.converged false (iterations and residual set);
  * a status other than VL_OK means nothing was solved (bad conditions,
  * unknown material, database). The checks of vl_query_check_compound and
- * vl_query_fluid_eta come first, their messages prefixed "temperature T C". */
+ * vl_query_fluid_eta come first (their messages name the material and the
+ * temperature). */
 vl_status vl_query_friction(vl_db *db, const vl_query *q, double speed_m_s, vl_query_result *out,
                             vl_error *err);
 

@@ -237,9 +237,8 @@ PyObject *vlpy_check_query(DatabaseObject *self, PyObject *args, PyObject *kw) {
   if (st == VL_OK) st = vl_db_compound_get(db, q.compound, &probe, &err);
   if (st == VL_OK) st = vl_db_surface_info(db, q.surface, &surf, &err);
   if (st == VL_OK) st = vl_query_check_compound(db, &q, q.compound, &err);
+  /* the messages name the material and the temperature already */
   if (st == VL_OK) st = vl_query_fluid_eta(db, &q, &eta, &err);
-  if (st == VL_EINPUT && q.at_temperature)
-    vl_error_prefix(&err, "temperature %g C", q.temperature_c);
   if (st != VL_OK) return vlpy_raise(st, &err);
   Py_RETURN_NONE;
 }

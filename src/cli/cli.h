@@ -40,6 +40,29 @@ int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
  * errno set). */
 int vl_cli_make_dirs(const char *path);
 
+/* A command given without what it needs (a noun, a verb, a scene): the
+ * message first ("viscolube run: missing SCENE"), then the command's short
+ * usage (the first paragraph of help, its "usage:" lines, or the text
+ * usage writes when help is NULL) and where the rest is ("see `viscolube
+ * run --help`"), all on stderr. cmd is "" at the top level. Returns the
+ * exit status of bad input (2). */
+int vl_cli_usage_error(const char *cmd, const char *help, void (*usage)(FILE *), const char *fmt,
+                       ...) __attribute__((format(printf, 4, 5)));
+
+/* "s" unless n is 1 ("%zu point%s"). */
+const char *vl_cli_plural(size_t n);
+
+/* A temperature for a title or a line of text, to 0.1 C ("18.4" for a
+ * stored 18.4029, "20", "-10"): what a reader can use, not the digits a
+ * fit happened to give. Returns buf. */
+const char *vl_cli_celsius(char *buf, size_t size, double t_c);
+
+/* --out names a folder in every command (one meaning per option, issue
+ * 32); `surface flow-factors` and `pair calibrate` once took a file there.
+ * VL_OK, else VL_EINPUT when path ends as such a file would (.csv, .png,
+ * .svg), with a message naming files, what goes into the folder now. */
+vl_status vl_cli_out_is_folder(const char *path, const char *files, vl_error *err);
+
 /* Monotonic wall clock (s), for progress lines and timings. */
 double vl_cli_now_s(void);
 

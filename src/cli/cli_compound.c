@@ -290,8 +290,10 @@ static void quality_text(FILE *out, const vl_db_compound_fit *f) {
 static void fit_report_text(FILE *out, const vl_db_compound *c, const vl_db_compound_fit *f) {
   fprintf(out, "  fit to data   %zu points (%s), %zu isotherm%s, %s weights\n", f->n_points,
           f->input_kind, f->n_isotherms, f->n_isotherms == 1 ? "" : "s", f->weights);
-  fprintf(out, "  window        %.4g to %.4g rad/s at %.6g C (%.2f decades)\n", f->omega_min_rad_s,
-          f->omega_max_rad_s, c->tref_c, log10(f->omega_max_rad_s / f->omega_min_rad_s));
+  char tref[32];
+  fprintf(out, "  window        %.4g to %.4g rad/s at %s C (%.2f decades)\n", f->omega_min_rad_s,
+          f->omega_max_rad_s, vl_cli_celsius(tref, sizeof tref, c->tref_c),
+          log10(f->omega_max_rad_s / f->omega_min_rad_s));
   fprintf(out, "  terms         %zu kept of a grid of %zu (%g per decade)\n", c->prony.n_terms,
           f->n_grid, f->terms_per_decade);
   fprintf(out, "  error E'      rms %.3g %%, max %.3g %%\n", 100.0 * f->rms_rel_storage,
@@ -501,8 +503,10 @@ static void measured_report(vl_db *db, const vl_db_compound *c, const vl_db_comp
   printf("added compound '%s' to %s: fitted to %s\n", c->name, vl_db_path(db), file);
   printf("  E0            %.6g Pa, Einf %.6g Pa, nu %.6g\n", vl_prony_e0(&c->prony),
          c->prony.e_inf_pa, c->prony.nu);
+  char tref[32];
   if (!isnan(c->wlf_c1))
-    printf("  WLF           C1 %.6g, C2 %.6g K at %.6g C\n", c->wlf_c1, c->wlf_c2_k, c->tref_c);
+    printf("  WLF           C1 %.6g, C2 %.6g K at %s C\n", c->wlf_c1, c->wlf_c2_k,
+           vl_cli_celsius(tref, sizeof tref, c->tref_c));
   fit_report_text(stdout, c, f);
 }
 
@@ -703,11 +707,20 @@ static void modulus_data(const vl_db_compound *c, const vl_db_measured_point *pt
 static vl_status draw_compound(const char *dir, const vl_db_compound *c,
                                const vl_db_compound_fit *fit, const vl_plot_modulus_data *d,
                                vl_error *err) {
-  char title[160], stem[4300];
-  snprintf(title, sizeof title, "compound %s at %g °C", c->name, c->tref_c);
+  char title[256], subtitle[256], tref[32], stem[4300];
+  vl_cli_celsius(tref, sizeof tref, c->tref_c);
+  snprintf(title, sizeof title, "Moduli of compound %s — %s at %s °C", c->name,
+           fit->has_fit && fit->n_isotherms > 1 ? "master curve" : "measured and fitted", tref);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.title = title;
+  if (fit->has_fit && !isnan(c->wlf_c1))
+    snprintf(subtitle, sizeof subtitle, "%zu isotherm%s · WLF C1 %.4g, C2 %.4g K at %s °C",
+             fit->n_isotherms, vl_cli_plural(fit->n_isotherms), c->wlf_c1, c->wlf_c2_k, tref);
+  else
+    snprintf(subtitle, sizeof subtitle, "Prony series, %zu term%s", c->prony.n_terms,
+             vl_cli_plural(c->prony.n_terms));
+  opt.subtitle = subtitle;
   if (d->n + d->n_fit == 0) {
     vl_error_set(err, "option --plot: compound '%s' is elastic and has no measured data", c->name);
     return VL_EINPUT;
@@ -720,6 +733,7 @@ static vl_status draw_compound(const char *dir, const vl_db_compound *c,
   vl_status st = vl_plot_modulus(stem, d, &opt, NULL, err);
   if (st != VL_OK || !(fit->has_fit && fit->n_shifts >= 2)) return st;
   snprintf(stem, sizeof stem, "%s/shifts", dir);
+  snprintf(title, sizeof title, "Shift factors of compound %s — to %s °C", c->name, tref);
   return vl_plot_shifts(stem, fit->n_shifts, fit->shift_temperature_c, fit->shift_log10_a_t,
                         c->tref_c, c->wlf_c1, c->wlf_c2_k, &opt, NULL, err);
 }
@@ -740,9 +754,10 @@ static int plot_compound(const vl_cli_context *cx, vl_db *db, const vl_db_compou
     free(pts);
     return vl_cli_fail(cx, VL_ENOMEM, "out of memory");
   }
-  char ml[96], fl[96];
-  snprintf(ml, sizeof ml, fit->n_isotherms > 1 ? "measured, shifted to %g °C" : "measured, %g °C",
-           c->tref_c);
+  char ml[96], fl[96], tref[32];
+  vl_cli_celsius(tref, sizeof tref, c->tref_c);
+  snprintf(ml, sizeof ml, fit->n_isotherms > 1 ? "measured, shifted to %s °C" : "measured, %s °C",
+           tref);
   snprintf(fl, sizeof fl, "Prony series, %zu term%s", c->prony.n_terms,
            c->prony.n_terms == 1 ? "" : "s");
   vl_plot_modulus_data d = {.measured_label = ml, .fit_label = fl};

@@ -95,10 +95,10 @@ int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv) {
                             : !strcmp(argv[0], "fluid")   ? &vl_cli_fluid_noun
                                                           : NULL;
   if (!noun) return vl_cli_fail(&cx, VL_EINTERNAL, "not a material noun");
-  if (argc < 2) {
-    fputs(noun->help, stderr);
-    return vl_status_exit_code(VL_EINPUT);
-  }
+  if (argc < 2)
+    return vl_cli_usage_error(cx.noun, noun->help, NULL,
+                              "missing VERB (list, show, add%s or remove)",
+                              noun->flow_factors ? ", flow-factors" : "");
   const char *verb = argv[1];
   if (!strcmp(verb, "--help") || !strcmp(verb, "-h") || !strcmp(verb, "help")) {
     fputs(noun->help, stdout);

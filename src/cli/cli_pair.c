@@ -18,7 +18,7 @@
   "       viscolube pair calibrate --compound C --surface S --fluid F --measured FILE\n"           \
   "                             [--load N_PER_M] [--radius M] [--temperature C] [--law LAW]\n"     \
   "                             [--check FILE [--check-load N_PER_M] [--check-radius M]\n"         \
-  "                             [--check-temperature C]] [--out FILE.csv] [--plot STEM]\n"         \
+  "                             [--check-temperature C]] [--out DIR] [--plot]\n"                   \
   "                             [--save] [--json]\n"                                               \
   "\n"                                                                                             \
   "A pair gives sigma_s, the shear stress in the real contact area, as a law of the\n"             \
@@ -32,18 +32,18 @@
   "             (V_d = k S^2 / (eta E e), the seed's Eq. 6: moves as 1/eta)\n"                     \
   "calibrate fits LAW (default constant) to a measured curve (speed with its unit in the\n"        \
   "header, e.g. 'v [mm/s]', and mu; CSV, TSV, decimal comma) at the conditions given\n"            \
-  "(defaults: friction's), in log10 mu, with 95 %% intervals; --check predicts another\n"          \
-  "measured curve; --out writes measured, fitted mu and its parts as CSV, --plot\n"                \
-  "STEM.png/.svg draws them; --save stores the result (refused when the law does not fit).\n"      \
+  "(defaults: friction's), in log10 mu, with 95 % intervals; --check predicts another\n"           \
+  "measured curve; --out DIR writes measured, fitted mu and its parts as\n"                        \
+  "DIR/calibration.csv, --plot draws them as DIR/calibration.png and .svg (DIR default\n"          \
+  "out/calibration-C-S-F); --save stores the result (refused when the law does not fit).\n"        \
   "Removing a compound, surface or fluid removes its pairs.\n"
 
 typedef struct {
   const char *verb, *compound, *surface, *fluid, *law, *measured, *check, *out, *description;
-  const char *plot;
   double p[VL_SHEAR_LAW_MAX_PARAMS];
   bool p_given[VL_SHEAR_LAW_MAX_PARAMS];
   double load, radius, temperature, eta_ref, check_load, check_radius, check_temperature;
-  bool save, json;
+  bool save, json, plot;
 } pair_args;
 
 static int usage_error(const char *fmt, const char *what) {
@@ -81,7 +81,6 @@ static const char **text_slot(pair_args *a, const char *o) {
          : !strcmp(o, "--measured")    ? &a->measured
          : !strcmp(o, "--check")       ? &a->check
          : !strcmp(o, "--out")         ? &a->out
-         : !strcmp(o, "--plot")        ? &a->plot
          : !strcmp(o, "--description") ? &a->description
                                        : NULL;
 }
@@ -126,6 +125,15 @@ static int parse_args(int argc, char **argv, pair_args *a) {
     }
     if (!strcmp(o, "--json")) {
       a->json = true;
+      continue;
+    }
+    if (!strcmp(o, "--plot")) { /* a flag, as in every command (issue 32); once --plot STEM */
+      if (i + 1 < argc && strncmp(argv[i + 1], "--", 2))
+        return usage_error("--plot takes no file: it draws DIR/calibration.png and .svg, DIR "
+                           "given by --out (default out/calibration-C-S-F), as in every command "
+                           "(got '%s')",
+                           argv[i + 1]);
+      a->plot = true;
       continue;
     }
     int param;
@@ -218,8 +226,9 @@ static void pair_text(const vl_db_pair *p) {
   printf("%s / %s / %s: %s\n", p->compound, p->surface, p->fluid, law);
   printf("  %s %s", p->source, p->created_at);
   if (!strcmp(p->source, VL_DB_SOURCE_CALIBRATED)) {
-    printf(" from %s (%s, %zu points) at %g N/m, R %g m", p->measured_file, p->measured_fingerprint,
-           p->n_points, p->load_n_per_m, p->radius_m);
+    printf(" from %s (%s, %zu point%s) at %g N/m, R %g m", p->measured_file,
+           p->measured_fingerprint, p->n_points, vl_cli_plural(p->n_points), p->load_n_per_m,
+           p->radius_m);
     if (isfinite(p->temperature_c)) printf(", %g C", p->temperature_c);
     printf(", rms %.3g in log10 mu", p->rms_log10_mu);
   }
@@ -324,9 +333,12 @@ static int do_add(vl_db *db, const pair_args *a, int quiet) {
 int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet);
 
 int vl_cli_pair(const vl_cli_globals *g, int argc, char **argv) {
-  if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-    fputs(PAIR_HELP, argc < 2 ? stderr : stdout);
-    return argc < 2 ? vl_status_exit_code(VL_EINPUT) : 0;
+  if (argc < 2)
+    return vl_cli_usage_error("pair", PAIR_HELP, NULL,
+                              "missing VERB (list, show, add, remove or calibrate)");
+  if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+    fputs(PAIR_HELP, stdout);
+    return 0;
   }
   pair_args a;
   int rc = parse_args(argc, argv, &a);
@@ -361,8 +373,11 @@ static vl_query calibration_query(const pair_args *a, double load, double radius
   return q;
 }
 
-/* A measured curve's sweep: the file read, its fingerprint, the sweep. */
-static vl_status measured_sweep(vl_db *db, const char *path, const vl_query *q,
+/* A measured curve's sweep: the file read, its fingerprint, the sweep.
+ * The reader's messages name the file; the sweep's are about the
+ * materials and conditions (the file's points are checked by then), with
+ * option (NULL: none; "--check") in front, once. */
+static vl_status measured_sweep(vl_db *db, const char *option, const char *path, const vl_query *q,
                                 vl_calibration_sweep *s, char fingerprint[VL_DB_FINGERPRINT_MAX],
                                 vl_error *err) {
   double *v = NULL, *mu = NULL;
@@ -373,7 +388,7 @@ static vl_status measured_sweep(vl_db *db, const char *path, const vl_query *q,
   if (text) vl_db_fingerprint_bytes(text, strlen(text), fingerprint);
   free(text);
   st = vl_calibration_sweep_run(db, q, n, v, mu, s, err);
-  if (st != VL_OK) vl_error_prefix(err, "%s", path);
+  if (st != VL_OK && option) vl_error_prefix(err, "%s", option);
   free(v);
   free(mu);
   return st;
@@ -403,7 +418,7 @@ static vl_status write_fit_csv(const char *path, const vl_calibration_sweep *s,
 }
 
 /* The figure: measured points over the fitted mu and its parts. */
-static vl_status plot_fit(const char *stem, const vl_calibration_sweep *s,
+static vl_status plot_fit(const char *stem, const pair_args *a, const vl_calibration_sweep *s,
                           const vl_calibration_fit *f, vl_error *err) {
   double *y = malloc(3 * s->n * sizeof *y);
   bool *informative = malloc(s->n * sizeof *informative);
@@ -419,14 +434,20 @@ static vl_status plot_fit(const char *stem, const vl_calibration_sweep *s,
     y[2 * s->n + i] = s->converged[i] ? sc : NAN;
     informative[i] = !f->uninformative[i];
   }
-  char label[64], title[128];
+  char label[64], title[3 * 128 + 64], subtitle[256];
   snprintf(label, sizeof label, "fitted μ (%s law)", vl_shear_law_name(f->law.kind));
-  snprintf(title, sizeof title, "calibration: rms %.3g in log10 μ", f->rms_log10_mu);
+  snprintf(title, sizeof title, "Calibration of %s / %s / %s — %s law", a->compound, a->surface,
+           a->fluid, vl_shear_law_name(f->law.kind));
+  int n = snprintf(subtitle, sizeof subtitle, "rms %.3g in log10 μ · fN = %g N/m · R = %g mm",
+                   f->rms_log10_mu, a->load, 1e3 * a->radius);
+  if (isfinite(s->temperature_c) && n > 0 && (size_t)n < sizeof subtitle)
+    snprintf(subtitle + n, sizeof subtitle - (size_t)n, " · %g °C", s->temperature_c);
   vl_plot_calibration_data d = {s->n,     s->v_m_s,     s->mu,       y,
                                 y + s->n, y + 2 * s->n, informative, label};
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.title = title;
+  opt.subtitle = subtitle;
   vl_status st = vl_plot_calibration(stem, &d, &opt, NULL, err);
   free(y);
   free(informative);
@@ -446,8 +467,8 @@ static void print_fit(const pair_args *a, const vl_calibration_sweep *s,
                       const vl_calibration_fit *f, double check_rms) {
   char law[512], list[1024];
   law_text(&f->law, f->ci95, law, sizeof law);
-  printf("%s / %s / %s on %s (%zu points, %zu used):\n  %s (95 %% intervals)\n", a->compound,
-         a->surface, a->fluid, a->measured, s->n, f->n_used, law);
+  printf("%s / %s / %s on %s (%zu point%s, %zu used):\n  %s (95 %% intervals)\n", a->compound,
+         a->surface, a->fluid, a->measured, s->n, vl_cli_plural(s->n), f->n_used, law);
   printf("  rms misfit %.4g in log10 mu (a factor %.3f)\n", f->rms_log10_mu,
          pow(10.0, f->rms_log10_mu));
   if (f->n_unreached) {
@@ -460,8 +481,8 @@ static void print_fit(const pair_args *a, const vl_calibration_sweep *s,
            100 * VL_CALIBRATION_MIN_SC_SHARE, list);
   }
   if (a->check) printf("  prediction of %s: rms misfit %.4g in log10 mu\n", a->check, check_rms);
-  printf("  cost: one sweep %.2f s, fit %.3g s (%d iterations)\n", s->seconds, f->seconds,
-         f->iterations);
+  printf("  cost: one sweep %.2f s, fit %.3g s (%d iteration%s)\n", s->seconds, f->seconds,
+         f->iterations, vl_cli_plural((size_t)f->iterations));
   if (!f->fits) printf("  DOES NOT FIT: %s\n", f->why);
 }
 
@@ -538,12 +559,26 @@ int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet) {
   vl_shear_law_kind kind = VL_SHEAR_CONSTANT;
   vl_status st = a->law ? vl_shear_law_parse(a->law, &kind, &err) : VL_OK;
   if (st != VL_OK) return fail(st, &err);
+  /* the folder of the files, checked before the sweep: --out DIR, else
+   * with --plot out/calibration-C-S-F */
+  char dir[4096], csv[4200], stem[4200];
+  if (a->out && (st = vl_cli_out_is_folder(a->out,
+                                           "calibration.csv and, with --plot, "
+                                           "calibration.png and .svg",
+                                           &err)) != VL_OK)
+    return usage_error("%s", err.msg);
+  snprintf(dir, sizeof dir, "%s", a->out ? a->out : "");
+  if (!a->out && a->plot)
+    snprintf(dir, sizeof dir, "out/calibration-%s-%s-%s", a->compound, a->surface, a->fluid);
+  snprintf(csv, sizeof csv, "%s/calibration.csv", dir);
+  snprintf(stem, sizeof stem, "%s/calibration", dir);
+  if (dir[0] && (st = vl_cli_check_out_dir("--out", dir, &err)) != VL_OK) return fail(st, &err);
   vl_query q = calibration_query(a, a->load, a->radius, a->temperature);
   vl_calibration_sweep s, cs = {0};
   vl_calibration_fit f = {0};
   char fingerprint[VL_DB_FINGERPRINT_MAX] = "", check_fp[VL_DB_FINGERPRINT_MAX];
   double check_rms = NAN;
-  if ((st = measured_sweep(db, a->measured, &q, &s, fingerprint, &err)) != VL_OK)
+  if ((st = measured_sweep(db, NULL, a->measured, &q, &s, fingerprint, &err)) != VL_OK)
     return fail(st, &err);
   st = vl_calibration_fit_law(&s, kind, &f, &err);
   if (st == VL_OK && a->check) {
@@ -551,13 +586,12 @@ int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet) {
         calibration_query(a, isfinite(a->check_load) ? a->check_load : a->load,
                           isfinite(a->check_radius) ? a->check_radius : a->radius,
                           isfinite(a->check_temperature) ? a->check_temperature : a->temperature);
-    st = measured_sweep(db, a->check, &cq, &cs, check_fp, &err);
+    st = measured_sweep(db, "--check", a->check, &cq, &cs, check_fp, &err);
     if (st == VL_OK) check_rms = vl_calibration_misfit(&cs, &f.law);
   }
-  if (st == VL_OK && a->out && (st = write_fit_csv(a->out, &s, &f, &err)) != VL_OK)
-    vl_error_prefix(&err, "--out");
-  if (st == VL_OK && a->plot && (st = plot_fit(a->plot, &s, &f, &err)) != VL_OK)
-    vl_error_prefix(&err, "--plot");
+  /* their messages name the file */
+  if (st == VL_OK && a->out) st = write_fit_csv(csv, &s, &f, &err);
+  if (st == VL_OK && a->plot) st = plot_fit(stem, a, &s, &f, &err);
   if (st != VL_OK) {
     rc = fail(st, &err);
   } else {
@@ -565,6 +599,8 @@ int vl_cli_pair_calibrate(vl_db *db, const pair_args *a, int quiet) {
       fit_json(&s, &f, a, check_rms);
     else
       print_fit(a, &s, &f, check_rms);
+    if (!a->json && a->out) printf("wrote %s\n", csv);
+    if (!a->json && a->plot) printf("wrote %s.png and %s.svg\n", stem, stem);
     rc = a->save ? save_fit(db, a, &s, &f, fingerprint, quiet)
                  : (f.fits ? 0 : vl_status_exit_code(VL_EINPUT));
   }

@@ -111,7 +111,8 @@ static int parse_command(vl_cli_parser *p, int argc, char **argv, conditions *c,
  * option. */
 static vl_status fluid_eta(vl_db *db, const conditions *c, double *eta, vl_error *err) {
   vl_status st = vl_query_fluid_eta(db, &c->q, eta, err);
-  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature %g", c->q.temperature_c);
+  /* the message names the fluid and the temperature: the option, once */
+  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature");
   return st;
 }
 
@@ -119,7 +120,7 @@ static vl_status fluid_eta(vl_db *db, const conditions *c, double *eta, vl_error
  * anything is computed so the message names the option. Without: VL_OK. */
 static vl_status compound_at(vl_db *db, const conditions *c, const char *compound, vl_error *err) {
   vl_status st = vl_query_check_compound(db, &c->q, compound, err);
-  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature %g", c->q.temperature_c);
+  if (st == VL_EINPUT) vl_error_prefix(err, "--temperature");
   return st;
 }
 
@@ -153,7 +154,7 @@ static int make_scene(const char *cmd, const conditions *c, const char *compound
             cmd);
     return 0;
   }
-  if (vl_query_scene(&q, cmd, sc, &err) != VL_OK) {
+  if (vl_query_scene(&q, NULL, sc, &err) != VL_OK) {
     fprintf(stderr, "viscolube %s: %s\n", cmd, err.msg);
     return 0;
   }
@@ -257,6 +258,27 @@ static void friction_json(const conditions *c, const vl_query_result *r) {
   fputc('\n', stdout);
 }
 
+/* What the regime label means, where it is printed (results.h: the load
+ * share and the film ratio together; the share alone when smooth). */
+static void regime_meaning(char *buf, size_t size, int regime, bool rough) {
+  double lo = 100.0 * VL_REGIME_LOAD_BOUNDARY, hi = 100.0 * VL_REGIME_LOAD_HYDRODYNAMIC;
+  if (regime == VL_REGIME_HYDRODYNAMIC)
+    snprintf(buf, size,
+             rough ? "the fluid carries over %g %% of the load and u_min >= %g h_rms"
+                   : "the fluid carries over %g %% of the load",
+             hi, VL_REGIME_FILM_FULL);
+  else if (regime == VL_REGIME_BOUNDARY)
+    snprintf(buf, size,
+             rough ? "the fluid carries under %g %% of the load and u_min < %g h_rms"
+                   : "the fluid carries under %g %% of the load",
+             lo, VL_REGIME_FILM_FULL);
+  else if (regime == VL_REGIME_MIXED)
+    snprintf(buf, size, "neither boundary nor hydrodynamic%s",
+             rough ? ": load share and film ratio disagree or lie between" : "");
+  else
+    snprintf(buf, size, "no fluid");
+}
+
 static void friction_text(const conditions *c, const char *compound, double speed,
                           const vl_query_result *r) {
   const vl_point *pt = &r->point;
@@ -277,11 +299,17 @@ static void friction_text(const conditions *c, const char *compound, double spee
          "  mu_Sc   = %.5g   (shear in the real contact area)\n"
          "  mu_Sf   = %.5g   (fluid shear)\n",
          pt->mu, pt->mu_Rc + 0.0, pt->mu_Rf + 0.0, pt->mu_Sc + 0.0, pt->mu_Sf + 0.0);
+  char how[96] = "a direct solve";
+  if (r->points_solved > 1)
+    snprintf(how, sizeof how, "continuation from the boundary regime over %zu points",
+             r->points_solved);
+  char meaning[128];
+  regime_meaning(meaning, sizeof meaning, pt->regime, hrms > 0);
   printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
-         "regime: %s\n  Q = %.3g; %ld Newton iterations, residual %.2g (%zu continuation "
-         "points)\n",
+         "regime: %s (%s)\n  Q = %.3g; %ld Newton iteration%s, residual %.2g (%s)\n",
          pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
-         vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual, r->points_solved);
+         vl_regime_name(pt->regime), meaning, pt->Q, pt->iterations,
+         vl_cli_plural((size_t)pt->iterations), pt->residual, how);
   if (isfinite(pt->error_estimate))
     printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)%s\n",
            100.0 * pt->error_estimate,
@@ -331,8 +359,8 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
   if (!r.point.converged) {
     fprintf(stderr,
             "viscolube friction: the solve did not converge at v0 = %g m/s "
-            "(%ld iterations, residual %.3g)\n",
-            speed, r.point.iterations, r.point.residual);
+            "(%ld iteration%s, residual %.3g)\n",
+            speed, r.point.iterations, vl_cli_plural((size_t)r.point.iterations), r.point.residual);
     rc = vl_status_exit_code(VL_ENOCONV);
   } else if (vl_cli_print_unreliable(stderr, "friction", NULL, 1, &r.point)) {
     rc = VL_CLI_EXIT_UNRELIABLE;
@@ -696,10 +724,11 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
   for (size_t k = 0; k < a->nc; k++)
     curves[k] = (vl_plot_curve){
         a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0, NULL}, cv->hrms[k]};
-  char title[MAX_COMPOUNDS * 80 + 32], subtitle[1024];
-  int len = snprintf(title, sizeof title, "Stribeck curves: ");
-  for (size_t k = 0; k < a->nc && len > 0 && (size_t)len < sizeof title; k++)
-    len += snprintf(title + len, sizeof title - (size_t)len, "%s%s", k ? " vs " : "", a->names[k]);
+  char names[MAX_COMPOUNDS * 80], title[MAX_COMPOUNDS * 80 + 64], subtitle[1024];
+  int len = 0;
+  names[0] = '\0';
+  for (size_t k = 0; k < a->nc && len >= 0 && (size_t)len < sizeof names; k++)
+    len += snprintf(names + len, sizeof names - (size_t)len, "%s%s", k ? " vs " : "", a->names[k]);
   compare_subtitle(a, cv, subtitle, sizeof subtitle);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
@@ -708,12 +737,15 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
   opt.subtitle = subtitle;
   vl_sweep_quantity x = a->axis_v0eta ? VL_SWEEP_V0_ETA : VL_SWEEP_V0;
   static const struct {
-    const char *name;
+    const char *name, *kind;
     vl_plot_y y;
-  } figs[] = {{"compare-mu", VL_PLOT_Y_MU}, {"compare-umin", VL_PLOT_Y_U_MIN}};
+  } figs[] = {{"compare-mu", "Friction coefficient", VL_PLOT_Y_MU},
+              {"compare-umin", "Minimum separation", VL_PLOT_Y_U_MIN}};
   for (size_t k = 0; k < 2; k++) {
     char stem[4300];
     snprintf(stem, sizeof stem, "%s/%s", a->out_dir, figs[k].name);
+    /* what it shows, then of what: "Friction coefficient — sbr-unfilled vs sbr-filled" */
+    snprintf(title, sizeof title, "%s — %s", figs[k].kind, names);
     vl_status st = vl_plot_compare(stem, a->nc, curves, x, figs[k].y, &opt, NULL, err);
     vl_cli_manifest_figure(man, stem, st, err);
     if (st != VL_OK && st != VL_EIO) return st;

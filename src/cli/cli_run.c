@@ -146,7 +146,27 @@ static void scene_subtitle(const vl_scene *scene, vl_simulation *sim, const vl_c
                    scene->effects.roughness ? scene->surface : "a smooth surface", fluids, load,
                    radius);
   if (meta && meta->flow_factors && n >= 0 && (size_t)n < size)
-    snprintf(buf + n, size - (size_t)n, " · flow factors %s", meta->flow_factors);
+    n += snprintf(buf + n, size - (size_t)n, " · flow factors %s", meta->flow_factors);
+  if (scene->effects.temperature && n >= 0 && (size_t)n < size)
+    snprintf(buf + n, size - (size_t)n, " · %g °C", scene->effects.temperature_c);
+}
+
+/* What a figure of the scene is about: its title, else its materials. */
+static void scene_subject(const vl_scene *scene, char *buf, size_t size) {
+  if (scene->title[0])
+    snprintf(buf, size, "%s", scene->title);
+  else if (scene->effects.fluid)
+    snprintf(buf, size, "%s on %s in %s", scene->compound,
+             scene->effects.roughness ? scene->surface : "a smooth surface",
+             scene->n_fluids > 1 ? "several fluids" : scene->fluid);
+  else
+    snprintf(buf, size, "%s on %s, dry", scene->compound,
+             scene->effects.roughness ? scene->surface : "a smooth surface");
+}
+
+/* A figure's title: what it shows, then what it is about. */
+static void figure_title(char *buf, size_t size, const char *kind, const char *subject) {
+  snprintf(buf, size, "%s — %s", kind, subject);
 }
 
 /* The kept fields' speeds, numbered from 1 as the figures mark them:
@@ -170,22 +190,25 @@ static void plot_marks(const vl_scene *scene, const vl_point *pts, const vl_curv
  * recorded in the manifest and appended to list (length *len). */
 static vl_status plot_field_figures(const char *out_dir, const vl_scene *scene, vl_simulation *sim,
                                     double h_rms, const run_ctx *ctx, const char **label_ptrs,
-                                    const vl_plot_options *opt, char *list, size_t list_size,
-                                    size_t *len, vl_error *err) {
+                                    const char *subject, const vl_plot_options *opt_in, char *list,
+                                    size_t list_size, size_t *len, vl_error *err) {
   const vl_contact *c = vl_simulation_contact(sim);
   vl_plot_scales sc = {vl_contact_a0(c), vl_contact_p0(c), h_rms};
   static const struct {
     vl_plot_field field;
-    const char *name;
-  } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"},
-              {VL_PLOT_FIELD_PF, "fields-pf"},
-              {VL_PLOT_FIELD_U, "fields-u"}};
-  char stem[4200];
+    const char *name, *kind;
+  } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc", "Contact pressure"},
+              {VL_PLOT_FIELD_PF, "fields-pf", "Fluid pressure"},
+              {VL_PLOT_FIELD_U, "fields-u", "Separation"}};
+  char stem[4200], title[1600];
+  vl_plot_options opt = *opt_in;
+  opt.title = title;
   for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
     if (figs[k].field == VL_PLOT_FIELD_PF && !scene->effects.fluid) continue;
     snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
-    vl_status st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, opt,
-                                  NULL, err);
+    figure_title(title, sizeof title, figs[k].kind, subject);
+    vl_status st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc,
+                                  &opt, NULL, err);
     vl_cli_manifest_figure(ctx->man, stem, st, err);
     if (st != VL_OK && st != VL_EIO) return st;
     if (*len < list_size)
@@ -199,9 +222,10 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
                              vl_simulation *sim, size_t n, const vl_point *pts,
                              const vl_curve_meta *meta, const run_ctx *ctx, char *list,
                              size_t list_size, vl_error *err) {
-  char title[1536], subtitle[1024], stem[4200];
-  snprintf(title, sizeof title, "%s%s%s", scene->title[0] ? scene->title : scene->path,
-           fluid_key ? " | fluid " : "", fluid_key ? fluid_key : "");
+  char subject[1536], title[1600], subtitle[1024], stem[4200];
+  scene_subject(scene, subject, sizeof subject);
+  if (fluid_key && scene->title[0]) /* one of several fluids: which (the materials name it) */
+    snprintf(subject + strlen(subject), sizeof subject - strlen(subject), " | fluid %s", fluid_key);
   scene_subtitle(scene, sim, meta, subtitle, sizeof subtitle);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
@@ -226,10 +250,12 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
   plot_marks(scene, pts, meta, ctx, marks, labels, label_ptrs);
   /* a figure that does not fit is noted and the next still tried */
   snprintf(stem, sizeof stem, "%s/stribeck", out_dir);
+  figure_title(title, sizeof title, "Stribeck curve", subject);
   st = vl_plot_stribeck(stem, n, pts, meta, scene->quantity, ctx->n_kept, marks, &opt, NULL, err);
   vl_cli_manifest_figure(ctx->man, stem, st, err);
   if (st != VL_OK && st != VL_EIO) goto done;
   snprintf(stem, sizeof stem, "%s/separation", out_dir);
+  figure_title(title, sizeof title, "Minimum separation", subject);
   st = vl_plot_separation(stem, n, pts, meta, scene->quantity, h_rms, ctx->n_kept, marks, &opt,
                           NULL, err);
   vl_cli_manifest_figure(ctx->man, stem, st, err);
@@ -237,8 +263,8 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
   size_t len = (size_t)snprintf(list, list_size, "stribeck, separation");
   st = VL_OK; /* the files that did not fit are in the manifest */
   if (ctx->n_kept)
-    st = plot_field_figures(out_dir, scene, sim, h_rms, ctx, label_ptrs, &opt, list, list_size,
-                            &len, err);
+    st = plot_field_figures(out_dir, scene, sim, h_rms, ctx, label_ptrs, subject, &opt, list,
+                            list_size, &len, err);
 done:
   free(label_ptrs);
   free(labels);
@@ -351,10 +377,10 @@ static void curve_announce(const run_job *job, const vl_scene *scene, vl_simulat
   else
     snprintf(numerics, sizeof numerics, "grid %zu on [%g, %g] a0", scene->grid,
              scene->domain_min_a0, scene->domain_max_a0);
-  printf("scene %s%s%s%s%s: %zu points, %s, a0 = %.4g m, p0 = %.4g Pa\n", job->scene_path,
+  printf("scene %s%s%s%s%s: %zu point%s, %s, a0 = %.4g m, p0 = %.4g Pa\n", job->scene_path,
          scene->title[0] ? " - " : "", scene->title, scene->effects.fluid ? ", fluid " : "",
-         scene->effects.fluid ? scene->fluid : "", n, numerics, vl_contact_a0(contact),
-         vl_contact_p0(contact));
+         scene->effects.fluid ? scene->fluid : "", n, vl_cli_plural(n), numerics,
+         vl_contact_a0(contact), vl_contact_p0(contact));
 }
 
 /* The curve's description for the writers, and its lines before the table. */
@@ -471,12 +497,15 @@ static vl_status plot_all_fluids(const vl_scene *scene, const char *out_dir,
         (vl_plot_curve){labels[k], curves[k].n, curves[k].pts, curves[k].meta, curves[k].h_rms_m};
     if (!(curves[k].meta.tau_s > 0 && curves[k].meta.a0_m > 0)) deborah = false;
   }
+  char subject[1536], title[1600];
+  scene_subject(scene, subject, sizeof subject);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
-  opt.title = scene->title[0] ? scene->title : scene->path;
+  opt.title = title;
   opt.mark_half_load = scene->effects.fluid;
   char stem[4200];
   snprintf(stem, sizeof stem, "%s/stribeck-all", out_dir);
+  figure_title(title, sizeof title, "Friction coefficient in each fluid", subject);
   char subtitle[1024];
   scene_subtitle(scene, NULL, &curves[0].meta, subtitle, sizeof subtitle);
   opt.subtitle = subtitle;
@@ -486,6 +515,7 @@ static vl_status plot_all_fluids(const vl_scene *scene, const char *out_dir,
   if (st != VL_OK && st != VL_EIO) return st;
   if (deborah) {
     snprintf(stem, sizeof stem, "%s/rolling-all", out_dir);
+    figure_title(title, sizeof title, "Rolling friction in each fluid", subject);
     opt.mark_half_load = false;
     st = vl_plot_compare(stem, scene->n_fluids, pc, VL_SWEEP_DEBORAH, VL_PLOT_Y_MU_ROLLING, &opt,
                          NULL, err);
@@ -579,10 +609,7 @@ static int run_options(int argc, char **argv, const char **scene_path, const cha
                                         "one scene at a time (got '%s' and '%s')", run_usage);
   int rc = vl_cli_parse(&p, argc, argv, 1);
   if (rc >= 0) return rc;
-  if (!*scene_path) {
-    run_usage(stderr);
-    return 2;
-  }
+  if (!*scene_path) return vl_cli_usage_error("run", NULL, run_usage, "missing SCENE");
   return -1;
 }
 

@@ -164,11 +164,8 @@ static int study_options(vl_cli_study_run *cs, int argc, char **argv) {
   int rc = vl_cli_parse(&p, argc, argv, 1);
   if (rc >= 0) return rc;
   cs->jobs = (int)jobs;
-  if (!cs->study_path || !cs->out_dir) {
-    fprintf(stderr, "viscolube study: %s\n",
-            !cs->study_path ? "which study? (STUDY file)" : "--out DIR is required");
-    return 2;
-  }
+  if (!cs->study_path) return vl_cli_usage_error("study", NULL, study_usage, "missing STUDY");
+  if (!cs->out_dir) return vl_cli_usage_error("study", NULL, study_usage, "missing --out DIR");
   return -1;
 }
 

@@ -199,9 +199,9 @@ int vl_cli_study_finish(vl_cli_study_run *cs, int rc) {
     free(o);
     return vl_status_exit_code(st);
   }
-  printf("study %s: %zu tasks (%zu run now, %zu already done), %s with %d process%s\n",
-         cs->study_path, cs->n_tasks, cs->done_now, cs->n_skipped, cs->mode, cs->processes,
-         cs->processes == 1 ? "" : "es");
+  printf("study %s: %zu task%s (%zu run now, %zu already done), %s with %d process%s\n",
+         cs->study_path, cs->n_tasks, vl_cli_plural(cs->n_tasks), cs->done_now, cs->n_skipped,
+         cs->mode, cs->processes, cs->processes == 1 ? "" : "es");
   printf("%zu ok, %zu above their error target, %zu not converged, %zu error, %zu missing; "
          "points: %zu converged (%zu above their error target), %zu failed\n",
          c.state[VL_TASK_OK], c.state[VL_TASK_ABOVE_TARGET], c.state[VL_TASK_NOT_CONVERGED],

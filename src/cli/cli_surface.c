@@ -44,14 +44,15 @@ static const char surface_help[] =
 
 /* `surface show --help` */
 static const char surface_show_help[] =
-    "usage: viscolube [--db PATH] surface show NAME [--json] [--plot FILE]\n"
+    "usage: viscolube [--db PATH] surface show NAME [--json] [--plot [--out DIR]]\n"
     "\n"
     "Prints what is stored about surface NAME and the quantities derived from it.\n"
     "  --json       print one JSON object instead\n"
-    "  --plot FILE  also draw C(q) against q (log-log) as FILE's stem .png and .svg;\n"
-    "               over a tabulated spectrum the closest self-affine law\n"
-    "               C ~ q^(-2(1+H)), fitted from the largest C on, dashed, with its\n"
-    "               H (printed with the rms misfit in log10 C)\n";
+    "  --plot       also draw C(q) against q (log-log) as DIR/psd.png and .svg (DIR:\n"
+    "               --out, default out/surface-NAME); over a tabulated spectrum the\n"
+    "               closest self-affine law C ~ q^(-2(1+H)), fitted from the largest\n"
+    "               C on, dashed, with its H (printed with the rms misfit in log10 C)\n"
+    "  --out DIR    the folder of the figure (with --plot)\n";
 
 /* `surface add --help` */
 static const char surface_add_help[] =
@@ -94,7 +95,7 @@ static const char surface_add_help[] =
 /* `surface flow-factors --help` */
 static const char surface_flow_factors_help[] =
     "usage: viscolube [--db PATH] surface flow-factors NAME [--model MODEL]\n"
-    "                 [--u-range MIN,MAX] [--points N] [--film-cutoff M] [--out FILE]\n"
+    "                 [--u-range MIN,MAX] [--points N] [--film-cutoff M] [--out DIR]\n"
     "                 [--json] [--plot]\n"
     "\n"
     "The flow and shear-stress factors of the averaged Reynolds equation for surface\n"
@@ -107,12 +108,13 @@ static const char surface_flow_factors_help[] =
     "  --points N      rows, 2 to 10000 (default 100)\n"
     "  --film-cutoff M persson-emt's film cut-off in (0, 1e-6] m (default 1e-9): gaps\n"
     "                  narrower carry no Couette shear (phi_f)\n"
-    "  --out FILE      also write the table as CSV (a '#' line naming the surface,\n"
-    "                  model, h_rms and cut-off, then the columns; exact numbers)\n"
+    "  --out DIR       also write the table as DIR/flow-factors.csv (a '#' line naming\n"
+    "                  the surface, model, h_rms and cut-off, then the columns; exact\n"
+    "                  numbers)\n"
     "  --json          print one JSON object (surface, model, hrms_m, film_cutoff_m,\n"
     "                  percolation_u_over_hrms, rows) instead of the table\n"
-    "  --plot          draw the factors against u/h_rms as FILE's stem .png and .svg\n"
-    "                  (without --out: flow-factors-NAME.png and .svg here)\n"
+    "  --plot          also draw the factors against u/h_rms as DIR/flow-factors.png\n"
+    "                  and .svg (without --out, DIR is out/flow-factors-NAME)\n"
     "The header gives the percolation point, where the pressure flow stops.\n";
 
 /* ---- show and list --------------------------------------------------------- */
@@ -171,22 +173,25 @@ static void psd_grid(const vl_psd *p, double hurst, double c_q0, double *q, doub
   }
 }
 
-/* `surface show NAME --plot FILE`: C(q) of the surface, with the closest
- * self-affine law over a tabulated one. Returns -1 or the exit code. */
-static int plot_surface(const vl_cli_context *cx, vl_db *db, const char *name, const char *file,
+/* `surface show NAME --plot [--out DIR]`: DIR/psd, C(q) of the surface,
+ * with the closest self-affine law over a tabulated one. Returns -1 or the
+ * exit code. */
+static int plot_surface(const vl_cli_context *cx, vl_db *db, const char *name, const char *dir,
                         int quiet) {
   vl_error err;
   vl_psd p;
   memset(&p, 0, sizeof p);
   char stem[4200], label[128], fit_label[128];
-  vl_cli_file_stem(stem, sizeof stem, file);
+  snprintf(stem, sizeof stem, "%s/psd", dir);
   double gq[PSD_GRID], gc[PSD_GRID], h = NAN, c_q0 = NAN, rms = NAN;
-  vl_status st = vl_db_surface_get(db, name, &p, &err);
+  vl_status st = vl_cli_check_out_dir("--out", dir, &err);
+  if (st == VL_OK) st = vl_db_surface_get(db, name, &p, &err);
   if (st == VL_OK) st = vl_psd_fit_self_affine(&p, &h, &c_q0, &rms, &err);
   if (st == VL_OK) {
     int tab = p.kind == VL_PSD_TABULATED;
     psd_grid(&p, h, c_q0, gq, gc);
-    snprintf(label, sizeof label, tab ? "%s (tabulated)" : "%s (self-affine H = %.3g)", name, h);
+    /* title and subtitle name the surface and its H */
+    snprintf(label, sizeof label, tab ? "tabulated C(q)" : "self-affine C(q)");
     snprintf(fit_label, sizeof fit_label, "self-affine fit H = %.3g", h);
     vl_plot_psd_data d = {tab ? p.n : PSD_GRID,
                           tab ? p.q : gq,
@@ -196,11 +201,22 @@ static int plot_surface(const vl_cli_context *cx, vl_db *db, const char *name, c
                           gq,
                           gc,
                           fit_label};
+    char title[256], subtitle[256];
+    snprintf(title, sizeof title, "Roughness power spectrum — surface %s", name);
+    if (tab)
+      snprintf(subtitle, sizeof subtitle,
+               "tabulated, %zu points · h_rms %.3g m · q %.3g to %.3g 1/m", p.n, vl_psd_hrms(&p),
+               p.q0, p.q1);
+    else
+      snprintf(subtitle, sizeof subtitle, "self-affine, H %.3g · h_rms %.3g m · q %.3g to %.3g 1/m",
+               h, vl_psd_hrms(&p), p.q0, p.q1);
     vl_plot_options opt;
     vl_plot_options_defaults(&opt);
+    opt.title = title;
+    opt.subtitle = subtitle;
     st = vl_plot_psd(stem, &d, &opt, NULL, &err);
     if (st == VL_OK && !quiet) {
-      printf("wrote %s.png and %s.svg", stem, stem);
+      printf("plot (png, svg) in %s: psd", dir);
       if (tab) printf(" (self-affine fit: H %.4g, rms %.3g in log10 C)", h, rms);
       printf("\n");
     }
@@ -258,8 +274,13 @@ static int ff_check(const vl_cli_context *cx, const ff_args *a, ff_request *r) {
                           "option --film-cutoff: expected a length in (0, %g] m (got '%s')",
                           VL_FILM_CUTOFF_MAX_M, a->film_cutoff);
   }
-  if (a->out && strlen(a->out) >= 4096) /* PATH_MAX, with room for the figures' names */
-    return vl_cli_failf(cx, VL_EINPUT, "option --out: file name longer than 4095 characters");
+  if (a->out && strlen(a->out) >= 4000) /* PATH_MAX, with room for the files' names */
+    return vl_cli_failf(cx, VL_EINPUT, "option --out: folder name longer than 3999 characters");
+  if (a->out && vl_cli_out_is_folder(a->out,
+                                     "flow-factors.csv and, with --plot, "
+                                     "flow-factors.png and .svg",
+                                     &err) != VL_OK)
+    return vl_cli_fail(cx, VL_EINPUT, err.msg);
   return -1;
 }
 
@@ -364,11 +385,19 @@ static vl_status ff_write_csv(const char *path, const char *name, const ff_reque
 
 static vl_status ff_plot(const char *stem, const char *name, const ff_request *r, const ff_table *t,
                          vl_error *err) {
-  char title[160];
-  snprintf(title, sizeof title, "Flow factors: %s (%s)", name, vl_flow_factors_name(r->kind));
+  char title[160], subtitle[256];
+  snprintf(title, sizeof title, "Flow factors — surface %s (%s)", name,
+           vl_flow_factors_name(r->kind));
+  int n = snprintf(subtitle, sizeof subtitle, "h_rms %.3g m", t->hrms_m);
+  if (r->kind == VL_FLOW_FACTORS_PERSSON_EMT && n > 0 && (size_t)n < sizeof subtitle)
+    n += snprintf(subtitle + n, sizeof subtitle - (size_t)n, " · film cut-off %.3g m", r->cutoff_m);
+  if (isfinite(t->x_perc) && n > 0 && (size_t)n < sizeof subtitle)
+    snprintf(subtitle + n, sizeof subtitle - (size_t)n, " · percolation at u/h_rms = %.3g",
+             t->x_perc);
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   opt.title = title;
+  opt.subtitle = subtitle;
   vl_plot_flow_factor_data d = {t->n,        t->col[C_X],    t->col[C_P],
                                 t->col[C_S], t->col[C_FP],   t->col[C_FS],
                                 t->col[C_F], t->col[C_AREA], t->x_perc};
@@ -420,14 +449,16 @@ static void ff_print_text(const char *name, const ff_request *r, const ff_table 
   }
 }
 
-/* The figure's stem: --out FILE without its extension, else
- * flow-factors-NAME in the current directory. */
-static void plot_stem(char *stem, size_t size, const char *out, const char *name) {
-  if (!out) {
-    snprintf(stem, size, "flow-factors-%s", name);
-    return;
-  }
-  vl_cli_file_stem(stem, size, out);
+/* The folder of the table and the figure: --out DIR, else with --plot
+ * out/flow-factors-NAME (as compound show's out/compound-NAME); "" when
+ * nothing is written. */
+static void ff_out_dir(char *dir, size_t size, const ff_args *a, const char *name) {
+  if (a->out)
+    snprintf(dir, size, "%s", a->out);
+  else if (a->plot)
+    snprintf(dir, size, "out/flow-factors-%s", name);
+  else
+    dir[0] = '\0';
 }
 
 /* The command line of `surface flow-factors NAME` into a and *name: -1,
@@ -439,7 +470,7 @@ static int ff_args_parse(const vl_cli_context *cx, int argc, char **argv, ff_arg
       {.name = "--u-range", .kind = VL_CLI_TEXT, .metavar = "MIN,MAX", .dest = &a->u_range},
       {.name = "--points", .kind = VL_CLI_TEXT, .metavar = "N", .dest = &a->points},
       {.name = "--film-cutoff", .kind = VL_CLI_TEXT, .metavar = "M", .dest = &a->film_cutoff},
-      {.name = "--out", .kind = VL_CLI_TEXT, .metavar = "FILE", .dest = &a->out},
+      {.name = "--out", .kind = VL_CLI_TEXT, .metavar = "DIR", .dest = &a->out},
       {.name = "--json", .kind = VL_CLI_FLAG, .dest = &a->json},
       {.name = "--plot", .kind = VL_CLI_FLAG, .dest = &a->plot},
   };
@@ -460,13 +491,16 @@ static int surface_flow_factors(const vl_cli_context *cx, const vl_cli_globals *
   memset(&psd, 0, sizeof psd);
   int have_psd = 0;
   ff_table t = {0};
-  char stem[VL_ATOMIC_PATH_MAX];
-  plot_stem(stem, sizeof stem, a->out, name);
+  char dir[4096], csv[4200], stem[4200];
+  ff_out_dir(dir, sizeof dir, a, name);
+  snprintf(csv, sizeof csv, "%s/flow-factors.csv", dir);
+  snprintf(stem, sizeof stem, "%s/flow-factors", dir);
   vl_status st = vl_db_open(g->db_path, &db, &err);
   if (st == VL_OK) have_psd = (st = vl_db_surface_get(db, name, &psd, &err)) == VL_OK;
+  if (st == VL_OK && dir[0]) st = vl_cli_check_out_dir("--out", dir, &err);
   if (st == VL_OK) st = ff_compute(db, name, &psd, &r, &t, &err);
   /* the files first: a failure to write them prints no table */
-  if (st == VL_OK && a->out) st = ff_write_csv(a->out, name, &r, &t, &err);
+  if (st == VL_OK && a->out) st = ff_write_csv(csv, name, &r, &t, &err);
   if (st == VL_OK && a->plot) st = ff_plot(stem, name, &r, &t, &err);
   if (st != VL_OK) {
     rc = vl_cli_failf(cx, st, "%s", err.msg[0] ? err.msg : vl_status_name(st));
@@ -476,7 +510,7 @@ static int surface_flow_factors(const vl_cli_context *cx, const vl_cli_globals *
     ff_print_json(name, &r, &t);
   } else {
     ff_print_text(name, &r, &t);
-    if (a->out) printf("wrote %s\n", a->out);
+    if (a->out) printf("wrote %s\n", csv);
     if (a->plot) printf("wrote %s.png and %s.svg\n", stem, stem);
   }
   rc = 0;
@@ -694,15 +728,39 @@ static int surface_add(const vl_cli_context *cx, const vl_cli_globals *g, int ar
 
 /* ---- the noun --------------------------------------------------------- */
 
+/* `--plot FILE`, the spelling before --plot became a flag (issue 32: one
+ * meaning per option): the argument after --plot when there is one more
+ * than NAME, else NULL. */
+static const char *old_plot_file(int argc, char **argv, size_t n_pos) {
+  for (int i = 2; n_pos > 1 && i + 1 < argc; i++)
+    if (!strcmp(argv[i], "--plot") && argv[i + 1][0] != '-') return argv[i + 1];
+  return NULL;
+}
+
 static int surface_show(const vl_cli_context *cx, const vl_cli_globals *g, int argc, char **argv) {
-  int json = 0;
-  const char *plot = NULL, *name = NULL;
-  vl_cli_option opts[] = {
-      {.name = "--json", .kind = VL_CLI_FLAG, .dest = &json},
-      {.name = "--plot", .kind = VL_CLI_TEXT, .metavar = "FILE", .dest = &plot}};
-  vl_db *db = NULL;
-  int rc = vl_cli_named_args(cx, g, argc, argv, opts, 2, &name, &db);
+  int json = 0, plot = 0;
+  const char *name = NULL, *out = NULL, *pos[2] = {NULL, NULL};
+  vl_cli_option opts[] = {{.name = "--json", .kind = VL_CLI_FLAG, .dest = &json},
+                          {.name = "--plot", .kind = VL_CLI_FLAG, .dest = &plot},
+                          {.name = "--out", .kind = VL_CLI_TEXT, .metavar = "DIR", .dest = &out}};
+  size_t n_pos = 0;
+  int rc = vl_cli_material_args(cx, argc, argv, opts, 3, pos, 2, &n_pos);
+  const char *old = rc < 0 ? old_plot_file(argc, argv, n_pos) : NULL;
+  if (old)
+    return vl_cli_failf(cx, VL_EINPUT,
+                        "--plot takes no file: it draws DIR/psd.png and .svg, DIR given by "
+                        "--out (default out/surface-NAME), as in every command (got '%s')",
+                        old);
+  if (rc < 0 && n_pos > 1)
+    return vl_cli_failf(cx, VL_EINPUT,
+                        "unexpected argument '%s' (see viscolube surface show --help)", pos[1]);
+  if (rc < 0) rc = vl_cli_need_name(cx, pos, n_pos, &name);
+  if (rc < 0 && out && !plot) rc = vl_cli_fail(cx, VL_EINPUT, "option --out goes with --plot");
   if (rc >= 0) return rc;
+  char dir[4096];
+  snprintf(dir, sizeof dir, out ? "%s" : "out/surface-%s", out ? out : name);
+  vl_db *db = NULL;
+  if ((rc = vl_cli_open_db(cx, g, &db)) >= 0) return rc;
   vl_error err;
   vl_db_surface s;
   vl_status st = vl_db_surface_info(db, name, &s, &err);
@@ -714,7 +772,7 @@ static int surface_show(const vl_cli_context *cx, const vl_cli_globals *g, int a
   } else if (st == VL_OK) {
     surface_text(stdout, &s);
   }
-  if (st == VL_OK && plot) rc = plot_surface(cx, db, name, plot, json);
+  if (st == VL_OK && plot) rc = plot_surface(cx, db, name, dir, json);
   if (st != VL_OK) rc = vl_cli_fail(cx, st, err.msg);
   vl_db_close(db);
   return rc >= 0 ? rc : 0;

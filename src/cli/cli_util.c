@@ -1,10 +1,13 @@
 /* Small helpers shared by the command's nouns. */
+#define _POSIX_C_SOURCE 200809L /* open_memstream, strcasecmp */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -36,6 +39,7 @@ typedef struct {
   size_t n_slots;
   double lo[SLOTS_MAX], hi[SLOTS_MAX];
   char literal[SLOTS_MAX][32]; /* a number as written, shown when constant */
+  int digits[SLOTS_MAX];       /* the most significant digits it was written with */
   size_t count, first_point;
   double v_lo, v_hi;     /* the speeds of the points, m/s */
   unsigned char *points; /* n flags */
@@ -50,6 +54,17 @@ static int number_at(const char *s, size_t i) {
   if (i == 0) return 1;
   unsigned char p = (unsigned char)s[i - 1];
   return !(isalnum(p) || p == '_');
+}
+
+/* The significant digits of a number as written ("0.2004" 4, "1e-09" 1). */
+static int sig_digits(const char *lit) {
+  int n = 0, started = 0;
+  for (const char *c = lit; *c && *c != 'e' && *c != 'E'; c++) {
+    if (!isdigit((unsigned char)*c)) continue;
+    started |= *c != '0';
+    n += started;
+  }
+  return n;
 }
 
 /* Cuts one warning into its key and numbers (at most SLOTS_MAX; further
@@ -98,7 +113,9 @@ static void point_runs(const unsigned char *flags, size_t n, char *buf, size_t c
 }
 
 /* The warning with each number that varies over the points shown as its
- * range ("a_H = 0.21..1.7 lambda0 < 5 (...)"). */
+ * range ("a_H = 0.21..1.7 lambda0 < 5 (...)"), its ends to the digits the
+ * points wrote it with (at least 2): a value the warning set apart from
+ * its limit stays apart ("0.2004..0.25 R > 0.2 R"). */
 static void warn_text(const warn_kind *k, char *buf, size_t cap) {
   size_t len = 0, slot = 0;
   for (const char *p = k->key; *p && len + 1 < cap; p++) {
@@ -108,7 +125,8 @@ static void warn_text(const warn_kind *k, char *buf, size_t cap) {
     }
     int w = k->lo[slot] == k->hi[slot]
                 ? snprintf(buf + len, cap - len, "%s", k->literal[slot])
-                : snprintf(buf + len, cap - len, "%.2g..%.2g", k->lo[slot], k->hi[slot]);
+                : snprintf(buf + len, cap - len, "%.*g..%.*g", k->digits[slot], k->lo[slot],
+                           k->digits[slot], k->hi[slot]);
     slot++;
     if (w < 0) break;
     len += (size_t)w;
@@ -140,11 +158,14 @@ static int warn_add(warn_kind *kinds, size_t *n_kinds, size_t n, size_t i, const
     for (size_t s = 0; s < n_num; s++) {
       k->lo[s] = k->hi[s] = num[s];
       memcpy(k->literal[s], lit[s], sizeof lit[s]);
+      k->digits[s] = 2;
     }
   }
   for (size_t s = 0; s < n_num && s < k->n_slots; s++) {
     k->lo[s] = fmin(k->lo[s], num[s]);
     k->hi[s] = fmax(k->hi[s], num[s]);
+    int d = sig_digits(lit[s]);
+    if (d > k->digits[s]) k->digits[s] = d;
   }
   if (!k->points[i]) k->count++;
   k->points[i] = 1;
@@ -198,10 +219,14 @@ size_t vl_cli_print_unreliable(FILE *out, const char *cmd, const char *label, si
   for (size_t i = 0; i < n; i++)
     count += vl_point_unreliable(&pts[i]);
   if (!count) return 0;
-  fprintf(out,
-          "viscolube %s: %s%s%zu of %zu points are not known to their error target "
-          "(marked '!'; exit status %d):\n",
-          cmd, label ? label : "", label ? ": " : "", count, n, VL_CLI_EXIT_UNRELIABLE);
+  char how_many[96];
+  if (n == 1)
+    snprintf(how_many, sizeof how_many, "the point is not known to its error target");
+  else
+    snprintf(how_many, sizeof how_many, "%zu of %zu points %s not known to %s error target", count,
+             n, count == 1 ? "is" : "are", count == 1 ? "its" : "their");
+  fprintf(out, "viscolube %s: %s%s%s (marked '!'; exit status %d):\n", cmd, label ? label : "",
+          label ? ": " : "", how_many, VL_CLI_EXIT_UNRELIABLE);
   for (size_t i = 0; i < n && shown < 10; i++) {
     if (!vl_point_unreliable(&pts[i])) continue;
     if (pts[i].accuracy == VL_ACCURACY_NO_ESTIMATE)
@@ -225,17 +250,23 @@ size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size
   for (size_t i = 0; i < n; i++)
     failed += !pts[i].converged;
   if (!failed) return 0;
-  fprintf(out, "viscolube %s: %s%s%zu of %zu points did not converge (exit status %d)%s%s\n", cmd,
-          label ? label : "", label ? ": " : "", failed, n, vl_status_exit_code(VL_ENOCONV),
-          where ? "; " : "", where ? where : "");
+  char how_many[96];
+  if (n == 1)
+    snprintf(how_many, sizeof how_many, "the point did not converge");
+  else
+    snprintf(how_many, sizeof how_many, "%zu of %zu points did not converge", failed, n);
+  fprintf(out, "viscolube %s: %s%s%s (exit status %d)%s%s\n", cmd, label ? label : "",
+          label ? ": " : "", how_many, vl_status_exit_code(VL_ENOCONV), where ? "; " : "",
+          where ? where : "");
   for (size_t i = 0; i < n; i++) {
     if (pts[i].converged) continue;
     if (shown == 10) {
       fprintf(out, "  ... and %zu more\n", failed - shown);
       break;
     }
-    fprintf(out, "  point %zu: v0 = %.4g m/s, %ld iterations, residual %.3g\n", i + 1,
-            pts[i].v0_m_s, pts[i].iterations, pts[i].residual);
+    fprintf(out, "  point %zu: v0 = %.4g m/s, %ld iteration%s, residual %.3g\n", i + 1,
+            pts[i].v0_m_s, pts[i].iterations, vl_cli_plural((size_t)pts[i].iterations),
+            pts[i].residual);
     shown++;
   }
   return failed;
@@ -266,6 +297,54 @@ vl_status vl_cli_check_out_dir(const char *option, const char *path, vl_error *e
   close(fd);
   unlink(probe);
   return VL_OK;
+}
+
+vl_status vl_cli_out_is_folder(const char *path, const char *files, vl_error *err) {
+  static const char *const ext[] = {".csv", ".png", ".svg"};
+  size_t len = strlen(path);
+  for (size_t k = 0; k < sizeof ext / sizeof ext[0]; k++) {
+    if (len < 4 || strcasecmp(path + len - 4, ext[k])) continue;
+    vl_error_set(err,
+                 "--out names a folder, as in every command (got '%s', a file's name): %s go "
+                 "into it",
+                 path, files);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
+int vl_cli_usage_error(const char *cmd, const char *help, void (*usage)(FILE *), const char *fmt,
+                       ...) {
+  fprintf(stderr, "viscolube%s%s: ", cmd[0] ? " " : "", cmd);
+  va_list ap;
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fputc('\n', stderr);
+  char *text = NULL;
+  size_t len = 0;
+  FILE *mem = !help && usage ? open_memstream(&text, &len) : NULL;
+  if (mem) {
+    usage(mem);
+    fclose(mem);
+    help = text;
+  }
+  /* the usage lines only: up to the first blank line */
+  const char *end = help ? strstr(help, "\n\n") : NULL;
+  if (help) fprintf(stderr, "%.*s\n", end ? (int)(end - help) : (int)strlen(help), help);
+  fprintf(stderr, "see `viscolube%s%s --help`\n", cmd[0] ? " " : "", cmd);
+  free(text);
+  return vl_status_exit_code(VL_EINPUT);
+}
+
+const char *vl_cli_plural(size_t n) { return n == 1 ? "" : "s"; }
+
+const char *vl_cli_celsius(char *buf, size_t size, double t_c) {
+  snprintf(buf, size, "%.1f", t_c);
+  size_t len = strlen(buf);
+  if (len > 2 && !strcmp(buf + len - 2, ".0")) buf[len - 2] = '\0';
+  if (!strcmp(buf, "-0")) snprintf(buf, size, "0");
+  return buf;
 }
 
 double vl_cli_now_s(void) {

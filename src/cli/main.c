@@ -84,10 +84,10 @@ static int global_options(vl_cli_globals *g, int argc, char **argv, int *noun) {
     return 0;
   }
   if (rc >= 0) return rc;
-  if (p.next >= argc) {
-    usage(stderr);
-    return 2;
-  }
+  if (p.next >= argc)
+    return vl_cli_usage_error("", NULL, usage,
+                              "missing NOUN (compound, surface, fluid, pair, run, study, "
+                              "friction, compare or flattening)");
   *noun = p.next;
   return -1;
 }

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #ifndef M_PI /* strict C17 <math.h> does not define it */
@@ -47,6 +48,19 @@ static void append(char *warnings, size_t cap, const char *w) {
   memcpy(warnings + len, w, wl + 1);
 }
 
+/* v for a message that compares it with limit ("contact half-width
+ * 0.2004 R > 0.2 R", not "0.2 R > 0.2 R"): the fewest significant digits,
+ * 2 to 6, that do not print it as limit prints ("%g"). Returns buf. */
+static const char *beside(char *buf, size_t size, double v, double limit) {
+  char lim[32];
+  snprintf(lim, sizeof lim, "%g", limit);
+  for (int digits = 2; digits <= 6; digits++) {
+    snprintf(buf, size, "%.*g", digits, v);
+    if (strcmp(buf, lim)) break;
+  }
+  return buf;
+}
+
 /* The span of the relaxation times that carry strength (A_i > 0). */
 void vl_warnings_append(char *warnings, size_t cap, const char *w) { append(warnings, cap, w); }
 
@@ -65,7 +79,7 @@ static int prony_span(const vl_prony *r, double *tau_min, double *tau_max) {
 unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, const vl_point *pt,
                               char *warnings, size_t cap) {
   unsigned mask = 0;
-  char w[160];
+  char w[160], v[32];
   double hrms = psd ? vl_psd_hrms(psd) : cfg->roughness ? vl_persson_hrms(cfg->roughness) : 0.0;
   bool rough = cfg->roughness != NULL || psd != NULL;
   bool wet = cfg->eta_pa_s > 0.0;
@@ -75,7 +89,8 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
     double slope = psd ? vl_psd_rms_slope(psd) : sqrt(8.0 * vl_persson_g(cfg->roughness));
     if (slope > SLOPE_MAX) {
       mask |= VL_ASSUME_RMS_SLOPE;
-      snprintf(w, sizeof w, "rms slope %.2g > 1 (small-slope contact theory)", slope);
+      snprintf(w, sizeof w, "rms slope %s > 1 (small-slope contact theory)",
+               beside(v, sizeof v, slope, SLOPE_MAX));
       append(warnings, cap, w);
     }
   }
@@ -88,8 +103,8 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
     double lambda0 = 2.0 * M_PI / psd->q0;
     if (a_h < HOMOGENISATION_WAVELENGTHS * lambda0) {
       mask |= VL_ASSUME_HOMOGENISATION;
-      snprintf(w, sizeof w, "a_H = %.2g lambda0 < 5 (contact too small for mean-field roughness)",
-               a_h / lambda0);
+      snprintf(w, sizeof w, "a_H = %s lambda0 < 5 (contact too small for mean-field roughness)",
+               beside(v, sizeof v, a_h / lambda0, HOMOGENISATION_WAVELENGTHS));
       append(warnings, cap, w);
     }
   }
@@ -97,10 +112,14 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
   if (v0 > 0.0 && prony_span(&cfg->rubber, &tau_min, &tau_max) >= 2 && omega_h > 0.0) {
     if (omega_h * tau_max < 1.0 / PRONY_MARGIN || omega_h * tau_min > PRONY_MARGIN) {
       mask |= VL_ASSUME_PRONY_WINDOW;
+      char lo[16], hi[16];
+      snprintf(lo, sizeof lo, "%.2g", 1.0 / (PRONY_MARGIN * tau_max));
+      snprintf(hi, sizeof hi, "%.2g", PRONY_MARGIN / tau_min);
+      /* wH to the digits that set it apart from the end it passed, as shown */
+      double edge = strtod(omega_h * tau_max < 1.0 / PRONY_MARGIN ? lo : hi, NULL);
       snprintf(w, sizeof w,
-               "wH = %.2g rad/s outside the Prony window %.2g..%.2g rad/s "
-               "(plateau extrapolated)",
-               omega_h, 1.0 / (PRONY_MARGIN * tau_max), PRONY_MARGIN / tau_min);
+               "wH = %s rad/s outside the Prony window %s..%s rad/s (plateau extrapolated)",
+               beside(v, sizeof v, omega_h, edge), lo, hi);
       append(warnings, cap, w);
     }
   }
@@ -113,40 +132,43 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
   double width = pt->contact_width_m, half = 0.5 * width;
   if (width < GRID_MIN_CELLS * dx) {
     mask |= VL_ASSUME_GRID;
-    snprintf(w, sizeof w, "contact spans %.2g cells < 8 (refine the grid)", width / dx);
+    snprintf(w, sizeof w, "contact spans %s cells < 8 (refine the grid)",
+             beside(v, sizeof v, width / dx, GRID_MIN_CELLS));
     append(warnings, cap, w);
   }
   if (half > HALF_SPACE_MAX * cfg->radius_m) {
     mask |= VL_ASSUME_HALF_SPACE;
-    snprintf(w, sizeof w, "contact half-width %.2g R > 0.2 R (parabolic gap and small strain)",
-             half / cfg->radius_m);
+    snprintf(w, sizeof w, "contact half-width %s R > 0.2 R (parabolic gap and small strain)",
+             beside(v, sizeof v, half / cfg->radius_m, HALF_SPACE_MAX));
     append(warnings, cap, w);
   }
   if (rough && hrms > 0.0 && pt->u_min_m < PERSSON_TABLE_MIN_HRMS * hrms) {
     mask |= VL_ASSUME_PERSSON_TABLE;
-    snprintf(w, sizeof w, "u_min = %.2g h_rms below the Persson table (1e-3 h_rms)",
-             pt->u_min_m / hrms);
+    snprintf(w, sizeof w, "u_min = %s h_rms below the Persson table (1e-3 h_rms)",
+             beside(v, sizeof v, pt->u_min_m / hrms, PERSSON_TABLE_MIN_HRMS));
     append(warnings, cap, w);
   }
   if (!wet) return mask;
 
   if (pt->u_min_m < CONTINUUM_MIN_M) {
     mask |= VL_ASSUME_CONTINUUM_FILM;
-    snprintf(w, sizeof w, "u_min = %.2g m < 1 nm (continuum Newtonian film)", pt->u_min_m);
+    snprintf(w, sizeof w, "u_min = %s m < 1 nm (continuum Newtonian film)",
+             beside(v, sizeof v, pt->u_min_m, CONTINUUM_MIN_M));
     append(warnings, cap, w);
   }
   double len = half > 0.0 ? half : a_h;
   double u = pt->u_central_m;
   if (len > 0.0 && u > THIN_FILM_MAX * len) {
     mask |= VL_ASSUME_THIN_FILM;
-    snprintf(w, sizeof w, "film %.2g x the contact half-width (Reynolds thin-film equation)",
-             u / len);
+    snprintf(w, sizeof w, "film %s x the contact half-width (Reynolds thin-film equation)",
+             beside(v, sizeof v, u / len, THIN_FILM_MAX));
     append(warnings, cap, w);
   }
   double re = len > 0.0 ? FLUID_DENSITY * v0 * u * u / (cfg->eta_pa_s * len) : 0.0;
   if (re > INERTIA_MAX) {
     mask |= VL_ASSUME_INERTIA;
-    snprintf(w, sizeof w, "reduced Reynolds number %.2g > 1 at 1000 kg/m^3 (fluid inertia)", re);
+    snprintf(w, sizeof w, "reduced Reynolds number %s > 1 at 1000 kg/m^3 (fluid inertia)",
+             beside(v, sizeof v, re, INERTIA_MAX));
     append(warnings, cap, w);
   }
   /* persson-emt is defined at every separation, down to the contact's own
@@ -157,7 +179,7 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
     double lim = smooth ? SMOOTH_FACTORS_HRMS : PATIR_CHENG_HRMS;
     if (pt->u_min_m < lim * hrms) {
       mask |= VL_ASSUME_FLOW_FACTORS;
-      snprintf(w, sizeof w, "u_min = %.2g h_rms %s", pt->u_min_m / hrms,
+      snprintf(w, sizeof w, "u_min = %s h_rms %s", beside(v, sizeof v, pt->u_min_m / hrms, lim),
                smooth ? "with smooth flow factors (roughness changes the flow)"
                       : "below the Patir-Cheng fits (h/sigma < 0.5)");
       append(warnings, cap, w);

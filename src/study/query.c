@@ -70,7 +70,9 @@ vl_status vl_query_scene(const vl_query *q, const char *label, vl_scene *sc, vl_
   vl_status st = check_conditions(q, err);
   if (st != VL_OK) return st;
   vl_scene_defaults(sc);
-  snprintf(sc->path, sizeof sc->path, "%s", label ? label : "query");
+  /* no path: built in code, its messages name no scene file (simulation.c) */
+  sc->path[0] = '\0';
+  snprintf(sc->title, sizeof sc->title, "%s", label ? label : "");
   snprintf(sc->compound, sizeof sc->compound, "%s", q->compound);
   snprintf(sc->surface, sizeof sc->surface, "%s", q->surface);
   snprintf(sc->fluid, sizeof sc->fluid, "%s", q->fluid);
@@ -164,15 +166,14 @@ vl_status vl_query_friction(vl_db *db, const vl_query *q, double speed_m_s, vl_q
     vl_error_set(err, "out of memory");
     return VL_ENOMEM;
   }
-  vl_status st = vl_query_scene(q, "friction", sc, err);
+  vl_status st = vl_query_scene(q, NULL, sc, err);
   if (st == VL_OK && !(speed_m_s > 0.0 && isfinite(speed_m_s))) {
     vl_error_set(err, "speed: needs a positive number of m/s");
     st = VL_EINPUT;
   }
   if (st == VL_OK) st = vl_query_check_compound(db, q, q->compound, err);
+  /* their messages name the temperature and the material: nothing to add */
   if (st == VL_OK) st = vl_query_fluid_eta(db, q, &out->eta_pa_s, err);
-  if (st == VL_EINPUT && q->at_temperature)
-    vl_error_prefix(err, "temperature %g C", q->temperature_c);
   if (st == VL_OK)
     st = solve_point(sc, db, speed_m_s, out->eta_pa_s, &sim, &out->point, &out->points_solved, err);
   if (st == VL_OK) {

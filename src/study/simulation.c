@@ -58,6 +58,21 @@ struct vl_simulation {
 #define VL_PROFILE_MAX_POINTS 100000
 #define VL_PROFILE_MAX_BYTES (16u << 20)
 
+/* Context for a message about scene sc, added once: for a scene read from
+ * a file, "PATH: WHERE" (the key to look at; WHERE may be NULL); for a
+ * scene built in code (no path: a query), code_where or nothing, as the
+ * caller names its own command and options and the message names the
+ * material already ("no compound named 'x' in ..."). */
+static void scene_context(vl_error *err, const vl_scene *sc, const char *where,
+                          const char *code_where) {
+  if (sc->path[0] && where)
+    vl_error_prefix(err, "%s: %s", sc->path, where);
+  else if (sc->path[0])
+    vl_error_prefix(err, "%s", sc->path);
+  else if (code_where)
+    vl_error_prefix(err, "%s", code_where);
+}
+
 /* One row "x, z" of a profile table: two finite numbers separated by a
  * comma (blanks around them allowed). */
 static bool profile_row(const char *line, double *x, double *z) {
@@ -260,7 +275,7 @@ static vl_status apply_pair(vl_simulation *sim, vl_db *db, vl_error *err) {
   bool found = false;
   vl_status st = vl_db_pair_get(db, sc->compound, sc->surface, sc->fluid, &sim->pair, &found, err);
   if (st != VL_OK) {
-    vl_error_prefix(err, "%s: the pair of its materials", sc->path);
+    scene_context(err, sc, "the pair of its materials", "the pair of its materials");
     return st;
   }
   if (!found) return VL_OK;
@@ -304,7 +319,9 @@ static vl_status apply_temperature(vl_simulation *sim, vl_db *db, vl_error *err)
     if (st == VL_OK) st = vl_compound_at_temperature(c, t, &sim->rubber, &sim->a_T, err);
     free(c);
     if (st != VL_OK) {
-      vl_error_prefix(err, "%s: [effects] temperature = on at %g C", sc->path, t);
+      char where[96];
+      snprintf(where, sizeof where, "[effects] temperature = on at %g C", t);
+      scene_context(err, sc, where, NULL); /* the message names compound and temperature */
       return st;
     }
   }
@@ -315,8 +332,10 @@ static vl_status apply_temperature(vl_simulation *sim, vl_db *db, vl_error *err)
     if (st == VL_OK)
       st = vl_fluid_viscosity(&f.law, f.viscosity_pa_s, f.tref_c, t, &sim->eta_pa_s, err);
     if (st != VL_OK) {
-      vl_error_prefix(err, "%s: [effects] temperature = on at %g C: fluid '%s'", sc->path, t,
-                      sc->fluid);
+      char where[96 + VL_NAME_MAX], fluid[16 + VL_NAME_MAX];
+      snprintf(where, sizeof where, "[effects] temperature = on at %g C: fluid '%s'", t, sc->fluid);
+      snprintf(fluid, sizeof fluid, "fluid '%s'", sc->fluid);
+      scene_context(err, sc, where, fluid);
       return st;
     }
   }
@@ -356,7 +375,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   sim->measured_tmin_c = sim->measured_tmax_c = NAN;
   vl_status st = vl_db_compound_get(db, scene->compound, &sim->rubber, err);
   if (st != VL_OK) {
-    if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] compound", scene->path);
+    if (st == VL_ENOTFOUND) scene_context(err, scene, "[materials] compound", NULL);
     goto fail;
   }
   if (scene->quantity == VL_SWEEP_DEBORAH && sim->rubber.n_terms != 1) {
@@ -369,7 +388,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   if (scene->fluid[0]) {
     st = vl_db_fluid_get(db, scene->fluid, &sim->eta_pa_s, err);
     if (st != VL_OK) {
-      if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] fluid", scene->path);
+      if (st == VL_ENOTFOUND) scene_context(err, scene, "[materials] fluid", NULL);
       goto fail;
     }
   }
@@ -378,7 +397,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   if (scene->effects.roughness) {
     st = vl_db_surface_get(db, scene->surface, &sim->psd, err);
     if (st != VL_OK) {
-      if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] surface", scene->path);
+      if (st == VL_ENOTFOUND) scene_context(err, scene, "[materials] surface", NULL);
       goto fail;
     }
     sim->have_psd = true;
@@ -390,7 +409,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
       st = vl_db_flow_table(db, scene->surface, &sim->psd, scene->effects.film_cutoff_m, 0,
                             &sim->flow_table, NULL, err);
       if (st != VL_OK) {
-        vl_error_prefix(err, "%s: [effects] flow_factors = persson-emt", scene->path);
+        scene_context(err, scene, "[effects] flow_factors = persson-emt", NULL);
         goto fail;
       }
     }
@@ -455,7 +474,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   sim->cfg_in.profile_mirror = true;
   st = vl_contact_create(&cfg, &sim->contact, err);
   if (st != VL_OK) {
-    vl_error_prefix(err, "%s", scene->path);
+    scene_context(err, scene, NULL, NULL);
     goto fail;
   }
   st = build_speeds(sim, err);

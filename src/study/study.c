@@ -608,6 +608,9 @@ vl_status vl_study_prepare(const vl_study *s, vl_db *db, vl_error *err) {
     if (seen) continue;
     vl_simulation *sim = NULL;
     st = vl_study_scene(s, i, scene, err);
+    /* the study names the line below; the scene's own "PATH: [effects] ..."
+     * would repeat the path: created as a scene without a file */
+    scene->path[0] = '\0';
     if (st == VL_OK && (st = vl_simulation_create(scene, db, &sim, err)) != VL_OK) {
       /* what differs between the tasks of one triple: the temperature */
       int line = s->key_line[F_CASES] ? t->line : s->key_line[F_TEMPS];

@@ -696,6 +696,64 @@ static bool file_complete(const char *path, bool png) {
   return strstr((const char *)tail, "</svg>") != NULL;
 }
 
+/* text with the five XML specials escaped, appended to f. */
+static void xml_text(FILE *f, const char *text) {
+  for (const char *c = text; *c; c++) {
+    switch (*c) {
+    case '&': fputs("&amp;", f); break;
+    case '<': fputs("&lt;", f); break;
+    case '>': fputs("&gt;", f); break;
+    case '"': fputs("&quot;", f); break;
+    case '\'': fputs("&apos;", f); break;
+    default: fputc(*c, f);
+    }
+  }
+}
+
+/* The SVG's own <title> and <desc>, the figure's title and subtitle as
+ * text (the drawn ones are glyph outlines): what a browser shows as the
+ * page's name, what a search or a test finds. Inserted right after the
+ * opening <svg ...> tag by rewriting the temporary whole (PLplot has
+ * closed its stream; af->f has written nothing and stands at the start
+ * when rewound). A figure written directly (a device, af->tmp empty) is
+ * left as drawn. */
+static vl_status svg_name(vl_atomic_file *af, const vl_plot_options *opt, vl_error *err) {
+  bool has_title = opt->title && opt->title[0], has_sub = opt->subtitle && opt->subtitle[0];
+  if (!af->tmp[0] || (!has_title && !has_sub)) return VL_OK;
+  FILE *in = fopen(af->tmp, "rb");
+  char *text = NULL;
+  long len = -1;
+  if (in && fseek(in, 0, SEEK_END) == 0 && (len = ftell(in)) > 0 && fseek(in, 0, SEEK_SET) == 0 &&
+      (text = malloc((size_t)len + 1)) && fread(text, 1, (size_t)len, in) == (size_t)len)
+    text[len] = '\0';
+  else
+    len = -1;
+  if (in) fclose(in);
+  char *svg = len > 0 ? strstr(text, "<svg") : NULL;
+  char *end = svg ? strchr(svg, '>') : NULL;
+  if (!end) {
+    free(text);
+    vl_error_set(err, "%s: cannot read back the SVG to name it", af->path);
+    return VL_EIO;
+  }
+  size_t head = (size_t)(end + 1 - text);
+  rewind(af->f);
+  fwrite(text, 1, head, af->f);
+  if (has_title) {
+    fputs("\n<title>", af->f);
+    xml_text(af->f, opt->title);
+    fputs("</title>", af->f);
+  }
+  if (has_sub) {
+    fputs("\n<desc>", af->f);
+    xml_text(af->f, opt->subtitle);
+    fputs("</desc>", af->f);
+  }
+  fwrite(text + head, 1, (size_t)len - head, af->f); /* longer than before: nothing left over */
+  free(text);
+  return VL_OK; /* a failed write shows in vl_atomic_file_commit */
+}
+
 typedef void (*draw_fn)(fig *f, const void *ctx);
 
 /* A second stream on af's open file, for PLplot, which closes the stream
@@ -750,15 +808,22 @@ static vl_status draw_file(const char *path, const char *dev, bool png, const vl
     vl_error_set(err, "%s: write failed (file incomplete)", path);
     return VL_EIO;
   }
+  if (!png && svg_name(&af, opt, err) != VL_OK) {
+    vl_atomic_file_abort(&af);
+    return VL_EIO;
+  }
   return vl_atomic_file_commit(&af, err);
 }
 
-/* Draws the figure once per selected format into stem.EXT. */
-static vl_status render(const char *stem, const vl_plot_options *opt_in, draw_fn draw,
-                        const void *ctx, vl_plot_report *rep, vl_error *err) {
+/* Draws the figure once per selected format into stem.EXT; kind (what the
+ * figure shows: "Stribeck curve") is its title when the caller gives none,
+ * so that no figure goes out without one. */
+static vl_status render(const char *stem, const vl_plot_options *opt_in, const char *kind,
+                        draw_fn draw, const void *ctx, vl_plot_report *rep, vl_error *err) {
   vl_plot_options opt;
   vl_plot_options_defaults(&opt);
   if (opt_in) opt = *opt_in;
+  if (!opt.title || !opt.title[0]) opt.title = kind;
   if (!opt.formats) opt.formats = VL_PLOT_PNG | VL_PLOT_SVG;
   if (opt.width_px <= 0) opt.width_px = PAGE_W_DEFAULT;
   if (opt.height_px <= 0) opt.height_px = PAGE_H_DEFAULT;
@@ -773,6 +838,7 @@ static vl_status render(const char *stem, const vl_plot_options *opt_in, draw_fn
   }
   if (!vl_plot_available(err)) return VL_EIO;
   vl_plot_report r = {0};
+  snprintf(r.title, sizeof r.title, "%s", opt.title);
   static const struct {
     unsigned flag;
     const char *ext, *dev;
@@ -1082,7 +1148,7 @@ vl_status vl_plot_stribeck(const char *stem, size_t n, const vl_point *pts,
   if (st == VL_OK) st = check_marks(n, n_marks, marks, err);
   if (st != VL_OK) return st;
   curve_ctx c = {n, pts, meta, x, n_marks, marks, opt && opt->mark_half_load, 0};
-  return render(stem, opt, draw_stribeck, &c, report, err);
+  return render(stem, opt, "Stribeck curve", draw_stribeck, &c, report, err);
 }
 
 /* ---- separation -------------------------------------------------------- */
@@ -1148,7 +1214,7 @@ vl_status vl_plot_separation(const char *stem, size_t n, const vl_point *pts,
     return VL_EINPUT;
   }
   curve_ctx c = {n, pts, meta, x, n_marks, marks, opt && opt->mark_half_load, h_rms_m};
-  return render(stem, opt, draw_separation, &c, report, err);
+  return render(stem, opt, "Minimum separation", draw_separation, &c, report, err);
 }
 
 /* ---- fields ------------------------------------------------------------ */
@@ -1290,6 +1356,10 @@ static void draw_fields(fig *f, const void *vctx) {
   draw_legend(f, f->vy1);
 }
 
+/* The default titles of the fields figures, by field. */
+static const char *const FIELD_KIND[4] = {"Contact pressure", "Fluid pressure", "Separation",
+                                          "Contact area"};
+
 vl_status vl_plot_fields(const char *stem, vl_plot_field field, size_t k, const vl_fields *fields,
                          const char *const *labels, const vl_plot_scales *scales,
                          const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
@@ -1314,7 +1384,7 @@ vl_status vl_plot_fields(const char *stem, vl_plot_field field, size_t k, const 
     }
   }
   fields_ctx c = {field, k, fields, labels, *scales};
-  return render(stem, opt, draw_fields, &c, report, err);
+  return render(stem, opt, FIELD_KIND[field], draw_fields, &c, report, err);
 }
 
 /* ---- compare ----------------------------------------------------------- */
@@ -1430,6 +1500,13 @@ static void draw_compare(fig *f, const void *vctx) {
   free(ok);
 }
 
+/* The default titles of the comparisons, by quantity. */
+static const char *const COMPARE_KIND[8] = {
+    "Friction coefficient",    "Hysteresis friction under the contact",
+    "Fluid-pressure friction", "Shear friction in the real contact area",
+    "Fluid shear friction",    "Rolling friction",
+    "Minimum separation",      "Share of the load on the fluid"};
+
 vl_status vl_plot_compare(const char *stem, size_t k, const vl_plot_curve *curves,
                           vl_sweep_quantity x, vl_plot_y y, const vl_plot_options *opt,
                           vl_plot_report *report, vl_error *err) {
@@ -1448,7 +1525,7 @@ vl_status vl_plot_compare(const char *stem, size_t k, const vl_plot_curve *curve
     if (st != VL_OK) return st;
   }
   compare_ctx c = {k, curves, x, y, opt && opt->mark_half_load};
-  return render(stem, opt, draw_compare, &c, report, err);
+  return render(stem, opt, COMPARE_KIND[y], draw_compare, &c, report, err);
 }
 
 /* ---- moduli ------------------------------------------------------------ */
@@ -1555,7 +1632,7 @@ vl_status vl_plot_modulus(const char *stem, const vl_plot_modulus_data *d,
     vl_error_set(err, "plot: moduli and frequencies must be positive and finite");
     return VL_EINPUT;
   }
-  return render(stem, opt, draw_modulus, d, report, err);
+  return render(stem, opt, "Storage and loss moduli", draw_modulus, d, report, err);
 }
 
 /* ---- a pair's calibration ---------------------------------------------- */
@@ -1625,7 +1702,7 @@ vl_status vl_plot_calibration(const char *stem, const vl_plot_calibration_data *
     vl_error_set(err, "plot: no measured points, or a speed that is not positive");
     return VL_EINPUT;
   }
-  return render(stem, opt, draw_calibration, d, report, err);
+  return render(stem, opt, "Calibration of a sigma_s law", draw_calibration, d, report, err);
 }
 
 /* ---- shift factors ----------------------------------------------------- */
@@ -1696,7 +1773,7 @@ vl_status vl_plot_shifts(const char *stem, size_t n, const double *t_c, const do
       return VL_EINPUT;
     }
   shifts_ctx c = {n, t_c, log10_a_t, tref_c, isfinite(c1) ? c1 : 0, isfinite(c2_k) ? c2_k : 0};
-  return render(stem, opt, draw_shifts, &c, report, err);
+  return render(stem, opt, "Time-temperature shift factors", draw_shifts, &c, report, err);
 }
 
 /* ---- flow factors ------------------------------------------------------ */
@@ -1799,7 +1876,7 @@ vl_status vl_plot_flow_factors(const char *stem, const vl_plot_flow_factor_data 
     vl_error_set(err, "plot: flow factors: u/h_rms must be positive and finite");
     return VL_EINPUT;
   }
-  return render(stem, opt, draw_flow_factors, d, report, err);
+  return render(stem, opt, "Flow factors", draw_flow_factors, d, report, err);
 }
 
 /* ---- power spectra ----------------------------------------------------- */
@@ -1865,5 +1942,5 @@ vl_status vl_plot_psd(const char *stem, const vl_plot_psd_data *d, const vl_plot
     vl_error_set(err, "plot: spectrum: q and C must be positive and finite");
     return VL_EINPUT;
   }
-  return render(stem, opt, draw_psd, d, report, err);
+  return render(stem, opt, "Roughness power spectrum", draw_psd, d, report, err);
 }

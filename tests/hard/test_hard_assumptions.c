@@ -284,11 +284,53 @@ static void test_solved_point(void **state) {
   assert_string_equal(vl_assumption_name(3), "unknown");
 }
 
+/* A value just past its limit is written with the digits that set it
+ * apart (issue 32: "contact half-width 0.2 R > 0.2 R"); one far from it
+ * keeps two significant digits, as before. */
+static void test_digits_beside_the_limit(void **state) {
+  (void)state;
+  vl_psd psd;
+  vl_persson *tab;
+  const double h = 1e-7;
+  tab = vl_test_paper_surface(h, &psd);
+  vl_contact_config dry, wet;
+  seed_config(&dry, tab, 0.0);
+  seed_config(&wet, tab, 1e-3);
+  double a0 = sqrt(4.0 * HARD_LOAD * HARD_RADIUS / (M_PI * HARD_E0 / (1.0 - HARD_NU * HARD_NU)));
+  double dx = 4.6 * a0 / 256.0;
+  struct {
+    const vl_contact_config *cfg;
+    double u_min, width;
+    const char *expect;
+  } cs[] = {
+      {&dry, 0.5 * h, 2 * 0.2004 * HARD_RADIUS, "contact half-width 0.2004 R > 0.2 R"},
+      {&dry, 0.5 * h, 2 * 0.25 * HARD_RADIUS, "contact half-width 0.25 R > 0.2 R"},
+      {&dry, 0.5 * h, 7.96 * dx, "contact spans 7.96 cells < 8"},
+      {&dry, 0.5 * h, 5.0 * dx, "contact spans 5 cells < 8"},
+      {&wet, 9.96e-10, 2 * a0, "u_min = 9.96e-10 m < 1 nm"},
+      {&dry, 0.000996 * h, 2 * a0, "u_min = 0.000996 h_rms below the Persson table"},
+  };
+  for (size_t i = 0; i < sizeof cs / sizeof cs[0]; i++) {
+    vl_point pt = benign_point(h);
+    pt.u_min_m = cs[i].u_min, pt.contact_width_m = cs[i].width;
+    char w[VL_WARN_MAX] = "";
+    vl_assumptions_check(cs[i].cfg, &psd, &pt, w, sizeof w);
+    printf("  '%s'\n", w);
+    if (!strstr(w, cs[i].expect)) fail_msg("expected '%s' in '%s'", cs[i].expect, w);
+  }
+  vl_persson_free(tab);
+  vl_psd_free(&psd);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_rms_slope),  cmocka_unit_test(test_homogenisation),
-      cmocka_unit_test(test_each_check), cmocka_unit_test(test_prony_window),
-      cmocka_unit_test(test_column),     cmocka_unit_test(test_solved_point),
+      cmocka_unit_test(test_rms_slope),
+      cmocka_unit_test(test_homogenisation),
+      cmocka_unit_test(test_each_check),
+      cmocka_unit_test(test_prony_window),
+      cmocka_unit_test(test_column),
+      cmocka_unit_test(test_solved_point),
+      cmocka_unit_test(test_digits_beside_the_limit),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
