@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -28,6 +29,8 @@ typedef struct {
   double plan_film;             /* the film the layout was planned for (m) */
   double resolution;            /* vl_plan_input.resolution, or the grid's divisor */
   double inlet_scale;           /* vl_plan_input.inlet_scale, or the inlet's factor */
+  double outlet_scale;          /* vl_plan_input.outlet_scale, or the outlet's factor */
+  double standard;              /* the resolution every point starts from (1) */
   double c_resolution, c_inlet; /* the numerics c was built with */
   /* Contacts of uniform or graded cells (which do not depend on the speed)
    * that were set aside, to be used again by a later point with the same
@@ -59,7 +62,7 @@ static vl_contact *spare_take(auto_state *a) {
  * spare; a planned layout's contact is freed (its cells fit one film). */
 static void spare_put(auto_state *a, vl_contact *c, double resolution, double inlet) {
   if (!c) return;
-  if (a->layout) {
+  if (c->cfg.cell_spans || a->outlet_scale != 1.0) {
     vl_contact_free(c);
     return;
   }
@@ -79,6 +82,19 @@ static void free_state(auto_state *a) {
   vl_plan_free(&a->plan);
 }
 
+/* The film the layout at v is planned for: the last point's u_min carried
+ * to v, or the estimate of a smooth film (0: the planner's own); the
+ * planner floors a rough film at a fraction of h_rms. */
+static double expected_film(const auto_state *a, double v, const vl_point *prev) {
+  double h = 0.0;
+  if (prev && prev->u_min_m > 0.0) h = prev->u_min_m * pow(v / prev->v0_m_s, FILM_SPEED_EXPONENT);
+  if (a->base.roughness) {
+    if (!prev) h = vl_contact_film_estimate(&a->base, v);
+    h = fmax(h, vl_plan_rough_film_floor(&a->base));
+  }
+  return h;
+}
+
 /* A new contact for speed v (prev: the last converged point, or NULL),
  * started from a's converged state where it has one (*continued, unless
  * NULL), and
@@ -91,16 +107,20 @@ static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact
   memset(plan, 0, sizeof *plan);
   *out = NULL;
   if (a->layout) {
-    vl_plan_input in = {0.0, 0.0, a->resolution, a->inlet_scale};
-    if (prev) in.film_m = prev->u_min_m * pow(v / prev->v0_m_s, FILM_SPEED_EXPONENT);
+    vl_plan_input in = {0.0, 0.0, a->resolution, a->inlet_scale, a->outlet_scale,
+                        prev ? prev->fluid_load_fraction : 0.0};
+    in.film_m = expected_film(a, v, prev);
     st = vl_plan_wet(&a->base, v, &in, plan, err);
     if (st != VL_OK) return st;
+    *plan_film = in.film_m > 0.0 ? in.film_m : vl_contact_film_estimate(&a->base, v);
+    if (plan->standard) vl_plan_free(plan); /* a rough film the graded cells resolve */
+  }
+  if (plan->spans) {
     st = vl_contact_create(&plan->cfg, out, err);
     if (st != VL_OK) {
       vl_plan_free(plan);
       return st;
     }
-    *plan_film = in.film_m > 0.0 ? in.film_m : vl_contact_film_estimate(&a->base, v);
   } else if ((*out = spare_take(a))) {
     spare = true;
   } else {
@@ -108,8 +128,13 @@ static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact
     cfg.grid = (size_t)round((double)cfg.grid / a->resolution);
     /* a pressure at the domain's ends: both ends moved out (the asperity
      * contact of a very rough surface reaches past 1.6 a0 downstream) */
+    double len = cfg.x_max_a0 - cfg.x_min_a0;
     cfg.x_min_a0 *= a->inlet_scale;
     cfg.x_max_a0 *= sqrt(a->inlet_scale);
+    if (a->outlet_scale != 1.0) { /* the same cells, more of them */
+      cfg.x_max_a0 *= a->outlet_scale;
+      cfg.grid = (size_t)round((double)cfg.grid * (cfg.x_max_a0 - cfg.x_min_a0) / len);
+    }
     st = vl_contact_create(&cfg, out, err);
     if (st != VL_OK) return st;
   }
@@ -131,14 +156,28 @@ static void install(auto_state *a, vl_contact *c, vl_plan *plan, double plan_fil
   spare_put(a, a->c, a->c_resolution, a->c_inlet);
   a->c = c;
   a->c_resolution = a->resolution, a->c_inlet = a->inlet_scale;
-  if (plan->spans) {
-    vl_plan_free(&a->plan);
-    a->plan = *plan;
-    a->plan_film = plan_film;
-  }
+  vl_plan_free(&a->plan); /* a->plan.spans: a->c is planned */
+  if (plan->spans) a->plan = *plan;
+  a->plan_film = plan_film;
 }
 
 static vl_status rebuild(auto_state *a, double v, const vl_point *prev, vl_error *err) {
+  /* a rough film on the standard cells that the standard cells still
+   * resolve keeps its contact (and its state as it is) */
+  if (a->c && a->base.roughness && !a->plan.spans && a->resolution == a->standard &&
+      a->inlet_scale == 1.0 && a->outlet_scale == 1.0) {
+    vl_plan p;
+    vl_plan_input in = {expected_film(a, v, prev), 0.0, a->standard, 1.0, 1.0,
+                        prev ? prev->fluid_load_fraction : 0.0};
+    if (vl_plan_wet(&a->base, v, &in, &p, NULL) == VL_OK) {
+      bool standard = p.standard;
+      vl_plan_free(&p);
+      if (standard) {
+        a->plan_film = in.film_m;
+        return VL_OK;
+      }
+    }
+  }
   vl_contact *c;
   vl_plan plan;
   double film = 0.0;
@@ -151,7 +190,7 @@ static vl_status rebuild(auto_state *a, double v, const vl_point *prev, vl_error
  * that was not capped, or a grid whose doubled cells stay within
  * VL_AUTO_MAX_CELLS. */
 static bool can_refine(const auto_state *a) {
-  if (a->layout) return !a->plan.capped;
+  if (a->plan.spans) return !a->plan.capped;
   return 2 * vl_contact_grid(a->c) <= VL_AUTO_MAX_CELLS;
 }
 
@@ -159,7 +198,9 @@ static bool can_refine(const auto_state *a) {
 static bool needs_plan(const auto_state *a, double v, const vl_point *prev) {
   if (!a->c) return true;
   if (!a->layout || !prev) return false;
-  double h = prev->u_min_m * pow(v / prev->v0_m_s, FILM_SPEED_EXPONENT);
+  double h = expected_film(a, v, prev);
+  if (a->base.roughness && !a->plan.spans) /* the standard cells: until the film carries load */
+    return prev->fluid_load_fraction >= 0.01 && a->resolution == a->standard;
   double r = h / a->plan_film;
   return r > REPLAN_FILM_RATIO || r < 1.0 / REPLAN_FILM_RATIO;
 }
@@ -180,9 +221,9 @@ static void append_warning(vl_point *pt, const char *w) {
  * 100-275 % off); from a fresh start (a longer domain) every path. */
 #define REFINE_MAX_ITERATIONS 50
 static vl_status refine(auto_state *a, double v, double resolution, double inlet_scale,
-                        vl_point *pt, vl_sweep_stats *st, vl_error *err) {
-  double old_resolution = a->resolution, old_inlet = a->inlet_scale;
-  a->resolution = resolution, a->inlet_scale = inlet_scale;
+                        double outlet_scale, vl_point *pt, vl_sweep_stats *st, vl_error *err) {
+  double old_resolution = a->resolution, old_inlet = a->inlet_scale, old_outlet = a->outlet_scale;
+  a->resolution = resolution, a->inlet_scale = inlet_scale, a->outlet_scale = outlet_scale;
   vl_contact *c;
   vl_plan plan;
   double film = 0.0;
@@ -206,7 +247,7 @@ static vl_status refine(auto_state *a, double v, double resolution, double inlet
   }
   spare_put(a, c, a->resolution, a->inlet_scale);
   vl_plan_free(&plan);
-  a->resolution = old_resolution, a->inlet_scale = old_inlet;
+  a->resolution = old_resolution, a->inlet_scale = old_inlet, a->outlet_scale = old_outlet;
   return s;
 }
 
@@ -217,6 +258,34 @@ static vl_status refine(auto_state *a, double v, double resolution, double inlet
  * m/s: 15 %, 15 %, 26 % at 208, 330, 560 cells). */
 #define REFINE_MIN_GAIN 0.7
 
+/* A rough film whose shear beyond the outlet end (vl_contact_outlet_tail)
+ * exceeds this share of the target gets its outlet moved OUTLET_STEP times
+ * farther out. */
+#define OUTLET_TAIL_SHARE 0.25
+#define OUTLET_STEP 4.0
+
+/* A fresh start of a's contact at v (the Hertz guess and the ladder's
+ * starts without a state): pt and *s become its point when it converges to
+ * a lifted film (u_min > 0) or when *s was a failure; else the contact
+ * goes back to pt's state. */
+static void lifted_start(auto_state *a, double v, vl_point *pt, vl_status *s, vl_sweep_stats *st) {
+  vl_contact_mark m;
+  memset(&m, 0, sizeof m);
+  bool had = *s == VL_OK && vl_contact_mark_take(a->c, &m);
+  vl_contact_reset(a->c);
+  vl_point np;
+  vl_error e;
+  st->fresh_starts++;
+  vl_status ns = vl_contact_solve(a->c, v, &np, &e);
+  st->newton_iterations += np.iterations;
+  if (ns == VL_OK && (np.u_min_m > 0.0 || *s != VL_OK)) {
+    *pt = np, *s = VL_OK;
+  } else if (had) {
+    vl_contact_mark_return(a->c, &m);
+  }
+  vl_contact_mark_free(&m);
+}
+
 /* One point: solved, estimated, refined while above the target and the
  * refinements still lower the estimate. */
 static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, const vl_point *prev,
@@ -226,35 +295,70 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
    * 8x per Newton step on dense matrices, and only the points that need it
    * should pay (kept refined, a hard stretch of a real rubber's curve took
    * 47 s for 12 points, 2.9 s at the standard cells) */
-  bool coarsen = a->resolution < 1.0;
-  if (coarsen) a->resolution = 1.0;
+  bool coarsen = a->resolution < a->standard || a->outlet_scale != 1.0;
+  if (coarsen) a->resolution = a->standard, a->outlet_scale = 1.0;
   if ((coarsen || needs_plan(a, v, prev)) && (s = rebuild(a, v, prev, err)) != VL_OK) return s;
   s = vl_contact_reach(a->c, v, 6, pt, st, err);
+  /* a rough film on the standard cells that turns out to carry load with
+   * edge zones below those cells: solved again on its planned cells */
+  bool fresh = false;
+  if (s == VL_OK && a->layout && a->base.roughness && !a->plan.spans &&
+      pt->fluid_load_fraction >= 0.01) {
+    vl_point first = *pt;
+    if (rebuild(a, v, &first, err) == VL_OK && a->plan.spans) {
+      /* a collapsed film is not continued from: a fresh start first */
+      s = VL_ENOCONV;
+      if (first.u_min_m <= 0.0) lifted_start(a, v, pt, &s, st), fresh = true;
+      if (s == VL_ENOCONV) s = vl_contact_reach(a->c, v, 6, pt, st, err);
+    }
+  }
+  /* a collapsed rough film (U <= 0 somewhere: outside Persson's contact law,
+   * a solution of coarse cells) while the fluid carries load: a fresh start
+   * on the same cells, which finds the lifted film where there is one */
+  if (s == VL_OK && !fresh && a->plan.spans && pt->u_min_m <= 0.0 &&
+      pt->fluid_load_fraction >= 0.01)
+    lifted_start(a, v, pt, &s, st);
+  if (getenv("VL_DEBUG_AUTO"))
+    fprintf(stderr, "v %g: cells %zu planned %d fine %g film %g -> s %d mu %g umin %g fl %g\n", v,
+            a->c->n, a->plan.spans != NULL, a->plan.fine_a0, a->plan_film, (int)s, pt->mu,
+            pt->u_min_m, pt->fluid_load_fraction);
   if (s != VL_OK) return s;
   vl_contact_estimate_error(a->c, pt);
   const char *stop = NULL;
+  char failed[160] = "";
   for (int k = 0; k < o->max_refinements && !stop; k++) {
     bool edge = !o->keep_numerics && a->inlet_scale < 8.0 && strstr(pt->warnings, "domain edge");
+    /* the film still shears at the outlet end: the outlet moved out */
+    bool outlet = !o->keep_numerics && a->outlet_scale < 16.0 &&
+                  vl_contact_outlet_tail(a->c, pt) > OUTLET_TAIL_SHARE * o->target_error;
     bool coarse = pt->error_estimate > o->target_error && can_refine(a);
-    if (!edge && !coarse) break;
+    if (!edge && !coarse && !outlet) break;
     double old_estimate = pt->error_estimate;
     s = refine(a, v, coarse ? 0.5 * a->resolution : a->resolution,
-               edge ? 2.0 * a->inlet_scale : a->inlet_scale, pt, st, err);
+               edge ? 2.0 * a->inlet_scale : a->inlet_scale,
+               outlet ? OUTLET_STEP * a->outlet_scale : a->outlet_scale, pt, st, err);
     if (s == VL_ENOCONV) {
-      stop = "refinement did not converge (coarser cells kept)";
+      snprintf(failed, sizeof failed,
+               "refinement did not converge; estimate %.2g %% of the coarser cells",
+               100.0 * pt->error_estimate);
+      stop = failed;
       break;
     }
     if (s != VL_OK) return s;
     vl_contact_estimate_error(a->c, pt);
-    if (coarse && !edge && !(pt->error_estimate < REFINE_MIN_GAIN * old_estimate))
+    if (coarse && !edge && !outlet && !(pt->error_estimate < REFINE_MIN_GAIN * old_estimate))
       stop = "estimate not falling with refinement";
   }
-  if (pt->error_estimate > o->target_error) {
+  if (isnan(pt->error_estimate)) {
+    append_warning(pt, "no estimate");
+  } else if (pt->error_estimate > o->target_error) {
     char w[120];
     snprintf(w, sizeof w, "error estimate %.2g %% above the target %.2g %%",
              100.0 * pt->error_estimate, 100.0 * o->target_error);
     append_warning(pt, w);
     if (stop) append_warning(pt, stop);
+  } else if (stop == failed) {
+    append_warning(pt, stop); /* never silently: the finer cells were wanted */
   }
   return VL_OK;
 }
@@ -271,7 +375,9 @@ static void auto_recover_below(const auto_state *a, const vl_auto_options *o,
                      .layout = a->layout,
                      .plan_film = a->plan_film,
                      .resolution = a->resolution,
+                     .standard = a->standard,
                      .inlet_scale = a->inlet_scale,
+                     .outlet_scale = a->outlet_scale,
                      .c_resolution = a->c_resolution,
                      .c_inlet = a->c_inlet};
   size_t k = hi;
@@ -306,8 +412,13 @@ vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options
       return VL_EINPUT;
     }
   }
-  auto_state a = {.base = *base, .resolution = 1.0, .inlet_scale = 1.0};
-  a.layout = !o.keep_numerics && base->eta_pa_s > 0.0 && !base->roughness;
+  auto_state a = {.base = *base, .standard = 1.0, .inlet_scale = 1.0, .outlet_scale = 1.0};
+  /* reference runs (bench/rough_estimate.sh): every width times this, no
+   * refinement */
+  const char *ref = getenv("VISCOLUBE_AUTO_RESOLUTION");
+  if (ref && atof(ref) > 0.0 && atof(ref) <= 1.0) a.standard = atof(ref), o.max_refinements = 0;
+  a.resolution = a.standard;
+  a.layout = !o.keep_numerics && base->eta_pa_s > 0.0;
   vl_sweep_stats st;
   memset(&st, 0, sizeof st);
   double t0 = vl_contact_now_s();
