@@ -46,6 +46,7 @@ typedef struct {
   double outlet_scale; /* 1 (or 0) = the standard outlet; 2 = twice as far, ... */
   double fluid_share;  /* a rough film: the fluid's share of the load expected (the
                         * last point's); below 1 % the standard cells are kept */
+  bool planned;        /* a rough film on planned cells now (kept planned longer) */
 } vl_plan_input;
 
 /* A planned layout: the configuration to give vl_contact_create (a copy of
