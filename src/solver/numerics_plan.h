@@ -20,8 +20,12 @@
  * at most 10 % a cell to the background width max(a/60, L_h/80) inside the
  * contact, and further upstream to inlet cells of a twentieth of the inlet;
  * the domain runs from a + 60 L_h (at least 2 a0 beyond the contact)
- * upstream to max(a + 0.6 a0, 2 L_h) downstream. Rough films keep at least
- * the validated rough inlet (VL_WET_ROUGH_DOMAIN_MIN_A0). */
+ * upstream to max(a + 0.6 a0, 2 L_h) downstream. Rough films (their film
+ * floored at 0.1 h_rms) are planned only where the edge zone is below a
+ * quarter of a standard a0/30 cell and the fluid carries load (else
+ * vl_plan.standard): edge cells s/8, background a0/120, the validated rough
+ * inlet (VL_WET_ROUGH_DOMAIN_MIN_A0) at least (docs/NUMERICS.md section
+ * 11, "Rough films"). */
 #ifndef VISCOLUBE_NUMERICS_PLAN_H
 #define VISCOLUBE_NUMERICS_PLAN_H
 

@@ -350,17 +350,11 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
   /* a collapsed rough film (U <= 0 somewhere: outside Persson's contact law,
    * a solution of coarse cells) while the fluid carries load: a fresh start
    * on the same cells, which finds the lifted film where there is one */
-  if (s == VL_OK && !fresh && a->plan.spans && pt->u_min_m <= 0.0 &&
+  if (s == VL_OK && !fresh && a->base.roughness && a->plan.spans && pt->u_min_m <= 0.0 &&
       pt->fluid_load_fraction >= 0.01)
     lifted_start(a, v, pt, &s, st);
-  if (getenv("VL_DEBUG_AUTO"))
-    fprintf(stderr, "v %g: cells %zu planned %d fine %g film %g -> s %d mu %g umin %g fl %g\n", v,
-            a->c->n, a->plan.spans != NULL, a->plan.fine_a0, a->plan_film, (int)s, pt->mu,
-            pt->u_min_m, pt->fluid_load_fraction);
   if (s != VL_OK) return s;
   vl_contact_estimate_error(a->c, pt);
-  if (getenv("VL_DEBUG_AUTO"))
-    fprintf(stderr, "  est %g tail %g\n", pt->error_estimate, vl_contact_outlet_tail(a->c, pt));
   const char *stop = NULL;
   char failed[160] = "";
   double mu_level[1 + VL_AUTO_MAX_REFINEMENTS_CAP];
@@ -386,12 +380,8 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
     }
     if (s != VL_OK) return s;
     vl_contact_estimate_error(a->c, pt);
-    if (coarse && !edge && !outlet) richardson(a->c, pt, mu_level, &levels);
+    if (a->base.roughness && coarse && !edge && !outlet) richardson(a->c, pt, mu_level, &levels);
     else mu_level[0] = pt->mu, levels = 1; /* another domain: a new sequence */
-    if (getenv("VL_DEBUG_AUTO"))
-      fprintf(stderr, "  refined r %g in %g out %g: cells %zu mu %g est %g tail %g\n", a->resolution,
-              a->inlet_scale, a->outlet_scale, a->c->n, pt->mu, pt->error_estimate,
-              vl_contact_outlet_tail(a->c, pt));
     if (coarse && !edge && !outlet && !(pt->error_estimate < REFINE_MIN_GAIN * old_estimate))
       stop = "estimate not falling with refinement";
   }
