@@ -35,6 +35,7 @@ typedef struct {
   double outlet_scale;          /* vl_plan_input.outlet_scale, or the outlet's factor */
   double standard;              /* the resolution every point starts from (1) */
   bool reference;               /* a reference run: the domain's ends refined, not the cells */
+  bool plan_failed;             /* this point's planned cells did not converge: none more */
   double c_resolution, c_inlet; /* the numerics c was built with */
   /* Contacts of uniform or graded cells (which do not depend on the speed)
    * that were set aside, to be used again by a later point with the same
@@ -112,7 +113,7 @@ static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact
   bool spare = false;
   memset(plan, 0, sizeof *plan);
   *out = NULL;
-  if (a->layout) {
+  if (a->layout && !(a->plan_failed && a->base.roughness)) {
     vl_plan_input in = {0.0, 0.0, a->resolution, a->inlet_scale, a->outlet_scale,
                         prev ? prev->fluid_load_fraction : 0.0, a->plan.spans != NULL};
     in.film_m = expected_film(a, v, prev);
@@ -336,6 +337,7 @@ static bool replan(auto_state *a, double v, vl_point *pt, vl_sweep_stats *st) {
   vl_contact_free(c);
   vl_plan_free(&plan);
   append_warning(pt, "planned cells did not converge (standard cells kept)");
+  a->plan_failed = true; /* its refinements double the standard cells */
   return fresh;
 }
 
@@ -376,6 +378,7 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
    * 8x per Newton step on dense matrices, and only the points that need it
    * should pay (kept refined, a hard stretch of a real rubber's curve took
    * 47 s for 12 points, 2.9 s at the standard cells) */
+  a->plan_failed = false;
   bool coarsen = a->resolution < a->standard || a->outlet_scale != 1.0;
   if (coarsen) a->resolution = a->standard, a->outlet_scale = 1.0;
   if ((coarsen || needs_plan(a, v, prev)) && (s = rebuild(a, v, prev, !coarsen, err)) != VL_OK)
