@@ -72,8 +72,12 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "contact_private.h"
 #include "contact_test.h"
 #include "hunter.h"
+#include "persson_internal.h"
+#include "prony_fit_internal.h"
+#include "rheology_internal.h"
 #include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/database.h"

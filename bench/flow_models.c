@@ -37,7 +37,7 @@ static vl_point *curve(const vl_scene *base, vl_db *db, vl_flow_factor_kind kind
   }
   vl_status st = vl_simulation_run(sim, pts, NULL, NULL, &stats, &err);
   if (st != VL_OK && st != VL_ENOCONV) goto fail;
-  *meta = (vl_curve_meta){vl_simulation_eta(sim), 0.0, 0.0, NULL, 0.0};
+  *meta = (vl_curve_meta){vl_simulation_eta(sim), 0.0, 0.0, NULL, 0.0, NULL};
   meta->flow_factors = vl_simulation_flow_factors(sim, &meta->film_cutoff_m);
   *hrms = vl_psd_hrms(vl_simulation_psd(sim));
   printf("%-12s %zu of %zu points converged, %.2f s\n", vl_flow_factors_name(kind), stats.converged,

@@ -9,7 +9,11 @@
  * gives the equations and the one sign convention; docs/NUMERICS.md the
  * discretisation; docs/FORMATS.md the files.
  *
- * This header is the library's manual: include it and nothing else.
+ * This header is the library's manual: include it and nothing else. It
+ * declares what a program calls (src/cli and the Python package call
+ * nothing else); the plumbing between the library's layers and its test
+ * hooks are private headers of src/ (scripts/api-users.py lists who calls
+ * each public function).
  *
  * Conventions
  *   - SI units at every interface; names carry them (radius_m,
@@ -43,8 +47,11 @@
  *        vl_simulation_create(&sc, db, &sim, &err);
  *        vl_point *pts = calloc(vl_simulation_points(sim), sizeof *pts);
  *        vl_simulation_run(sim, pts, NULL, NULL, &stats, &err);
- *      A single operating point: vl_contact_solve(contact, v0, &pt, &err);
- *      the command line's friction query, robustly (continuation when a
+ *      A contact configured in code (contact.h) is solved point by point
+ *      with vl_contact_solve(contact, v0, &pt, &err), or swept with
+ *      vl_sweep_run_auto (sweep.h); examples/point.c and examples/stribeck.c
+ *      do each in fifty lines. The
+ *      command line's friction query, robustly (continuation when a
  *      direct solve fails), with its defaults: vl_query_friction (query.h).
  *
  *   4. Read the results (results.h): each vl_point holds mu and its parts
@@ -60,6 +67,7 @@
 
 /* base: statuses and messages, JSON text, atomic files */
 #include "viscolube/atomic_file.h"
+#include "viscolube/edit_distance.h"
 #include "viscolube/json.h"
 #include "viscolube/status.h"
 
@@ -67,6 +75,7 @@
 #include "viscolube/fluid.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"
+#include "viscolube/shear_law.h"
 
 /* mechanics: Persson's contact law, flow factors, viscous flattening */
 #include "viscolube/flattening.h"
@@ -86,6 +95,7 @@
 #include "viscolube/sweep.h"
 
 /* database, scenes and simulations */
+#include "viscolube/calibrate.h"
 #include "viscolube/database.h"
 #include "viscolube/query.h"
 #include "viscolube/scene.h"

@@ -25,6 +25,18 @@ case "${1:-}" in
     # the program alone: the tests, fuzz targets and benchmarks wait for `test`
     configure build
     cmake --build build -j "$jobs" --target viscolube_cli
+    # the Python package (python/, target vl_python_core), built for the
+    # interpreter CMake found with NumPy (/usr/bin/python3 first: the python3
+    # on PATH may lack NumPy), and checked to import with that interpreter
+    py=$(sed -n 's/^VL_PYTHON_INTERPRETER:INTERNAL=//p' build/CMakeCache.txt)
+    if [ -n "$py" ]; then
+      cmake --build build -j "$jobs" --target vl_python_core
+      PYTHONPATH=build/python "$py" -c 'import viscolube' ||
+        { echo "dev.sh: 'import viscolube' failed with $py (PYTHONPATH=build/python)" >&2; exit 1; }
+      echo "Python package: PYTHONPATH=$PWD/build/python $py -c 'import viscolube'"
+    else
+      echo "Python package not built: no Python 3 with headers and NumPy (see cmake's message)" >&2
+    fi
     # The main job on the embedded default database (created on first use):
     # filled against unfilled rubber in water (the seed's Figs. 15-17), with
     # the Stribeck curves side by side and figures in out/compare/.

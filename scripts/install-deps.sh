@@ -8,6 +8,7 @@ packages=(build-essential cmake pkg-config libsundials-dev libgsl-dev libsqlite3
           libopenmpi-dev openmpi-bin # `viscolube study` under mpirun (optional in the build)
           clang libclang-rt-14-dev # scripts/fuzz.sh: clang 14 and its libFuzzer runtime
           clang-format             # scripts/format.sh
+          universal-ctags          # scripts/api-users.py
           python3-dev python3-numpy) # the Python package (python/)
 missing=()
 for p in "${packages[@]}"; do

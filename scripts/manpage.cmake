@@ -56,7 +56,8 @@ string(APPEND page ".SH FILES
 .I $VISCOLUBE_DB, $XDG_DATA_HOME/viscolube/materials.db, ~/.local/share/viscolube/materials.db
 the material database (SQLite), the first that applies; created on first use
 .SH SEE ALSO
-README.md and docs/ of the source tree: docs/MODEL.md (the model),
-docs/FORMATS.md (every file read or written), docs/NUMERICS.md.
+README.md and docs/ of the source tree: docs/CLI.md (the command line in full),
+docs/MODEL.md (the model), docs/FORMATS.md (every file read or written),
+docs/NUMERICS.md.
 ")
 file(WRITE ${OUT} "${page}")

@@ -133,7 +133,7 @@ static void test_compare_warnings(void **state) {
   (void)state;
   char *out = NULL, *err = NULL;
   const char *args = "compare --compounds sbr-unfilled,sbr-filled --surface paper-0.5um "
-                     "--fluid water --points 3 --grid 512";
+                     "--fluid water --points 3 --grid 512 --target-error 0.5";
   int rc = vl_test_run(&out, &err, "%s --out %s/c", args, vl_test_dir);
   if (rc != 0) fail_msg("compare: exit %d: %s", rc, err);
   printf("compare, stderr:\n%s", err);

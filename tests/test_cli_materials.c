@@ -105,18 +105,22 @@ static void test_list_fresh_database(void **state) {
   assert_int_equal(count_of(out, "\"name\""), 3); /* + the shipped sbr-filled, sbr-unfilled */
   assert_non_null(strstr(out, "\"model-rubber\""));
   free(out);
+  /* the paper's 7 surfaces and the seal cases' 2 (materials/seed_seals.sql) */
   out = run_ok("surface list --json%s", "");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
-  assert_int_equal(count_of(out, "\"name\""), 7);
+  assert_int_equal(count_of(out, "\"name\""), 9);
   free(out);
+  /* 7 and the seal cases' oil */
   out = run_ok("fluid list --json%s", "");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
-  assert_int_equal(count_of(out, "\"name\""), 7);
+  assert_int_equal(count_of(out, "\"name\""), 8);
   free(out);
 
   /* text: one line per item, starting with the name */
   const char *nouns[] = {"compound", "surface", "fluid"};
-  const size_t lines[] = {3, 7, 7}; /* compounds: + the shipped sbr-filled, sbr-unfilled */
+  /* compounds: + the shipped sbr-filled, sbr-unfilled; surfaces and fluids: + the seal
+   * cases' (materials/seed_seals.sql) */
+  const size_t lines[] = {3, 9, 8};
   for (int n = 0; n < 3; n++) {
     out = run_ok("%s list", nouns[n]);
     assert_int_equal(count_of(out, "\n"), lines[n]);
@@ -274,7 +278,7 @@ static void test_surface_add_show_remove(void **state) {
   free(run_ok("surface remove %s", "measured"));
   free(run_ok("surface remove %s", "road"));
   out = run_ok("surface list%s", "");
-  assert_int_equal(count_of(out, "\n"), 7);
+  assert_int_equal(count_of(out, "\n"), 9); /* the shipped ones, one line each */
   free(out);
 }
 
@@ -435,7 +439,7 @@ static void test_readonly_database(void **state) {
   assert_int_equal(chmod(vl_test_db, 0444), 0);
   vl_test_snapshot before = vl_test_take(vl_test_db);
   char *out = run_ok("fluid list%s", "");
-  assert_int_equal(count_of(out, "\n"), 7);
+  assert_int_equal(count_of(out, "\n"), 8);
   free(out);
   vl_test_expect_fail(5, "read-only", NULL, "fluid add oil --viscosity 0.1");
   vl_test_expect_fail(5, "read-only", NULL, "compound remove model-rubber");

@@ -40,7 +40,7 @@ static const char *dry_scene(const char *name, int points, const char *fields_at
            "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\nsigma_s_pa = 0\n"
            "[sweep]\nquantity = deborah\nfrom = 1e-3\nto = 1e3\npoints = %d\n%s%s%s"
            "[effects]\nviscoelastic = on\nroughness = off\nfluid = off\nsolid_shear = off\n"
-           "[numerics]\ngrid = 64\ndomain_a0 = -1.5, 1.5\ntolerance = 1e-9\n",
+           "[numerics]\ngrid = 64\ndomain_a0 = -1.5, 1.5\ntolerance = 1e-9\ntarget_error = 0.5\n",
            points, fields_at[0] ? "fields_at = " : "", fields_at, fields_at[0] ? "\n" : "");
   return vl_test_scratch(name, text);
 }

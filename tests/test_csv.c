@@ -8,6 +8,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "csv_private.h"
 #include "vl_test_util.h"
 
 #include <math.h>

@@ -10,6 +10,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "shear_law_private.h"
 #include "vl_test_util.h"
 
 #include <math.h>
@@ -20,6 +21,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "database_internal.h"
 #include "viscolube/database.h"
 
 #define PI 3.14159265358979323846
@@ -244,7 +246,8 @@ static void test_seeded_fluids(void **state) {
   vl_db_fluid *items;
   size_t n;
   assert_int_equal(vl_db_fluid_list(db, &items, &n, &err), VL_OK);
-  assert_int_equal(n, 7); /* water, glycerol, model-1e-4 ... model-1 (five decades) */
+  /* water, glycerol, model-1e-4 ... model-1 (five decades), oil-0.046 (seed_seals.sql) */
+  assert_int_equal(n, 8);
   for (size_t i = 1; i < n; i++)
     assert_true(strcmp(items[i - 1].name, items[i].name) < 0);
   free(items);
@@ -693,6 +696,168 @@ static void test_create_failure(void **state) {
   assert_int_not_equal(access(path, F_OK), 0);
 }
 
+/* ---- pairs (0006_pairs.sql) ------------------------------------------- */
+
+static vl_db_pair sample_pair(const char *compound, const char *surface, const char *fluid) {
+  vl_db_pair p;
+  memset(&p, 0, sizeof p);
+  snprintf(p.compound, sizeof p.compound, "%s", compound);
+  snprintf(p.surface, sizeof p.surface, "%s", surface);
+  snprintf(p.fluid, sizeof p.fluid, "%s", fluid);
+  p.law = (vl_shear_law){VL_SHEAR_EYRING, {2e5, 1.5e5, 1e-4}, 20.0, NAN};
+  for (int k = 0; k < 3; k++)
+    p.ci95[k] = NAN;
+  snprintf(p.source, sizeof p.source, "%s", VL_DB_SOURCE_TYPED);
+  snprintf(p.description, sizeof p.description, "from a handbook");
+  p.load_n_per_m = p.radius_m = p.temperature_c = p.rms_log10_mu = NAN;
+  return p;
+}
+
+/* A file of schema 5 (no pair table) is migrated to 6 and keeps its rows. */
+static void test_pair_migration(void **state) {
+  (void)state;
+  const char *path = db_path();
+  unlink(path);
+  vl_db_close(open_new(path));
+  assert_true(vl_db_schema_version() >= 6);
+  vl_test_sql(path,
+              "DROP TABLE pair; PRAGMA user_version = 5;"
+              "INSERT INTO fluid (name, viscosity_pa_s, tref_c) VALUES ('old-oil', 0.25, 40)");
+  assert_true(sql_num(path, "PRAGMA user_version") == 5.0);
+  vl_db *db = open_new(path);
+  assert_true(sql_num(path, "PRAGMA user_version") == (double)vl_db_schema_version());
+  assert_true(sql_num(path, "SELECT count(*) FROM pair") == 0.0);
+  assert_true(sql_num(path, "SELECT viscosity_pa_s FROM fluid WHERE name = 'old-oil'") == 0.25);
+  vl_error err;
+  vl_db_pair p = sample_pair("sbr-unfilled", "paper-0.5um", "old-oil");
+  assert_int_equal(vl_db_pair_add(db, &p, &err), VL_OK);
+  vl_db_close(db);
+}
+
+static void test_pair_roundtrip(void **state) {
+  (void)state;
+  const char *path = db_path();
+  unlink(path);
+  vl_db *db = open_new(path);
+  vl_error err;
+  vl_db_pair p = sample_pair("sbr-unfilled", "paper-0.5um", "water"), got;
+  bool found = true;
+  assert_int_equal(vl_db_pair_get(db, "sbr-unfilled", "paper-0.5um", "water", &got, &found, &err),
+                   VL_OK);
+  assert_false(found);
+  assert_int_equal(vl_db_pair_add(db, &p, &err), VL_OK);
+  assert_int_equal(vl_db_pair_get(db, "sbr-unfilled", "paper-0.5um", "water", &got, &found, &err),
+                   VL_OK);
+  assert_true(found);
+  assert_int_equal(got.law.kind, VL_SHEAR_EYRING);
+  for (int k = 0; k < 3; k++) {
+    assert_true(got.law.p[k] == p.law.p[k]);
+    assert_true(isnan(got.ci95[k]));
+  }
+  assert_true(got.law.tref_c == 20.0 && isnan(got.law.eta_ref_pa_s));
+  assert_string_equal(got.source, "typed");
+  assert_string_equal(got.description, "from a handbook");
+  assert_true(strlen(got.created_at) == 20);
+  /* a calibrated one keeps its provenance */
+  vl_db_pair c = sample_pair("sbr-filled", "paper-0.5um", "water");
+  c.law = vl_shear_law_constant(8.5e5);
+  c.ci95[0] = 2e4;
+  snprintf(c.source, sizeof c.source, "%s", VL_DB_SOURCE_CALIBRATED);
+  snprintf(c.measured_file, sizeof c.measured_file, "curve.csv");
+  vl_db_fingerprint_bytes("v,mu\n1,0.5\n", 11, c.measured_fingerprint);
+  c.n_points = 12, c.load_n_per_m = 117.0, c.radius_m = 1e-3, c.temperature_c = NAN;
+  c.rms_log10_mu = 0.012;
+  assert_int_equal(vl_db_pair_add(db, &c, &err), VL_OK);
+  assert_int_equal(vl_db_pair_get(db, "sbr-filled", "paper-0.5um", "water", &got, NULL, &err),
+                   VL_OK);
+  assert_string_equal(got.source, "calibrated");
+  assert_string_equal(got.measured_fingerprint, c.measured_fingerprint);
+  assert_true(got.ci95[0] == 2e4 && got.n_points == 12 && got.load_n_per_m == 117.0 &&
+              got.rms_log10_mu == 0.012 && isnan(got.temperature_c));
+  vl_db_pair *items = NULL;
+  size_t n = 0;
+  assert_int_equal(vl_db_pair_list(db, &items, &n, &err), VL_OK);
+  assert_int_equal(n, 2);
+  assert_string_equal(items[0].compound, "sbr-filled");
+  assert_string_equal(items[1].compound, "sbr-unfilled");
+  free(items);
+  /* a second pair of the same materials is refused, the file unchanged */
+  vl_db_close(db);
+  vl_test_snapshot s = vl_test_take(path);
+  db = open_new(path);
+  assert_int_equal(vl_db_pair_add(db, &p, &err), VL_EEXIST);
+  assert_non_null(strstr(err.msg, "remove it first"));
+  vl_db_close(db);
+  assert_unchanged(path, &s);
+}
+
+/* Refused pairs change nothing; missing materials and pairs get their
+ * did-you-mean. */
+static void test_pair_refused(void **state) {
+  (void)state;
+  const char *path = db_path();
+  unlink(path);
+  vl_db *db = open_new(path);
+  vl_error err;
+  vl_db_pair ok = sample_pair("sbr-unfilled", "paper-0.5um", "water");
+  assert_int_equal(vl_db_pair_add(db, &ok, &err), VL_OK);
+  vl_db_close(db);
+  vl_test_snapshot s = vl_test_take(path);
+  db = open_new(path);
+  vl_db_pair bad = sample_pair("sbr-unfilled", "paper-0.5um", "glycerol");
+  bad.law.p[2] = 0.0; /* v_e */
+  assert_int_equal(vl_db_pair_add(db, &bad, &err), VL_EINPUT);
+  assert_non_null(strstr(err.msg, "v_e_m_s"));
+  bad = sample_pair("sbr-unfilled", "paper-0.5um", "glycerol");
+  snprintf(bad.source, sizeof bad.source, "guessed");
+  assert_int_equal(vl_db_pair_add(db, &bad, &err), VL_EINPUT);
+  snprintf(bad.source, sizeof bad.source, "calibrated"); /* without its provenance */
+  assert_int_equal(vl_db_pair_add(db, &bad, &err), VL_EINPUT);
+  bad = sample_pair("sbr-unfiled", "paper-0.5um", "glycerol");
+  assert_int_equal(vl_db_pair_add(db, &bad, &err), VL_ENOTFOUND);
+  assert_non_null(strstr(err.msg, "did you mean 'sbr-unfilled'"));
+  vl_db_pair got;
+  assert_int_equal(vl_db_pair_get(db, "sbr-unfilled", "paper-0.5um", "watr", &got, NULL, &err),
+                   VL_ENOTFOUND);
+  assert_non_null(strstr(err.msg, "did you mean 'water'"));
+  assert_int_equal(vl_db_pair_get(db, "sbr-unfilled", "paper-1um", "water", &got, NULL, &err),
+                   VL_ENOTFOUND);
+  assert_non_null(strstr(err.msg, "has pairs on paper-0.5um in water"));
+  assert_int_equal(vl_db_pair_remove(db, "sbr-unfilled", "paper-1um", "water", &err), VL_ENOTFOUND);
+  vl_db_close(db);
+  assert_unchanged(path, &s);
+}
+
+/* Removing a pair removes only it; removing a material removes its pairs. */
+static void test_pair_removal(void **state) {
+  (void)state;
+  const char *path = db_path();
+  unlink(path);
+  vl_db *db = open_new(path);
+  vl_error err;
+  const char *fluids[3] = {"water", "glycerol", "model-1e-3"};
+  for (int k = 0; k < 3; k++) {
+    vl_db_pair p = sample_pair("sbr-unfilled", "paper-0.5um", fluids[k]);
+    assert_int_equal(vl_db_pair_add(db, &p, &err), VL_OK);
+  }
+  vl_db_pair p = sample_pair("sbr-filled", "paper-1um", "water");
+  assert_int_equal(vl_db_pair_add(db, &p, &err), VL_OK);
+  size_t n = 0;
+  assert_int_equal(vl_db_pair_count(db, "fluid", "water", &n, &err), VL_OK);
+  assert_int_equal(n, 2);
+  assert_int_equal(vl_db_pair_remove(db, "sbr-unfilled", "paper-0.5um", "model-1e-3", &err), VL_OK);
+  assert_true(sql_num(path, "SELECT count(*) FROM pair") == 3.0);
+  assert_int_equal(vl_db_fluid_remove(db, "glycerol", &err), VL_OK);
+  assert_true(sql_num(path, "SELECT count(*) FROM pair") == 2.0);
+  assert_int_equal(vl_db_compound_remove(db, "sbr-unfilled", &err), VL_OK);
+  assert_true(sql_num(path, "SELECT count(*) FROM pair") == 1.0);
+  assert_int_equal(vl_db_surface_remove(db, "paper-1um", &err), VL_OK);
+  assert_true(sql_num(path, "SELECT count(*) FROM pair") == 0.0);
+  assert_int_equal(vl_db_pair_count(db, "compound", "sbr-filled", &n, &err), VL_OK);
+  assert_int_equal(n, 0);
+  vl_db_close(db);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_create_and_seed),
@@ -710,6 +875,10 @@ int main(void) {
       cmocka_unit_test(test_readonly_file),
       cmocka_unit_test(test_default_path),
       cmocka_unit_test(test_create_failure),
+      cmocka_unit_test(test_pair_migration),
+      cmocka_unit_test(test_pair_roundtrip),
+      cmocka_unit_test(test_pair_refused),
+      cmocka_unit_test(test_pair_removal),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

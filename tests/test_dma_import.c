@@ -21,6 +21,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "dma_private.h"
 #include "vl_test_hn.h"
 #include "vl_test_util.h"
 
@@ -32,6 +33,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "database_internal.h"
 #include "viscolube/database.h"
 #include "viscolube/dma.h"
 
@@ -261,12 +263,158 @@ static void test_hn_wlf_isotherms(void **state) {
   /* overlaps of 1.5 decades and more: nothing bridged, nothing to warn of */
   assert_int_equal(m.n_extrapolated, 0);
   assert_int_equal(m.n_warnings, 0);
-  assert_string_equal(m.notes, "");
+  assert_null(strstr(m.notes, "warning: "));
   /* the master curve spans the measured 3 decades plus the shifts */
   double span = log10(m.fit.omega_max_rad_s / m.fit.omega_min_rad_s);
   assert_true(fabs(span - (3.0 + wlf(&unfilled, 0.0) - wlf(&unfilled, 100.0))) < 0.1);
   vl_measured_free(&m);
   free(txt);
+}
+
+/* ---- what an import says about its data (dma_quality.c) ------------------- */
+
+/* Isotherms t_lo, t_lo + 5, ... (n_t) of `unfilled` at 0.1..100 Hz with
+ * 1 % noise, as isotherm_text, with two faults a user's file may have:
+ * the isotherms from t_step_c on have moduli `factor` times too high (a
+ * second run on a specimen that differs), and E'' at the top frequency of
+ * every isotherm is `top_loss` times too high (an instrument resonance). */
+static char *faulty_text(double t_lo, int n_t, double t_step_c, double factor, double top_loss) {
+  text t = {0};
+  unsigned seed = 12345; /* as isotherm_text: this noise superposes on the flat plateau */
+  add(&t, "f,E_stor,E_loss,T\nHz,Pa,Pa,C\n");
+  for (int j = 0; j < n_t; j++) {
+    double tc = t_lo + 5.0 * j, at = pow(10.0, wlf(&unfilled, tc));
+    for (int k = 0; k <= 12; k++) {
+      double f = pow(10.0, -1.0 + 0.25 * k), n1 = 0.0, n2 = 0.0;
+      double complex e = hn(&unfilled, 2.0 * PI * f * at);
+      for (int q = 0; q < 12; q++) {
+        seed = seed * 1103515245u + 12345u;
+        n1 += (double)(seed >> 8) / 16777216.0 - 0.5;
+        seed = seed * 1103515245u + 12345u;
+        n2 += (double)(seed >> 8) / 16777216.0 - 0.5;
+      }
+      double v = tc >= t_step_c ? factor : 1.0, l = k == 12 ? top_loss : 1.0;
+      add(&t, "%.17g,%.17g,%.17g,%.17g\n", f, v * creal(e) * (1.0 + 0.01 * n1),
+          v * l * cimag(e) * (1.0 + 0.01 * n2), tc);
+    }
+  }
+  return t.s;
+}
+
+static size_t count_warnings(const char *notes, const char *what) {
+  size_t c = 0;
+  for (const char *l = notes; (l = strstr(l, "warning: ")) != NULL; l++) {
+    const char *end = strchr(l, '\n');
+    const char *hit = strstr(l, what);
+    if (hit && (!end || hit < end)) c++;
+  }
+  return c;
+}
+
+/* A clean synthetic compound: the ranges as generated, every join and
+ * every top of window within the thresholds, Einf and E0 measured:
+ * notes, no warnings. */
+static void test_quality_clean(void **state) {
+  (void)state;
+  char *txt = faulty_text(0.0, 21, INFINITY, 1.0, 1.0);
+  vl_measured m = import_ok(txt, NULL);
+  fprintf(stderr, "clean: %s", m.notes);
+  assert_int_equal(m.n_warnings, 0);
+  assert_null(strstr(m.notes, "warning: "));
+  assert_non_null(strstr(m.notes, "measured: E' "));
+  assert_non_null(strstr(m.notes, "0.1 to 100 Hz, 0 to 100 C (21 isotherms)"));
+  assert_true(fabs(m.omega_min_rad_s - 0.2 * PI) < 1e-9 &&
+              fabs(m.omega_max_rad_s - 200 * PI) < 1e-6);
+  assert_true(m.temperature_min_c == 0.0 && m.temperature_max_c == 100.0);
+  for (size_t g = 0; g + 1 < m.n_isotherms; g++) {
+    assert_true(m.iso_join_rms[g] < VL_DMA_WARN_JOIN_RMS / 2);
+    assert_true(fabs(m.iso_join_step[g]) < VL_DMA_WARN_JOIN_STEP / 2);
+  }
+  for (size_t g = 0; g < m.n_isotherms; g++)
+    assert_true(m.iso_tan_delta_rise[g] < VL_DMA_WARN_TAN_RISE);
+  assert_true(m.prony.e_inf_pa < VL_DMA_WARN_EXTRAPOLATION * m.storage_max_pa);
+  vl_measured_free(&m);
+  free(txt);
+}
+
+/* Two runs whose moduli differ by 25 % from 50 C on (in the transition,
+ * where a horizontal shift cannot absorb it): the overlap of 45 and 50 C
+ * misfits and is said so with both temperatures; the other pairs join.
+ * (The other kind, a step off the WLF law, is the real EPDM's below.) */
+static void test_quality_two_runs(void **state) {
+  (void)state;
+  char *txt = faulty_text(0.0, 21, 50.0, 1.25, 1.0);
+  vl_measured m = import_ok(txt, NULL);
+  fprintf(stderr, "two runs: %s", m.notes);
+  assert_int_equal(count_warnings(m.notes, "do not join"), 1);
+  assert_non_null(strstr(m.notes, "isotherms at 45 and 50 C do not join"));
+  for (size_t g = 0; g + 1 < m.n_isotherms; g++)
+    if (g != 9)
+      assert_true(m.iso_join_rms[g] <= VL_DMA_WARN_JOIN_RMS &&
+                  fabs(m.iso_join_step[g]) <= VL_DMA_WARN_JOIN_STEP);
+  assert_true(m.iso_join_rms[9] > VL_DMA_WARN_JOIN_RMS);
+  vl_measured_free(&m);
+  free(txt);
+}
+
+/* E'' 30 % high at 100 Hz in every isotherm: one warning listing them,
+ * with the frequency; the same data without it: none. */
+static void test_quality_resonance(void **state) {
+  (void)state;
+  char *txt = faulty_text(0.0, 21, INFINITY, 1.0, 1.3);
+  vl_measured m = import_ok(txt, NULL);
+  fprintf(stderr, "resonance: %s", m.notes);
+  assert_int_equal(count_warnings(m.notes, "tan delta rises at the top"), 1);
+  assert_non_null(strstr(m.notes, "in 21 of 21 isotherms: 0 C (+"));
+  for (size_t g = 0; g < m.n_isotherms; g++)
+    assert_true(fabs(m.iso_tan_delta_rise[g] - log10(1.3)) < 0.05);
+  vl_measured_free(&m);
+  free(txt);
+}
+
+/* Only the rubbery side (60..95 C: E' below 1/100 of Einf): the glassy
+ * limit is extrapolated and said so with the measured maximum. */
+static void test_quality_extrapolated(void **state) {
+  (void)state;
+  char *txt = faulty_text(60.0, 8, INFINITY, 1.0, 1.0);
+  vl_measured m = import_ok(txt, NULL);
+  fprintf(stderr, "rubbery only: Einf %.3g Pa, E' max %.3g Pa\n%s", m.prony.e_inf_pa,
+          m.storage_max_pa, m.notes);
+  assert_int_equal(count_warnings(m.notes, "Einf"), 1);
+  assert_non_null(strstr(m.notes, "times the largest measured E'"));
+  vl_measured_free(&m);
+  free(txt);
+}
+
+/* The real EPDM export (../shared/data/real; skipped when absent): the
+ * 18/25 C join of its two runs, the tan delta rise at 100 Hz and its
+ * extrapolated Einf are all warned of. */
+static void test_quality_real_epdm(void **state) {
+  (void)state;
+  char path[4400];
+  snprintf(path, sizeof path, "%s/../shared/data/real/marcusni96_epdm_70_tf_015p.csv",
+           vl_test_source_path("."));
+  if (access(path, R_OK) != 0)
+    snprintf(path, sizeof path, "%s/../../shared/data/real/marcusni96_epdm_70_tf_015p.csv",
+             vl_test_source_path("."));
+  if (access(path, R_OK) != 0) {
+    fprintf(stderr,
+            "SKIPPED: no ../shared/data/real/marcusni96_epdm_70_tf_015p.csv beside %s: "
+            "the real EPDM export is not tested\n",
+            vl_test_source_path("."));
+    skip();
+  }
+  vl_measured m;
+  vl_error err;
+  if (vl_measured_read_file(path, NULL, &m, &err) != VL_OK) fail_msg("%s: %s", path, err.msg);
+  fprintf(stderr, "EPDM: %s", m.notes);
+  assert_int_equal(count_warnings(m.notes, "isotherms at 18.4 and 25.2 C do not join"), 1);
+  assert_int_equal(count_warnings(m.notes, "do not join"), 1);
+  assert_int_equal(count_warnings(m.notes, "tan delta rises at the top"), 1);
+  assert_non_null(strstr(m.notes, "(up to 100 Hz)"));
+  assert_int_equal(count_warnings(m.notes, "the fitted Einf"), 1);
+  assert_non_null(strstr(m.notes, "measured: E' 7.03e+06 to 3.38e+07 Pa, 0.01 to 100 Hz"));
+  vl_measured_free(&m);
 }
 
 /* ---- the shipped compounds -------------------------------------------- */
@@ -876,6 +1024,11 @@ int main(void) {
       cmocka_unit_test(test_isotherm_units_same_fit),
       cmocka_unit_test(test_known_prony_compound),
       cmocka_unit_test(test_hn_wlf_isotherms),
+      cmocka_unit_test(test_quality_clean),
+      cmocka_unit_test(test_quality_two_runs),
+      cmocka_unit_test(test_quality_resonance),
+      cmocka_unit_test(test_quality_extrapolated),
+      cmocka_unit_test(test_quality_real_epdm),
       cmocka_unit_test(test_shipped_compounds),
       cmocka_unit_test(test_pyvisco_raw),
       cmocka_unit_test(test_pyvisco_master),

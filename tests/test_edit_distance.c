@@ -1,4 +1,4 @@
-/* The edit distance behind every "did you mean" hint (src/edit_distance.h,
+/* The edit distance behind every "did you mean" hint (include/viscolube/edit_distance.h,
  * private: included by path), against distances worked out by hand. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -8,7 +8,7 @@
 
 #include <string.h>
 
-#include "edit_distance.h"
+#include "viscolube/edit_distance.h"
 
 static size_t d(const char *a, const char *b, bool t) {
   return vl_edit_distance(a, strlen(a), b, strlen(b), t);

@@ -15,6 +15,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "assumptions_internal.h"
+#include "rheology_internal.h"
 #include "viscolube/assumptions.h"
 #include "viscolube/rheology.h"
 #include "viscolube/roughness.h"

@@ -12,6 +12,8 @@
 #include <stdio.h>
 
 #include "hunter.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 #include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"

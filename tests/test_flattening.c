@@ -22,6 +22,8 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
+#include "flattening_internal.h"
+#include "roughness_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/database.h"
 #include "viscolube/flattening.h"

@@ -25,6 +25,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "flow_factors_emt.h"
 #include "viscolube/database.h"
 #include "viscolube/flow_factors.h"
 

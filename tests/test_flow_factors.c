@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "flow_factors_internal.h"
 #include "viscolube/flow_factors.h"
 #include "vl_test_util.h"
 

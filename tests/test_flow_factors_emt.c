@@ -30,6 +30,7 @@
 
 #include "blob.h"
 #include "flow_factors_emt.h"
+#include "persson_internal.h"
 #include "viscolube/persson.h"
 
 /* The seed surface of FLOW_FACTORS.md. */

@@ -16,6 +16,7 @@
 
 #include "contact_test.h"
 #include "kernel.h"
+#include "rheology_internal.h"
 #include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"

@@ -12,6 +12,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "output_internal.h"
 #include "viscolube/output.h"
 #include "vl_test_util.h"
 
@@ -68,7 +69,7 @@ static void test_csv_failed_point(void **state) {
   (void)state;
   vl_point p[2];
   two_points(p);
-  vl_curve_meta meta = {1e-3, 0.0, 1e-3, NULL, 0.0};
+  vl_curve_meta meta = {1e-3, 0.0, 1e-3, NULL, 0.0, NULL};
   char *buf = NULL;
   size_t size = 0;
   FILE *f = open_memstream(&buf, &size);
@@ -106,7 +107,7 @@ static void test_json_failed_point(void **state) {
   (void)state;
   vl_point p[2];
   two_points(p);
-  vl_curve_meta meta = {1e-3, 0.0, 1e-3, NULL, 0.0};
+  vl_curve_meta meta = {1e-3, 0.0, 1e-3, NULL, 0.0, NULL};
   char *buf = NULL;
   size_t size = 0;
   FILE *f = open_memstream(&buf, &size);

@@ -23,6 +23,7 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_math.h>
 
+#include "persson_internal.h"
 #include "viscolube/persson.h"
 
 #define HRMS 3e-6 /* the paper's surface */

@@ -31,6 +31,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "persson_internal.h"
 #include "viscolube/database.h"
 #include "viscolube/persson.h"
 

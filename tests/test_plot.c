@@ -159,7 +159,7 @@ static const char *path_in(const char *dir, const char *name) {
 /* ---- data --------------------------------------------------------------- */
 
 #define NPTS 25
-static const vl_curve_meta META = {1e-3, 0.1, 1.6e-3, NULL, 0.0};
+static const vl_curve_meta META = {1e-3, 0.1, 1.6e-3, NULL, 0.0, NULL};
 
 /* A Stribeck-like curve (values invented, shapes as in a wet sweep):
  * v0 log-spaced 1e-6 .. 1e2 m/s, every component non-zero. */
@@ -250,7 +250,7 @@ static void test_stribeck_files_and_series(void **state) {
     pts[i].mu -= pts[i].mu_Rf + pts[i].mu_Sf;
     pts[i].mu_Rf = pts[i].mu_Sf = 0;
   }
-  vl_curve_meta dry = {0, 0.1, 1.6e-3, NULL, 0.0};
+  vl_curve_meta dry = {0, 0.1, 1.6e-3, NULL, 0.0, NULL};
   assert_int_equal(vl_plot_stribeck(path_in(dir, "dry"), NPTS, pts, &dry, VL_SWEEP_DEBORAH, 0, NULL,
                                     NULL, &r, &err),
                    VL_OK);
@@ -502,7 +502,7 @@ static void test_bad_input(void **state) {
   vl_point pts[NPTS];
   make_curve(pts);
   vl_error err = {{0}};
-  vl_curve_meta no_eta = {0, 0.1, 1.6e-3, NULL, 0.0};
+  vl_curve_meta no_eta = {0, 0.1, 1.6e-3, NULL, 0.0, NULL};
   assert_int_equal(
       vl_plot_stribeck(path_in(dir, "x"), 0, pts, &META, VL_SWEEP_V0, 0, NULL, NULL, NULL, &err),
       VL_EINPUT);
@@ -557,7 +557,8 @@ static void test_cli_run_plot(void **state) {
                             "fields_at = 1e-6, 1e-3\n"
                             "[effects]\nviscoelastic = on\nroughness = on\nfluid = on\n"
                             "solid_shear = on\nflow_factors = patir-cheng\n"
-                            "[numerics]\ngrid = 64\ndomain_a0 = -3, 1.6\n");
+                            /* coarse cells for speed: a target they meet */
+                            "[numerics]\ngrid = 64\ndomain_a0 = -3, 1.6\ntarget_error = 0.5\n");
   /* --quiet: the scene's model-validity warnings are not PLplot's output */
   snprintf(args, sizeof args, "--quiet run %s --out %s --plot", scene, out_dir);
   char *out = NULL, *errs = NULL;

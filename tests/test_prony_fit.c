@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "prony_fit_internal.h"
 #include "viscolube/prony_fit.h"
 
 /* E' and E'' of the creep form in the DMA convention:

@@ -16,6 +16,7 @@
 #include <gsl/gsl_integration.h>
 #include <gsl/gsl_math.h>
 
+#include "roughness_internal.h"
 #include "viscolube/roughness.h"
 
 static gsl_integration_workspace *g_ws;

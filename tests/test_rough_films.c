@@ -134,18 +134,32 @@ static void test_wiper_like_lifted(void **state) {
   s.tab = vl_test_paper_surface(1e-8, &s.psd);
   vl_contact_config cfg;
   wiper_config(&cfg, s.tab);
-  double v[] = {1e-3, 3e-3};
-  vl_point pt[2];
+  /* 1 mm/s alone: its film collapses on every cell layout the sweep tries
+   * at that speed, and no lifted neighbour is there to reach it from (the
+   * recovery from one is measured on the wiper of bench/rough/, 0.48 ->
+   * 0.092; here 3 mm/s is itself 110 % off and costs 45 s) */
+  double v[] = {1e-3};
+  vl_point pt[1];
   vl_error err;
   vl_auto_options o = {0.0, -1, false};
-  if (vl_sweep_run_auto(&cfg, &o, 2, v, pt, NULL, NULL, NULL, &err) != VL_OK)
+  vl_sweep_stats st;
+  if (vl_sweep_run_auto(&cfg, &o, 1, v, pt, NULL, NULL, &st, &err) != VL_OK)
     fail_msg("automatic sweep: %s", err.msg);
-  for (size_t i = 0; i < 2; i++) {
+  print_message("%.2f s, %ld Newton iterations, %ld fresh starts, %ld recovered below\n", st.seconds,
+                (long)st.newton_iterations, (long)st.fresh_starts, (long)st.recovered_below);
+  for (size_t i = 0; i < 1; i++) {
     print_message("%g m/s: mu %.5g u_min %.3g m fluid %.3f estimate %.3g warnings \"%s\"\n", v[i],
                   pt[i].mu, pt[i].u_min_m, pt[i].fluid_load_fraction, pt[i].error_estimate,
                   pt[i].warnings);
+  }
+  for (size_t i = 0; i < 1; i++) {
     assert_true(pt[i].converged);
-    assert_true(isfinite(pt[i].error_estimate) || strstr(pt[i].warnings, "no estimate"));
+    /* an estimate, or a point marked as having none (a collapsed film) */
+    if (!isfinite(pt[i].error_estimate)) {
+      assert_int_equal(pt[i].accuracy, VL_ACCURACY_NO_ESTIMATE);
+      assert_true(vl_point_unreliable(&pt[i]));
+      assert_true(pt[i].u_min_m > 0.0 || strstr(pt[i].warnings, "collapsed film"));
+    }
     if (pt[i].fluid_load_fraction >= 0.01 && pt[i].error_estimate > 0.01)
       assert_non_null(strstr(pt[i].warnings, "error estimate"));
   }

@@ -285,6 +285,64 @@ static void test_sigma_without_solid_shear(void **state) {
   assert_true(g_scene.effects.solid_shear && g_scene.sigma_s_pa == 2e6);
 }
 
+/* [contact] moving: rubber (the default, the paper's) or counterface (a seal:
+ * the rubber at rest, docs/MODEL.md section 11); a bad word and a deborah
+ * sweep (the memory a rubber at rest has not) are refused at their lines. */
+static void test_moving(void **state) {
+  (void)state;
+  parse_ok(BASE);
+  assert_int_equal(g_scene.moving, VL_MOVING_RUBBER);
+  const char *v0 = edit(BASE, "quantity = deborah", "quantity = v0");
+  parse_ok(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = counterface"));
+  assert_int_equal(g_scene.moving, VL_MOVING_COUNTERFACE);
+  parse_ok(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = rubber"));
+  assert_int_equal(g_scene.moving, VL_MOVING_RUBBER);
+  parse_fails(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = rod"), 9,
+              "[contact] moving", "expected rubber or counterface, got 'rod'");
+  parse_fails(edit(BASE, "load_n_per_m = 1000", "load_n_per_m = 1000\nmoving = counterface"), 11,
+              "[sweep] quantity", "moving = rubber (line 9");
+  parse_fails(edit(v0, "radius_m = 0.01", "radius_m = 0.01\nmovng = rubber"), 8, "movng",
+              "did you mean 'moving'?");
+}
+
+/* [contact] sealed_pressure_pa and [seal] (docs/MODEL.md section 12): a
+ * seal's strokes need a fluid and a moving counter-surface; the rod's
+ * diameter and the stroke length go together. Errors name their lines. */
+static void test_seal_keys(void **state) {
+  (void)state;
+  /* copies: edit() reuses four buffers */
+  static char v0[2048], wet[2048], seal[2048], text[4096];
+  snprintf(v0, sizeof v0, "%s", edit(BASE, "quantity = deborah", "quantity = v0"));
+  snprintf(wet, sizeof wet, "%s",
+           edit(edit(v0, "compound = model-rubber", "compound = model-rubber\nfluid = f"),
+                "viscoelastic = on", "viscoelastic = on\nfluid = on"));
+  snprintf(seal, sizeof seal, "%s",
+           edit(wet, "load_n_per_m = 1000",
+                "load_n_per_m = 1000\nmoving = counterface\nsealed_pressure_pa = 1e5"));
+  snprintf(text, sizeof text,
+           "%s[seal]\nstroke = both\nrod_diameter_m = 0.02\n"
+           "stroke_length_m = 0.1\n",
+           seal);
+  parse_ok(text);
+  assert_int_equal(g_scene.stroke, VL_STROKE_BOTH);
+  assert_true(g_scene.sealed_pressure_pa == 1e5 && g_scene.rod_diameter_m == 0.02 &&
+              g_scene.stroke_length_m == 0.1);
+  snprintf(text, sizeof text, "%s[seal]\nstroke = sideways\n", seal);
+  parse_fails(text, 23, "[seal] stroke", "expected out, in or both");
+  snprintf(text, sizeof text, "%s[seal]\nstroke = in\nrod_diameter_m = 0.02\n", seal);
+  parse_fails(text, 24, "[seal] rod_diameter_m", "both rod_diameter_m and stroke_length_m");
+  snprintf(text, sizeof text, "%s[seal]\nstroke_length_m = 0.1\n", seal);
+  parse_fails(text, 23, "[seal] stroke_length_m", "needs [seal] stroke");
+  snprintf(text, sizeof text, "%s[seal]\nstroke = out\n", wet);
+  parse_fails(text, 21, "[seal] stroke", "moving = counterface");
+  parse_fails(edit(v0, "load_n_per_m = 1000", "load_n_per_m = 1000\nsealed_pressure_pa = 1"), 9,
+              "[contact] sealed_pressure_pa", "fluid = on");
+  parse_fails(edit(wet, "load_n_per_m = 1000", "load_n_per_m = 1000\nsealed_pressure_pa = -1"), 10,
+              "[contact] sealed_pressure_pa", ">= 0");
+  parse_ok(wet);
+  assert_int_equal(g_scene.stroke, VL_STROKE_NONE);
+}
+
 /* fields_at at the ends of [from, to] and a single sweep point. */
 static void test_sweep_edges(void **state) {
   (void)state;
@@ -297,6 +355,22 @@ static void test_sweep_edges(void **state) {
   assert_int_equal(g_scene.n_fields_at, VL_FIELDS_AT_MAX);
   parse_ok(edit(BASE, "points = 7", "points = 1"));
   assert_int_equal(g_scene.points, 1);
+}
+
+/* [sweep] direction: up by default, down, both; a bad word, a single
+ * point, and both ways with both strokes refused, naming the line. */
+static void test_sweep_direction(void **state) {
+  (void)state;
+  parse_ok(BASE);
+  assert_int_equal(g_scene.direction, VL_DIRECTION_UP);
+  parse_ok(edit(BASE, "points = 7", "points = 7\ndirection = down"));
+  assert_int_equal(g_scene.direction, VL_DIRECTION_DOWN);
+  parse_ok(edit(BASE, "points = 7", "points = 7\ndirection = both"));
+  assert_int_equal(g_scene.direction, VL_DIRECTION_BOTH);
+  parse_fails(edit(BASE, "points = 7", "points = 7\ndirection = sideways"), 14,
+              "[sweep] direction", "expected up, down or both, got 'sideways'");
+  parse_fails(edit(BASE, "points = 7", "points = 1\ndirection = down"), 14, "[sweep] direction",
+              "points >= 2");
 }
 
 /* Every shipped case parses, to the values its text holds. */
@@ -554,8 +628,10 @@ static void test_inconsistent_effects(void **state) {
               11, "[sweep] quantity", "fluid = on");
   parse_fails(edit(BASE, fx, "viscoelastic = off"), 10, "[sweep] quantity",
               "viscoelastic = on (line 15 sets it off)");
-  parse_fails(edit(BASE, fx, "viscoelastic = on\nsolid_shear = on"), 16, "[effects] solid_shear",
-              "sigma_s_pa > 0");
+  /* solid shear without the key: the stored pair's law, else the seed's 1 MPa
+   * (issue 34; refused before) */
+  parse_ok(edit(BASE, fx, "viscoelastic = on\nsolid_shear = on"));
+  assert_true(g_scene.sigma_s_pa == VL_SCENE_SIGMA_S_PA && !g_scene.sigma_s_given);
   parse_fails(edit(edit(BASE, fx, "viscoelastic = on\nsolid_shear = on"), "load_n_per_m = 1000",
                    "load_n_per_m = 1000\nsigma_s_pa = 0"),
               17, "[effects] solid_shear", "sigma_s_pa > 0");
@@ -717,6 +793,9 @@ int main(void) {
       cmocka_unit_test(test_elastic_modulus),
       cmocka_unit_test(test_sigma_without_solid_shear),
       cmocka_unit_test(test_sweep_edges),
+      cmocka_unit_test(test_sweep_direction),
+      cmocka_unit_test(test_moving),
+      cmocka_unit_test(test_seal_keys),
       cmocka_unit_test(test_shipped_cases),
       cmocka_unit_test(test_unknown_section_and_key),
       cmocka_unit_test(test_bad_numbers),

@@ -14,6 +14,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "study_private.h"
 #include "viscolube.h"
 #include "vl_test_util.h"
 
@@ -48,6 +49,7 @@ static const char *const STUDY = "; test study\n"
                                  "solid_shear = on\n"
                                  "[numerics]\n"
                                  "grid = 300\n"
+                                 "target_error = 0.5\n"
                                  "grid_growth = 1.1\n"
                                  "domain_a0 = -12, 1.6\n";
 #define N_TASKS 8

@@ -21,6 +21,7 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "topography_private.h"
 #include "vl_test_util.h"
 
 #include <fftw3.h> /* before complex.h: fftw_complex stays double[2] */

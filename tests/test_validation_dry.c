@@ -15,7 +15,9 @@
 
 #include "contact_test.h"
 #include "hunter.h"
+#include "persson_internal.h"
 #include "persson_linear.h"
+#include "rheology_internal.h"
 #include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/persson.h"

@@ -18,7 +18,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "contact_private.h"
 #include "contact_test.h"
+#include "flow_factors_emt.h"
+#include "flow_factors_internal.h"
+#include "rheology_internal.h"
 #include "sweep_internal.h"
 #include "viscolube/contact.h"
 #include "viscolube/sweep.h"

@@ -4,6 +4,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include "persson_internal.h"
+#include "rheology_internal.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
 

@@ -3,10 +3,11 @@
  * The model (docs/MODEL.md; the seed paper, Scaraggi & Persson) rests on
  * assumptions the solver does not enforce: it converges just as well
  * outside them, and its numbers are then only as good as the assumption.
- * vl_assumptions_check tests one operating point against each assumption
- * and appends a short warning per violated one to the point's warning
- * column. Thresholds are stated with each check below; they mark where an
- * assumption is clearly stretched, not a sharp validity limit.
+ * A simulation (simulation.h) tests every operating point against each
+ * assumption and appends a short warning per violated one to the point's
+ * warnings (vl_point.warnings, results.h). Thresholds are stated with
+ * each check below; they mark where an assumption is clearly stretched,
+ * not a sharp validity limit.
  *
  *   VL_ASSUME_RMS_SLOPE       rms slope sqrt(2 pi \int q^3 C dq) > 1: Persson's
  *                             contact mechanics and the linear elasticity of
@@ -53,20 +54,15 @@
  *
  *   VL_ASSUME_MEASURED_WINDOW a compound fitted to measured data probed more
  *                             than a decade outside the frequencies its
- *                             master curve covers (vl_assumptions_check_window):
- *                             the modulus there is the Prony series'
- *                             extrapolation, not a measurement.
+ *                             master curve covers: the modulus there is
+ *                             the Prony series' extrapolation, not a
+ *                             measurement.
  *
  * A point that did not converge (all zeros, flow quantities unknown) is
  * checked only on what the configuration and speed decide: rms slope,
  * homogenisation and the Prony window. */
 #ifndef VISCOLUBE_ASSUMPTIONS_H
 #define VISCOLUBE_ASSUMPTIONS_H
-
-#include <stddef.h>
-
-#include "viscolube/contact.h"
-#include "viscolube/persson.h"
 
 typedef enum {
   VL_ASSUME_RMS_SLOPE = 1u << 0,
@@ -81,38 +77,5 @@ typedef enum {
   VL_ASSUME_FLOW_FACTORS = 1u << 9,
   VL_ASSUME_MEASURED_WINDOW = 1u << 10
 } vl_assumption;
-
-/* Checks the point pt, solved with configuration cfg, against the
- * assumptions above. psd is the surface behind cfg->roughness, or NULL
- * (smooth, or not at hand: the rms slope then comes from the Persson table,
- * 8 vl_persson_g = 2 pi \int q^3 C dq, and the homogenisation check, which
- * needs q0, is skipped). Appends one short warning per violated assumption
- * to the NUL-terminated string warnings (capacity cap bytes, may already
- * hold warnings), ';'-separated as vl_point.warnings; a warning already
- * present is not repeated, and one that does not fit whole is left out
- * (never cut). Warnings hold no commas or quotes (they go into CSV and
- * JSON columns). warnings may be pt->warnings. Returns the mask of violated
- * assumptions (vl_assumption bits), including any left out for space. */
-unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, const vl_point *pt,
-                              char *warnings, size_t cap);
-
-/* The frequencies at which the sliding point pt excites the rubber against
- * the measured window [omega_min_rad_s, omega_max_rad_s] of its compound's
- * master curve, at the temperature the contact uses: the asperity
- * frequencies v0 q over the surface's wavevectors q0..q1 (psd; none when
- * NULL) and the contact frequency v0/a, a half the contact width of a
- * converged point, else the Hertz-like a_H of vl_asperity_state. Each that
- * lies more than a decade outside the window (a factor VL_WINDOW_MARGIN)
- * appends one warning as vl_assumptions_check does. Nothing for v0 <= 0 or
- * an invalid window (a Prony series not fitted to data). Returns
- * VL_ASSUME_MEASURED_WINDOW when it warned, else 0. */
-#define VL_WINDOW_MARGIN 10.0
-unsigned vl_assumptions_check_window(const vl_contact_config *cfg, const vl_psd *psd,
-                                     const vl_point *pt, double omega_min_rad_s,
-                                     double omega_max_rad_s, char *warnings, size_t cap);
-
-/* "rms slope", "homogenisation", ... : a short name for one bit (for
- * summaries); "unknown" for anything else. */
-const char *vl_assumption_name(unsigned bit);
 
 #endif

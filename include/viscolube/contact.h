@@ -46,6 +46,7 @@
 #include "viscolube/persson.h"
 #include "viscolube/results.h"
 #include "viscolube/rheology.h"
+#include "viscolube/shear_law.h"
 #include "viscolube/status.h"
 
 typedef enum {
@@ -141,11 +142,41 @@ typedef enum {
 #define VL_WET_ROUGH_GRID 2928 /* 97.6 a0 / (a0/30) */
 #define VL_WET_GRID_GROWTH 1.05
 
+/* Which body moves through the contact (docs/MODEL.md section 11). Both are
+ * solved in the frame of the contact, the fluid entering from x < 0. */
+typedef enum {
+  /* The paper's: the rubber (and the fluid it drags) moves at +v0 under the
+   * rigid curved body; its macroscopic deformation carries the Prony memory
+   * (rolling friction mu_Rc, mu_Rf); friction is the force on the rigid body.
+   * The default: zero in a zeroed configuration. */
+  VL_MOVING_RUBBER = 0,
+  /* Seals, wipers: the rubber part (its profile f(x)) is at rest and a flat
+   * rigid rough counter-surface slides under it at +v0. The macroscopic
+   * deformation is static: elastic with the relaxed modulus (no memory, no
+   * Prony kernel); the asperity state is as with VL_MOVING_RUBBER (the
+   * counter-surface's asperities sweep the rubber at v0: |Er(wH)|); the
+   * Couette flux is the counter-surface's; the friction is the tangential
+   * force on the flat counter-surface, mu = mu_Sc + mu_Sf, and the rolling
+   * terms do not apply (vl_point.rolling_na). */
+  VL_MOVING_COUNTERFACE
+} vl_moving;
+
+/* Largest slope of a tabulated profile in the pressure zone before a point
+ * warns (the half-space model of docs/MODEL.md section 3 wants small
+ * slopes), in radians. */
+#define VL_PROFILE_SLOPE_MAX 0.3
+
 typedef struct {
-  vl_prony rubber; /* n_terms = 0: elastic with E = e_inf_pa */
+  vl_prony rubber;  /* n_terms = 0: elastic with E = e_inf_pa */
+  vl_moving moving; /* VL_MOVING_RUBBER (0) or VL_MOVING_COUNTERFACE */
   double radius_m;
   double load_n_per_m;
-  double sigma_s_pa;                /* shear stress in the real contact area; 0 = off */
+  double sigma_s_pa; /* shear stress in the real contact area; 0 = off */
+  /* sigma_s as a law of the sliding speed v0 (shear_law.h, at the
+   * contact's temperature and viscosity), used instead of sigma_s_pa when
+   * not NULL; not owned, must outlive the contact. sigma_s does not enter
+   * the solution, only mu_Sc = sigma_s(v0) (1/fN) int A/A0 dx. */
+  const vl_shear_law *shear_law;
   const vl_persson *roughness;      /* NULL = smooth (hard contact); not owned */
   double eta_pa_s;                  /* fluid viscosity; 0 = dry (no fluid unknowns at all) */
   vl_flow_factor_kind flow_factors; /* with roughness; smooth surfaces use smooth */
@@ -191,6 +222,25 @@ typedef struct {
    * sets as it solves), so nothing outside it changes under it. */
   const vl_flattening_config *flattening;
   const vl_psd *flattening_psd;
+  /* Fluid pressure at the inlet end (x_min) and at the outlet end (x_max) of
+   * the domain (Pa, >= 0, wet contacts only; 0 and 0: the paper's flooded
+   * contact). A seal's sealed pressure on its oil side (docs/MODEL.md
+   * section 12): the rubber's surface on that side of the tip x = 0 is
+   * bathed in it, so the deformation and the load balance count the fluid
+   * pressure above it there (the ambient: p_inlet_pa for x < 0, p_outlet_pa
+   * for x > 0), and fN is the lip's force above that ambient. */
+  double p_inlet_pa, p_outlet_pa;
+  /* The rubber's profile f(x) (docs/MODEL.md section 13; NULL: the
+   * cylinder's parabola x^2/(2 R)): profile_points >= 3 points (x_m, z_m),
+   * any order, distinct x, the height above the counter-surface of the
+   * undeformed rubber. Shifted so that its lowest point sits at x = 0, z = 0
+   * (the tip), interpolated by cubic Hermite with three-point slopes (exact
+   * for a parabola), continued straight beyond its ends. profile_mirror:
+   * f(-x) (an instroke). radius_m still sets the scales (a0, the domain):
+   * give the tip radius. Copied by vl_contact_create. */
+  const double *profile_x_m, *profile_z_m;
+  size_t profile_points;
+  bool profile_mirror;
 } vl_contact_config;
 
 /* Sets the numerics of cfg (grid, grid_growth, domain, tolerance,
@@ -225,39 +275,8 @@ void vl_contact_free(vl_contact *c);
  * returned (err says why); never NaN. */
 vl_status vl_contact_solve(vl_contact *c, double v0_m_s, vl_point *pt, vl_error *err);
 
-/* Changes the fluid viscosity of a wet contact (eta > 0; VL_EINPUT for a
- * contact created dry) and keeps the current state: the next
- * vl_contact_solve continues from it (continuation in viscosity). The limit
- * eta -> 0 of a smooth film is the dry contact, reached this way on a
- * fixed grid; a fresh start at small eta would have to find the thin film's
- * inlet and outlet zones from scratch. */
-vl_status vl_contact_set_viscosity(vl_contact *c, double eta_pa_s, vl_error *err);
-double vl_contact_viscosity(const vl_contact *c); /* Pa s */
-
-/* Continuation in viscosity at speed v0: solves at log-spaced viscosities
- * from the current one to eta_pa_s, steps at most a factor max_ratio (> 1),
- * each from the last converged state; a failed step is halved (in log eta)
- * up to 6 times. On success the contact holds the solution at eta_pa_s and
- * *pt reports it (iterations: the total); on failure the viscosity and
- * state are those of the last converged step, VL_ENOCONV (see err). */
-vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa_s,
-                                     double max_ratio, vl_point *pt, vl_error *err);
-
-/* Resets the internal state to the Hertz (relaxed) guess. */
-void vl_contact_reset(vl_contact *c);
-
 /* Copies the current fields (n = grid) into f (arrays allocated by caller). */
 void vl_contact_fields(const vl_contact *c, vl_fields *f);
-
-/* Hydrodynamic inlet length sqrt(2 R h) (m) of a smooth wet contact of cfg
- * at speed v0 > 0, with h the larger of Martin's rigid film
- * 4.894 eta (v0/2) R/fN and the isoviscous-elastic estimate
- * 2.32 (eta (v0/2) R/fN) g^0.8, g = fN/sqrt(eta (v0/2) E' R), E' = 2 Er
- * (relaxed). For sizing the domain (docs/MODEL.md section 9): the pressure of a
- * rigid cylinder spreads over several such lengths, and with the inlet end
- * X lengths upstream its film is short by about 1/(2 X^2) / (1/(4 Hc)),
- * Hc = 1.226 (0.6 % at X = 20). Reads rubber, radius, load, viscosity. */
-double vl_contact_inlet_length_m(const vl_contact_config *cfg, double v0_m_s);
 
 /* The test aids (Jacobian checks, face fluxes, influence coefficients,
  * cells, cost counters) are private: src/solver/contact_test.h. */

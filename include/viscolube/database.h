@@ -39,6 +39,7 @@
 #include "viscolube/fluid.h"
 #include "viscolube/persson.h"
 #include "viscolube/rheology.h"
+#include "viscolube/shear_law.h"
 #include "viscolube/status.h"
 
 #define VL_DB_NAME_MAX 64
@@ -121,9 +122,6 @@ const char *vl_db_path(const vl_db *db);
 
 /* Nonzero if db was opened read-only (file without write permission). */
 int vl_db_readonly(const vl_db *db);
-
-/* The schema version this program creates and understands. */
-int vl_db_schema_version(void);
 
 /* ---- compounds -------------------------------------------------------- */
 
@@ -230,9 +228,9 @@ vl_status vl_db_surface_list(vl_db *db, vl_db_surface **items, size_t *n, vl_err
  * in the database (table surface_persson, 0004_persson_cache.sql). psd must
  * be the surface's spectrum as vl_db_surface_get returned it.
  *
- * A stored table is used only if it passes vl_persson_deserialize's checks
+ * A stored table is used only if it passes every check of the stored blob
  * (format, checksum, PSD fingerprint, values): it then answers every query
- * bit for bit like a fresh vl_persson_build. Otherwise (absent, another
+ * bit for bit like a freshly built one. Otherwise (absent, another
  * format, corrupt, another PSD) the table is built and stored with INSERT
  * OR REPLACE in its own transaction. Storing is an optimisation: when it
  * fails (read-only file, locked by another program for more than a short
@@ -262,11 +260,11 @@ vl_status vl_db_flow_table(vl_db *db, const char *name, const vl_psd *psd, doubl
 vl_status vl_db_fluid_get(vl_db *db, const char *name, double *eta_pa_s, vl_error *err);
 
 /* Everything stored about fluid `name`, its viscosity law included (a
- * stored law that fails vl_viscosity_law_validate: VL_EDB). VL_ENOTFOUND. */
+ * stored law that is not valid, fluid.h: VL_EDB). VL_ENOTFOUND. */
 vl_status vl_db_fluid_info(vl_db *db, const char *name, vl_db_fluid *out, vl_error *err);
 
-/* Adds a fluid (viscosity > 0 and finite, tref finite, the law valid by
- * vl_viscosity_law_validate; a zeroed law is NONE). created_at is ignored.
+/* Adds a fluid (viscosity > 0 and finite, tref finite, the law valid for
+ * tref as fluid.h states; a zeroed law is NONE). created_at is ignored.
  * VL_EINPUT, VL_EEXIST, VL_EDB. */
 vl_status vl_db_fluid_add(vl_db *db, const vl_db_fluid *fluid, vl_error *err);
 
@@ -275,6 +273,62 @@ vl_status vl_db_fluid_remove(vl_db *db, const char *name, vl_error *err);
 
 /* All fluids sorted by name (caller free()s *items). */
 vl_status vl_db_fluid_list(vl_db *db, vl_db_fluid **items, size_t *n, vl_error *err);
+
+/* ---- pairs ------------------------------------------------------------ */
+
+/* A (compound, surface, fluid) pair: the law of the shear stress in its
+ * real contact area (shear_law.h) and where the numbers came from
+ * (0006_pairs.sql). A pair belongs to its three materials: removing one of
+ * them removes its pairs. */
+#define VL_DB_SOURCE_TYPED "typed"
+#define VL_DB_SOURCE_CALIBRATED "calibrated"
+#define VL_DB_FINGERPRINT_MAX 32
+typedef struct {
+  char compound[VL_DB_NAME_MAX], surface[VL_DB_NAME_MAX], fluid[VL_DB_NAME_MAX];
+  vl_shear_law law;
+  double ci95[VL_SHEAR_LAW_MAX_PARAMS]; /* half-widths of the 95 % intervals; NAN if unknown */
+  char source[16];                      /* VL_DB_SOURCE_TYPED or VL_DB_SOURCE_CALIBRATED */
+  char description[VL_DB_TEXT_MAX];
+  /* a calibration's measured curve and its conditions (typed: "", 0, NAN) */
+  char measured_file[VL_DB_TEXT_MAX];
+  char measured_fingerprint[VL_DB_FINGERPRINT_MAX]; /* vl_db_fingerprint_bytes of the file */
+  size_t n_points;
+  double load_n_per_m, radius_m, temperature_c; /* temperature NAN: materials at reference */
+  double rms_log10_mu;
+  char created_at[32]; /* ISO 8601 UTC, set by the database: the date of the calibration */
+} vl_db_pair;
+
+/* Adds pair (its three materials must exist: VL_ENOTFOUND naming the one
+ * missing, with did-you-mean). Checks the law (vl_shear_law_validate), the
+ * source, the texts and, for a calibrated pair, its fingerprint, points and
+ * conditions. created_at is ignored. VL_EINPUT, VL_ENOTFOUND, VL_EEXIST
+ * (remove the pair first), VL_EDB. */
+vl_status vl_db_pair_add(vl_db *db, const vl_db_pair *pair, vl_error *err);
+
+/* The pair of compound, surface and fluid. *found (may be NULL) tells
+ * whether it exists: with found given, a missing pair is VL_OK and
+ * *found false (the default path of friction, run, study); with NULL it is
+ * VL_ENOTFOUND naming the missing material or saying which pairs the
+ * compound has. A stored law that fails validation is VL_EDB. */
+vl_status vl_db_pair_get(vl_db *db, const char *compound, const char *surface, const char *fluid,
+                         vl_db_pair *out, bool *found, vl_error *err);
+
+/* Removes the pair. VL_ENOTFOUND (as vl_db_pair_get), VL_EDB. */
+vl_status vl_db_pair_remove(vl_db *db, const char *compound, const char *surface, const char *fluid,
+                            vl_error *err);
+
+/* All pairs sorted by compound, surface, fluid (caller free()s *items). */
+vl_status vl_db_pair_list(vl_db *db, vl_db_pair **items, size_t *n, vl_error *err);
+
+/* The number of pairs that name material `name` of table ("compound",
+ * "surface", "fluid"): what removing it would take along. VL_EINPUT for
+ * another table, VL_EDB. */
+vl_status vl_db_pair_count(vl_db *db, const char *table, const char *name, size_t *n,
+                           vl_error *err);
+
+/* "fnv1a64:" and 16 hex digits of the n bytes at data: the fingerprint of
+ * a measured file as a calibration stores it. */
+void vl_db_fingerprint_bytes(const void *data, size_t n, char out[VL_DB_FINGERPRINT_MAX]);
 
 /* ---- helpers ---------------------------------------------------------- */
 
@@ -290,7 +344,6 @@ vl_status vl_db_check_name(const char *name, vl_error *err);
  * material give the same fingerprint; any change to what a simulation
  * reads changes it. out gets "" on failure. VL_EINPUT (unknown table),
  * VL_ENOTFOUND, VL_EDB. */
-#define VL_DB_FINGERPRINT_MAX 32
 vl_status vl_db_fingerprint(vl_db *db, const char *table, const char *name,
                             char out[VL_DB_FINGERPRINT_MAX], vl_error *err);
 

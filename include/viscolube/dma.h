@@ -67,7 +67,13 @@
  * ignored columns, the shear conversion (or a generic name read as
  * tensile), bridged pairs; lines starting "warning: " for a WLF residual
  * above VL_DMA_WARN_WLF_RMS, a fit error above VL_DMA_WARN_FIT_RMS in E'
- * or E'', and isotherms too far apart to join.
+ * or E'', and isotherms too far apart to join; and (dma_quality.c) a
+ * note with the measured ranges (E', frequencies, temperatures), then
+ * warnings for neighbouring isotherms that do not join (VL_DMA_WARN_JOIN_*,
+ * naming both temperatures), a rise of tan delta at the top of the
+ * isotherms' windows (VL_DMA_WARN_TAN_RISE, naming each isotherm and the
+ * frequency) and Einf or E0 beyond VL_DMA_WARN_EXTRAPOLATION times the
+ * measured E' (extrapolated).
  *
  * Refused, with FILE:LINE: column 'NAME' (field K) where a row is at fault
  * (every such row at once): everything csv.h refuses; misspelt, duplicate
@@ -100,15 +106,32 @@
  * relative error (the data's own scatter is typically 1-2 %). */
 #define VL_DMA_WARN_WLF_RMS 0.2
 #define VL_DMA_WARN_FIT_RMS 0.05
+/* Neighbouring isotherms do not join when, shifted, their log10 E' differ
+ * by more than this rms over their overlap (decades: 0.02 is 4.7 %; the
+ * scatter of a DMA's E' is about 1 %, 0.004 decades, and a thermorheologically
+ * simple rubber's isotherms join within it). */
+#define VL_DMA_WARN_JOIN_RMS 0.02
+/* ... or when the shift step between them departs from the WLF law fitted
+ * to all isotherms by more than this (decades): the horizontal shift
+ * absorbed a vertical offset (two runs, a specimen that changed), so the
+ * overlap matches while the step is off the smooth trend of its
+ * neighbours. */
+#define VL_DMA_WARN_JOIN_STEP 0.15
+/* tan delta at the top of an isotherm's window rises above the trend of
+ * the decade below by more than this (decades: 0.04 is 10 %) and by more
+ * than 4 times that trend's own scatter: the signature of an instrument
+ * resonance near the top of its frequency range, not of the material. */
+#define VL_DMA_WARN_TAN_RISE 0.04
+/* Einf above this factor times the largest measured E' (or E0 below the
+ * smallest over it): the series' modulus there is extrapolated, set by
+ * the fit's tail rather than by data. */
+#define VL_DMA_WARN_EXTRAPOLATION 2.0
 
 typedef enum {
   VL_DMA_STORAGE_LOSS = 0,  /* E', E'' (tan delta may be present too) */
   VL_DMA_STORAGE_TAN_DELTA, /* E', tan delta */
   VL_DMA_COMPLIANCE         /* J', J'' */
 } vl_dma_kind;
-
-/* "storage-loss", "storage-tan-delta", "compliance". */
-const char *vl_dma_kind_name(vl_dma_kind kind);
 
 /* Whether the file's moduli are tensile (E) or shear (G). */
 typedef enum {
@@ -117,9 +140,6 @@ typedef enum {
   VL_DMA_MODULI_TENSILE,  /* tensile; a shear name in the header is refused */
   VL_DMA_MODULI_SHEAR     /* shear, whatever the names (an E name is refused) */
 } vl_dma_moduli;
-
-/* "auto", "tensile", "shear". */
-const char *vl_dma_moduli_name(vl_dma_moduli moduli);
 
 typedef struct {
   const char *freq_unit;    /* "Hz" or "rad/s"; NULL: from the file */
@@ -161,12 +181,31 @@ typedef struct {
   double wlf_rms;          /* rms residual of the WLF fit in log10 a_T */
   vl_prony prony;          /* the fitted series at tref_c */
   vl_prony_fit_report fit;
-  int shear;                    /* the file held shear moduli, converted: E = 2 (1 + nu) G */
-  char delimiter;               /* the file's delimiter (',', ';' or '\t') */
-  int decimal_comma;            /* its numbers had decimal commas */
-  size_t n_ignored;             /* header columns not used */
-  size_t n_extrapolated;        /* neighbouring isotherms shifted across a gap or a thin overlap */
-  size_t n_warnings;            /* the lines of notes that start "warning: " */
+  int shear;             /* the file held shear moduli, converted: E = 2 (1 + nu) G */
+  char delimiter;        /* the file's delimiter (',', ';' or '\t') */
+  int decimal_comma;     /* its numbers had decimal commas */
+  size_t n_ignored;      /* header columns not used */
+  size_t n_extrapolated; /* neighbouring isotherms shifted across a gap or a thin overlap */
+  size_t n_warnings;     /* the lines of notes that start "warning: " */
+  /* What was measured, and how well it hangs together (dma_quality.c):
+   * the ranges of the data as read (before shifting), the join misfit of
+   * each neighbouring pair of isotherms and the rise of tan delta at the top
+   * of each isotherm's window. */
+  double storage_min_pa, storage_max_pa;       /* E' measured (tensile) */
+  double omega_min_rad_s, omega_max_rad_s;     /* measured frequencies (not reduced) */
+  double temperature_min_c, temperature_max_c; /* measured isotherms (tref_c without T) */
+  double *iso_join_rms;         /* n_isotherms - 1 entries (NULL with one): rms of the log10 E'
+                                   difference between isotherms g and g + 1 after shifting, over
+                                   their overlap (each point of one against the other's curve,
+                                   linear in log w); NAN where the shifted windows do not overlap */
+  double *iso_join_step;        /* n_isotherms - 1 entries (NULL with one): the shift step from
+                                   isotherm g to g + 1 minus the step of the fitted WLF law
+                                   (decades); NAN without WLF (fewer than 3 isotherms) or when the
+                                   WLF law misses the shifts (warned of as a whole) */
+  double *iso_tan_delta_rise;   /* n_isotherms entries: decades by which log10 tan delta at
+                                   the isotherm's highest frequency lies above the straight
+                                   line through its points of the decade below; NAN with
+                                   fewer than 3 such points */
   char notes[VL_DMA_NOTES_MAX]; /* what the user should know, one sentence per line ('\n'
                                    after each): conversions, ignored columns, the dialect,
                                    warnings on the superposition and the fit */
@@ -179,10 +218,6 @@ typedef struct {
  * VL_EIO (unreadable file), VL_EINPUT, VL_ENOMEM, VL_ENOCONV. */
 vl_status vl_measured_read_file(const char *path, const vl_dma_options *opts, vl_measured *out,
                                 vl_error *err);
-
-/* As vl_measured_read_file for text[0..len) in memory, named source. */
-vl_status vl_measured_read_text(const char *text, size_t len, const char *source,
-                                const vl_dma_options *opts, vl_measured *out, vl_error *err);
 
 /* Releases what a vl_measured owns and empties it (NULL or empty is fine). */
 void vl_measured_free(vl_measured *m);

@@ -12,7 +12,7 @@
  *
  * with the rubber's reduced compliance 1/Er(wH) = J'_r - i J''_r taken at
  * the asperity frequency wH = pi v0 / aH, aH^2 = 4 fN R / (pi |Er(wH)|)
- * (vl_asperity_state), theta the angle between q and the sliding direction,
+ * (docs/MODEL.md section 4), theta the angle between q and the sliding direction,
  * grad pf ~ 0, and only the rubber rough (C_2 = 0, v_2 = 0, v_R = v_1).
  * In the seed's variables (zeta = q/q0, F_s = 6 eta v0/(q0^2 h_rms^3 Er_inf),
  * k_re + i k_im = Er_inf / Er(wH)): J'_r s = 2 k_re F_s / ((u/h_rms)^3 zeta^2),
@@ -31,7 +31,7 @@
  * slightly at large u when tan delta(wH) > 1/sqrt(3). VL_FLATTENING_MODULUS
  * drops the phase (lambda = 1 + (|J_r| s cos)^2, epsilon_f in (0, 1]).
  *
- * The angular average has a closed form (vl_flattening_angular); the
+ * The angular average has a closed form (src/mechanics/flattening.c); the
  * q integral is Gauss-Legendre in ln q. epsilon_f depends on u only through
  * t = J'_r s, i.e. through u^-3, so at one speed it is a one-dimensional
  * function of u/h_rms, tabulated per speed for the solver's residual and
@@ -106,27 +106,14 @@ void vl_flattening_free(vl_flattening *f); /* NULL is a no-op */
  * non-finite v0, and then the previous speed stays set. */
 vl_status vl_flattening_set_speed(vl_flattening *f, double v0_m_s, vl_error *err);
 
-/* Changes the fluid viscosity (finite, >= 0) and rebuilds the table at the
- * current speed, as vl_flattening_set_speed (for continuation in
- * viscosity). VL_EINPUT otherwise, leaving the evaluator as it was. */
-vl_status vl_flattening_set_viscosity(vl_flattening *f, double eta_pa_s, vl_error *err);
-
-/* epsilon_f at separation u (m) at the current speed, and d epsilon_f / du
- * (1/m) in *deps_du when not NULL. Fast path: cubic Hermite interpolation
- * in ln(u/h_rms) of the table, with the exact node slopes, so the value is
- * C1 in u and *deps_du is the exact derivative of the value returned (what
- * a Newton Jacobian needs); outside the table the exact quadrature. As
- * u -> 0+ every wavelength is flattened and epsilon_f = (u^3/(12 eta v0 j_eff))
- * \int q^3 C / \int q C (1 + O(u^6)), so u <= 0 (or u^3 underflowing)
+/* epsilon_f at separation u (m) at the current speed by the quadrature
+ * itself (152 closed-form angular averages on the paper surface: 1-5 us
+ * modulus, 8-17 us complex; the solver's table path ~0.1 us), and
+ * d epsilon_f / du (1/m, analytic) in *deps_du when not NULL. Absolute
+ * difference from adaptive quadrature below 1e-13 (test_flattening). As
+ * u -> 0+ every wavelength is flattened, so u <= 0 (or u^3 underflowing)
  * returns 0 with derivative 0, continuously. At v0 = 0 (or eta = 0): 1 and 0.
  * Thread-safe for concurrent readers; no allocation. */
-double vl_flattening_eps(const vl_flattening *f, double u_m, double *deps_du);
-
-/* The same by the quadrature itself (152 closed-form angular averages on
- * the paper surface: 1-5 us modulus, 8-17 us complex; the table path
- * ~0.1 us); *deps_du is analytic.
- * Absolute difference from adaptive quadrature below 1e-13 (test_flattening).
- * Also defined for u outside the table; u <= 0 as vl_flattening_eps. */
 double vl_flattening_eps_exact(const vl_flattening *f, double u_m, double *deps_du);
 
 /* What the current speed fixed. */
@@ -143,22 +130,5 @@ typedef struct {
   double u_onset_m;
 } vl_flattening_state;
 void vl_flattening_state_get(const vl_flattening *f, vl_flattening_state *out);
-
-/* The angular average (1/2pi) \int_0^{2pi} dtheta / lambda with
- * lambda = (1 + delta t cos)^2 + (t cos)^2, t >= 0 (t = J'_r s), delta =
- * tan delta >= 0, in closed form:
- *   A = Re[ 1/sqrt(t^2 - z^2) ],  z = (i - delta)/(1 + delta^2)  (principal root),
- *   dA/dt = -t Re[ (t^2 - z^2)^(-3/2) ];
- * delta = 0 gives 1/sqrt(1 + t^2). Small t: A = 1 - (1 - 3 delta^2) t^2/2 + O(t^4);
- * large t: A = 1/t + O(1/t^3) for any delta. *dA_dt when not NULL. Any
- * t >= 0, delta >= 0 finite (t = inf gives 0). */
-double vl_flattening_angular(double t, double tan_delta, double *dA_dt);
-
-/* One-shot epsilon_f(u, v0) for cfg (its table fields ignored) and psd,
- * with d epsilon_f / du in *deps_du (may be NULL). Builds no table: for a
- * few values; a solver should create one vl_flattening and use
- * vl_flattening_eps. NAN on bad input (with err set) or allocation failure. */
-double vl_flattening_epsilon(const vl_flattening_config *cfg, const vl_psd *psd, double v0_m_s,
-                             double u_m, double *deps_du, vl_error *err);
 
 #endif

@@ -68,48 +68,14 @@ typedef struct {
   double phi_p, phi_s, phi_f, phi_fs, phi_fp;
 } vl_flow_factor_values;
 
-/* The combinations the Reynolds solver and the friction integral use; they
- * stay finite as u -> 0 for patir-cheng (for smooth, couette = 1/u):
- *   conductance_m3 = u^3 phi_p            (flux = -conductance/(12 eta) dpf/dx)
- *   shear_flow     = phi_s                (flux += (v0/2) h_rms phi_s)
- *   couette_per_m  = (phi_f + phi_fs)/u   (shear += eta v0 couette_per_m)
- *   poiseuille_m   = phi_fp u             (shear -= (1/2) poiseuille_m dpf/dx)
- * or their derivatives d/du (units divided by m). */
-typedef struct {
-  double conductance_m3, shear_flow, couette_per_m, poiseuille_m;
-} vl_flow_terms;
-
 /* The five factors at average separation u_m for rms roughness hrms_m, and
  * their derivatives d/du in *d when d != NULL (v must not be NULL).
  * patir-cheng: u_m <= 0 gives the limit u -> 0+ (and its right derivative);
  * hrms_m <= 0 gives the smooth factors (the limit sigma -> 0); a NaN input
  * gives NaN outputs. Every output is finite for finite inputs. persson-emt
- * needs its table (vl_flow_factors_eval_table): here it gives NaN. */
+ * needs its table (vl_emt_table_eval): here it gives NaN. */
 void vl_flow_factors_eval(vl_flow_factor_kind kind, double u_m, double hrms_m,
                           vl_flow_factor_values *v, vl_flow_factor_values *d);
-
-/* The factors of any model: smooth and patir-cheng as vl_flow_factors_eval
- * (table unused); persson-emt from table (built for the surface's h_rms
- * h0) at x = u/hrms_m, so that a locally rescaled roughness (viscous
- * flattening: hrms_m = s h0) keeps the model's scale invariance. persson-emt
- * without a table, or hrms_m <= 0, gives NaN. */
-void vl_flow_factors_eval_table(vl_flow_factor_kind kind, const vl_emt_table *table, double u_m,
-                                double hrms_m, vl_flow_factor_values *v, vl_flow_factor_values *d);
-
-/* The solver's combinations (vl_flow_terms) and, when d != NULL, their
- * derivatives d/du. Same conventions as vl_flow_factors_eval; for the smooth
- * model (or hrms_m <= 0) u_m must be > 0 (the smooth Couette shear 1/u has
- * no limit at u = 0). */
-void vl_flow_factors_terms(vl_flow_factor_kind kind, double u_m, double hrms_m, vl_flow_terms *t,
-                           vl_flow_terms *d);
-
-/* patir-cheng's mapping: the nominal separation h (m) of the mean planes for
- * average separation u_m > 0 and hrms_m > 0, i.e. the root of
- * u = h Phi(h/sigma) + sigma phi(h/sigma); dh/du in *dh_du when non-NULL.
- * Works for every u in (0, inf) (h -> -inf as u -> 0, h -> u for u >> sigma);
- * error below 1e-14 sigma (1 + |h|/sigma). u_m <= 0 returns -INFINITY (dh_du =
- * +INFINITY); NaN or hrms_m <= 0 returns NaN. */
-double vl_flow_factors_nominal_gap(double u_m, double hrms_m, double *dh_du);
 
 /* "smooth", "patir-cheng" or "persson-emt" (the scene's spelling);
  * "unknown" otherwise. */
@@ -126,7 +92,7 @@ vl_status vl_flow_factors_parse(const char *name, vl_flow_factor_kind *kind, vl_
  * step by step). A built table is immutable; evaluation is allocation free
  * and thread safe. */
 
-/* Table sizes vl_emt_table_build accepts (0 asks for the default). */
+/* Table sizes vl_db_flow_table accepts (0 asks for the default). */
 #define VL_EMT_DEFAULT_N_POINTS 100
 #define VL_EMT_MIN_N_POINTS 80
 #define VL_EMT_MAX_N_POINTS 120
@@ -134,19 +100,6 @@ vl_status vl_flow_factors_parse(const char *name, vl_flow_factor_kind *kind, vl_
 /* The table's top, x = u/h_rms; above it the Tripp forms take over. */
 #define VL_EMT_X_MAX 30.0
 
-/* x = u/h_rms at the percolation of the contact (A/A0 = 1/2), where the
- * pressure flow stops. NaN on an invalid PSD. */
-double vl_emt_percolation(const vl_psd *psd);
-
-/* Builds the table for psd and film cut-off film_cutoff_m > 0 (m) at
- * n_points nodes (0: the default; else within [VL_EMT_MIN_N_POINTS,
- * VL_EMT_MAX_N_POINTS]), geometric in x from two decades below the
- * percolation point up to VL_EMT_X_MAX, the node nearest the percolation
- * point moved onto it. On success *out is owned by the caller
- * (vl_emt_table_free); on failure it is NULL and the status is VL_EINPUT or
- * VL_ENOMEM. */
-vl_status vl_emt_table_build(const vl_psd *psd, double film_cutoff_m, size_t n_points,
-                             vl_emt_table **out, vl_error *err);
 void vl_emt_table_free(vl_emt_table *table);
 
 /* The five factors at average separation u_m (m) and, when d != NULL,
@@ -158,15 +111,8 @@ void vl_emt_table_free(vl_emt_table *table);
 void vl_emt_table_eval(const vl_emt_table *table, double u_m, vl_flow_factor_values *v,
                        vl_flow_factor_values *d);
 
-/* Number of nodes; node k < size: its x, its factors (v, may be NULL) and
- * its A/A0 (area, may be NULL). Returns x. */
-size_t vl_emt_table_size(const vl_emt_table *table);
-double vl_emt_table_node(const vl_emt_table *table, size_t k, vl_flow_factor_values *v,
-                         double *area);
-
-/* h_rms (m), the film cut-off (m) and the percolation point x of the table. */
+/* h_rms (m) and the percolation point x of the table. */
 double vl_emt_table_hrms(const vl_emt_table *table);
-double vl_emt_table_film_cutoff(const vl_emt_table *table);
 double vl_emt_table_percolation(const vl_emt_table *table);
 
 #endif

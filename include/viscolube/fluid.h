@@ -34,22 +34,13 @@ typedef struct {
 /* "none" or "vogel" (the name stored in the database). */
 const char *vl_viscosity_law_name(vl_viscosity_law_kind kind);
 
-/* The kind named by name ("vogel"); VL_EINPUT for any other name. */
-vl_status vl_viscosity_law_parse(const char *name, vl_viscosity_law_kind *kind, vl_error *err);
-
-/* Checks a law together with the reference temperature of the fluid it
- * belongs to: NONE is always valid; VOGEL needs finite B > 0, C >= 0 K,
- * tmin < tmax, tmin + 273.15 > C (the law finite over its range) and
- * tref_c inside [tmin, tmax] (the anchor is one of its data).
- * VL_EINPUT naming the first bad field. */
-vl_status vl_viscosity_law_validate(const vl_viscosity_law *law, double tref_c, vl_error *err);
-
 /* Viscosity (Pa s) at t_c of a fluid with viscosity eta_ref_pa_s at
  * tref_c and the given law (NULL = NONE). At t_c == tref_c returns
  * eta_ref_pa_s exactly, whatever the law. Errors (VL_EINPUT, *eta_pa_s
  * untouched, the message does not name the fluid: the caller prefixes it):
  * no law and t_c != tref_c; t_c outside [tmin_c, tmax_c]; an invalid law
- * (vl_viscosity_law_validate) or eta_ref not positive and finite. */
+ * (VOGEL needs finite B > 0, C >= 0 K, tmin < tmax, tmin + 273.15 > C and
+ * tref_c inside [tmin, tmax]) or eta_ref not positive and finite. */
 vl_status vl_fluid_viscosity(const vl_viscosity_law *law, double eta_ref_pa_s, double tref_c,
                              double t_c, double *eta_pa_s, vl_error *err);
 

@@ -28,6 +28,15 @@
  * they leave empty, and reports every other file of the folder that this
  * run did not write (hidden names aside) as unclaimed, left alone.
  *
+ * Interrupted runs: begin also keeps hard links to the earlier run's files
+ * (DIR/.run.previous.d) until finish. vl_manifest_interrupt, installed by
+ * the program as its SIGINT/SIGTERM handler, puts the earlier run back as
+ * it was (its files under their names, the files this run added removed,
+ * its run.json in place) before the signal takes its default effect: after
+ * Ctrl-C the folder is the earlier complete run, not a mix. A temporary of
+ * a file being written at that moment may stay as a hidden name, and a
+ * folder the run made but had not yet written a file into stays empty.
+ *
  * The add functions copy their arguments; out of memory is remembered and
  * returned by finish. Nothing is printed. */
 #ifndef VISCOLUBE_MANIFEST_H
@@ -41,6 +50,12 @@
 #define VL_MANIFEST_NAME "run.json"
 
 typedef struct vl_manifest vl_manifest;
+
+/* A signal handler (SIGINT, SIGTERM): restores the folder of the run in
+ * progress in this process, if any, to the earlier complete run (see
+ * above; only async-signal-safe calls), then lets sig take its default
+ * action. */
+void vl_manifest_interrupt(int sig);
 
 /* Starts the manifest of folder dir (which must exist) for the command
  * argv[0..argc), noting the start time, and moves an earlier DIR/run.json

@@ -6,7 +6,6 @@
 #define VISCOLUBE_OUTPUT_H
 
 #include <stddef.h>
-#include <stdio.h>
 
 #include "viscolube/json.h"
 #include "viscolube/results.h"
@@ -23,17 +22,33 @@ typedef struct {
    * and JSON points carry the key flow_factors. */
   const char *flow_factors;
   double film_cutoff_m; /* persson-emt's g_cut (m); 0 for the other models */
+  /* Where sigma_s came from when a stored pair's law gave it
+   * (vl_simulation_shear_law_text), else NULL (the constant sigma_s of the
+   * scene or the options): CSV files then carry a comment line
+   * "# sigma_s = TEXT" and JSON points the key sigma_s_law. */
+  const char *shear_law;
 } vl_curve_meta;
 
 /* CSV columns of the curve, in order (a NULL-terminated list). */
 extern const char *const vl_curve_columns[];
+/* The columns a seal scene ([seal] stroke; vl_point.seal) adds after them,
+ * NULL-terminated (docs/FORMATS.md). */
+extern const char *const vl_seal_columns[];
+/* The number in seal column k (an index of vl_seal_columns, from 1: column 0,
+ * `stroke`, is a word) of p, NAN where the CSV cell is empty. */
+double vl_seal_column_value(const vl_point *p, size_t k);
+/* The columns a scene swept both ways ([sweep] direction = both;
+ * vl_point.down) adds after those, NULL-terminated (docs/FORMATS.md), and
+ * the number in column k of p (NAN where the CSV cell is empty;
+ * converged_down and two_states 1 or 0). */
+extern const char *const vl_down_columns[];
+double vl_down_column_value(const vl_point *p, size_t k);
 
 /* Writes the curve to path through a temporary renamed into place
  * (atomic_file.h), so a crash leaves no half-written file. VL_EIO with a
  * message naming path when it cannot be written. */
 vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
                              const vl_curve_meta *meta, vl_error *err);
-void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta);
 
 /* Fields: x_m, x_over_a0, p_f_pa, p_c_pa, u_m, area_ratio, film_fraction, and
  * cell_width_m when fl->width_m is set (a graded grid's cells differ: the
@@ -43,9 +58,8 @@ vl_status vl_write_fields_csv(const char *path, const vl_fields *f, double a0_m,
 /* JSON (json.h), numbers with 10 significant digits as in the CSV: a
  * point is one object with the keys of the CSV columns (on one line); a
  * curve an array of them, a point a line (VL_JSON_ROWS). */
-void vl_point_json(vl_json *w, const vl_point *pt, const vl_curve_meta *meta);
 void vl_curve_json(vl_json *w, size_t n, const vl_point *pts, const vl_curve_meta *meta);
-/* The members of vl_point_json, into an object the caller has begun (and
+/* The members of a point's object, into an object the caller has begun (and
  * ends), for a point written with more keys of its own. */
 void vl_point_json_members(vl_json *w, const vl_point *pt, const vl_curve_meta *meta);
 

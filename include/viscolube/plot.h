@@ -146,6 +146,24 @@ vl_status vl_plot_compare(const char *stem, size_t k, const vl_plot_curve *curve
                           vl_sweep_quantity x, vl_plot_y y, const vl_plot_options *opt,
                           vl_plot_report *report, vl_error *err);
 
+/* A pair's calibration (`pair calibrate --plot`): the measured friction
+ * coefficients against sliding speed, over the fitted mu and its parts. */
+typedef struct {
+  size_t n;                                /* measured points, >= 1 */
+  const double *v_m_s;                     /* positive, increasing */
+  const double *mu;                        /* measured (<= 0 or non-finite: not drawn) */
+  const double *mu_fit, *mu_other, *mu_sc; /* the model (non-finite: a gap) */
+  const bool *informative; /* NULL: all; false: hollow marker (mu_Sc a small share) */
+  const char *fit_label;   /* NULL = "fitted mu" */
+} vl_plot_calibration_data;
+
+/* One panel, log-log: the fitted mu (line), mu_Sc of the fitted law and
+ * mu without sigma_s (thinner lines), the measured points as markers over
+ * them, hollow where they inform the fit little. VL_EINPUT: no points, a
+ * speed not positive and finite. Other errors as vl_plot_stribeck. */
+vl_status vl_plot_calibration(const char *stem, const vl_plot_calibration_data *d,
+                              const vl_plot_options *opt, vl_plot_report *report, vl_error *err);
+
 /* Measured and fitted moduli of a compound. */
 typedef struct {
   size_t n; /* measured points (at reduced frequency when shifted); may be 0 */

@@ -37,12 +37,17 @@
 typedef struct {
   const char *compound, *surface, *fluid;
   double load_n_per_m, radius_m;
-  double sigma_s_pa;                /* solid shear stress; 0 switches the effect off */
+  double sigma_s_pa; /* solid shear stress; 0 switches the effect off */
+  /* sigma_s_pa was chosen by the caller; false (the default): the stored
+   * pair's law of compound, surface and fluid when one exists, else
+   * sigma_s_pa */
+  bool sigma_s_given;
   size_t grid;                      /* uniform cells of the wet rough numerics; 0: default */
   vl_flow_factor_kind flow_factors; /* default VL_SCENE_ROUGH_FLOW_FACTORS */
   double film_cutoff_m;             /* persson-emt only; 0: VL_FILM_CUTOFF_DEFAULT_M */
   bool at_temperature;              /* compound (WLF) and fluid (its law) at temperature_c */
   double temperature_c;
+  double target_error; /* relative error of mu each point should meet; 0: VL_TARGET_ERROR_DEFAULT */
 } vl_query;
 
 /* One answered operating point. */
@@ -55,6 +60,13 @@ typedef struct {
   const char *flow_factors; /* vl_flow_factors_name of the model used (static) */
   double film_cutoff_m;     /* persson-emt's cut-off, else 0 */
   size_t points_solved;     /* 1 for a direct solve, more after continuation */
+  /* the stored pair whose law gave sigma_s (has_pair), and that law at the
+   * query's temperature; without a pair the constant q->sigma_s_pa */
+  bool has_pair;
+  vl_db_pair pair;
+  vl_shear_law shear_law;
+  double sigma_s_pa;                         /* sigma_s at the point's speed */
+  char shear_law_text[VL_DB_TEXT_MAX + 512]; /* vl_simulation_shear_law_text ("" without) */
 } vl_query_result;
 
 /* The defaults above, no materials named, no temperature (NAN). */

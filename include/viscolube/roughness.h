@@ -38,9 +38,6 @@ vl_status vl_psd_init_tabulated(vl_psd *psd, size_t n, const double *q, const do
 
 void vl_psd_free(vl_psd *psd);
 
-double vl_psd_value(const vl_psd *psd, double q);
-/* \int_{qa}^{qb} q^k C(q) dq, exact for both kinds (clipped to the band). */
-double vl_psd_moment(const vl_psd *psd, int k, double qa, double qb);
 double vl_psd_hrms(const vl_psd *psd);      /* sqrt(2 pi \int q C dq) */
 double vl_psd_rms_slope(const vl_psd *psd); /* sqrt(<|grad h|^2>) = sqrt(2 pi \int q^3 C dq) */
 

@@ -32,11 +32,23 @@ typedef enum {
   VL_SWEEP_DEBORAH /* v0 tau / a0, one-term compounds */
 } vl_sweep_quantity;
 
+/* The order a sweep visits its speeds ([sweep] direction): upward (the
+ * default: from the boundary regime, where any start converges), downward
+ * (from the lifted film), or both, one after the other, to find speeds
+ * where the model has two states (a fold of the Stribeck curve: a film
+ * that lifts off at a higher speed on the way up than it collapses on the
+ * way down). */
+typedef enum { VL_DIRECTION_UP = 0, VL_DIRECTION_DOWN, VL_DIRECTION_BOTH } vl_sweep_direction;
+
 typedef enum {
   VL_ELASTIC_RELAXED = 0, /* viscoelastic = off: E = E0 of the compound */
   VL_ELASTIC_GLASSY,      /* E = Einf */
   VL_ELASTIC_GIVEN        /* E = elastic_modulus_pa */
 } vl_elastic_choice;
+
+/* sigma_s of a scene with solid_shear = on and no [contact] sigma_s_pa, and
+ * no stored pair for its materials: the seed's 1 MPa. */
+#define VL_SCENE_SIGMA_S_PA 1e6
 
 typedef struct {
   char path[1024];
@@ -50,10 +62,26 @@ typedef struct {
   double elastic_modulus_pa;
   /* [contact] */
   double radius_m, load_n_per_m, sigma_s_pa;
+  /* sigma_s_pa was given (the scene's key, a query's sigma_s): without it,
+   * a scene with solid_shear takes the law of the stored pair of its
+   * compound, surface and fluid when there is one (vl_simulation_create) */
+  bool sigma_s_given;
+  vl_moving moving;          /* which body moves (contact.h); VL_MOVING_RUBBER by default */
+  double sealed_pressure_pa; /* fluid pressure on the oil side (Pa; 0: none) */
+  /* the rubber's profile (x_m, z_m table, docs/FORMATS.md), the path as
+   * given joined to the scene's folder; empty: the cylinder's parabola */
+  char profile_file[2048];
+  int profile_line; /* the key's line in the scene (for messages) */
+  /* [seal]: a seal's strokes (results.h vl_stroke; VL_STROKE_NONE without
+   * the section), the rod diameter and stroke length (m; 0: not given, no
+   * volumes per cycle) */
+  int stroke;
+  double rod_diameter_m, stroke_length_m;
   /* [sweep] */
   vl_sweep_quantity quantity;
   double from, to;
   size_t points;
+  vl_sweep_direction direction;
   size_t n_fields_at;
   double fields_at[VL_FIELDS_AT_MAX]; /* in the sweep quantity's units */
   /* [effects]: only those on are built and solved */
@@ -82,12 +110,6 @@ typedef struct {
 /* The defaults of every optional key (README.md), with no materials named:
  * for scenes built in code (the `friction` and `compare` commands). */
 void vl_scene_defaults(vl_scene *scene);
-
-/* The numerics a scene gets from its effects when it does not set them
- * (grid, grid_growth, domain, tolerance): the solver's defaults for its
- * roughness and fluid effects, vl_contact_numerics_defaults (dry as
- * vl_scene_defaults; wet with a long inlet, graded on a rough surface). */
-void vl_scene_default_numerics(vl_scene *scene);
 
 /* Parses a scene file. Errors (unknown section or key, missing required key,
  * bad value, inconsistent effects) name "file:line: [section] key: why". */

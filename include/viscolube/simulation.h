@@ -17,40 +17,28 @@ typedef struct vl_simulation vl_simulation;
 
 /* Loads the scene's materials from db and creates the solver. With
  * [effects] temperature = on the compound is taken at temperature_c by
- * vl_compound_at_temperature (when viscoelastic: elastic moduli do not
- * shift) and, when the fluid effect is on, the fluid's viscosity by its law
- * (fluid.h, vl_fluid_viscosity); either failing is VL_EINPUT naming the
- * scene, the temperature and the material. */
+ * its WLF shift of every retardation time (docs/MODEL.md section 2; when
+ * viscoelastic: elastic moduli do not shift) and, when the fluid effect is
+ * on, the fluid's viscosity by its law (fluid.h, vl_fluid_viscosity);
+ * either failing is VL_EINPUT naming the scene, the temperature and the
+ * material. */
 vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation **out,
                                vl_error *err);
 void vl_simulation_free(vl_simulation *sim);
 
-/* Compound c at temperature t_c (docs/MODEL.md section 2, time-temperature
- * superposition): every retardation time tau_i -> a_T tau_i with
- *   log10 a_T = -C1 (T - Tref) / (C2 + T - Tref),
- * so a_T < 1 above Tref (warmer: faster, the loss peak at higher
- * frequency). Einf, nu and the A_i are unchanged (no vertical shift). At
- * t_c == c->tref_c returns c->prony exactly and a_T = 1, WLF constants or
- * not. VL_EINPUT (message names the compound): no WLF constants (NAN);
- * t_c at or below the WLF singularity Tref - C2; a shift that takes a time
- * out of the finite range. */
-vl_status vl_compound_at_temperature(const vl_db_compound *c, double t_c, vl_prony *out,
-                                     double *a_T, vl_error *err);
-
-/* Sweep speeds (m/s, increasing): the scene's log-spaced points merged with
- * its fields_at values. */
+/* Number of sweep speeds: the scene's log-spaced points merged with its
+ * fields_at values. */
 size_t vl_simulation_points(const vl_simulation *sim);
-const double *vl_simulation_speeds(const vl_simulation *sim);
 /* True when fields are to be written at point i. */
 bool vl_simulation_wants_fields(const vl_simulation *sim, size_t i);
 
 vl_contact *vl_simulation_contact(vl_simulation *sim);
-const vl_scene *vl_simulation_scene(const vl_simulation *sim);
-double vl_simulation_eta(const vl_simulation *sim);             /* Pa s, 0 if no fluid named; with
-                                                                 * [effects] temperature and fluid on:
-                                                                 * at the scene's temperature */
-double vl_simulation_tau(const vl_simulation *sim);             /* s, one-term compounds, else 0 */
-const vl_prony *vl_simulation_rubber(const vl_simulation *sim); /* at the scene's temperature */
+double vl_simulation_eta(const vl_simulation *sim); /* Pa s, 0 if no fluid named; with
+                                                     * [effects] temperature and fluid on:
+                                                     * at the scene's temperature */
+double vl_simulation_tau(const vl_simulation *sim); /* s, one-term compounds, else 0 (and 0
+                                                     * with [contact] moving = counterface:
+                                                     * no memory) */
 /* [effects] temperature = on: the scene's temperature_c (C) and the WLF
  * shift factor a_T its compound's times were multiplied by (1 in an
  * elastic scene). Off: NAN and 1 (every material at its reference
@@ -58,6 +46,11 @@ const vl_prony *vl_simulation_rubber(const vl_simulation *sim); /* at the scene'
 double vl_simulation_temperature_c(const vl_simulation *sim);
 double vl_simulation_shift_factor(const vl_simulation *sim);
 const vl_psd *vl_simulation_psd(const vl_simulation *sim); /* NULL when smooth */
+
+/* "LAW: p = v, ... (pair C / S / F, SOURCE ...)": where sigma_s came from,
+ * for CSV headers, JSON and manifests; NULL without a pair (the scene's
+ * constant). Owned by sim. */
+const char *vl_simulation_shear_law_text(const vl_simulation *sim);
 
 /* The flow-factor model of the scene's rough film (vl_flow_factors_name)
  * and, for persson-emt, its film cut-off in *film_cutoff_m (else 0); NULL

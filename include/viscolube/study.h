@@ -56,25 +56,14 @@ typedef struct vl_study vl_study;
  * cannot be read. */
 vl_status vl_study_load(const char *path, vl_study **out, vl_error *err);
 
-/* The same from text (path names it in messages). Every task's scene is
- * parsed and checked here, so a study that loads has no bad task. */
-vl_status vl_study_parse(const char *text, const char *path, vl_study **out, vl_error *err);
-
 void vl_study_free(vl_study *s);
 
-const char *vl_study_path(const vl_study *s);
-const char *vl_study_title(const vl_study *s); /* "" when none */
-const char *vl_study_text(const vl_study *s);  /* the file as read */
+const char *vl_study_text(const vl_study *s); /* the file as read */
 /* 64-bit FNV-1a of the text: task files carry it, so that a folder holding
  * the results of another study is recognised. */
 uint64_t vl_study_fingerprint(const vl_study *s);
 
 size_t vl_study_n_tasks(const vl_study *s);
-const vl_study_task *vl_study_task_at(const vl_study *s, size_t i);
-
-/* The scene of task i (titled "TITLE | task I"); VL_EINPUT cannot happen
- * for a study that loaded, but is checked. */
-vl_status vl_study_scene(const vl_study *s, size_t i, vl_scene *out, vl_error *err);
 
 /* The distinct material names of the study (kind 0 compounds, 1
  * surfaces, 2 fluids), in order of first use: n names in *names (owned by
@@ -94,14 +83,17 @@ typedef enum {
   VL_TASK_MISSING = 0,   /* no file: not run (yet) */
   VL_TASK_OK,            /* every point converged */
   VL_TASK_NOT_CONVERGED, /* written, some points with converged = 0 */
+  VL_TASK_ABOVE_TARGET,  /* written, every point converged, some not known to their error
+                          * target (vl_point_unreliable) */
   VL_TASK_ERROR          /* stopped on an error: no curve, the message says why */
 } vl_task_state;
 
 typedef struct {
   vl_task_state state;
   size_t points, converged, failed;
-  double seconds;  /* wall time of the task */
-  vl_status error; /* VL_TASK_ERROR: the status */
+  size_t above_target; /* converged points not known to their error target */
+  double seconds;      /* wall time of the task */
+  vl_status error;     /* VL_TASK_ERROR: the status */
   char message[VL_ERROR_MAX];
 } vl_study_outcome;
 
@@ -117,6 +109,9 @@ typedef struct {
   double eta_pa_s, tau_s, a0_m;
   const char *flow_factors; /* vl_simulation_flow_factors: a static name or NULL */
   double film_cutoff_m;
+  /* vl_simulation_shear_law_text: the stored pair's law that gave sigma_s
+   * ("": the scene's constant) */
+  char shear_law[VL_DB_TEXT_MAX + 512];
 } vl_study_result;
 
 /* Solves task i of s on db (a sweep, as vl_simulation_run) into *out

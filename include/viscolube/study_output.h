@@ -25,9 +25,6 @@
 #include "viscolube/status.h"
 #include "viscolube/study.h"
 
-/* DIR/tasks/NNNNNN.csv of task id into buf. */
-void vl_study_task_path(const char *out_dir, size_t id, char *buf, size_t size);
-
 /* Writes task i's file from r (vl_study_solve_task): its outcome, and its
  * curve unless the task stopped on an error. A status other than VL_OK
  * (VL_EIO: the file cannot be written; VL_ENOMEM) means that no file was

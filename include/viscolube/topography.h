@@ -140,21 +140,11 @@ typedef struct {
   int square_assumed; /* map without '# Height:': dy_m set equal to dx_m */
 } vl_topography;
 
-/* Reads text[0..len) (need not be NUL-terminated), named source in
- * messages. On VL_OK *out owns its arrays (release with vl_topography_free);
- * on failure *out is empty (safe to free) and err says why (see above). */
-vl_status vl_topography_read_text(const char *text, size_t len, const char *source,
-                                  vl_topography *out, vl_error *err);
-
 /* As vl_topography_read_text for the file at path; VL_EIO if unreadable. */
 vl_status vl_topography_read_file(const char *path, vl_topography *out, vl_error *err);
 
 /* Releases what a vl_topography owns and empties it (NULL or empty is fine). */
 void vl_topography_free(vl_topography *t);
-
-/* rms height after removing the least-squares line (line scan) or plane
- * (map), in m; NAN for an empty topography. */
-double vl_topography_hrms(const vl_topography *t);
 
 typedef struct {
   double taper;           /* window (step 2): tapered fraction of each axis in [0, 1]; 1 is Hann,

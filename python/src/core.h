@@ -60,9 +60,14 @@ VLPY_HIDDEN PyObject *vlpy_friction(DatabaseObject *self, PyObject *args, PyObje
 VLPY_HIDDEN PyObject *vlpy_run_scene(DatabaseObject *self, PyObject *args, PyObject *kw);
 VLPY_HIDDEN PyObject *vlpy_run_query(DatabaseObject *self, PyObject *args, PyObject *kw);
 VLPY_HIDDEN PyObject *vlpy_check_query(DatabaseObject *self, PyObject *args, PyObject *kw);
+/* pairs.c */
+VLPY_HIDDEN PyObject *vlpy_calibrate(DatabaseObject *self, PyObject *args, PyObject *kw);
+
 #define VLPY_SOLVE_METHODS                                                                         \
-  {"friction", (PyCFunction)(void (*)(void))vlpy_friction, METH_VARARGS | METH_KEYWORDS,           \
-   "One operating point (vl_query_friction)."},                                                    \
+  {"calibrate", (PyCFunction)(void (*)(void))vlpy_calibrate, METH_VARARGS | METH_KEYWORDS,         \
+   "Calibrate a pair's sigma_s law on a measured curve (calibrate.h)."},                           \
+      {"friction", (PyCFunction)(void (*)(void))vlpy_friction, METH_VARARGS | METH_KEYWORDS,       \
+       "One operating point (vl_query_friction)."},                                                \
       {"run_scene", (PyCFunction)(void (*)(void))vlpy_run_scene, METH_VARARGS | METH_KEYWORDS,     \
        "run_scene(text, path): the curves (and fields) of a scene given as INI text."},            \
       {"run_query", (PyCFunction)(void (*)(void))vlpy_run_query, METH_VARARGS | METH_KEYWORDS,     \

@@ -2,6 +2,7 @@
  * library checks every value (and refuses before touching the file); the
  * binding only says which arguments go together. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -167,10 +168,11 @@ static int dma_options(const char *weights, vl_dma_options *o) {
 /* Stores c, its series fitted to the measured file path (vl_dma_options
  * from o). */
 static vl_status add_measured(vl_db *db, vl_db_compound *c, const char *path,
-                              const vl_dma_options *o, vl_error *err) {
+                              const vl_dma_options *o, char *notes, size_t cap, vl_error *err) {
   vl_measured m;
   vl_status st = vl_measured_read_file(path, o, &m, err);
   if (st == VL_OK) st = vl_db_compound_add_measured(db, c, &m, err);
+  if (st == VL_OK) snprintf(notes, cap, "%s", m.notes);
   vl_measured_free(&m);
   return st;
 }
@@ -222,13 +224,14 @@ PyObject *vlpy_add_compound(DatabaseObject *self, PyObject *args, PyObject *kw) 
   c->prony.e_inf_pa = e_inf, c->prony.nu = nu;
   vl_error err = {{0}};
   vl_status st = VL_OK;
+  char notes[VL_DMA_NOTES_MAX] = "";
   if (measured) {
     o.tref_c = tref;
     if (!isnan(nu)) o.nu = nu;
     if (!isnan(c1) || !isnan(c2) || !isnan(e_inf))
       refuse("measured=: the fit determines e_inf_pa and the WLF constants");
     else if (dma_options(fw, &o) == 0)
-      st = add_measured(db, c, measured, &o, &err);
+      st = add_measured(db, c, measured, &o, notes, sizeof notes, &err);
   } else if (isnan(e_inf) || isnan(nu)) {
     refuse("a Prony series needs e_inf_pa and nu");
   } else if (!arrays || terms_from(tau, a, &c->prony) == 0) {
@@ -237,30 +240,46 @@ PyObject *vlpy_add_compound(DatabaseObject *self, PyObject *args, PyObject *kw) 
   free(c);
   if (PyErr_Occurred()) return NULL;
   if (st != VL_OK) return vlpy_raise(st, &err);
+  if (measured) return PyUnicode_FromString(notes); /* the import's notes and warnings */
   Py_RETURN_NONE;
 }
 
 /* ---- surfaces and fluids ----------------------------------------------- */
 
 PyObject *vlpy_add_surface(DatabaseObject *self, PyObject *args, PyObject *kw) {
-  static char *kwlist[] = {"name",     "psd",    "hurst",       "q0_per_m",
-                           "q1_per_m", "hrms_m", "description", NULL};
-  const char *name, *path = NULL, *desc = NULL;
+  static char *kwlist[] = {"name",   "psd",         "hurst",      "q0_per_m", "q1_per_m",
+                           "hrms_m", "description", "topography", NULL};
+  const char *name, *path = NULL, *desc = NULL, *topo = NULL;
   double h = NAN, q0 = NAN, q1 = NAN, hrms = NAN;
-  if (!PyArg_ParseTupleAndKeywords(args, kw, "s|zddddz", kwlist, &name, &path, &h, &q0, &q1, &hrms,
-                                   &desc))
+  if (!PyArg_ParseTupleAndKeywords(args, kw, "s|zddddzz", kwlist, &name, &path, &h, &q0, &q1, &hrms,
+                                   &desc, &topo))
     return NULL;
   vl_db *db = vlpy_db(self);
   if (!db) return NULL;
   int self_affine = !isnan(h) || !isnan(q0) || !isnan(q1) || !isnan(hrms);
-  if ((path != NULL) == self_affine)
-    return refuse("give psd=FILE or hurst=, q0_per_m=, q1_per_m=, hrms_m= (self-affine)");
+  if ((path != NULL) + (topo != NULL) + self_affine != 1)
+    return refuse("give psd=FILE, topography=FILE or hurst=, q0_per_m=, q1_per_m=, hrms_m= "
+                  "(self-affine)");
   vl_psd psd;
   memset(&psd, 0, sizeof psd);
   vl_error err = {{0}};
-  vl_status st = path ? vl_csv_read_psd(path, &psd, &err)
-                      : vl_psd_init_self_affine(&psd, h, q0, q1, hrms, &err);
-  if (st == VL_OK) st = vl_db_surface_add(db, name, &psd, desc, path, &err);
+  vl_status st = VL_OK;
+  if (topo) { /* as `surface add --topography` (src/cli/cli_surface.c) */
+    vl_topography t = {0};
+    vl_topography_spectrum sp = {0};
+    st = vl_topography_read_file(topo, &t, &err);
+    if (st == VL_OK) st = vl_topography_psd(&t, NULL, &sp, &err);
+    if (st == VL_OK) st = vl_psd_init_tabulated(&psd, sp.n, sp.q_per_m, sp.c_m4, &err);
+    char d[VL_DB_TEXT_MAX]; /* the description, else the provenance (cut to fit) */
+    snprintf(d, sizeof d, "%.*s", (int)sizeof d - 1, desc ? desc : sp.provenance);
+    if (st == VL_OK) st = vl_db_surface_add(db, name, &psd, d, topo, &err);
+    vl_topography_spectrum_free(&sp);
+    vl_topography_free(&t);
+  } else {
+    st = path ? vl_csv_read_psd(path, &psd, &err)
+              : vl_psd_init_self_affine(&psd, h, q0, q1, hrms, &err);
+    if (st == VL_OK) st = vl_db_surface_add(db, name, &psd, desc, path, &err);
+  }
   vl_psd_free(&psd);
   if (st != VL_OK) return vlpy_raise(st, &err);
   Py_RETURN_NONE;

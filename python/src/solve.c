@@ -25,6 +25,7 @@ static const struct {
     {"u_central_m", offsetof(vl_point, u_central_m)},
     {"contact_width_m", offsetof(vl_point, contact_width_m)},
     {"fluid_load_fraction", offsetof(vl_point, fluid_load_fraction)},
+    {"u_min_over_h_rms", offsetof(vl_point, u_min_over_h_rms)},
     {"E_wH_pa", offsetof(vl_point, E_wH_pa)},
     {"a_H_m", offsetof(vl_point, a_H_m)},
     {"Q", offsetof(vl_point, Q)},
@@ -52,6 +53,9 @@ static int column_number(const char *name, const vl_point *p, const vl_curve_met
   for (size_t k = 0; k < sizeof solved_columns / sizeof *solved_columns; k++)
     if (!strcmp(name, solved_columns[k].name)) {
       *v = p->converged ? *(const double *)((const char *)p + solved_columns[k].offset) : NAN;
+      /* rolling terms of a moving counter-surface: not applicable, as the
+       * CSV's empty cell */
+      if (p->rolling_na && !strncmp(name, "mu_R", 4)) *v = NAN;
       return 1;
     }
   return 0;
@@ -81,16 +85,17 @@ static PyObject *column(const char *name, size_t n, const vl_point *pts, const v
     }
     return a;
   }
-  int regime = !strcmp(name, "regime");
-  if (!regime && strcmp(name, "warnings")) {
+  int regime = !strcmp(name, "regime"), accuracy = !strcmp(name, "accuracy");
+  if (!regime && !accuracy && strcmp(name, "warnings")) {
     vl_error err;
     vl_error_set(&err, "curve column '%s' unknown to the Python binding", name);
     return vlpy_raise(VL_EINTERNAL, &err);
   }
   PyObject *l = PyList_New((Py_ssize_t)n);
   for (size_t i = 0; l && i < n; i++) {
-    const char *s =
-        regime ? (pts[i].converged ? vl_regime_name(pts[i].regime) : "") : pts[i].warnings;
+    const char *s = regime     ? (pts[i].converged ? vl_regime_name(pts[i].regime) : "")
+                    : accuracy ? (pts[i].converged ? vl_accuracy_name(pts[i].accuracy) : "")
+                               : pts[i].warnings;
     PyObject *t = PyUnicode_FromString(s);
     if (!t)
       Py_CLEAR(l);
@@ -105,6 +110,33 @@ static PyObject *curve_dict(size_t n, const vl_point *pts, const vl_curve_meta *
   PyObject *d = PyDict_New();
   for (size_t c = 0; d && vl_curve_columns[c]; c++)
     if (vlpy_set(d, vl_curve_columns[c], column(vl_curve_columns[c], n, pts, m)) < 0) Py_CLEAR(d);
+  /* a seal scene's columns: `stroke` a list of words, the others numbers
+   * (NaN where the CSV cell is empty; converged_in and tight 1/0) */
+  for (size_t c = 0; d && n && pts[0].seal.stroke != VL_STROKE_NONE && vl_seal_columns[c]; c++) {
+    npy_intp dims[1] = {(npy_intp)n};
+    PyObject *o = c == 0 ? PyList_New((Py_ssize_t)n) : PyArray_SimpleNew(1, dims, NPY_DOUBLE);
+    static const char *const words[] = {"", "out", "in", "both"};
+    for (size_t i = 0; o && i < n; i++) {
+      if (c > 0) {
+        ((double *)PyArray_DATA((PyArrayObject *)o))[i] = vl_seal_column_value(&pts[i], c);
+        continue;
+      }
+      PyObject *t = PyUnicode_FromString(words[pts[i].seal.stroke & 3]);
+      if (!t)
+        Py_CLEAR(o);
+      else
+        PyList_SET_ITEM(o, (Py_ssize_t)i, t);
+    }
+    if (vlpy_set(d, vl_seal_columns[c], o) < 0) Py_CLEAR(d);
+  }
+  /* a scene swept both ways: the downward sweep's columns (NaN where empty) */
+  for (size_t c = 0; d && n && pts[0].down.swept && vl_down_columns[c]; c++) {
+    npy_intp dims[1] = {(npy_intp)n};
+    PyObject *o = PyArray_SimpleNew(1, dims, NPY_DOUBLE);
+    for (size_t i = 0; o && i < n; i++)
+      ((double *)PyArray_DATA((PyArrayObject *)o))[i] = vl_down_column_value(&pts[i], c);
+    if (vlpy_set(d, vl_down_columns[c], o) < 0) Py_CLEAR(d);
+  }
   return d;
 }
 
@@ -126,6 +158,7 @@ static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x
   Py_ssize_t grid = 0;
   vl_query_defaults(q);
   *x = (query_extra){NAN, VL_QUERY_FROM_PA_M, VL_QUERY_TO_PA_M, VL_QUERY_POINTS};
+  q->sigma_s_pa = NAN; /* not given: the stored pair's law, else the default */
   if (!PyArg_ParseTupleAndKeywords(args, kw, "sss|ddddzdndddn", kwlist, &q->compound, &q->surface,
                                    &q->fluid, &q->load_n_per_m, &q->radius_m, &q->sigma_s_pa,
                                    &q->temperature_c, &ff, &q->film_cutoff_m, &grid, &x->speed_m_s,
@@ -144,12 +177,16 @@ static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x
   }
   q->grid = (size_t)grid;
   q->at_temperature = !isnan(q->temperature_c);
+  q->sigma_s_given = !isnan(q->sigma_s_pa);
+  if (!q->sigma_s_given) q->sigma_s_pa = VL_QUERY_SIGMA_S_PA;
   return 0;
 }
 
 /* The result of friction: the point's columns and how it was computed. */
 static PyObject *friction_dict(const vl_query *q, const vl_query_result *r) {
-  vl_curve_meta meta = {r->eta_pa_s, 0.0, r->a0_m, r->flow_factors, r->film_cutoff_m};
+  vl_curve_meta meta = {r->eta_pa_s,      0.0,
+                        r->a0_m,          r->flow_factors,
+                        r->film_cutoff_m, r->has_pair ? r->shear_law_text : NULL};
   PyObject *d = PyDict_New();
   for (size_t c = 0; d && vl_curve_columns[c]; c++) {
     const char *name = vl_curve_columns[c];
@@ -160,15 +197,20 @@ static PyObject *friction_dict(const vl_query *q, const vl_query_result *r) {
         : !strcmp(name, "iterations")             ? PyLong_FromLong(r->point.iterations)
         : !strcmp(name, "regime")
             ? PyUnicode_FromString(r->point.converged ? vl_regime_name(r->point.regime) : "")
+        : !strcmp(name, "accuracy")
+            ? PyUnicode_FromString(r->point.converged ? vl_accuracy_name(r->point.accuracy) : "")
             : PyUnicode_FromString(r->point.warnings);
     if (vlpy_set(d, name, o) < 0) Py_CLEAR(d);
   }
+
   if (d &&
       (vlpy_set_double(d, "eta_pa_s", r->eta_pa_s) || vlpy_set_double(d, "a_T", r->shift_factor) ||
        vlpy_set_double(d, "a0_m", r->a0_m) || vlpy_set_double(d, "hrms_m", r->hrms_m) ||
        vlpy_set_text(d, "flow_factors", r->flow_factors) ||
        vlpy_set_double(d, "film_cutoff_m", r->film_cutoff_m) ||
        vlpy_set_double(d, "temperature_c", q->temperature_c) ||
+       vlpy_set_double(d, "sigma_s_pa", r->sigma_s_pa) ||
+       vlpy_set_text(d, "sigma_s_law", r->has_pair ? r->shear_law_text : NULL) ||
        vlpy_set(d, "points_solved", PyLong_FromSize_t(r->points_solved))))
     Py_CLEAR(d);
   return d;
@@ -279,7 +321,8 @@ static PyObject *curve_info(const vl_scene *sc, vl_simulation *sim, const vl_cur
        vlpy_set_text(d, "flow_factors", m->flow_factors) ||
        vlpy_set_double(d, "film_cutoff_m", m->film_cutoff_m) ||
        vlpy_set_double(d, "temperature_c", vl_simulation_temperature_c(sim)) ||
-       vlpy_set_double(d, "a_T", vl_simulation_shift_factor(sim))))
+       vlpy_set_double(d, "a_T", vl_simulation_shift_factor(sim)) ||
+       vlpy_set_text(d, "sigma_s_law", vl_simulation_shear_law_text(sim))))
     Py_CLEAR(d);
   return d;
 }
@@ -315,7 +358,9 @@ static PyObject *run_one(vl_db *db, const vl_scene *sc) {
     goto done;
   }
   vl_contact *c = vl_simulation_contact(s.sim);
-  vl_curve_meta m = {vl_simulation_eta(s.sim), vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0};
+  vl_curve_meta m = {
+      vl_simulation_eta(s.sim),           vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0,
+      vl_simulation_shear_law_text(s.sim)};
   m.flow_factors = vl_simulation_flow_factors(s.sim, &m.film_cutoff_m);
   ret = PyDict_New();
   if (ret && (vlpy_set(ret, "info", curve_info(sc, s.sim, &m)) ||

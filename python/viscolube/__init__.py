@@ -17,16 +17,36 @@ OutOfMemoryError, InternalError) with `.status` (the library's code) and
 
 import math
 import os
+import sys
+import warnings
 
-import numpy as np
-
-from . import _core
+try:
+    import numpy as np
+except ImportError as _e:  # say what is missing, for which interpreter
+    raise ImportError(
+        "viscolube needs NumPy, which is not installed for this interpreter "
+        f"({sys.executable}): install it (Debian: python3-numpy), or use the "
+        "interpreter the package was built for (cmake prints it: 'the Python "
+        "package (target vl_python_core) is built for ...')") from _e
+try:
+    from . import _core
+except ImportError as _e:
+    # Python words a missing extension module as "cannot import name '_core'
+    # from partially initialized module (most likely due to a circular
+    # import)": it is simply not there
+    _why = "" if "partially initialized" in str(_e) else f"; import error: {_e}"
+    raise ImportError(
+        "viscolube's extension viscolube._core is not built or not built for this "
+        f"interpreter ({sys.executable}, Python {sys.version_info.major}."
+        f"{sys.version_info.minor}): build the target vl_python_core (cmake --build "
+        "build --target vl_python_core) and put build/python on PYTHONPATH"
+        f"{_why}") from _e
 from ._core import (DatabaseError, Error, ExistsError, FileError, InputError,
                     InternalError, NoConvergenceError, NotFoundError,
                     OutOfMemoryError)
 
 __version__ = _core.PROJECT_VERSION
-__all__ = ["Database", "Curve", "Point", "scene_text", "CURVE_COLUMNS", "Error",
+__all__ = ["FitWarning", "Database", "Curve", "Point", "scene_text", "CURVE_COLUMNS", "Error",
            "InputError", "NotFoundError", "ExistsError", "DatabaseError",
            "FileError", "NoConvergenceError", "OutOfMemoryError",
            "InternalError"]
@@ -36,6 +56,12 @@ CURVE_COLUMNS = tuple(_core.curve_columns())
 
 # the library's "not given" for optional numbers
 _ABSENT = math.nan
+
+
+class FitWarning(UserWarning):
+    """What an import of measured data warns of (the lines `compound add
+    --measured` prints as 'warning: ...'): isotherms that do not join, a tan
+    delta rise at the top of the window, Einf extrapolated, a rough fit."""
 
 
 def _input_error(msg):
@@ -54,12 +80,18 @@ def _path(p):
     return None if p is None else os.fspath(p)
 
 
+# The `accuracy` of a converged point that is not known to its error target.
+UNRELIABLE = ("above_target", "no_estimate")
+
+
 class Point(dict):
     """One operating point: the keys of `viscolube friction --json` (the
     columns of curve.csv) and how it was computed (eta_pa_s, a_T, a0_m,
     hrms_m, flow_factors, film_cutoff_m, temperature_c, points_solved).
     Keys are also attributes; `u_min` is `u_min_m`; `warnings` is a list.
-    A point that did not converge has converged False and NaN physics."""
+    A point that did not converge has converged False and NaN physics;
+    `reliable` is False for it and for a point above its error target or
+    without an estimate (`accuracy` 'above_target' or 'no_estimate')."""
 
     def __getattr__(self, key):
         try:
@@ -71,13 +103,26 @@ class Point(dict):
     def u_min(self):
         return self["u_min_m"]
 
+    @property
+    def reliable(self):
+        """Converged and known to its error target (what the program does
+        not mark '!')."""
+        return bool(self["converged"]) and self["accuracy"] not in UNRELIABLE
+
 
 class Curve(dict):
     """A Stribeck curve: {column of curve.csv: numpy array}, one entry per
     sweep point. Float columns hold NaN where curve.csv has an empty cell
     (a point that did not converge, a quantity not defined for the scene);
     `converged` (bool) says which points are solved, `iterations` is int,
-    `regime` and `warnings` are arrays of str ('' for a failed point).
+    `regime`, `accuracy` and `warnings` are arrays of str ('' for a failed
+    point); the property `reliable` (bool array) is True where a point
+    converged and is known to its error target: the points the program marks
+    '!' are False.
+    A seal scene ([seal] stroke) adds the seal columns of curve.csv
+    (docs/FORMATS.md): `stroke` (str), flux_m2_s, friction_n_per_m, the
+    instroke's *_in columns, volume_out_m3, volume_back_m3, and
+    converged_in, tight as 1.0/0.0 (NaN when not known).
 
     .info    the curve's context: compound, surface, fluid, quantity,
              eta_pa_s, tau_s, a0_m, p0_pa, hrms_m, flow_factors,
@@ -96,6 +141,12 @@ class Curve(dict):
             self[name] = values
         self.info = raw["info"]
         self.fields = raw["fields"]
+
+    @property
+    def reliable(self):
+        """Boolean array: converged and known to the error target (False
+        where the program marks '!', and where a point failed)."""
+        return self["converged"] & ~np.isin(self["accuracy"], UNRELIABLE)
 
     def __getattr__(self, key):
         try:
@@ -189,8 +240,10 @@ class Database:
         measured=DMA file (fitted; freq_unit, modulus_unit, temp_unit,
         tref_c, nu, terms_per_decade, fit_weights as `compound add
         --measured`). tref_c defaults to 20 C for a Prony series. Nothing
-        is stored when anything is refused."""
-        self._db.add_compound(
+        is stored when anything is refused. The import's warnings (as the
+        CLI prints them) are raised as FitWarning (warnings.warn); its
+        notes, one sentence a line, are returned (None for a Prony series)."""
+        notes = self._db.add_compound(
             name, prony=_path(prony), tau_s=tau_s, A=A, e_inf_pa=_num(e_inf_pa),
             nu=_num(nu), measured=_path(measured), class_name=class_name,
             description=description, tref_c=_num(tref_c), wlf_c1=_num(wlf_c1),
@@ -198,14 +251,20 @@ class Database:
             modulus_unit=modulus_unit, temp_unit=temp_unit,
             terms_per_decade=0.0 if terms_per_decade is None else float(terms_per_decade),
             fit_weights=fit_weights)
+        for line in (notes or "").splitlines():
+            if line.startswith("warning: "):
+                warnings.warn(f"{name}: {line[9:]}", FitWarning, stacklevel=2)
+        return notes
 
     def add_surface(self, name, psd=None, hurst=None, q0_per_m=None,
-                    q1_per_m=None, hrms_m=None, description=None):
-        """Adds a surface: psd=CSV file (q, C), or self-affine with hurst,
-        q0_per_m, q1_per_m and hrms_m."""
+                    q1_per_m=None, hrms_m=None, description=None, topography=None):
+        """Adds a surface: psd=CSV file (q, C), topography=a measured height
+        map or profile (its power spectrum, as `surface add --topography`),
+        or self-affine with hurst, q0_per_m, q1_per_m and hrms_m."""
         self._db.add_surface(name, psd=_path(psd), hurst=_num(hurst),
                              q0_per_m=_num(q0_per_m), q1_per_m=_num(q1_per_m),
-                             hrms_m=_num(hrms_m), description=description)
+                             hrms_m=_num(hrms_m), description=description,
+                             topography=_path(topography))
 
     def add_fluid(self, name, viscosity_pa_s, tref_c=20.0, vogel_b_k=None,
                   vogel_c_k=None, law_range_c=None, description=""):
@@ -256,6 +315,26 @@ class Database:
                                flow_factors, film_cutoff, grid))
         raw["warnings"] = [w for w in raw["warnings"].split(";") if w]
         return Point(raw)
+
+    def calibrate(self, compound, surface, fluid, measured=None, v=None, mu=None,
+                  law="constant", load=None, radius=None, temperature=None, save=False,
+                  description=None):
+        """Calibrates the sigma_s law of the pair (compound, surface, fluid)
+        on a measured Stribeck curve, as `viscolube pair calibrate`: a file
+        (measured: speed with its unit in the header, and mu) or the
+        sequences v (m/s) and mu; law 'constant', 'eyring' or 'dewetting';
+        the measurement's load (N/m, 117), radius (m, 1e-3), temperature
+        (C). Returns a dict: law, parameters, ci95 (95 % half-widths),
+        rms_log10_mu, fits (and why not), n_points, n_used,
+        unreached_v_m_s, uninformative_v_m_s, sweep_seconds, fit_seconds,
+        saved. save=True stores it as the pair (InputError when the law
+        does not fit; ExistsError when the pair exists)."""
+        kw = self._given(load_n_per_m=load, radius_m=radius, temperature_c=temperature,
+                         description=description)
+        return self._db.calibrate(
+            compound, surface, fluid, measured=_path(measured),
+            v_m_s=None if v is None else [float(x) for x in v],
+            mu=None if mu is None else [float(x) for x in mu], law=law, save=bool(save), **kw)
 
     def run(self, scene):
         """Runs a scene: a path to an INI file (cases/*.ini) or a dict

@@ -1,6 +1,6 @@
 /* Edit distance (edit_distance.h): three rolling rows of the dynamic
  * programme, the one before last for transpositions. */
-#include "edit_distance.h"
+#include "viscolube/edit_distance.h"
 
 #include <stdint.h>
 #include <string.h>

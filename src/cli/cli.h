@@ -17,6 +17,9 @@ typedef struct {
 /* `compound|surface|fluid VERB ...` (argv[0] is the noun). Returns exit code. */
 int vl_cli_materials(const vl_cli_globals *g, int argc, char **argv);
 
+/* `pair VERB ...` (cli_pair.c, argv[0] is "pair"). Returns exit code. */
+int vl_cli_pair(const vl_cli_globals *g, int argc, char **argv);
+
 /* `run SCENE [--out DIR] [--json]` (argv[0] is "run"). Returns exit code. */
 int vl_cli_run(const vl_cli_globals *g, int argc, char **argv);
 
@@ -29,23 +32,9 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv);
 /* `compare --compounds A,B --surface S --fluid F ...`. */
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv);
 
-/* `surface flow-factors NAME` options as given (NULL or 0 when absent);
- * cli_materials.c parses the command line, vl_cli_surface_flow_factors
- * checks the values. */
-typedef struct {
-  const char *model, *u_range, *points, *film_cutoff, *out;
-  int json, plot;
-} vl_cli_flow_factor_args;
-
-/* `surface flow-factors` for surface name (a valid name), in
- * cli_surface.c. Returns the exit code. */
-int vl_cli_surface_flow_factors(const vl_cli_globals *g, const char *name,
-                                const vl_cli_flow_factor_args *a);
-
-/* `surface add NAME --topography FILE [--description TEXT]` (description
- * may be NULL), in cli_surface.c. Returns the exit code. */
-int vl_cli_surface_add_topography(const vl_cli_globals *g, const char *name, const char *path,
-                                  const char *description);
+/* `flattening --compound C --surface S --fluid F --speeds V1,...` or
+ * `flattening --case SCENE` (cli_flattening.c). */
+int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
 
 /* mkdir -p: creates path and its missing parents (0 on success, -1 with
  * errno set). */
@@ -71,6 +60,21 @@ size_t vl_cli_print_warnings(FILE *out, const char *label, size_t n, const vl_po
  * where (may be NULL) is appended to the first line. Returns the count. */
 size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size_t n,
                              const vl_point *pts, const char *where);
+
+/* Exit status when every point converged but some are above their error
+ * target or have no estimate (vl_point_unreliable): a result of its own,
+ * after 7 (not converged) in precedence. */
+#define VL_CLI_EXIT_UNRELIABLE 8
+
+/* The points that converged but are not known to their error target, on
+ * out: how many, and each with its speed and estimate (at most 10); returns
+ * the count (0: nothing printed). */
+size_t vl_cli_print_unreliable(FILE *out, const char *cmd, const char *label, size_t n,
+                               const vl_point *pts);
+
+/* The exit status of a command's points: 7 when some failed, else 8 when
+ * some are unreliable, else 0. */
+int vl_cli_points_status(size_t failed, size_t unreliable);
 
 /* ---- output folders and their manifests (cli_manifest.c) ---- */
 

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_options.h"
 
 #define MAX_SPEEDS 32
 #define MAX_HURST 16
@@ -37,37 +38,6 @@ static void usage(FILE *out) {
         "out/flattening. Defaults: --load 117 --radius 0.001 (the seed's real-rubber\n"
         "scenes), --u-range 0.001,10, --per-decade 20, the surface's own H.\n",
         out);
-}
-
-/* Comma-separated positive numbers (strict syntax); 0 and a message on
- * failure. */
-static int parse_list(const char *opt, const char *text, double *vals, size_t max, size_t *n) {
-  char buf[2048];
-  if (!text || strlen(text) >= sizeof buf) {
-    fprintf(stderr, "viscolube flattening: option %s needs a comma-separated list\n", opt);
-    return 0;
-  }
-  snprintf(buf, sizeof buf, "%s", text);
-  *n = 0;
-  char *save = NULL;
-  for (char *t = strtok_r(buf, ",", &save); t; t = strtok_r(NULL, ",", &save)) {
-    double d = 0.0;
-    if (*n == max) {
-      fprintf(stderr, "viscolube flattening: option %s takes at most %zu values\n", opt, max);
-      return 0;
-    }
-    if (vl_csv_parse_double(t, &d, NULL) != VL_OK || !(d > 0.0)) {
-      fprintf(stderr, "viscolube flattening: option %s needs positive numbers (got '%s')\n", opt,
-              t);
-      return 0;
-    }
-    vals[(*n)++] = d;
-  }
-  if (*n == 0) {
-    fprintf(stderr, "viscolube flattening: option %s needs at least one value\n", opt);
-    return 0;
-  }
-  return 1;
 }
 
 /* The separation (in h_rms) where epsilon_f first falls to level coming
@@ -116,6 +86,9 @@ typedef struct {
   int json, have_load, have_radius;
   int case_needs_eta; /* the case's speeds are v0 eta: divide by the fluid's eta */
   vl_flattening_response response;
+  const char *response_text; /* --response as given */
+  double u_range[2];         /* --u-range as given */
+  size_t n_u_range;
   vl_scene scene; /* --case: the names above may point into it */
 } flat_args;
 
@@ -130,94 +103,95 @@ typedef struct {
   curve_info *info;
 } flat_curves;
 
-/* A numeric option (--load, --radius, --per-decade): 1, else 0 after the
- * message. */
-static int number_option(flat_args *a, const char *o, const char *v) {
-  double d = 0.0;
-  if (vl_csv_parse_double(v, &d, NULL) != VL_OK || !(d > 0.0)) {
-    fprintf(stderr, "viscolube flattening: option %s needs a positive number (got '%s')\n", o, v);
-    return 0;
-  }
-  if (!strcmp(o, "--load"))
-    a->load = d, a->have_load = 1;
-  else if (!strcmp(o, "--radius"))
-    a->radius = d, a->have_radius = 1;
-  else if (d != floor(d) || d > 1000) {
-    fprintf(stderr, "viscolube flattening: --per-decade needs a whole number in [1, 1000]\n");
-    return 0;
-  } else
-    a->per_decade = d;
-  return 1;
+/* The checks of --hurst, --u-range and --response as soon as they are
+ * given: -1, else the exit status after the message. */
+static int check_hurst(const char *cmd, void *ctx) {
+  flat_args *a = ctx;
+  for (size_t k = 0; k < a->n_hurst; k++)
+    if (a->hursts[k] > 1.0) {
+      fprintf(stderr, "viscolube %s: --hurst values must lie in (0, 1] (got %g)\n", cmd,
+              a->hursts[k]);
+      return 2;
+    }
+  return -1;
 }
 
-/* A list option (--speeds, --hurst, --u-range): 1, else 0 after the
- * message. */
-static int list_option(flat_args *a, const char *o, const char *v) {
-  if (!strcmp(o, "--speeds")) return parse_list(o, v, a->speeds, MAX_SPEEDS, &a->n_speeds);
-  if (!strcmp(o, "--hurst")) {
-    if (!parse_list(o, v, a->hursts, MAX_HURST, &a->n_hurst)) return 0;
-    for (size_t k = 0; k < a->n_hurst; k++)
-      if (a->hursts[k] > 1.0) {
-        fprintf(stderr, "viscolube flattening: --hurst values must lie in (0, 1] (got %g)\n",
-                a->hursts[k]);
-        return 0;
-      }
-    return 1;
+static int check_u_range(const char *cmd, void *ctx) {
+  flat_args *a = ctx;
+  if (a->n_u_range != 2 || !(a->u_range[1] > a->u_range[0])) {
+    fprintf(stderr, "viscolube %s: --u-range needs MIN,MAX with 0 < MIN < MAX\n", cmd);
+    return 2;
   }
-  double r[2];
-  size_t n = 0;
-  if (!parse_list(o, v, r, 2, &n)) return 0;
-  if (n != 2 || !(r[1] > r[0])) {
-    fprintf(stderr, "viscolube flattening: --u-range needs MIN,MAX with 0 < MIN < MAX\n");
-    return 0;
+  a->u_lo = a->u_range[0], a->u_hi = a->u_range[1];
+  return -1;
+}
+
+static int check_response(const char *cmd, void *ctx) {
+  flat_args *a = ctx;
+  vl_error e;
+  if (vl_flattening_response_parse(a->response_text, &a->response, &e) != VL_OK) {
+    fprintf(stderr, "viscolube %s: --response: %s\n", cmd, e.msg);
+    return 2;
   }
-  a->u_lo = r[0], a->u_hi = r[1];
-  return 1;
+  return -1;
 }
 
 /* The options: -1 to go on, else the exit code (0 after --help). */
 static int flat_parse(int argc, char **argv, flat_args *a) {
-  for (int i = 1; i < argc; i++) {
-    const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(o, "--help") || !strcmp(o, "-h")) {
-      usage(stdout);
-      return 0;
-    }
-    if (!strcmp(o, "--json")) {
-      a->json = 1;
-      continue;
-    }
-    if (!v) {
-      fprintf(stderr, "viscolube flattening: unknown or incomplete option '%s' (see --help)\n", o);
-      return 2;
-    }
-    i++;
-    if (!strcmp(o, "--compound"))
-      a->compound = v;
-    else if (!strcmp(o, "--surface"))
-      a->surface = v;
-    else if (!strcmp(o, "--fluid"))
-      a->fluid = v;
-    else if (!strcmp(o, "--case"))
-      a->case_path = v;
-    else if (!strcmp(o, "--out"))
-      a->out_dir = v;
-    else if (!strcmp(o, "--speeds") || !strcmp(o, "--hurst") || !strcmp(o, "--u-range")) {
-      if (!list_option(a, o, v)) return 2;
-    } else if (!strcmp(o, "--load") || !strcmp(o, "--radius") || !strcmp(o, "--per-decade")) {
-      if (!number_option(a, o, v)) return 2;
-    } else if (!strcmp(o, "--response")) {
-      vl_error e;
-      if (vl_flattening_response_parse(v, &a->response, &e) != VL_OK) {
-        fprintf(stderr, "viscolube flattening: --response: %s\n", e.msg);
-        return 2;
-      }
-    } else {
-      fprintf(stderr, "viscolube flattening: unknown or incomplete option '%s' (see --help)\n", o);
-      return 2;
-    }
-  }
-  return -1;
+  static const vl_cli_number_rule positive = {.lo = 0.0,
+                                              .lo_open = 1,
+                                              .hi = 1000,
+                                              .bad = "option %s needs a positive number (got '%s')",
+                                              .range = "%s needs a whole number in [1, 1000]",
+                                              .whole = 1};
+  vl_cli_number_rule length = positive;
+  length.hi = INFINITY, length.whole = 0, length.range = NULL;
+  vl_cli_option opts[] = {
+      {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
+      {.name = "--json", .kind = VL_CLI_FLAG, .dest = &a->json},
+      {.name = "--compound", .kind = VL_CLI_TEXT, .dest = &a->compound},
+      {.name = "--surface", .kind = VL_CLI_TEXT, .dest = &a->surface},
+      {.name = "--fluid", .kind = VL_CLI_TEXT, .dest = &a->fluid},
+      {.name = "--case", .kind = VL_CLI_TEXT, .dest = &a->case_path},
+      {.name = "--out", .kind = VL_CLI_TEXT, .dest = &a->out_dir},
+      {.name = "--speeds",
+       .kind = VL_CLI_LIST,
+       .dest = a->speeds,
+       .max_values = MAX_SPEEDS,
+       .n_values = &a->n_speeds},
+      {.name = "--hurst",
+       .kind = VL_CLI_LIST,
+       .dest = a->hursts,
+       .max_values = MAX_HURST,
+       .n_values = &a->n_hurst,
+       .check = check_hurst,
+       .ctx = a},
+      {.name = "--u-range",
+       .kind = VL_CLI_LIST,
+       .dest = a->u_range,
+       .max_values = 2,
+       .n_values = &a->n_u_range,
+       .check = check_u_range,
+       .ctx = a},
+      {.name = "--load", .kind = VL_CLI_NUMBER, .dest = &a->load, .rule = &length},
+      {.name = "--radius", .kind = VL_CLI_NUMBER, .dest = &a->radius, .rule = &length},
+      {.name = "--per-decade", .kind = VL_CLI_NUMBER, .dest = &a->per_decade, .rule = &positive},
+      {.name = "--response",
+       .kind = VL_CLI_TEXT,
+       .dest = &a->response_text,
+       .check = check_response,
+       .ctx = a},
+  };
+  vl_cli_parser p = {.cmd = "flattening",
+                     .opts = opts,
+                     .n_opts = sizeof opts / sizeof opts[0],
+                     .unknown = "unknown or incomplete option '%s' (see --help)",
+                     .missing = "unknown or incomplete option '%s' (see --help)",
+                     .usage = usage};
+  int rc = vl_cli_parse(&p, argc, argv, 1);
+  a->have_load = vl_cli_find(&p, "--load")->given > 0;
+  a->have_radius = vl_cli_find(&p, "--radius")->given > 0;
+  return rc;
 }
 
 /* --case: the scene supplies what the options did not. -1 to go on, else

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "cli_options.h"
 
 #define MAX_COMPOUNDS 8
 
@@ -22,95 +23,88 @@ typedef struct {
   int quiet; /* --quiet (or the global one): no warnings, no progress */
 } conditions;
 
-/* The strict decimal syntax of every numeric option and CSV cell
- * (vl_csv_parse_double): no hex floats, NaN, Inf or trailing units. */
-static int parse_number(const char *cmd, const char *opt, const char *v, double *out,
-                        int positive) {
-  double d = 0.0;
-  if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || (positive ? d <= 0.0 : d < 0.0)) {
-    fprintf(stderr, "viscolube %s: option %s needs a %s number (got '%s')\n", cmd, opt,
-            positive ? "positive" : "non-negative", v ? v : "");
-    return 0;
-  }
-  *out = d;
-  return 1;
+/* The rules of the numeric options (messages: option, text as typed). */
+static const vl_cli_number_rule positive = {
+    .lo = 0.0, .lo_open = 1, .hi = INFINITY, .bad = "option %s needs a positive number (got '%s')"};
+static const vl_cli_number_rule non_negative = {
+    .lo = 0.0, .hi = INFINITY, .bad = "option %s needs a non-negative number (got '%s')"};
+static const vl_cli_number_rule temperature = {
+    .lo = -273.15, .hi = INFINITY, .bad = "option %s needs a temperature in C (got '%s')"};
+
+/* The options both commands take, into opts (room for N_COMMON); the
+ * numbers that need a second look go to grid and the given counts. */
+#define N_COMMON 13
+#define UNKNOWN_OR_INCOMPLETE "unknown or incomplete option '%s' (see --help)"
+
+typedef struct {
+  vl_cli_number_rule grid, film_cutoff, target; /* with their limits in the messages */
+  char grid_range[96], cutoff_range[96];
+  double grid_value;
+} common_rules;
+
+static size_t common_options(conditions *c, common_rules *r, vl_cli_option *opts) {
+  r->grid = positive;
+  r->grid.range_lo = VL_GRID_MIN;
+  r->grid.hi = VL_GRID_GRADED_MAX;
+  r->grid.whole = 1;
+  snprintf(r->grid_range, sizeof r->grid_range, "option %%s needs a whole number in [%d, %d]",
+           VL_GRID_MIN, VL_GRID_GRADED_MAX);
+  r->grid.range = r->grid_range;
+  r->film_cutoff = positive;
+  r->film_cutoff.hi = VL_FILM_CUTOFF_MAX_M;
+  snprintf(r->cutoff_range, sizeof r->cutoff_range,
+           "option %%s needs a length in (0, %g] m (got '%%s')", VL_FILM_CUTOFF_MAX_M);
+  r->film_cutoff.range = r->cutoff_range;
+  r->target = positive;
+  r->target.range_lo = 1e-6, r->target.hi = 0.5;
+  r->target.range = "option %s needs a relative error in [1e-6, 0.5] (got '%s')";
+  const char *value = "option %s needs a value";
+  vl_cli_option common[N_COMMON] = {
+      {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
+      {.name = "--json", .kind = VL_CLI_FLAG, .dest = &c->json},
+      {.name = "--quiet", .alias = "-q", .kind = VL_CLI_FLAG, .dest = &c->quiet},
+      {.name = "--surface", .kind = VL_CLI_TEXT, .dest = &c->q.surface, .missing = value},
+      {.name = "--fluid", .kind = VL_CLI_TEXT, .dest = &c->q.fluid, .missing = value},
+      {.name = "--flow-factors", .kind = VL_CLI_TEXT, .dest = &c->flow_factors, .missing = value},
+      {.name = "--load", .kind = VL_CLI_NUMBER, .dest = &c->q.load_n_per_m, .rule = &positive},
+      {.name = "--radius", .kind = VL_CLI_NUMBER, .dest = &c->q.radius_m, .rule = &positive},
+      {.name = "--sigma-s", .kind = VL_CLI_NUMBER, .dest = &c->q.sigma_s_pa, .rule = &non_negative},
+      {.name = "--grid", .kind = VL_CLI_NUMBER, .dest = &r->grid_value, .rule = &r->grid},
+      {.name = "--film-cutoff",
+       .kind = VL_CLI_NUMBER,
+       .dest = &c->q.film_cutoff_m,
+       .rule = &r->film_cutoff},
+      {.name = "--temperature",
+       .kind = VL_CLI_NUMBER,
+       .dest = &c->q.temperature_c,
+       .rule = &temperature},
+      {.name = "--target-error",
+       .kind = VL_CLI_NUMBER,
+       .dest = &c->q.target_error,
+       .rule = &r->target},
+  };
+  memcpy(opts, common, sizeof common);
+  return N_COMMON;
 }
 
-/* Common options; returns 1 when argv[*i] was one of them (consuming its
- * value), 0 when not, -1 on a bad value. */
-static int common_option(const char *cmd, int argc, char **argv, int *i, conditions *c) {
-  const char *o = argv[*i];
-  const char *v = *i + 1 < argc ? argv[*i + 1] : NULL;
-  double d;
-  if (!strcmp(o, "--json")) {
-    c->json = 1;
-    return 1;
-  }
-  if (!strcmp(o, "--quiet") || !strcmp(o, "-q")) {
-    c->quiet = 1;
-    return 1;
-  }
-  if (!strcmp(o, "--plot") && !strcmp(cmd, "compare")) {
-    c->plot = 1;
-    return 1;
-  }
-  if (!strcmp(o, "--surface") || !strcmp(o, "--fluid") || !strcmp(o, "--flow-factors")) {
-    if (!v) {
-      fprintf(stderr, "viscolube %s: option %s needs a value\n", cmd, o);
-      return -1;
-    }
-    if (!strcmp(o, "--surface"))
-      c->q.surface = v;
-    else if (!strcmp(o, "--fluid"))
-      c->q.fluid = v;
-    else
-      c->flow_factors = v;
-    (*i)++;
-    return 1;
-  }
-  if (!strcmp(o, "--load") || !strcmp(o, "--radius") || !strcmp(o, "--sigma-s") ||
-      !strcmp(o, "--grid")) {
-    if (!parse_number(cmd, o, v, &d, strcmp(o, "--sigma-s") != 0)) return -1;
-    if (!strcmp(o, "--load"))
-      c->q.load_n_per_m = d;
-    else if (!strcmp(o, "--radius"))
-      c->q.radius_m = d;
-    else if (!strcmp(o, "--sigma-s"))
-      c->q.sigma_s_pa = d;
-    else {
-      if (d < VL_GRID_MIN || d > VL_GRID_GRADED_MAX || d != floor(d)) {
-        fprintf(stderr, "viscolube %s: option --grid needs a whole number in [%d, %d]\n", cmd,
-                VL_GRID_MIN, VL_GRID_GRADED_MAX);
-        return -1;
-      }
-      c->q.grid = (size_t)d;
-    }
-    (*i)++;
-    return 1;
-  }
-  if (!strcmp(o, "--film-cutoff")) {
-    if (!parse_number(cmd, o, v, &d, 1)) return -1;
-    if (d > VL_FILM_CUTOFF_MAX_M) {
-      fprintf(stderr, "viscolube %s: option --film-cutoff needs a length in (0, %g] m (got '%s')\n",
-              cmd, VL_FILM_CUTOFF_MAX_M, v);
-      return -1;
-    }
-    c->q.film_cutoff_m = d;
-    (*i)++;
-    return 1;
-  }
-  if (!strcmp(o, "--temperature")) {
-    if (!v || vl_csv_parse_double(v, &d, NULL) != VL_OK || d < -273.15) {
-      fprintf(stderr, "viscolube %s: option --temperature needs a temperature in C (got '%s')\n",
-              cmd, v ? v : "");
-      return -1;
-    }
-    c->q.at_temperature = true;
-    c->q.temperature_c = d;
-    (*i)++;
-    return 1;
-  }
-  return 0;
+/* After the parse: the common options that are more than a value. */
+static void common_given(vl_cli_parser *p, conditions *c, const common_rules *r) {
+  if (vl_cli_find(p, "--grid")->given) c->q.grid = (size_t)r->grid_value;
+  if (vl_cli_find(p, "--temperature")->given) c->q.at_temperature = true;
+  if (vl_cli_find(p, "--sigma-s")->given) c->q.sigma_s_given = true; /* over a stored pair */
+}
+
+/* Parses argv by p (its table: the common options and the command's);
+ * -1 to go on, else the exit status (0 after the usage on --help). */
+static int parse_command(vl_cli_parser *p, int argc, char **argv, conditions *c,
+                         const common_rules *r, void (*usage)(FILE *)) {
+  p->flags = 0;
+  p->unknown = UNKNOWN_OR_INCOMPLETE;
+  p->usage = usage;
+  int rc = vl_cli_parse(p, argc, argv, 1);
+  if (rc >= 0) return rc;
+  common_given(p, c, r);
+  return -1;
 }
 
 /* The viscosity the run uses (vl_query_fluid_eta), the message naming the
@@ -185,8 +179,8 @@ static void friction_usage(FILE *out) {
   fputs("usage: viscolube friction --compound C --surface S --fluid F --speed V_M_S\n"
         "                          [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
         "                          [--flow-factors persson-emt|patir-cheng|smooth]\n"
-        "                          [--film-cutoff M] [--grid N] [--temperature C] [--json]\n"
-        "                          [--quiet]\n"
+        "                          [--film-cutoff M] [--grid N] [--temperature C]\n"
+        "                          [--target-error E] [--json] [--quiet]\n"
         "\n"
         "Friction of one operating point: a smooth rigid cylinder (radius, load per unit\n"
         "length) sliding at V on the stored compound with the stored rough surface in the\n"
@@ -207,8 +201,12 @@ static void friction_usage(FILE *out) {
         "growing by 5 % (about 200 cells), tolerance 1e-6 (docs/NUMERICS.md).\n"
         "The point's model-validity warnings follow on stderr, one a line (with --json\n"
         "only in the JSON; --quiet leaves them out).\n"
+        "--target-error E: the relative error of mu the point should meet (default\n"
+        "0.01); the numerics are refined towards it, and a point still above it (or\n"
+        "without an error estimate) is marked.\n"
         "Exit status: 0 converged, 7 did not converge (iterations and residual on\n"
-        "stderr), 2 bad option or name, 3 unknown material, 5 database error.\n",
+        "stderr), 8 converged but above its error target or without an estimate,\n"
+        "2 bad option or name, 3 unknown material, 5 database error.\n",
         out);
 }
 
@@ -216,28 +214,19 @@ static void friction_usage(FILE *out) {
  * --help). */
 static int friction_args(int argc, char **argv, conditions *c, const char **compound,
                          double *speed) {
-  int have_speed = 0;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      friction_usage(stdout);
-      return 0;
-    }
-    int r = common_option("friction", argc, argv, &i, c);
-    if (r < 0) return 2;
-    if (r) continue;
-    if (!strcmp(argv[i], "--compound") && i + 1 < argc) {
-      *compound = argv[++i];
-    } else if (!strcmp(argv[i], "--speed")) {
-      if (!parse_number("friction", "--speed", i + 1 < argc ? argv[i + 1] : NULL, speed, 1))
-        return 2;
-      have_speed = 1;
-      i++;
-    } else {
-      fprintf(stderr, "viscolube friction: unknown or incomplete option '%s' (see --help)\n",
-              argv[i]);
-      return 2;
-    }
-  }
+  common_rules r;
+  vl_cli_option opts[N_COMMON + 2];
+  size_t n = common_options(c, &r, opts);
+  opts[n++] = (vl_cli_option){.name = "--compound",
+                              .kind = VL_CLI_TEXT,
+                              .dest = compound,
+                              .missing = UNKNOWN_OR_INCOMPLETE};
+  opts[n++] =
+      (vl_cli_option){.name = "--speed", .kind = VL_CLI_NUMBER, .dest = speed, .rule = &positive};
+  vl_cli_parser p = {.cmd = "friction", .opts = opts, .n_opts = n};
+  int rc = parse_command(&p, argc, argv, c, &r, friction_usage);
+  if (rc >= 0) return rc;
+  int have_speed = vl_cli_find(&p, "--speed")->given > 0;
   if (!need("friction", "--compound", *compound) || !need("friction", "--surface", c->q.surface) ||
       !need("friction", "--fluid", c->q.fluid) ||
       !need("friction", "--speed", have_speed ? "" : NULL))
@@ -252,7 +241,9 @@ static int friction_args(int argc, char **argv, conditions *c, const char **comp
 /* The point as JSON; with --temperature the temperature, shift and
  * viscosity come first in the same object. */
 static void friction_json(const conditions *c, const vl_query_result *r) {
-  vl_curve_meta meta = {r->eta_pa_s, 0.0, r->a0_m, r->flow_factors, r->film_cutoff_m};
+  vl_curve_meta meta = {r->eta_pa_s,      0.0,
+                        r->a0_m,          r->flow_factors,
+                        r->film_cutoff_m, r->has_pair ? r->shear_law_text : NULL};
   vl_json w;
   vl_json_init(&w, stdout, 10);
   vl_json_object_begin(&w, VL_JSON_INLINE);
@@ -277,6 +268,7 @@ static void friction_text(const conditions *c, const char *compound, double spee
     if (r->film_cutoff_m > 0.0) printf(" (film cut-off %g m)", r->film_cutoff_m);
     putchar('\n');
   }
+  if (r->has_pair) printf("  sigma_s: %s\n", r->shear_law_text);
   if (c->q.at_temperature)
     printf("  at %g C: compound times x a_T = %.4g (WLF), fluid viscosity %.4g Pa s\n",
            c->q.temperature_c, r->shift_factor, eta);
@@ -291,8 +283,10 @@ static void friction_text(const conditions *c, const char *compound, double spee
          pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
          vl_regime_name(pt->regime), pt->Q, pt->iterations, pt->residual, r->points_solved);
   if (isfinite(pt->error_estimate))
-    printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)\n",
-           100.0 * pt->error_estimate);
+    printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)%s\n",
+           100.0 * pt->error_estimate,
+           pt->accuracy == VL_ACCURACY_ABOVE_TARGET ? ": ABOVE the target, not to be trusted to it"
+                                                    : "");
   else
     printf("  error estimate of mu: none (the point on coarser cells did not converge)\n");
 }
@@ -340,6 +334,8 @@ int vl_cli_friction(const vl_cli_globals *g, int argc, char **argv) {
             "(%ld iterations, residual %.3g)\n",
             speed, r.point.iterations, r.point.residual);
     rc = vl_status_exit_code(VL_ENOCONV);
+  } else if (vl_cli_print_unreliable(stderr, "friction", NULL, 1, &r.point)) {
+    rc = VL_CLI_EXIT_UNRELIABLE;
   }
 done:
   vl_db_close(db);
@@ -348,16 +344,19 @@ done:
 
 static void compare_usage(FILE *out) {
   fputs("usage: viscolube compare --compounds A,B[,...] --surface S --fluid F\n"
-        "                         [--from V0ETA] [--to V0ETA] [--points N] [--out DIR]\n"
+        "                         [--from V0ETA --to V0ETA | --from-speed M_S --to-speed M_S]\n"
+        "                         [--points N] [--out DIR]\n"
         "                         [--axis speed|v0eta] [--load N_PER_M] [--radius M]\n"
         "                         [--sigma-s PA] [--flow-factors persson-emt|patir-cheng|smooth]\n"
         "                         [--film-cutoff M] [--grid N] [--json] [--plot]\n"
-        "                         [--temperature C] [--quiet]\n"
+        "                         [--temperature C] [--target-error E] [--quiet]\n"
         "\n"
         "Stribeck curves of several compounds on one surface in one fluid, side by side:\n"
         "mu and u_min/h_rms per compound. The sweep runs over v0*eta from --from to --to\n"
         "(Pa m, whatever the axis: in water, 1e-12 .. 0.1 Pa m is 1 nm/s .. 100 m/s);\n"
         "given either way round, it runs upward, from the boundary regime.\n"
+        "--from-speed/--to-speed give the range in m/s instead (the fluid's viscosity\n"
+        "then does not matter, at --temperature or not).\n"
         "--axis: the first column of the table and of compare.csv, the JSON's axis and the\n"
         "figures' x axis: speed (v0_m_s, m/s; the default) or v0eta (v0_eta_pa_m, Pa m).\n"
         "Writes DIR/compare.csv (one row per speed; the axis, then mu, mu_Rc, mu_Rf, mu_Sc,\n"
@@ -378,9 +377,12 @@ static void compare_usage(FILE *out) {
         "anything is computed.\n"
         "After the table, on stderr: one line per kind of model-validity warning and\n"
         "compound with the points it applies to (with --json only in the JSON), and the\n"
-        "points that did not converge (speed, iterations, residual). --quiet leaves out\n"
-        "the warnings and the progress lines.\n"
+        "points that did not converge (speed, iterations, residual), then those above their\n"
+        "error target (--target-error, default 0.01) or without an estimate, marked '!' in\n"
+        "the table, `accuracy` in curve.csv and hollow squares in the figures. --quiet\n"
+        "leaves out the warnings and the progress lines.\n"
         "Exit status: 0 every point converged, 7 some did not (written with converged = 0),\n"
+        "8 all converged but some are above their error target or have no estimate,\n"
         "2 bad option or name, 3 unknown material, 5 database error, 6 file error (a file\n"
         "that did not fit is named; the others are kept) or standard output lost.\n"
         "Defaults: --from 1e-12 --to 0.1 --points 45 --axis speed, and those of\n"
@@ -395,6 +397,8 @@ typedef struct {
   char *names[MAX_COMPOUNDS];
   size_t nc;
   double from, to, points;
+  double from_speed, to_speed; /* --from-speed/--to-speed (m/s); NAN: the range is in v0 eta */
+  int from_given;              /* --from or --to given */
   const char *out_dir;
   int axis_v0eta; /* --axis v0eta; else speed (one fluid: the speed reads directly) */
 } compare_args;
@@ -407,48 +411,46 @@ typedef struct {
   double *hrms; /* of each compound's surface (1 when smooth) */
   double eta;   /* Pa s, the fluid's (at --temperature) */
   size_t failed;
+  size_t unreliable; /* converged, but above their error target or without an estimate */
 } compare_curves;
 
 /* The options of `compare`: -1 to go on, else the exit code (0 after
  * --help). */
 static int compare_parse(int argc, char **argv, compare_args *a) {
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      compare_usage(stdout);
-      return 0;
-    }
-    int r = common_option("compare", argc, argv, &i, &a->c);
-    if (r < 0) return 2;
-    if (r) continue;
-    const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!strcmp(argv[i], "--compounds") && v) {
-      snprintf(a->list, sizeof a->list, "%s", v);
-      i++;
-    } else if (!strcmp(argv[i], "--out") && v) {
-      a->out_dir = v;
-      i++;
-    } else if (!strcmp(argv[i], "--axis")) {
-      if (!v || (strcmp(v, "speed") && strcmp(v, "v0eta"))) {
-        fprintf(stderr, "viscolube compare: option --axis needs speed or v0eta (got '%s')\n",
-                v ? v : "");
-        return 2;
-      }
-      a->axis_v0eta = !strcmp(v, "v0eta");
-      i++;
-    } else if (!strcmp(argv[i], "--from") || !strcmp(argv[i], "--to") ||
-               !strcmp(argv[i], "--points")) {
-      double *dst = !strcmp(argv[i], "--from") ? &a->from
-                    : !strcmp(argv[i], "--to") ? &a->to
-                                               : &a->points;
-      if (!parse_number("compare", argv[i], v, dst, 1)) return 2;
-      i++;
-    } else {
-      fprintf(stderr, "viscolube compare: unknown or incomplete option '%s' (see --help)\n",
-              argv[i]);
-      return 2;
-    }
-  }
-  return -1;
+  static const char *const axes[] = {"speed", "v0eta", NULL};
+  common_rules r;
+  const char *compounds = NULL;
+  enum { N_COMPARE = 9 }; /* the options below: room for each */
+  vl_cli_option opts[N_COMMON + N_COMPARE];
+  size_t n = common_options(&a->c, &r, opts);
+  opts[n++] = (vl_cli_option){.name = "--plot", .kind = VL_CLI_FLAG, .dest = &a->c.plot};
+  opts[n++] = (vl_cli_option){.name = "--compounds",
+                              .kind = VL_CLI_TEXT,
+                              .dest = &compounds,
+                              .missing = UNKNOWN_OR_INCOMPLETE};
+  opts[n++] = (vl_cli_option){
+      .name = "--out", .kind = VL_CLI_TEXT, .dest = &a->out_dir, .missing = UNKNOWN_OR_INCOMPLETE};
+  opts[n++] = (vl_cli_option){.name = "--axis",
+                              .kind = VL_CLI_CHOICE,
+                              .dest = &a->axis_v0eta,
+                              .choices = axes,
+                              .choice_bad = "option %s needs speed or v0eta (got '%s')"};
+  opts[n++] =
+      (vl_cli_option){.name = "--from", .kind = VL_CLI_NUMBER, .dest = &a->from, .rule = &positive};
+  opts[n++] =
+      (vl_cli_option){.name = "--to", .kind = VL_CLI_NUMBER, .dest = &a->to, .rule = &positive};
+  opts[n++] = (vl_cli_option){
+      .name = "--from-speed", .kind = VL_CLI_NUMBER, .dest = &a->from_speed, .rule = &positive};
+  opts[n++] = (vl_cli_option){
+      .name = "--to-speed", .kind = VL_CLI_NUMBER, .dest = &a->to_speed, .rule = &positive};
+  opts[n++] = (vl_cli_option){
+      .name = "--points", .kind = VL_CLI_NUMBER, .dest = &a->points, .rule = &positive};
+  if (n > sizeof opts / sizeof *opts) abort(); /* N_COMPARE is short: a bug */
+  vl_cli_parser p = {.cmd = "compare", .opts = opts, .n_opts = n};
+  int rc = parse_command(&p, argc, argv, &a->c, &r, compare_usage);
+  if (rc < 0 && compounds) snprintf(a->list, sizeof a->list, "%s", compounds);
+  a->from_given = vl_cli_find(&p, "--from")->given || vl_cli_find(&p, "--to")->given;
+  return rc;
 }
 
 /* Cuts --compounds into names and checks that everything needed was given. */
@@ -469,6 +471,17 @@ static int compare_check(compare_args *a) {
   if (!valid_name("compare", "--surface", a->c.q.surface) ||
       !valid_name("compare", "--fluid", a->c.q.fluid))
     return 2;
+  bool speeds = !isnan(a->from_speed) || !isnan(a->to_speed);
+  if (speeds && (isnan(a->from_speed) || isnan(a->to_speed))) {
+    fprintf(stderr, "viscolube compare: --from-speed and --to-speed go together\n");
+    return 2;
+  }
+  if (speeds && a->from_given) {
+    fprintf(stderr, "viscolube compare: give the range in m/s (--from-speed, --to-speed) or in "
+                    "v0 eta (--from, --to), not both\n");
+    return 2;
+  }
+  if (speeds) a->from = a->from_speed, a->to = a->to_speed; /* in m/s from here on */
   if (a->to < a->from) { /* the same speeds, swept upward (the scene's rule) */
     double high = a->from;
     a->from = a->to, a->to = high;
@@ -511,6 +524,7 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   vl_scene sc;
   if (!make_scene("compare", &a->c, a->names[k], &sc)) return 2;
   sc.from = a->from, sc.to = a->to, sc.points = cv->n;
+  if (!isnan(a->from_speed)) sc.quantity = VL_SWEEP_V0; /* the range in m/s */
   vl_simulation *sim = NULL;
   *st = vl_simulation_create(&sc, db, &sim, err);
   if (*st != VL_OK) return -1;
@@ -527,6 +541,13 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   *st = vl_simulation_run(sim, pts, NULL, NULL, &stats, err);
   cv->failed += stats.failed;
   if (*st == VL_OK) vl_manifest_add_counts(man, stats.converged, stats.failed);
+  const char *law = vl_simulation_shear_law_text(sim);
+  if (*st == VL_OK && law) { /* a stored pair's law gave sigma_s: say which */
+    char key[128];
+    snprintf(key, sizeof key, "sigma_s_%s", a->names[k]);
+    vl_manifest_add_text(man, key, law);
+    if (!a->c.json && !a->c.quiet) fprintf(stderr, "compare: %s: sigma_s: %s\n", a->names[k], law);
+  }
   char dir[4200], path[4300];
   snprintf(dir, sizeof dir, "%s/%s", a->out_dir, a->names[k]);
   if (*st == VL_OK && vl_cli_make_dirs(dir) != 0) {
@@ -534,8 +555,9 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
     *st = VL_EIO;
   }
   if (*st == VL_OK) {
-    vl_curve_meta meta = {cv->eta, vl_simulation_tau(sim),
-                          vl_contact_a0(vl_simulation_contact(sim)), NULL, 0.0};
+    vl_curve_meta meta = {
+        cv->eta, vl_simulation_tau(sim),           vl_contact_a0(vl_simulation_contact(sim)), NULL,
+        0.0,     vl_simulation_shear_law_text(sim)};
     meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
     snprintf(path, sizeof path, "%s/curve.csv", dir);
     /* a file that does not fit is noted and the others still written */
@@ -601,6 +623,10 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
   if (a->c.q.at_temperature)
     printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.q.temperature_c,
            cv->eta);
+  if (cv->n) /* the range in both units, whichever was given */
+    printf("speeds: %.4g .. %.4g m/s (v0 eta %.4g .. %.4g Pa m at eta %.4g Pa s)\n",
+           cv->pts[0].v0_m_s, cv->pts[cv->n - 1].v0_m_s, cv->pts[0].v0_m_s * cv->eta,
+           cv->pts[cv->n - 1].v0_m_s * cv->eta, cv->eta);
   printf("%12s", axis_column(a));
   for (size_t k = 0; k < a->nc; k++)
     printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
@@ -609,8 +635,9 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
     printf("%12.4g", axis_value(a, cv, i));
     for (size_t k = 0; k < a->nc; k++) {
       const vl_point *p = &cv->pts[k * cv->n + i];
-      if (p->converged)
-        printf(" %14.5g %14.4g", p->mu, p->u_min_m / cv->hrms[k]);
+      if (p->converged) /* '!': not known to its error target */
+        printf(" %13.5g%c %14.4g", p->mu, vl_point_unreliable(p) ? '!' : ' ',
+               p->u_min_m / cv->hrms[k]);
       else
         printf(" %14s %14s", "-", "-");
     }
@@ -634,7 +661,7 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
     vl_json_number_digits(&w, axis_value(a, cv, i), 6);
   vl_json_end(&w);
   for (size_t k = 0; k < a->nc; k++) {
-    vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0};
+    vl_curve_meta meta = {cv->eta, 0.0, 0.0, NULL, 0.0, NULL};
     meta.flow_factors = model_of(&a->c, &meta.film_cutoff_m);
     vl_json_key(&w, a->names[k]);
     vl_curve_json(&w, cv->n, cv->pts + k * cv->n, &meta);
@@ -668,7 +695,7 @@ static vl_status compare_plots(const compare_args *a, const compare_curves *cv, 
   vl_plot_curve curves[MAX_COMPOUNDS];
   for (size_t k = 0; k < a->nc; k++)
     curves[k] = (vl_plot_curve){
-        a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0}, cv->hrms[k]};
+        a->names[k], cv->n, cv->pts + k * cv->n, {cv->eta, 0.0, 0.0, NULL, 0.0, NULL}, cv->hrms[k]};
   char title[MAX_COMPOUNDS * 80 + 32], subtitle[1024];
   int len = snprintf(title, sizeof title, "Stribeck curves: ");
   for (size_t k = 0; k < a->nc && len > 0 && (size_t)len < sizeof title; k++)
@@ -709,9 +736,12 @@ static void compare_manifest(vl_manifest *m, vl_db *db, const compare_args *a) {
   const struct {
     const char *key;
     double value;
-  } nums[] = {{"from_v0_eta_pa_m", a->from}, {"to_v0_eta_pa_m", a->to},
-              {"points", a->points},         {"load_n_per_m", a->c.q.load_n_per_m},
-              {"radius_m", a->c.q.radius_m}, {"sigma_s_pa", a->c.q.sigma_s_pa}};
+  } nums[] = {{isnan(a->from_speed) ? "from_v0_eta_pa_m" : "from_v0_m_s", a->from},
+              {isnan(a->from_speed) ? "to_v0_eta_pa_m" : "to_v0_m_s", a->to},
+              {"points", a->points},
+              {"load_n_per_m", a->c.q.load_n_per_m},
+              {"radius_m", a->c.q.radius_m},
+              {"sigma_s_pa", a->c.q.sigma_s_pa}};
   for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
     snprintf(v, sizeof v, "%.10g", nums[k].value);
     vl_manifest_add_option(m, nums[k].key, v);
@@ -727,7 +757,7 @@ static void compare_manifest(vl_manifest *m, vl_db *db, const compare_args *a) {
 }
 
 /* After the table, on stderr: each compound's warnings and failed points. */
-static void compare_report(const compare_args *a, const compare_curves *cv) {
+static void compare_report(const compare_args *a, compare_curves *cv) {
   fflush(stdout); /* the lines follow the table in a shared log */
   for (size_t k = 0; k < a->nc; k++) {
     const vl_point *pts = cv->pts + k * cv->n;
@@ -736,13 +766,52 @@ static void compare_report(const compare_args *a, const compare_curves *cv) {
     snprintf(where, sizeof where, "written with converged = 0 in %s/%s/curve.csv", a->out_dir,
              a->names[k]);
     vl_cli_print_failures(stderr, "compare", a->names[k], cv->n, pts, where);
+    cv->unreliable += vl_cli_print_unreliable(stderr, "compare", a->names[k], cv->n, pts);
   }
+}
+
+/* The sweep of every compound (DIR/<compound>/curve.csv), DIR/compare.csv
+ * and the figures, each file recorded in man. *rc: 2 after the message
+ * when a compound's scene cannot be made. */
+static vl_status compare_files(vl_db *db, const compare_args *a, compare_curves *cv,
+                               vl_manifest *man, int *rc, vl_error *err) {
+  vl_status st = VL_OK;
+  for (size_t k = 0; st == VL_OK && k < a->nc; k++) {
+    int r = compare_one(db, a, k, cv, man, &st, err);
+    if (r >= 0) {
+      *rc = r;
+      return VL_OK;
+    }
+  }
+  if (st != VL_OK) return st;
+  char path[4300];
+  snprintf(path, sizeof path, "%s/compare.csv", a->out_dir);
+  vl_error werr = {{0}};
+  vl_cli_manifest_file(man, path, write_compare_csv(path, a, cv, &werr), &werr);
+  /* every file before the table: a reader of stdout that goes away
+   * (`| head`) cannot cut them short */
+  return a->c.plot ? compare_plots(a, cv, man, err) : VL_OK;
+}
+
+/* On stdout the table (or JSON) and the files written; then on stderr the
+ * warnings and failures. */
+static void compare_print(const compare_args *a, compare_curves *cv) {
+  if (a->c.json) {
+    compare_json(a, cv);
+  } else {
+    compare_table(a, cv);
+    printf("wrote %s/compare.csv and %s/<compound>/curve.csv%s, %s/%s\n", a->out_dir, a->out_dir,
+           a->c.plot ? " and compare-mu/compare-umin figures" : "", a->out_dir, VL_MANIFEST_NAME);
+  }
+  compare_report(a, cv);
 }
 
 int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   compare_args a = {.c = conditions_default(g),
                     .from = VL_QUERY_FROM_PA_M,
                     .to = VL_QUERY_TO_PA_M,
+                    .from_speed = NAN,
+                    .to_speed = NAN,
                     .points = VL_QUERY_POINTS,
                     .out_dir = "out/compare"};
   int rc = compare_parse(argc, argv, &a);
@@ -759,30 +828,15 @@ int vl_cli_compare(const vl_cli_globals *g, int argc, char **argv) {
   if (!cv.pts || !cv.hrms) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
   if (st == VL_OK) st = compare_prepare(db, &a, &cv, &err);
   if (st == VL_OK && !(man = vl_cli_manifest_begin(g, "compare", a.out_dir, &rc))) goto done;
-  if (st == VL_OK) compare_manifest(man, db, &a);
-  for (size_t k = 0; st == VL_OK && k < a.nc; k++)
-    if ((rc = compare_one(db, &a, k, &cv, man, &st, &err)) >= 0) goto done;
-  rc = 0;
-  char path[4300];
-  snprintf(path, sizeof path, "%s/compare.csv", a.out_dir);
   if (st == VL_OK) {
-    vl_error werr = {{0}};
-    vl_cli_manifest_file(man, path, write_compare_csv(path, &a, &cv, &werr), &werr);
+    compare_manifest(man, db, &a);
+    st = compare_files(db, &a, &cv, man, &rc, &err);
   }
-  /* every file before the table: a reader of stdout that goes away
-   * (`| head`) cannot cut them short */
-  if (st == VL_OK && a.c.plot) st = compare_plots(&a, &cv, man, &err);
-  if (st != VL_OK) goto done;
-  rc = vl_cli_manifest_finish(man, "compare", a.c.quiet, cv.failed ? 7 : 0);
+  if (st != VL_OK || rc) goto done;
+  rc = vl_cli_manifest_finish(man, "compare", a.c.quiet,
+                              vl_cli_points_status(cv.failed, cv.unreliable));
   man = NULL;
-  if (a.c.json)
-    compare_json(&a, &cv);
-  else
-    compare_table(&a, &cv);
-  if (!a.c.json)
-    printf("wrote %s and %s/<compound>/curve.csv%s, %s/%s\n", path, a.out_dir,
-           a.c.plot ? " and compare-mu/compare-umin figures" : "", a.out_dir, VL_MANIFEST_NAME);
-  compare_report(&a, &cv);
+  compare_print(&a, &cv);
 done:
   if (st != VL_OK) {
     fprintf(stderr, "viscolube compare: %s\n", err.msg[0] ? err.msg : vl_status_name(st));

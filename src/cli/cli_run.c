@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "cli_options.h"
 
 static void run_usage(FILE *out) {
   fputs("usage: viscolube run SCENE [--out DIR] [--json] [--plot] [--quiet]\n"
@@ -35,8 +36,9 @@ static void run_usage(FILE *out) {
         "the files written and those that could not be (a full disk: the others are kept,\n"
         "and named on stderr). Files of an earlier run listed in its run.json and not\n"
         "rewritten are removed; other files in DIR are left alone, named in a warning. A\n"
-        "run that is interrupted leaves no run.json. Every file is written whole: a\n"
-        "temporary renamed into place.\n"
+        "run interrupted by Ctrl-C (SIGINT) or SIGTERM puts the earlier run back as it\n"
+        "was (its files and run.json); killed outright, it leaves no run.json. Every file\n"
+        "is written whole: a temporary renamed into place.\n"
         "DIR defaults to out/<scene name>; it is checked (created, writable, not a file)\n"
         "before anything is computed. Prints a short table, or with --json the curve as a\n"
         "JSON array. After the table, on stderr: one line per kind of model-validity\n"
@@ -147,6 +149,51 @@ static void scene_subtitle(const vl_scene *scene, vl_simulation *sim, const vl_c
     snprintf(buf + n, size - (size_t)n, " · flow factors %s", meta->flow_factors);
 }
 
+/* The kept fields' speeds, numbered from 1 as the figures mark them:
+ * marks[k] (their points) and labels[k] ("1: v0 = 0.01 m/s"). */
+static void plot_marks(const vl_scene *scene, const vl_point *pts, const vl_curve_meta *meta,
+                       const run_ctx *ctx, size_t *marks, char (*labels)[96],
+                       const char **label_ptrs) {
+  static const char *const pre[] = {"v₀ = ", "v₀η = ", "v₀τ/a₀ = "};
+  static const char *const post[] = {" m/s", " Pa m", ""};
+  for (size_t k = 0; k < ctx->n_kept; k++) {
+    marks[k] = ctx->kept_index[k];
+    char v[48];
+    vl_plot_format_value(v, sizeof v, sweep_value(scene->quantity, &pts[marks[k]], meta));
+    snprintf(labels[k], sizeof labels[k], "%zu: %s%s%s", k + 1, pre[scene->quantity], v,
+             post[scene->quantity]);
+    label_ptrs[k] = labels[k];
+  }
+}
+
+/* The fields figures (p_c, p_f when wet, u) of the kept speeds, each
+ * recorded in the manifest and appended to list (length *len). */
+static vl_status plot_field_figures(const char *out_dir, const vl_scene *scene, vl_simulation *sim,
+                                    double h_rms, const run_ctx *ctx, const char **label_ptrs,
+                                    const vl_plot_options *opt, char *list, size_t list_size,
+                                    size_t *len, vl_error *err) {
+  const vl_contact *c = vl_simulation_contact(sim);
+  vl_plot_scales sc = {vl_contact_a0(c), vl_contact_p0(c), h_rms};
+  static const struct {
+    vl_plot_field field;
+    const char *name;
+  } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"},
+              {VL_PLOT_FIELD_PF, "fields-pf"},
+              {VL_PLOT_FIELD_U, "fields-u"}};
+  char stem[4200];
+  for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
+    if (figs[k].field == VL_PLOT_FIELD_PF && !scene->effects.fluid) continue;
+    snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
+    vl_status st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, opt,
+                                  NULL, err);
+    vl_cli_manifest_figure(ctx->man, stem, st, err);
+    if (st != VL_OK && st != VL_EIO) return st;
+    if (*len < list_size)
+      *len += (size_t)snprintf(list + *len, list_size - *len, ", %s", figs[k].name);
+  }
+  return VL_OK;
+}
+
 /* Writes the figures of one curve (see run_usage); names them in *list. */
 static vl_status write_plots(const char *out_dir, const vl_scene *scene, const char *fluid_key,
                              vl_simulation *sim, size_t n, const vl_point *pts,
@@ -176,16 +223,7 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
       goto done;
     }
   }
-  static const char *const pre[] = {"v₀ = ", "v₀η = ", "v₀τ/a₀ = "};
-  static const char *const post[] = {" m/s", " Pa m", ""};
-  for (size_t k = 0; k < ctx->n_kept; k++) {
-    marks[k] = ctx->kept_index[k];
-    char v[48];
-    vl_plot_format_value(v, sizeof v, sweep_value(scene->quantity, &pts[marks[k]], meta));
-    snprintf(labels[k], sizeof labels[k], "%zu: %s%s%s", k + 1, pre[scene->quantity], v,
-             post[scene->quantity]);
-    label_ptrs[k] = labels[k];
-  }
+  plot_marks(scene, pts, meta, ctx, marks, labels, label_ptrs);
   /* a figure that does not fit is noted and the next still tried */
   snprintf(stem, sizeof stem, "%s/stribeck", out_dir);
   st = vl_plot_stribeck(stem, n, pts, meta, scene->quantity, ctx->n_kept, marks, &opt, NULL, err);
@@ -197,27 +235,10 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
   vl_cli_manifest_figure(ctx->man, stem, st, err);
   if (st != VL_OK && st != VL_EIO) goto done;
   size_t len = (size_t)snprintf(list, list_size, "stribeck, separation");
-  if (ctx->n_kept) {
-    const vl_contact *c = vl_simulation_contact(sim);
-    vl_plot_scales sc = {vl_contact_a0(c), vl_contact_p0(c), h_rms};
-    static const struct {
-      vl_plot_field field;
-      const char *name;
-    } figs[] = {{VL_PLOT_FIELD_PC, "fields-pc"},
-                {VL_PLOT_FIELD_PF, "fields-pf"},
-                {VL_PLOT_FIELD_U, "fields-u"}};
-    for (size_t k = 0; k < sizeof figs / sizeof figs[0]; k++) {
-      if (figs[k].field == VL_PLOT_FIELD_PF && !scene->effects.fluid) continue;
-      snprintf(stem, sizeof stem, "%s/%s", out_dir, figs[k].name);
-      st = vl_plot_fields(stem, figs[k].field, ctx->n_kept, ctx->kept, label_ptrs, &sc, &opt, NULL,
-                          err);
-      vl_cli_manifest_figure(ctx->man, stem, st, err);
-      if (st != VL_OK && st != VL_EIO) goto done;
-      if (len < list_size)
-        len += (size_t)snprintf(list + len, list_size - len, ", %s", figs[k].name);
-    }
-  }
   st = VL_OK; /* the files that did not fit are in the manifest */
+  if (ctx->n_kept)
+    st = plot_field_figures(out_dir, scene, sim, h_rms, ctx, label_ptrs, &opt, list, list_size,
+                            &len, err);
 done:
   free(label_ptrs);
   free(labels);
@@ -252,6 +273,8 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
     char est[16] = "-"; /* no estimate: the coarse solve failed */
     if (p->converged && isfinite(p->error_estimate))
       snprintf(est, sizeof est, "%.2g%%", 100.0 * p->error_estimate);
+    if (vl_point_unreliable(p)) /* not known to its target: marked as such */
+      snprintf(est + strlen(est), sizeof est - strlen(est), "!");
     if (p->converged)
       printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld %8s\n",
              p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0,
@@ -265,105 +288,158 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
          1e3 * stats->seconds / (double)n);
 }
 
-/* Runs one curve of the scene (one fluid) into out_dir. *failed counts the
- * points that did not converge. json: NULL for the table, else the writer
- * the curve goes to. fluid_key: NULL for a single curve, else the name of
- * this curve's fluid (its key in the JSON object, in the figures' title). */
-static vl_status run_one(const char *scene_path, const vl_scene *scene, vl_db *db,
-                         const char *out_dir, vl_json *json, const char *fluid_key, int plot,
-                         int quiet, vl_manifest *man, kept_curve *keep, size_t *failed,
-                         vl_error *err) {
-  vl_simulation *sim = NULL;
-  vl_point *pts = NULL;
-  double *buf = NULL;
-  run_ctx ctx = {0};
-  vl_status st = vl_simulation_create(scene, db, &sim, err);
-  if (st != VL_OK) goto done;
-  size_t n = vl_simulation_points(sim), grid = VL_CONTACT_MAX_CELLS;
+/* What the curves of a run share: where they go and how they are shown. */
+typedef struct {
+  const char *scene_path;
+  vl_db *db;
+  vl_json *json; /* NULL for the table, else the writer the curves go to */
+  int plot, quiet;
+  vl_manifest *man;
+  size_t failed;     /* points that did not converge, over the curves */
+  size_t unreliable; /* converged, but above their error target or without an estimate */
+} run_job;
+
+/* The output folders and buffers of a curve of n points into ctx, *pts
+ * and *buf (the fields of one point). */
+static vl_status curve_prepare(const run_job *job, const vl_scene *scene, vl_simulation *sim,
+                               const char *out_dir, size_t n, run_ctx *ctx, vl_point **pts,
+                               double **buf, vl_error *err) {
+  size_t grid = VL_CONTACT_MAX_CELLS;
   char fields_dir[4200];
   snprintf(fields_dir, sizeof fields_dir, "%s/fields", out_dir);
   if (vl_cli_make_dirs(out_dir) != 0 || (scene->n_fields_at && vl_cli_make_dirs(fields_dir) != 0)) {
     vl_error_set(err, "%s: cannot create output directory: %s", out_dir, strerror(errno));
-    st = VL_EIO;
-    goto done;
+    return VL_EIO;
   }
-  pts = calloc(n, sizeof *pts);
-  buf = calloc(7 * grid, sizeof *buf);
-  if (!pts || !buf) {
+  *pts = calloc(n, sizeof **pts);
+  *buf = calloc(7 * grid, sizeof **buf);
+  if (!*pts || !*buf) {
     vl_error_set(err, "out of memory");
-    st = VL_ENOMEM;
-    goto done;
+    return VL_ENOMEM;
   }
-  ctx.fields = (vl_fields){
-      grid,           buf,           buf + grid, buf + 2 * grid, buf + 3 * grid, buf + 4 * grid,
-      buf + 5 * grid, buf + 6 * grid};
-  ctx.sim = sim;
-  ctx.out_dir = out_dir;
-  ctx.man = man;
-  if (plot && (st = keep_fields(&ctx, n, grid, err)) != VL_OK) goto done;
-  ctx.tty = isatty(STDERR_FILENO);
-  ctx.t_start = vl_cli_now_s();
-  ctx.quiet = quiet;
+  double *b = *buf;
+  ctx->fields = (vl_fields){
+      grid, b, b + grid, b + 2 * grid, b + 3 * grid, b + 4 * grid, b + 5 * grid, b + 6 * grid};
+  ctx->sim = sim;
+  ctx->out_dir = out_dir;
+  ctx->man = job->man;
+  ctx->tty = isatty(STDERR_FILENO);
+  ctx->quiet = job->quiet;
+  if (job->plot) return keep_fields(ctx, n, grid, err);
+  return VL_OK;
+}
+
+/* The numerics of the curve's contact into the manifest and, for the
+ * table, the line that introduces the curve. */
+static void curve_announce(const run_job *job, const vl_scene *scene, vl_simulation *sim,
+                           const char *fluid_key, size_t n) {
   const vl_contact *contact = vl_simulation_contact(sim);
   vl_contact_numerics_used nu;
   vl_contact_numerics_of(contact, &nu);
-  vl_manifest_add_numerics(man, fluid_key, &nu, vl_contact_a0(contact), vl_contact_p0(contact));
+  vl_manifest_add_numerics(job->man, fluid_key, &nu, vl_contact_a0(contact),
+                           vl_contact_p0(contact));
   if (scene->auto_numerics) { /* the base the automatic numerics start from, and their target */
     char target[64];
     snprintf(target, sizeof target, "automatic, target error %g", scene->target_error);
-    vl_manifest_add_option(man, "numerics", target);
+    vl_manifest_add_option(job->man, "numerics", target);
   }
-  if (!json) {
-    char numerics[160];
-    if (scene->auto_numerics)
-      snprintf(numerics, sizeof numerics, "automatic numerics (target error %g %%)",
-               100.0 * scene->target_error);
-    else
-      snprintf(numerics, sizeof numerics, "grid %zu on [%g, %g] a0", scene->grid,
-               scene->domain_min_a0, scene->domain_max_a0);
-    printf("scene %s%s%s%s%s: %zu points, %s, a0 = %.4g m, p0 = %.4g Pa\n", scene_path,
-           scene->title[0] ? " - " : "", scene->title, scene->effects.fluid ? ", fluid " : "",
-           scene->effects.fluid ? scene->fluid : "", n, numerics, vl_contact_a0(contact),
-           vl_contact_p0(contact));
-  }
-  vl_curve_meta meta = {vl_simulation_eta(sim), vl_simulation_tau(sim), vl_contact_a0(contact),
-                        NULL, 0.0};
+  if (job->json) return;
+  char numerics[160];
+  if (scene->auto_numerics)
+    snprintf(numerics, sizeof numerics, "automatic numerics (target error %g %%)",
+             100.0 * scene->target_error);
+  else
+    snprintf(numerics, sizeof numerics, "grid %zu on [%g, %g] a0", scene->grid,
+             scene->domain_min_a0, scene->domain_max_a0);
+  printf("scene %s%s%s%s%s: %zu points, %s, a0 = %.4g m, p0 = %.4g Pa\n", job->scene_path,
+         scene->title[0] ? " - " : "", scene->title, scene->effects.fluid ? ", fluid " : "",
+         scene->effects.fluid ? scene->fluid : "", n, numerics, vl_contact_a0(contact),
+         vl_contact_p0(contact));
+}
+
+/* The curve's description for the writers, and its lines before the table. */
+static vl_curve_meta curve_meta(const run_job *job, const vl_scene *scene, vl_simulation *sim) {
+  vl_curve_meta meta = {vl_simulation_eta(sim),
+                        vl_simulation_tau(sim),
+                        vl_contact_a0(vl_simulation_contact(sim)),
+                        NULL,
+                        0.0,
+                        vl_simulation_shear_law_text(sim)};
   meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
-  if (!json && meta.flow_factors) print_flow_model(&meta);
-  if (!json && scene->effects.temperature)
+  if (!job->json && meta.flow_factors) print_flow_model(&meta);
+  if (!job->json && scene->effects.temperature)
     printf("at %g C: compound times x a_T = %.4g, fluid viscosity %.4g Pa s\n",
            vl_simulation_temperature_c(sim), vl_simulation_shift_factor(sim),
            vl_simulation_eta(sim));
-  vl_sweep_stats stats;
-  st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, err);
-  if (st != VL_OK) goto done;
-  vl_manifest_add_counts(man, stats.converged, stats.failed);
+  return meta;
+}
+
+/* After the sweep: DIR/curve.csv, the figures, the table or JSON, then the
+ * warnings and failures on stderr. */
+static vl_status curve_outputs(run_job *job, const vl_scene *scene, vl_simulation *sim,
+                               const char *out_dir, const char *fluid_key, size_t n,
+                               const vl_point *pts, const vl_curve_meta *meta,
+                               const vl_sweep_stats *stats, const run_ctx *ctx, vl_error *err) {
   char curve_path[4200];
   snprintf(curve_path, sizeof curve_path, "%s/curve.csv", out_dir);
   vl_error werr = {{0}};
-  vl_status cst = vl_write_curve_csv(curve_path, n, pts, &meta, &werr);
-  vl_cli_manifest_file(man, curve_path, cst, &werr);
-  *failed += stats.failed;
+  vl_status cst = vl_write_curve_csv(curve_path, n, pts, meta, &werr);
+  vl_cli_manifest_file(job->man, curve_path, cst, &werr);
+  job->failed += stats->failed;
   char plots[256] = "";
-  if (plot) {
-    st = write_plots(out_dir, scene, fluid_key, sim, n, pts, &meta, &ctx, plots, sizeof plots, err);
-    if (st != VL_OK) goto done;
+  if (job->plot) {
+    vl_status st =
+        write_plots(out_dir, scene, fluid_key, sim, n, pts, meta, ctx, plots, sizeof plots, err);
+    if (st != VL_OK) return st;
   }
-  if (json) {
-    if (fluid_key) vl_json_key(json, fluid_key);
-    vl_curve_json(json, n, pts, &meta);
+  if (job->json) {
+    if (fluid_key) vl_json_key(job->json, fluid_key);
+    vl_curve_json(job->json, n, pts, meta);
   } else {
-    print_table(scene, n, pts, &meta, &stats);
+    print_table(scene, n, pts, meta, stats);
     if (cst == VL_OK) printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
-    if (plot) printf("plots (png, svg) in %s: %s\n", out_dir, plots);
+    if (job->plot) printf("plots (png, svg) in %s: %s\n", out_dir, plots);
   }
   /* stdout first, so that the lines follow the table in a shared log */
   fflush(stdout);
-  if (!json && !quiet) vl_cli_print_warnings(stderr, fluid_key, n, pts);
+  if (!job->json && !job->quiet) vl_cli_print_warnings(stderr, fluid_key, n, pts);
   char where[4300];
   snprintf(where, sizeof where, "written with converged = 0 in %s", curve_path);
   vl_cli_print_failures(stderr, "run", fluid_key, n, pts, where);
-  if (keep) {
+  job->unreliable += vl_cli_print_unreliable(stderr, "run", fluid_key, n, pts);
+  return VL_OK;
+}
+
+/* Runs one curve of the scene (one fluid) into out_dir. fluid_key: NULL
+ * for a single curve, else the name of this curve's fluid (its key in the
+ * JSON object, in the figures' title). keep (may be NULL) gets the points
+ * for the figures with every fluid. */
+static vl_status run_one(run_job *job, const vl_scene *scene, const char *out_dir,
+                         const char *fluid_key, kept_curve *keep, vl_error *err) {
+  vl_simulation *sim = NULL;
+  vl_point *pts = NULL;
+  double *buf = NULL;
+  run_ctx ctx = {0};
+  vl_status st = vl_simulation_create(scene, job->db, &sim, err);
+  if (st != VL_OK) goto done;
+  size_t n = vl_simulation_points(sim);
+  st = curve_prepare(job, scene, sim, out_dir, n, &ctx, &pts, &buf, err);
+  if (st != VL_OK) goto done;
+  ctx.t_start = vl_cli_now_s();
+  curve_announce(job, scene, sim, fluid_key, n);
+  vl_curve_meta meta = curve_meta(job, scene, sim);
+  if (meta.shear_law) { /* a stored pair's law gave sigma_s: say which */
+    char key[128];
+    snprintf(key, sizeof key, "sigma_s%s%s", fluid_key ? "_" : "", fluid_key ? fluid_key : "");
+    vl_manifest_add_text(job->man, key, meta.shear_law);
+    if (!job->json) printf("sigma_s: %s\n", meta.shear_law);
+  }
+  vl_sweep_stats stats;
+  st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, err);
+  if (st != VL_OK) goto done;
+  vl_manifest_add_counts(job->man, stats.converged, stats.failed);
+  st = curve_outputs(job, scene, sim, out_dir, fluid_key, n, pts, &meta, &stats, &ctx, err);
+  if (st == VL_OK && keep) {
     const vl_psd *psd = vl_simulation_psd(sim);
     *keep = (kept_curve){pts, n, meta, psd ? vl_psd_hrms(psd) : 0};
     pts = NULL;
@@ -484,121 +560,125 @@ const char *__lsan_default_options(void);
 const char *__lsan_default_options(void) { return "print_suppressions=0"; }
 #endif
 
-int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
-  const char *scene_path = NULL, *out_dir = NULL;
-  int json = 0, plot = 0, quiet = g->quiet;
-  for (int i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      run_usage(stdout);
-      return 0;
-    } else if (!strcmp(argv[i], "--json")) {
-      json = 1;
-    } else if (!strcmp(argv[i], "--plot")) {
-      plot = 1;
-    } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
-      quiet = 1;
-    } else if (!strcmp(argv[i], "--out")) {
-      if (i + 1 >= argc) {
-        fputs("viscolube run: option --out needs a DIR\n", stderr);
-        return 2;
-      }
-      out_dir = argv[++i];
-    } else if (argv[i][0] == '-') {
-      fprintf(stderr, "viscolube run: unknown option '%s' (see viscolube run --help)\n", argv[i]);
-      return 2;
-    } else if (!scene_path) {
-      scene_path = argv[i];
-    } else {
-      fprintf(stderr, "viscolube run: one scene at a time (got '%s' and '%s')\n", scene_path,
-              argv[i]);
-      return 2;
-    }
-  }
-  if (!scene_path) {
+/* The options of `run`: -1 to go on, else the exit status (0 after
+ * --help). */
+static int run_options(int argc, char **argv, const char **scene_path, const char **out_dir,
+                       int *json, int *plot, int *quiet) {
+  vl_cli_option opts[] = {
+      {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
+      {.name = "--json", .kind = VL_CLI_FLAG, .dest = json},
+      {.name = "--plot", .kind = VL_CLI_FLAG, .dest = plot},
+      {.name = "--quiet", .alias = "-q", .kind = VL_CLI_FLAG, .dest = quiet},
+      {.name = "--out",
+       .kind = VL_CLI_TEXT,
+       .metavar = "DIR",
+       .dest = out_dir,
+       .missing = "option %s needs a %s"},
+  };
+  vl_cli_parser p = vl_cli_file_command("run", opts, sizeof opts / sizeof opts[0], scene_path,
+                                        "one scene at a time (got '%s' and '%s')", run_usage);
+  int rc = vl_cli_parse(&p, argc, argv, 1);
+  if (rc >= 0) return rc;
+  if (!*scene_path) {
     run_usage(stderr);
     return 2;
   }
-  vl_error err = {{0}};
-  vl_scene scene;
-  vl_db *db = NULL;
-  vl_manifest *man = NULL;
-  char *scene_text = NULL;
-  int rc = 0;
-  size_t failed = 0;
-  char default_dir[2048];
-  kept_curve curves[VL_FLUIDS_MAX] = {{0}};
-  vl_status st = vl_scene_load(scene_path, &scene, &err);
-  if (st != VL_OK) goto fail;
+  return -1;
+}
+
+/* DIR of a run without --out: out/<scene file name without extension>. */
+static void default_out_dir(const char *scene_path, char *buf, size_t size) {
+  const char *base = strrchr(scene_path, '/');
+  base = base ? base + 1 : scene_path;
+  /* drop the extension only: fig03-rough-0.1um.ini -> out/fig03-rough-0.1um */
+  const char *dot = strrchr(base, '.');
+  size_t stem = dot && dot != base ? (size_t)(dot - base) : strlen(base);
+  snprintf(buf, size, "out/%.*s", (int)stem, base);
+}
+
+/* Everything checked before anything is computed: the scene loaded, the
+ * plotting library there (--plot), the names, the database opened (*db),
+ * the output folders, and the scene's text read (*text, for the manifest). */
+static vl_status run_prepare(const vl_cli_globals *g, const char *scene_path, int plot,
+                             const char *out_dir, vl_scene *scene, vl_db **db, char **text,
+                             vl_error *err) {
+  vl_status st = vl_scene_load(scene_path, scene, err);
+  if (st != VL_OK) return st;
   /* before the sweep, not after minutes of solving */
-  if (plot && !vl_plot_available(&err)) {
-    st = VL_EIO;
-    goto fail;
-  }
-  if (!out_dir) {
-    const char *base = strrchr(scene_path, '/');
-    base = base ? base + 1 : scene_path;
-    /* drop the extension only: fig03-rough-0.1um.ini -> out/fig03-rough-0.1um */
-    const char *dot = strrchr(base, '.');
-    size_t stem = dot && dot != base ? (size_t)(dot - base) : strlen(base);
-    snprintf(default_dir, sizeof default_dir, "out/%.*s", (int)stem, base);
-    out_dir = default_dir;
-  }
-  st = check_names(&scene, &err);
-  if (st != VL_OK) goto fail;
+  if (plot && !vl_plot_available(err)) return VL_EIO;
+  if ((st = check_names(scene, err)) != VL_OK) return st;
   /* the database first: a command that cannot open it leaves no folder
    * behind; then --out, still before anything is computed */
-  st = vl_db_open(g->db_path, &db, &err);
-  if (st != VL_OK) goto fail;
-  st = check_outputs(&scene, out_dir, &err);
-  if (st != VL_OK) goto fail;
-  /* the text the scene was loaded from, for the manifest */
-  if (!(scene_text = vl_cli_read_text(scene_path))) {
-    vl_error_set(&err, "%s: cannot read: %s", scene_path, strerror(errno));
-    st = VL_EIO;
-    goto fail;
+  if ((st = vl_db_open(g->db_path, db, err)) != VL_OK) return st;
+  if ((st = check_outputs(scene, out_dir, err)) != VL_OK) return st;
+  if (!(*text = vl_cli_read_text(scene_path))) {
+    vl_error_set(err, "%s: cannot read: %s", scene_path, strerror(errno));
+    return VL_EIO;
   }
-  if (!(man = vl_cli_manifest_begin(g, "run", out_dir, &rc))) goto done;
-  run_manifest(man, db, &scene, scene_text);
-  vl_json w, *jw = json ? &w : NULL;
-  vl_json_init(&w, stdout, 10);
-  if (scene.n_fluids <= 1) {
-    st = run_one(scene_path, &scene, db, out_dir, jw, NULL, plot, quiet, man, NULL, &failed, &err);
-    if (st != VL_OK) goto fail;
-  } else {
-    /* one curve per fluid, each in DIR/<fluid>/ */
-    if (jw) vl_json_object_begin(jw, VL_JSON_BLOCKS);
-    for (size_t k = 0; k < scene.n_fluids; k++) {
-      vl_scene one = scene;
-      snprintf(one.fluid, sizeof one.fluid, "%s", scene.fluids[k]);
-      one.n_fluids = 1;
-      char dir[4200];
-      snprintf(dir, sizeof dir, "%s/%s", out_dir, one.fluid);
-      st = run_one(scene_path, &one, db, dir, jw, one.fluid, plot, quiet, man,
-                   plot ? &curves[k] : NULL, &failed, &err);
-      if (st != VL_OK) goto fail;
-    }
-    if (jw) {
-      vl_json_end(jw);
-      fputc('\n', stdout);
-    }
-    if (plot) {
-      st = plot_all_fluids(&scene, out_dir, curves, json, man, &err);
-      if (st != VL_OK) goto fail;
-    }
+  return VL_OK;
+}
+
+/* The curves of the scene: one, or one per fluid, each in DIR/<fluid>/
+ * (with --json an object keyed by fluid; with --plot the figures of every
+ * fluid). curves keeps their points for those figures. */
+static vl_status run_curves(run_job *job, const vl_scene *scene, const char *out_dir,
+                            kept_curve *curves, vl_error *err) {
+  if (scene->n_fluids <= 1) return run_one(job, scene, out_dir, NULL, NULL, err);
+  if (job->json) vl_json_object_begin(job->json, VL_JSON_BLOCKS);
+  for (size_t k = 0; k < scene->n_fluids; k++) {
+    vl_scene one = *scene;
+    snprintf(one.fluid, sizeof one.fluid, "%s", scene->fluids[k]);
+    one.n_fluids = 1;
+    char dir[4200];
+    snprintf(dir, sizeof dir, "%s/%s", out_dir, one.fluid);
+    vl_status st = run_one(job, &one, dir, one.fluid, job->plot ? &curves[k] : NULL, err);
+    if (st != VL_OK) return st;
   }
-  if (failed) rc = vl_status_exit_code(VL_ENOCONV);
+  if (job->json) {
+    vl_json_end(job->json);
+    fputc('\n', stdout);
+  }
+  if (!job->plot) return VL_OK;
+  return plot_all_fluids(scene, out_dir, curves, job->json != NULL, job->man, err);
+}
+
+int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
+  const char *scene_path = NULL, *out_dir = NULL;
+  int json = 0, plot = 0, quiet = g->quiet;
+  int rc = run_options(argc, argv, &scene_path, &out_dir, &json, &plot, &quiet);
+  if (rc >= 0) return rc;
+  vl_error err = {{0}};
+  vl_scene scene;
+  vl_json w;
+  run_job job = {.scene_path = scene_path, .json = json ? &w : NULL, .plot = plot, .quiet = quiet};
+  char *scene_text = NULL, default_dir[2048];
+  kept_curve curves[VL_FLUIDS_MAX] = {{0}};
+  if (!out_dir) {
+    default_out_dir(scene_path, default_dir, sizeof default_dir);
+    out_dir = default_dir;
+  }
+  rc = 0;
+  vl_status st = run_prepare(g, scene_path, plot, out_dir, &scene, &job.db, &scene_text, &err);
+  if (st == VL_OK && !(job.man = vl_cli_manifest_begin(g, "run", out_dir, &rc))) goto done;
+  if (st == VL_OK) {
+    run_manifest(job.man, job.db, &scene, scene_text);
+    vl_json_init(&w, stdout, 10);
+    st = run_curves(&job, &scene, out_dir, curves, &err);
+  }
+  if (st != VL_OK) {
+    fprintf(stderr, "viscolube run: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
+    rc = vl_status_exit_code(st);
+    goto done;
+  }
   /* last: the manifest, once every file is in place */
-  rc = vl_cli_manifest_finish(man, "run", quiet, rc);
-  man = NULL;
-  goto done;
-fail:
-  fprintf(stderr, "viscolube run: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
-  rc = vl_status_exit_code(st);
+  rc = vl_cli_manifest_finish(job.man, "run", quiet,
+                              vl_cli_points_status(job.failed, job.unreliable));
+  job.man = NULL;
 done:
-  vl_manifest_free(man); /* a failed run leaves no manifest: the folder is incomplete */
+  vl_manifest_free(job.man); /* a failed run leaves no manifest: the folder is incomplete */
   free(scene_text);
   for (size_t k = 0; k < VL_FLUIDS_MAX; k++)
     free(curves[k].pts);
-  vl_db_close(db);
+  vl_db_close(job.db);
   return rc;
 }

@@ -192,6 +192,33 @@ size_t vl_cli_print_warnings(FILE *out, const char *label, size_t n, const vl_po
   return n_kinds;
 }
 
+size_t vl_cli_print_unreliable(FILE *out, const char *cmd, const char *label, size_t n,
+                               const vl_point *pts) {
+  size_t count = 0, shown = 0;
+  for (size_t i = 0; i < n; i++)
+    count += vl_point_unreliable(&pts[i]);
+  if (!count) return 0;
+  fprintf(out,
+          "viscolube %s: %s%s%zu of %zu points are not known to their error target "
+          "(marked '!'; exit status %d):\n",
+          cmd, label ? label : "", label ? ": " : "", count, n, VL_CLI_EXIT_UNRELIABLE);
+  for (size_t i = 0; i < n && shown < 10; i++) {
+    if (!vl_point_unreliable(&pts[i])) continue;
+    if (pts[i].accuracy == VL_ACCURACY_NO_ESTIMATE)
+      fprintf(out, "  point %zu: v0 = %.4g m/s, no error estimate\n", i + 1, pts[i].v0_m_s);
+    else
+      fprintf(out, "  point %zu: v0 = %.4g m/s, error estimate %.2g %%\n", i + 1, pts[i].v0_m_s,
+              100.0 * pts[i].error_estimate);
+    shown++;
+  }
+  if (count > shown) fprintf(out, "  ... and %zu more\n", count - shown);
+  return count;
+}
+
+int vl_cli_points_status(size_t failed, size_t unreliable) {
+  return failed ? vl_status_exit_code(VL_ENOCONV) : unreliable ? VL_CLI_EXIT_UNRELIABLE : 0;
+}
+
 size_t vl_cli_print_failures(FILE *out, const char *cmd, const char *label, size_t n,
                              const vl_point *pts, const char *where) {
   size_t failed = 0, shown = 0;

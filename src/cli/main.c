@@ -7,10 +7,9 @@
 #include <string.h>
 
 #include "cli.h"
-#include "vl_version.h" /* generated at configure time (src/CMakeLists.txt) */
-
-/* `flattening ...` (src/cli/cli_flattening.c); belongs in cli.h */
-int vl_cli_flattening(const vl_cli_globals *g, int argc, char **argv);
+#include "cli_options.h"
+#include "viscolube/manifest.h" /* vl_manifest_interrupt */
+#include "vl_version.h"         /* generated at configure time (src/CMakeLists.txt) */
 
 static void usage(FILE *out) {
   fputs(
@@ -27,6 +26,7 @@ static void usage(FILE *out) {
       "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
       "  study      many curves from a study file, serially, with --jobs N or under mpirun:\n"
       "             viscolube study STUDY --out DIR [--jobs N]\n"
+      "  pair       a compound/surface/fluid's sigma_s law: list, show, add, remove, calibrate\n"
       "  friction   one operating point of a stored compound/surface/fluid triple\n"
       "  compare    Stribeck curves of several compounds side by side\n"
       "  flattening viscous flattening of the asperities, epsilon_f vs u/h_rms (seed Figs. 19-20)\n"
@@ -53,37 +53,49 @@ static void usage(FILE *out) {
       "      output could not be written (e.g. its reader has gone: `| head`)\n"
       "  7   some points did not converge (results written, flagged converged = 0;\n"
       "      stderr lists each with its speed, iterations and residual)\n"
+      "  8   every point converged, but some are above their error target or have no\n"
+      "      error estimate (written with accuracy = above_target or no_estimate,\n"
+      "      marked '!' in the table and in the figures; stderr lists them)\n"
       "  70  out of memory or internal error\n",
       out);
 }
 
-static int dispatch(int argc, char **argv) {
-  vl_cli_globals g = {.db_path = getenv("VISCOLUBE_DB"), .argc = argc, .argv = argv};
-  int i = 1;
-  for (; i < argc && argv[i][0] == '-'; i++) {
-    if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      usage(stdout);
-      return 0;
-    } else if (!strcmp(argv[i], "--version")) {
-      printf("viscolube %s (source %s)\n", VL_VERSION, VL_SOURCE_COMMIT);
-      return 0;
-    } else if (!strcmp(argv[i], "--quiet") || !strcmp(argv[i], "-q")) {
-      g.quiet = 1;
-    } else if (!strcmp(argv[i], "--db")) {
-      if (i + 1 >= argc) {
-        fputs("viscolube: option --db needs a PATH\n", stderr);
-        return 2;
-      }
-      g.db_path = argv[++i];
-    } else {
-      fprintf(stderr, "viscolube: unknown option '%s' (see viscolube --help)\n", argv[i]);
-      return 2;
-    }
+/* The global options before the noun; -1 to go on with the noun at
+ * argv[*noun], else the exit status. */
+static int global_options(vl_cli_globals *g, int argc, char **argv, int *noun) {
+  vl_cli_option opts[] = {
+      {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
+      {.name = "--version", .kind = VL_CLI_HELP},
+      {.name = "--quiet", .alias = "-q", .kind = VL_CLI_FLAG, .dest = &g->quiet},
+      {.name = "--db", .kind = VL_CLI_TEXT, .metavar = "PATH", .dest = &g->db_path},
+  };
+  vl_cli_parser p = {.opts = opts,
+                     .n_opts = sizeof opts / sizeof opts[0],
+                     .flags = VL_CLI_DASH_IS_OPTION | VL_CLI_STOP_AT_POSITIONAL,
+                     .unknown = "unknown option '%s' (see viscolube --help)",
+                     .missing = "option %s needs a %s"};
+  int rc = vl_cli_parse(&p, argc, argv, 1);
+  if (rc == VL_CLI_HELP_ASKED && opts[1].given) {
+    printf("viscolube %s (source %s)\n", VL_VERSION, VL_SOURCE_COMMIT);
+    return 0;
   }
-  if (i >= argc) {
+  if (rc == VL_CLI_HELP_ASKED) {
+    usage(stdout);
+    return 0;
+  }
+  if (rc >= 0) return rc;
+  if (p.next >= argc) {
     usage(stderr);
     return 2;
   }
+  *noun = p.next;
+  return -1;
+}
+
+static int dispatch(int argc, char **argv) {
+  vl_cli_globals g = {.db_path = getenv("VISCOLUBE_DB"), .argc = argc, .argv = argv};
+  int i = 0, rc = global_options(&g, argc, argv, &i);
+  if (rc >= 0) return rc;
   const char *noun = argv[i];
   if (!strcmp(noun, "compound") || !strcmp(noun, "surface") || !strcmp(noun, "fluid"))
     return vl_cli_materials(&g, argc - i, argv + i);
@@ -92,6 +104,7 @@ static int dispatch(int argc, char **argv) {
   if (!strcmp(noun, "friction")) return vl_cli_friction(&g, argc - i, argv + i);
   if (!strcmp(noun, "compare")) return vl_cli_compare(&g, argc - i, argv + i);
   if (!strcmp(noun, "flattening")) return vl_cli_flattening(&g, argc - i, argv + i);
+  if (!strcmp(noun, "pair")) return vl_cli_pair(&g, argc - i, argv + i);
   fprintf(stderr, "viscolube: unknown noun '%s' (see viscolube --help)\n", noun);
   return 2;
 }
@@ -112,10 +125,14 @@ static int check_stdout(int rc) {
   if (!e && poll(&p, 1, 0) == 1 && (p.revents & POLLERR)) e = EPIPE;
   fprintf(stderr, "viscolube: cannot write to standard output%s%s\n", e ? ": " : "",
           e ? strerror(e) : "");
-  return rc == 0 || rc == 7 ? 6 : rc;
+  return rc == 0 || rc == 7 || rc == VL_CLI_EXIT_UNRELIABLE ? 6 : rc;
 }
 
 int main(int argc, char **argv) {
   signal(SIGPIPE, SIG_IGN);
+  /* issue 32: Ctrl-C (or a kill) during a run puts the earlier complete
+   * run back in its folder (manifest.h) */
+  signal(SIGINT, vl_manifest_interrupt);
+  signal(SIGTERM, vl_manifest_interrupt);
   return check_stdout(dispatch(argc, argv));
 }

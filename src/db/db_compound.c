@@ -3,6 +3,8 @@
  * (compound_measurement), shift factors (compound_shift) and fit report
  * (compound_fit). */
 #include "db_internal.h"
+#include "dma_private.h"
+#include "rheology_internal.h"
 
 #include <float.h>
 #include <stdlib.h>

@@ -114,3 +114,9 @@ vl_status vl_db_fingerprint(vl_db *db, const char *table, const char *name,
   if (s == VL_OK) snprintf(out, VL_DB_FINGERPRINT_MAX, "fnv1a64:%016llx", (unsigned long long)h);
   return s;
 }
+
+void vl_db_fingerprint_bytes(const void *data, size_t n, char out[VL_DB_FINGERPRINT_MAX]) {
+  uint64_t h = FNV_OFFSET;
+  mix(&h, data, n);
+  snprintf(out, VL_DB_FINGERPRINT_MAX, "fnv1a64:%016llx", (unsigned long long)h);
+}

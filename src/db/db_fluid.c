@@ -1,6 +1,7 @@
 /* The material database: fluids (table fluid), a viscosity and an optional
  * temperature law. */
 #include "db_internal.h"
+#include "fluid_internal.h"
 
 #include <string.h>
 

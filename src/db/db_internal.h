@@ -10,6 +10,7 @@
  *   db_surface.c   surfaces: the PSD and its derived columns
  *   db_persson.c   the cache of Persson tables of the surfaces
  *   db_fluid.c     fluids and their viscosity laws
+ *   db_pair.c      pairs: a compound, surface and fluid with their sigma_s law
  *
  * The public contract is include/viscolube/database.h. Every function here
  * that returns a vl_status sets err on failure, as the public ones do.

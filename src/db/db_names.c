@@ -4,7 +4,7 @@
  * operations every table (compound, surface, fluid) does alike. */
 #include "db_internal.h"
 
-#include "edit_distance.h"
+#include "viscolube/edit_distance.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -5,6 +5,7 @@
  * db_fluid.c. */
 #define _POSIX_C_SOURCE 200809L
 
+#include "database_internal.h"
 #include "db_internal.h"
 
 #include <errno.h>

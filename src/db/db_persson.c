@@ -2,6 +2,7 @@
  * surface_persson), a cache of vl_persson_build kept per surface and table
  * size (db_cache.c gives the rules). */
 #include "db_internal.h"
+#include "persson_internal.h"
 
 #include <stdlib.h>
 

@@ -6,6 +6,7 @@
  * written through db_compound.c and db_surface.c, the statements and
  * transactions through db_sql.c, none of which calls back here. */
 #include "db_internal.h"
+#include "dma_private.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -1,7 +1,8 @@
 /* viscolube: a profile's 1-D roughness spectrum -> the isotropic surface's
  * 2-D one (the inverse Abel transform of topography.h, step 6), for the
- * readers that are given a 1-D spectrum (csv.c). Private to the library;
- * implemented in topography.c. */
+ * readers that are given a 1-D spectrum: a line scan's (topography_psd.c)
+ * and a tabulated one (psd_file.c). Private to the library; implemented
+ * in abel.c. */
 #ifndef VL_ABEL_H
 #define VL_ABEL_H
 

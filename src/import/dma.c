@@ -6,6 +6,8 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "viscolube/dma.h"
+#include "csv_private.h"
+#include "dma_private.h"
 
 #include <errno.h>
 #include <math.h>
@@ -14,16 +16,20 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "prony_fit_internal.h"
+#include "rheology_internal.h"
 #include "tts.h"
 #include "viscolube/csv.h"
 
-#include "edit_distance.h"
 #include "import_text.h"
+#include "viscolube/edit_distance.h"
 
 #define TWO_PI 6.283185307179586476925287
 #define MAX_FIELDS 64
 #define CELL_MAX 128
 #define DEFAULT_TREF_C 20.0
+/* A DMA export of VL_DMA_MAX_POINTS rows is a few MB at most. */
+#define DMA_MAX_BYTES ((size_t)64 << 20)
 /* E', E'' and tan delta (or |E*|) all given: the redundant column must
  * match this well (exports round each column to 4-6 digits on its own). */
 #define TAN_CONSISTENCY 0.02
@@ -276,6 +282,9 @@ void vl_measured_free(vl_measured *m) {
   free(m->iso_temperature_c);
   free(m->iso_log10_a_t);
   free(m->iso_points);
+  free(m->iso_join_rms);
+  free(m->iso_join_step);
+  free(m->iso_tan_delta_rise);
   memset(m, 0, sizeof *m);
 }
 
@@ -290,23 +299,14 @@ static void note(vl_measured *m, const char *fmt, ...) {
 
 /* ---- header recognition ----------------------------------------------- */
 
-/* Trims blanks and one pair of double quotes, like csv.c does for header
- * and units cells, into a NUL-terminated copy. Returns 0 if too long. */
-static int cell_text(const char *p, size_t n, char *out, size_t cap) {
-  while (n > 0 && (*p == ' ' || *p == '\t'))
-    p++, n--;
-  while (n > 0 && (p[n - 1] == ' ' || p[n - 1] == '\t'))
-    n--;
-  if (n >= 2 && p[0] == '"' && p[n - 1] == '"') {
-    p++, n -= 2;
-    while (n > 0 && (*p == ' ' || *p == '\t'))
-      p++, n--;
-    while (n > 0 && (p[n - 1] == ' ' || p[n - 1] == '\t'))
-      n--;
-  }
-  if (n >= cap) return 0;
-  memcpy(out, p, n);
-  out[n] = '\0';
+/* The cell without its blanks and one pair of double quotes, as the CSV
+ * reader matches header and units cells, into a NUL-terminated copy.
+ * Returns 0 if too long. */
+static int cell_text(vl_span cell, char *out, size_t cap) {
+  vl_span t = vl_span_unquote(cell);
+  if (t.n >= cap) return 0;
+  memcpy(out, t.p, t.n);
+  out[t.n] = '\0';
   return 1;
 }
 
@@ -389,8 +389,9 @@ static role parse_header_cell(field *f) {
   char name[CELL_MAX], unit[CELL_MAX];
   char close = n ? f->text[n - 1] : 0, open = close == ']' ? '[' : close == ')' ? '(' : 0;
   const char *o = open ? strrchr(f->text, open) : NULL;
-  if (o && o != f->text && cell_text(f->text, (size_t)(o - f->text), name, sizeof name) &&
-      cell_text(o + 1, (size_t)(f->text + n - 1 - (o + 1)), unit, sizeof unit)) {
+  if (o && o != f->text &&
+      cell_text((vl_span){f->text, (size_t)(o - f->text)}, name, sizeof name) &&
+      cell_text((vl_span){o + 1, (size_t)(f->text + n - 1 - (o + 1))}, unit, sizeof unit)) {
     r = name_role(name, &f->k);
     if (r == R_COUNT) return R_COUNT;
     snprintf(f->inline_unit, sizeof f->inline_unit, "%s", unit);
@@ -401,8 +402,8 @@ static role parse_header_cell(field *f) {
    * spellings of that column, so "E_stor" is not read as E with unit stor */
   for (size_t i = n; i-- > 1;) {
     if (f->text[i] != '_' && f->text[i] != ' ') continue;
-    if (!cell_text(f->text, i, name, sizeof name) ||
-        !cell_text(f->text + i + 1, n - i - 1, unit, sizeof unit))
+    if (!cell_text((vl_span){f->text, i}, name, sizeof name) ||
+        !cell_text((vl_span){f->text + i + 1, n - i - 1}, unit, sizeof unit))
       continue;
     modulus_kind k;
     r = name_role(name, &k);
@@ -425,31 +426,6 @@ static int omega_name(const field *f) {
   return (f->text[0] == 'w' && (f->text[1] == '\0' || f->text[1] == ' ' || f->text[1] == '[' ||
                                 f->text[1] == '(' || f->text[1] == '_')) ||
          !strncmp(norm, "omega", 5) || !strncmp(norm, "angular", 7) || !strncmp(norm, "ang", 3);
-}
-
-/* Iterates over the meaningful lines of text (skipping blank and '#'
- * lines): returns 1 and the line (without CR) and its number, or 0 at the
- * end. *pos and *line_no carry the state. */
-static int next_line(const char *text, size_t len, size_t *pos, size_t *line_no, const char **p,
-                     size_t *n) {
-  if (*pos == 0 && len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) *pos = 3;
-  while (*pos < len) {
-    (*line_no)++;
-    const char *start = text + *pos;
-    const char *nl = memchr(start, '\n', len - *pos);
-    size_t end = nl ? (size_t)(nl - text) : len;
-    size_t ln = end - *pos;
-    *pos = end + 1;
-    if (ln > 0 && start[ln - 1] == '\r') ln--;
-    size_t i = 0;
-    while (i < ln && (start[i] == ' ' || start[i] == '\t'))
-      i++;
-    if (i == ln || start[i] == '#') continue;
-    *p = start;
-    *n = ln;
-    return 1;
-  }
-  return 0;
 }
 
 /* ---- the import ------------------------------------------------------- */
@@ -614,16 +590,14 @@ static vl_status check_roles(const layout *lay, size_t line_no, vl_error *err) {
  * applies the same rule); then every cell of a known column must, and the
  * fields get their row_unit. Otherwise it is data and lay is left as it
  * is. */
-static vl_status scan_units_row(layout *lay, const char *p, size_t n, size_t line_no,
-                                vl_error *err) {
-  const char *cell[MAX_FIELDS + 1];
-  size_t cell_n[MAX_FIELDS + 1];
-  size_t count = vl_import_split(p, n, lay->dialect.delimiter, cell, cell_n, MAX_FIELDS + 1);
+static vl_status scan_units_row(layout *lay, vl_span line, size_t line_no, vl_error *err) {
+  vl_span cells[MAX_FIELDS + 1];
+  size_t count = vl_import_split(line, lay->dialect.delimiter, cells, MAX_FIELDS + 1);
   if (count != lay->n_fields) return VL_OK;
   char u[MAX_FIELDS][CELL_MAX];
   int is_units = 0;
   for (size_t k = 0; k < count; k++) {
-    if (!cell_text(cell[k], cell_n[k], u[k], CELL_MAX)) u[k][0] = '\x01', u[k][1] = '\0';
+    if (!cell_text(cells[k], u[k], CELL_MAX)) u[k][0] = '\x01', u[k][1] = '\0';
     if (lay->fields[k].r == R_COUNT) continue;
     unit_family fam = roles[lay->fields[k].r].family;
     if (!is_number(lay, u[k]) && find_unit(fam, u[k])) is_units = 1;
@@ -660,13 +634,11 @@ static vl_status scan_units_row(layout *lay, const char *p, size_t n, size_t lin
 /* Reads the header and the optional units row; fills lay. */
 static vl_status scan_header(const char *text, size_t len, layout *lay, const vl_dma_options *o,
                              vl_error *err) {
-  size_t pos = 0, line_no = 0, n;
-  const char *p;
-  const char *cell[MAX_FIELDS + 1];
-  size_t cell_n[MAX_FIELDS + 1];
+  size_t pos = 0, line_no = 0;
+  vl_span line, cells[MAX_FIELDS + 1];
   for (int r = 0; r < R_COUNT; r++)
     lay->col_of_role[r] = lay->field_of_role[r] = -1;
-  if (!next_line(text, len, &pos, &line_no, &p, &n)) {
+  if (!vl_import_next_line(text, len, &pos, &line_no, &line)) {
     vl_error_set(err,
                  "%s:%zu: empty file (expected a header such as 'f,E_stor,E_loss,T' and data "
                  "rows)",
@@ -674,7 +646,7 @@ static vl_status scan_header(const char *text, size_t len, layout *lay, const vl
     return VL_EINPUT;
   }
   lay->header_line = line_no;
-  size_t count = vl_import_split(p, n, lay->dialect.delimiter, cell, cell_n, MAX_FIELDS + 1);
+  size_t count = vl_import_split(line, lay->dialect.delimiter, cells, MAX_FIELDS + 1);
   if (count > MAX_FIELDS) {
     vl_error_set(err, "%s:%zu: the header has %zu columns; a DMA file has at most %d", lay->src,
                  line_no, count, MAX_FIELDS);
@@ -684,7 +656,7 @@ static vl_status scan_header(const char *text, size_t len, layout *lay, const vl
   for (size_t k = 0; k < count; k++) {
     field *f = &lay->fields[k];
     memset(f, 0, sizeof *f);
-    if (!cell_text(cell[k], cell_n[k], f->text, sizeof f->text)) {
+    if (!cell_text(cells[k], f->text, sizeof f->text)) {
       vl_error_set(err, "%s:%zu: header field %zu is too long to be a column name", lay->src,
                    line_no, k + 1);
       return VL_EINPUT;
@@ -701,8 +673,8 @@ static vl_status scan_header(const char *text, size_t len, layout *lay, const vl
   vl_status st = header_roles(lay, count, line_no, err);
   if (st == VL_OK) st = check_roles(lay, line_no, err);
   if (st == VL_OK) st = modulus_kind_of(lay, o, line_no, err);
-  if (st == VL_OK && next_line(text, len, &pos, &line_no, &p, &n))
-    st = scan_units_row(lay, p, n, line_no, err);
+  if (st == VL_OK && vl_import_next_line(text, len, &pos, &line_no, &line))
+    st = scan_units_row(lay, line, line_no, err);
   return st;
 }
 
@@ -793,12 +765,7 @@ static vl_status resolve_units(layout *lay, const vl_dma_options *o, vl_error *e
   return VL_OK;
 }
 
-/* One point's place for sorting: isotherm, then frequency. */
-typedef struct {
-  size_t iso;
-  double omega;
-  size_t idx;
-} order_key;
+typedef vl_dma_order order_key;
 
 static int cmp_key(const void *pa, const void *pb) {
   const order_key *a = pa, *b = pb;
@@ -1630,60 +1597,26 @@ vl_status vl_measured_read_text(const char *text, size_t len, const char *source
   } else if (m->n_isotherms == 1) {
     m->iso_log10_a_t[0] = 0.0;
   }
-  if ((st = fit_master_curve(m, &o, err)) == VL_OK) fit_warnings(m);
+  if ((st = fit_master_curve(m, &o, err)) != VL_OK) goto cleanup;
+  fit_warnings(m);
+  st = vl_dma_quality(m, ord, err);
 
 cleanup:
   free(ord);
   free(set);
   if (st != VL_OK) {
     vl_measured_free(out);
-    /* messages quote header cells and go to a terminal: no control bytes
-     * (but the line breaks between the sentences of a problem list) */
-    if (err)
-      for (char *c = err->msg; *c; c++)
-        if (((unsigned char)*c < 0x20 && *c != '\n') || *c == 0x7f) *c = '?';
+    vl_import_sanitise(err);
   }
   return st;
 }
 
 vl_status vl_measured_read_file(const char *path, const vl_dma_options *opts, vl_measured *out,
                                 vl_error *err) {
-  memset(out, 0, sizeof *out);
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    vl_error_set(err, "%s: cannot open: %s", path, strerror(errno));
-    return VL_EIO;
-  }
   char *buf = NULL;
-  size_t len = 0, cap = 0;
-  vl_status st = VL_OK;
-  for (;;) {
-    if (len == cap) {
-      /* a DMA export of VL_DMA_MAX_POINTS rows is a few MB at most */
-      if (cap >= ((size_t)64 << 20)) {
-        vl_error_set(err, "%s: larger than 64 MiB: not a DMA export", path);
-        st = VL_EINPUT;
-        break;
-      }
-      size_t ncap = cap ? 2 * cap : 65536;
-      char *nb = realloc(buf, ncap);
-      if (!nb) {
-        vl_error_set(err, "%s: out of memory", path);
-        st = VL_ENOMEM;
-        break;
-      }
-      buf = nb;
-      cap = ncap;
-    }
-    size_t got = fread(buf + len, 1, cap - len, f);
-    len += got;
-    if (got == 0) break;
-  }
-  if (st == VL_OK && ferror(f)) {
-    vl_error_set(err, "%s: cannot read: %s", path, strerror(errno));
-    st = VL_EIO;
-  }
-  fclose(f);
+  size_t len = 0;
+  memset(out, 0, sizeof *out);
+  vl_status st = vl_import_read_file(path, DMA_MAX_BYTES, "a DMA export", &buf, &len, err);
   if (st == VL_OK) st = vl_measured_read_text(buf, len, path, opts, out, err);
   free(buf);
   return st;

@@ -1,5 +1,6 @@
-/* Spreadsheet refusal, dialect detection and problem lists shared by the
- * delimited text readers (import_text.h). */
+/* The text reading shared by the readers of the import layer
+ * (import_text.h): spans, whole files, meaningful lines, spreadsheet
+ * refusal, dialect detection, strict numbers and problem lists. */
 #define _POSIX_C_SOURCE 200809L
 
 #include "import_text.h"
@@ -13,8 +14,132 @@
 
 #define SAMPLE_LINES 50
 #define NUMBER_MAX_CHARS 128
+/* Longest excerpt of a cell quoted back in a message. */
+#define EXCERPT_MAX_CHARS 40
 
 static int lower(int c) { return c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c; }
+
+/* ---- spans --------------------------------------------------------------- */
+
+int vl_is_blank(char c) { return c == ' ' || c == '\t'; }
+
+vl_span vl_span_trim(vl_span s) {
+  while (s.n > 0 && vl_is_blank(s.p[0]))
+    s.p++, s.n--;
+  while (s.n > 0 && vl_is_blank(s.p[s.n - 1]))
+    s.n--;
+  return s;
+}
+
+vl_span vl_span_unquote(vl_span s) {
+  s = vl_span_trim(s);
+  if (s.n >= 2 && s.p[0] == '"' && s.p[s.n - 1] == '"') {
+    s.p++;
+    s.n -= 2;
+    s = vl_span_trim(s);
+  }
+  return s;
+}
+
+int vl_span_eq(vl_span s, const char *t) {
+  size_t n = strlen(t);
+  return s.n == n && memcmp(s.p, t, n) == 0;
+}
+
+int vl_span_eq_nocase(vl_span s, const char *t) {
+  size_t n = strlen(t);
+  if (s.n != n) return 0;
+  for (size_t i = 0; i < n; i++)
+    if (lower((unsigned char)s.p[i]) != lower((unsigned char)t[i])) return 0;
+  return 1;
+}
+
+int vl_span_has(vl_span s, char c) { return s.n > 0 && memchr(s.p, c, s.n) != NULL; }
+
+void vl_span_excerpt(vl_span s, char *buf, size_t size) {
+  size_t k = 0;
+  for (size_t i = 0; i < s.n && k + 4 < size && i < EXCERPT_MAX_CHARS; i++) {
+    unsigned char c = (unsigned char)s.p[i];
+    buf[k++] = (c < 0x20 || c == 0x7f) ? '?' : (char)c;
+  }
+  if (s.n > EXCERPT_MAX_CHARS && k + 4 < size) {
+    memcpy(buf + k, "...", 3);
+    k += 3;
+  }
+  buf[k] = '\0';
+}
+
+/* ---- files and lines ----------------------------------------------------- */
+
+vl_status vl_import_read_file(const char *path, size_t max_bytes, const char *what, char **buf,
+                              size_t *len, vl_error *err) {
+  vl_status st = VL_OK;
+  size_t cap = 0;
+  *buf = NULL;
+  *len = 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    vl_error_set(err, "%s: cannot open: %s", path, strerror(errno));
+    return VL_EIO;
+  }
+  for (;;) {
+    if (*len == cap) { /* full: grow, unless it has reached the limit */
+      if (cap >= max_bytes) {
+        vl_error_set(err, "%s: larger than %zu MiB: not %s", path, max_bytes >> 20, what);
+        st = VL_EINPUT;
+        break;
+      }
+      size_t ncap = cap ? 2 * cap : 65536;
+      char *nb = realloc(*buf, ncap);
+      if (!nb) {
+        vl_error_set(err, "%s: out of memory", path);
+        st = VL_ENOMEM;
+        break;
+      }
+      *buf = nb;
+      cap = ncap;
+    }
+    size_t got = fread(*buf + *len, 1, cap - *len, f);
+    *len += got;
+    if (got == 0) break;
+  }
+  if (st == VL_OK && ferror(f)) {
+    vl_error_set(err, "%s: cannot read: %s", path, strerror(errno));
+    st = VL_EIO;
+  }
+  fclose(f);
+  if (st != VL_OK) {
+    free(*buf);
+    *buf = NULL;
+    *len = 0;
+  }
+  return st;
+}
+
+int vl_import_next_line(const char *text, size_t len, size_t *pos, size_t *line_no, vl_span *line) {
+  if (*pos == 0 && len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) *pos = 3;
+  while (*pos < len) {
+    (*line_no)++;
+    const char *start = text + *pos;
+    const char *nl = memchr(start, '\n', len - *pos);
+    size_t n = nl ? (size_t)(nl - start) : len - *pos;
+    *pos += n + 1;
+    if (n > 0 && start[n - 1] == '\r') n--;
+    vl_span t = vl_span_trim((vl_span){start, n});
+    if (t.n == 0 || t.p[0] == '#') continue;
+    *line = (vl_span){start, n};
+    return 1;
+  }
+  return 0;
+}
+
+void vl_import_sanitise(vl_error *err) {
+  if (!err) return;
+  for (char *c = err->msg; *c; c++)
+    if (((unsigned char)*c < 0x20 && *c != '\n') || *c == 0x7f) *c = '?';
+}
+
+/* ---- delimited text ------------------------------------------------------ */
 
 static int ends_with_nocase(const char *s, const char *suffix) {
   size_t n = strlen(s), m = strlen(suffix);
@@ -53,15 +178,14 @@ const char *vl_dialect_delimiter_name(char delimiter) {
   return "?";
 }
 
-size_t vl_import_split(const char *line, size_t n, char delimiter, const char **cell,
-                       size_t *cell_n, size_t cap) {
+size_t vl_import_split(vl_span line, char delimiter, vl_span *cells, size_t cap) {
   size_t count = 0;
-  const char *start = line, *end = line + n;
+  const char *start = line.p, *end = line.p + line.n;
   int quoted = 0;
-  for (const char *c = line;; c++) {
+  for (const char *c = line.p;; c++) {
     if (c < end && *c == '"') quoted = !quoted;
     if (c == end || (*c == delimiter && !quoted)) {
-      if (count < cap) cell[count] = start, cell_n[count] = (size_t)(c - start);
+      if (count < cap) cells[count] = (vl_span){start, (size_t)(c - start)};
       count++;
       if (c == end) break;
       start = c + 1;
@@ -94,14 +218,10 @@ static int decimal_syntax(const char *s) {
   return *p == '\0';
 }
 
-static int is_blank(char c) { return c == ' ' || c == '\t'; }
-
 vl_status vl_import_parse_number(const char *cell, size_t n, int decimal_comma, double *out,
                                  const char **why) {
-  while (n > 0 && is_blank(*cell))
-    cell++, n--;
-  while (n > 0 && is_blank(cell[n - 1]))
-    n--;
+  vl_span s = vl_span_trim((vl_span){cell, n});
+  cell = s.p, n = s.n;
   char buf[NUMBER_MAX_CHARS + 1];
   if (n == 0) {
     *why = "empty cell";
@@ -148,35 +268,11 @@ vl_status vl_import_parse_number(const char *cell, size_t n, int decimal_comma, 
 
 /* ---- dialect ------------------------------------------------------------- */
 
-/* The next line that is not blank and not a '#' comment: its start and
- * length (CR removed); 0 at the end. A leading UTF-8 byte-order mark is
- * skipped. */
-static int meaningful_line(const char *text, size_t len, size_t *pos, const char **p, size_t *n,
-                           size_t *line_no) {
-  if (*pos == 0 && len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) *pos = 3;
-  while (*pos < len) {
-    (*line_no)++;
-    const char *start = text + *pos;
-    const char *nl = memchr(start, '\n', len - *pos);
-    size_t ln = nl ? (size_t)(nl - start) : len - *pos;
-    *pos += ln + 1;
-    if (ln > 0 && start[ln - 1] == '\r') ln--;
-    size_t i = 0;
-    while (i < ln && is_blank(start[i]))
-      i++;
-    if (i == ln || start[i] == '#') continue;
-    *p = start;
-    *n = ln;
-    return 1;
-  }
-  return 0;
-}
-
 /* A comma between two digits: "0,25" (also inside "1,5e-3"). */
-static int has_decimal_comma(const char *cell, size_t n) {
-  for (size_t i = 1; i + 1 < n; i++)
-    if (cell[i] == ',' && cell[i - 1] >= '0' && cell[i - 1] <= '9' && cell[i + 1] >= '0' &&
-        cell[i + 1] <= '9')
+static int has_decimal_comma(vl_span cell) {
+  const char *c = cell.p;
+  for (size_t i = 1; i + 1 < cell.n; i++)
+    if (c[i] == ',' && c[i - 1] >= '0' && c[i - 1] <= '9' && c[i + 1] >= '0' && c[i + 1] <= '9')
       return 1;
   return 0;
 }
@@ -185,22 +281,22 @@ vl_status vl_import_detect_dialect(const char *text, size_t len, const char *sou
                                    vl_error *err) {
   static const char cand[3] = {'\t', ';', ','};
   const char *src = source ? source : "<text>";
-  size_t pos = 0, line_no = 0, n, header_line;
-  const char *p;
+  size_t pos = 0, line_no = 0, header_line;
+  vl_span line;
   d->delimiter = ',';
   d->decimal_comma = 0;
-  if (!text || !meaningful_line(text, len, &pos, &p, &n, &line_no)) return VL_OK;
+  if (!text || !vl_import_next_line(text, len, &pos, &line_no, &line)) return VL_OK;
   header_line = line_no;
   size_t hcount[3];
   int fits[3];
   for (int c = 0; c < 3; c++) {
-    hcount[c] = vl_import_split(p, n, cand[c], NULL, NULL, 0);
+    hcount[c] = vl_import_split(line, cand[c], NULL, 0);
     fits[c] = hcount[c] > 1;
   }
   size_t save = pos, save_line = line_no;
-  for (int k = 0; k < SAMPLE_LINES && meaningful_line(text, len, &pos, &p, &n, &line_no); k++)
+  for (int k = 0; k < SAMPLE_LINES && vl_import_next_line(text, len, &pos, &line_no, &line); k++)
     for (int c = 0; c < 3; c++)
-      if (fits[c] && vl_import_split(p, n, cand[c], NULL, NULL, 0) != hcount[c]) fits[c] = 0;
+      if (fits[c] && vl_import_split(line, cand[c], NULL, 0) != hcount[c]) fits[c] = 0;
   int nfit = fits[0] + fits[1] + fits[2], pick = 2;
   if (nfit > 1) {
     int a = fits[0] ? 0 : 1, b = fits[2] ? 2 : 1;
@@ -222,12 +318,11 @@ vl_status vl_import_detect_dialect(const char *text, size_t len, const char *sou
   d->delimiter = cand[pick];
   if (d->delimiter == ',') return VL_OK;
   pos = save, line_no = save_line;
-  const char *cell[64];
-  size_t cell_n[64];
-  for (int k = 0; k < SAMPLE_LINES && meaningful_line(text, len, &pos, &p, &n, &line_no); k++) {
-    size_t count = vl_import_split(p, n, d->delimiter, cell, cell_n, 64);
+  vl_span cells[64];
+  for (int k = 0; k < SAMPLE_LINES && vl_import_next_line(text, len, &pos, &line_no, &line); k++) {
+    size_t count = vl_import_split(line, d->delimiter, cells, 64);
     for (size_t f = 0; f < count && f < 64; f++)
-      if (has_decimal_comma(cell[f], cell_n[f])) d->decimal_comma = 1;
+      if (has_decimal_comma(cells[f])) d->decimal_comma = 1;
   }
   return VL_OK;
 }

@@ -1,5 +1,6 @@
 /* Creep-form Prony fit by weighted non-negative least squares (prony_fit.h). */
 #include "viscolube/prony_fit.h"
+#include "prony_fit_internal.h"
 
 #include <complex.h>
 #include <math.h>

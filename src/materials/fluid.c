@@ -1,5 +1,6 @@
 /* Viscosity-temperature laws of lubricants (fluid.h). */
 #include "viscolube/fluid.h"
+#include "fluid_internal.h"
 
 #include <math.h>
 #include <string.h>

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "roughness_internal.h"
 #include "viscolube/roughness.h"
 
 #ifndef M_PI /* strict C17 <math.h> does not define it */

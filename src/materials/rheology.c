@@ -1,4 +1,5 @@
 #include "viscolube/rheology.h"
+#include "rheology_internal.h"
 
 #include <complex.h>
 #include <math.h>

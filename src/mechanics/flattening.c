@@ -32,7 +32,10 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 
+#include "flattening_internal.h"
 #include "gsl_errors.h"
+#include "rheology_internal.h"
+#include "roughness_internal.h"
 #include "viscolube/flattening.h"
 #include "viscolube/rheology.h"
 

@@ -42,6 +42,7 @@
  *         0 for H <= 0.
  */
 #include "viscolube/flow_factors.h"
+#include "flow_factors_internal.h"
 
 #include "flow_factors_emt.h"
 

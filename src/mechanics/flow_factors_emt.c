@@ -85,6 +85,7 @@
 
 #include "blob.h"
 #include "flow_factors_emt.h"
+#include "roughness_internal.h"
 
 #define POOL_MASS 1e-9                     /* repair 1: lighter components are pooled */
 #define POOL_HR2 (1.0 - 0.075)             /* repair 1: ... and those detaching above it */

@@ -11,9 +11,11 @@
  * Inside, lengths are in units of h_rms. The table, its interpolant and its
  * continuations beyond x_min and X_MAX are described in flow_factors_emt.c.
  * A built table is immutable: evaluation is allocation free and thread
- * safe. The table's public functions are in viscolube/flow_factors.h; this
- * header holds the model's steps (for tests) and the serialisation (for
- * the database cache). */
+ * safe. The queries the program makes of a table (evaluation, h_rms, the
+ * percolation point, freeing) are public, in viscolube/flow_factors.h; this
+ * header holds building the table and looking at its nodes (for the
+ * database and tests), the model's steps (for tests) and the serialisation
+ * (for the database cache). */
 #ifndef VISCOLUBE_FLOW_FACTORS_EMT_H
 #define VISCOLUBE_FLOW_FACTORS_EMT_H
 
@@ -32,6 +34,29 @@
  * vl_emt_table_build's result can change (grids, repairs, bins, the medium,
  * node placement, psd.c's moments) as well as when the layout changes. */
 #define VL_EMT_FORMAT 3
+
+/* x = u/h_rms at the percolation of the contact (A/A0 = 1/2), where the
+ * pressure flow stops. NaN on an invalid PSD. */
+double vl_emt_percolation(const vl_psd *psd);
+
+/* Builds the table for psd and film cut-off film_cutoff_m > 0 (m) at
+ * n_points nodes (0: the default; else within [VL_EMT_MIN_N_POINTS,
+ * VL_EMT_MAX_N_POINTS]), geometric in x from two decades below the
+ * percolation point up to VL_EMT_X_MAX, the node nearest the percolation
+ * point moved onto it. On success *out is owned by the caller
+ * (vl_emt_table_free); on failure it is NULL and the status is VL_EINPUT or
+ * VL_ENOMEM. */
+vl_status vl_emt_table_build(const vl_psd *psd, double film_cutoff_m, size_t n_points,
+                             vl_emt_table **out, vl_error *err);
+
+/* Number of nodes; node k < size: its x, its factors (v, may be NULL) and
+ * its A/A0 (area, may be NULL). Returns x. */
+size_t vl_emt_table_size(const vl_emt_table *table);
+double vl_emt_table_node(const vl_emt_table *table, size_t k, vl_flow_factor_values *v,
+                         double *area);
+
+/* The film cut-off (m) the table was built for. */
+double vl_emt_table_film_cutoff(const vl_emt_table *table);
 
 /* The factors at one separation, with what the model knows on the way. */
 typedef struct {

@@ -45,6 +45,8 @@
 #include <gsl/gsl_sf_expint.h>
 
 #include "gsl_errors.h"
+#include "persson_internal.h"
+#include "roughness_internal.h"
 #include "viscolube/persson.h"
 
 #include "blob.h"

@@ -1,5 +1,8 @@
 /* Checks of the model's assumptions for one operating point (assumptions.h). */
 #include "viscolube/assumptions.h"
+#include "assumptions_internal.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 #include "viscolube/persson.h"
 
 #include <math.h>
@@ -45,6 +48,8 @@ static void append(char *warnings, size_t cap, const char *w) {
 }
 
 /* The span of the relaxation times that carry strength (A_i > 0). */
+void vl_warnings_append(char *warnings, size_t cap, const char *w) { append(warnings, cap, w); }
+
 static int prony_span(const vl_prony *r, double *tau_min, double *tau_max) {
   int k = 0;
   *tau_min = INFINITY, *tau_max = 0.0;

@@ -5,10 +5,15 @@
  * 8, and builds the parts the other contact_*.c files work on
  * (contact_internal.h lists them). */
 #include "contact_internal.h"
+#include "contact_private.h"
+#include "flattening_internal.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 
 #include <kinsol/kinsol.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Which unknowns the contact has, and where they sit in y. A smooth wet
  * contact keeps a positive film (Reynolds' equation carries any load at any
@@ -27,7 +32,10 @@ static void set_scales(vl_contact *c) {
   const vl_contact_config *cfg = &c->cfg;
   double red = vl_prony_reduced_factor(&cfg->rubber);
   c->er_ref = vl_prony_e0(&cfg->rubber) * red;
-  c->er_inf = cfg->rubber.e_inf_pa * red;
+  /* a moving counter-surface: the rubber at rest deforms statically, with
+   * the relaxed modulus and no memory (docs/MODEL.md section 11) */
+  c->nk = cfg->moving == VL_MOVING_COUNTERFACE ? 0 : cfg->rubber.n_terms;
+  c->er_inf = c->nk == cfg->rubber.n_terms ? cfg->rubber.e_inf_pa * red : c->er_ref;
   c->a0 = sqrt(4.0 * cfg->load_n_per_m * cfg->radius_m / (M_PI * c->er_ref));
   c->p0 = 2.0 * cfg->load_n_per_m / (M_PI * c->a0);
   c->uscale = c->a0 * c->a0 / cfg->radius_m;
@@ -36,7 +44,7 @@ static void set_scales(vl_contact *c) {
   c->v0 = NAN;
   c->u_ref = 1.0;
   c->kappa = 1.0;
-  if (c->wet && c->rough && cfg->rubber.n_terms > 0) {
+  if (c->wet && c->rough && c->nk > 0) {
     /* Q = v_GT / v_ML: v_GT = (loss-peak frequency) x (relaxed Hertz width
      * 2 a0), v_ML = 10 h_rms^2 Er0 / (R eta) (docs/MODEL.md section 8) */
     double wpk = 0.0;
@@ -50,7 +58,7 @@ static void set_scales(vl_contact *c) {
 /* The arrays of the state on the n cells, and the Prony strengths. No
  * allocation happens inside the Newton loop afterwards. */
 static vl_status alloc_state(vl_contact *c, vl_error *err) {
-  size_t n = c->n, nt = c->cfg.rubber.n_terms;
+  size_t n = c->n, nt = c->nk;
   c->A = malloc((nt ? nt : 1) * sizeof *c->A);
   c->beta = calloc(nt ? nt : 1, sizeof *c->beta);
   c->M = calloc(n * n, sizeof *c->M);
@@ -67,6 +75,13 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
   if (!c->A || !c->beta || !c->M || !c->P || !c->q || !c->U || !c->dPdU || !c->F || !c->D ||
       !c->theta || !c->g || !c->Jf || !c->rw)
     return vl_contact_nomem(c, err);
+  if (!c->rough && !c->wet) {
+    c->fb_work = malloc((2 * n + c->nunk) * sizeof *c->fb_work);
+    if (!c->fb_work) return vl_contact_nomem(c, err);
+    c->state_y = c->fb_work + 2 * n;
+    c->state_kernel = (size_t)-1; /* no state yet */
+    c->min_rows = true;
+  }
   if (c->rough && c->wet) {
     c->film_work = malloc((2 * c->nunk + 3 * n) * sizeof *c->film_work);
     if (!c->film_work) return vl_contact_nomem(c, err);
@@ -78,11 +93,117 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
     for (size_t i = 0; i < n; i++)
       c->sf[i] = 1.0, c->dsf[i] = 0.0;
   }
+  if (c->cfg.p_inlet_pa > 0.0 || c->cfg.p_outlet_pa > 0.0) {
+    c->pamb = malloc(n * sizeof *c->pamb);
+    if (!c->pamb) return vl_contact_nomem(c, err);
+    for (size_t i = 0; i < n; i++)
+      c->pamb[i] = (c->xi[i] < 0.0 ? c->cfg.p_inlet_pa : c->cfg.p_outlet_pa) / c->p0;
+  }
   c->dg = c->g + n;
   c->cf = c->g + 2 * n;
   c->dcf = c->g + 3 * n;
   for (size_t k = 0; k < nt; k++)
     c->A[k] = c->cfg.rubber.A[k];
+  return VL_OK;
+}
+
+/* Sorts the points (x, z) by x (insertion: tables are small). */
+static void sort_points(double *x, double *z, size_t m) {
+  for (size_t i = 1; i < m; i++) {
+    double xi = x[i], zi = z[i];
+    size_t j = i;
+    for (; j > 0 && x[j - 1] > xi; j--)
+      x[j] = x[j - 1], z[j] = z[j - 1];
+    x[j] = xi, z[j] = zi;
+  }
+}
+
+/* Slope at point i of the parabola through points i-1, i, i+1 (at the ends
+ * through the three end points): exact for a quadratic, so the Hermite
+ * interpolant reproduces a parabola. */
+static double three_point_slope(const double *x, const double *z, size_t m, size_t i) {
+  size_t a = i == 0 ? 0 : i + 1 == m ? m - 3 : i - 1;
+  double x0 = x[a], x1 = x[a + 1], x2 = x[a + 2], t = x[i];
+  return z[a] * (2.0 * t - x1 - x2) / ((x0 - x1) * (x0 - x2)) +
+         z[a + 1] * (2.0 * t - x0 - x2) / ((x1 - x0) * (x1 - x2)) +
+         z[a + 2] * (2.0 * t - x0 - x1) / ((x2 - x0) * (x2 - x1));
+}
+
+/* f and f' at t of the table (sorted, slopes d): cubic Hermite inside,
+ * straight beyond the ends. */
+static double profile_at(const double *x, const double *z, const double *d, size_t m, double t,
+                         double *slope) {
+  if (t <= x[0]) return *slope = d[0], z[0] + d[0] * (t - x[0]);
+  if (t >= x[m - 1]) return *slope = d[m - 1], z[m - 1] + d[m - 1] * (t - x[m - 1]);
+  size_t lo = 0, hi = m - 1;
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (x[mid] <= t)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  double h = x[hi] - x[lo], s = (t - x[lo]) / h, s2 = s * s, s3 = s2 * s;
+  double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+  *slope = (6 * s2 - 6 * s) / h * z[lo] + (3 * s2 - 4 * s + 1) * d[lo] +
+           (-6 * s2 + 6 * s) / h * z[hi] + (3 * s2 - 2 * s) * d[hi];
+  return h00 * z[lo] + h10 * h * d[lo] + h01 * z[hi] + h11 * h * d[hi];
+}
+
+/* The tabulated profile of cfg at the nodes (contact.h): c->fprof, c->sprof. */
+static vl_status build_profile(vl_contact *c, vl_error *err) {
+  const vl_contact_config *cfg = &c->cfg;
+  if (!cfg->profile_x_m) return VL_OK;
+  size_t m = cfg->profile_points, n = c->n;
+  double *w = calloc(3 * m, sizeof *w); /* zeroed, though filled below: GCC cannot tell */
+  c->fprof = malloc(2 * n * sizeof *c->fprof);
+  c->ptab = malloc(2 * m * sizeof *c->ptab);
+  if (!w || !c->fprof || !c->ptab) {
+    free(w);
+    return vl_contact_nomem(c, err);
+  }
+  memcpy(c->ptab, cfg->profile_x_m, m * sizeof *c->ptab);
+  memcpy(c->ptab + m, cfg->profile_z_m, m * sizeof *c->ptab);
+  c->cfg.profile_x_m = c->ptab, c->cfg.profile_z_m = c->ptab + m;
+  c->sprof = c->fprof + n;
+  double *x = w, *z = w + m, *d = w + 2 * m;
+  size_t imin = 0;
+  for (size_t k = 0; k < m; k++) {
+    x[k] = cfg->profile_mirror ? -cfg->profile_x_m[k] : cfg->profile_x_m[k];
+    z[k] = cfg->profile_z_m[k];
+  }
+  sort_points(x, z, m);
+  for (size_t k = 0; k < m; k++)
+    if (z[k] < z[imin]) imin = k;
+  for (size_t k = 0; k < m; k++)
+    d[k] = three_point_slope(x, z, m, k);
+  /* the tip: the interpolant's minimum next to the lowest point (where its
+   * slope changes sign; bisection), so that a table need not hold it */
+  double lo = x[imin > 0 ? imin - 1 : 0], hi = x[imin + 1 < m ? imin + 1 : m - 1], sl;
+  profile_at(x, z, d, m, lo, &sl);
+  bool falls = sl < 0.0;
+  profile_at(x, z, d, m, hi, &sl);
+  if (falls && sl > 0.0) {
+    for (int it = 0; it < 200 && hi - lo > 0.0; it++) {
+      double mid = 0.5 * (lo + hi);
+      if (mid == lo || mid == hi) break;
+      profile_at(x, z, d, m, mid, &sl);
+      if (sl < 0.0)
+        lo = mid;
+      else
+        hi = mid;
+    }
+  } else {
+    lo = x[imin];
+  }
+  double x0 = lo, z0 = profile_at(x, z, d, m, lo, &sl);
+  for (size_t k = 0; k < m; k++)
+    x[k] -= x0, z[k] -= z0; /* the tip at x = 0, z = 0 (the slopes do not change) */
+  for (size_t i = 0; i < n; i++) {
+    double f = profile_at(x, z, d, m, c->xi[i] * c->a0, &c->sprof[i]);
+    c->fprof[i] = f / c->uscale;
+  }
+  free(w);
   return VL_OK;
 }
 
@@ -115,10 +236,12 @@ static vl_status create_helpers(vl_contact *c, vl_error *err) {
     free(spans);
     return st;
   }
-  if (c->cfg.rubber.n_terms > 0) {
+  if (c->nk > 0) {
     vl_contact_config dry = c->cfg;
     dry.eta_pa_s = 0.0;
-    return vl_contact_create(&dry, &c->dry, err);
+    vl_status st = vl_contact_create(&dry, &c->dry, err);
+    if (st == VL_OK) c->dry->min_rows = false; /* the smooth film's starts stay as they were */
+    return st;
   }
   return VL_OK;
 }
@@ -154,6 +277,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   set_unknowns(c);
   set_scales(c);
   if ((st = alloc_state(c, err)) != VL_OK) goto fail;
+  if ((st = build_profile(c, err)) != VL_OK) goto fail;
   if ((st = vl_contact_kernel_init(c, err)) != VL_OK) goto fail;
   if ((st = vl_contact_kinsol_init(c, err)) != VL_OK) goto fail;
   if ((st = create_helpers(c, err)) != VL_OK) goto fail;
@@ -179,6 +303,7 @@ void vl_contact_free(vl_contact *c) {
   if (c->fwork) N_VDestroy(c->fwork);
   if (c->y_saved) N_VDestroy(c->y_saved);
   if (c->y_outer) N_VDestroy(c->y_outer);
+  if (c->y_min) N_VDestroy(c->y_min);
   if (c->y) N_VDestroy(c->y);
   if (c->ctx) SUNContext_Free(&c->ctx);
   vl_toeplitz_free(&c->kern);
@@ -202,7 +327,11 @@ void vl_contact_free(vl_contact *c) {
   free(c->Jf);
   free(c->rw);
   free(c->sf);
+  free(c->pamb);
+  free(c->fprof);
+  free(c->ptab);
   free(c->film_work);
+  free(c->fb_work);
   free(c);
 }
 

@@ -5,7 +5,11 @@
  * (docs/MODEL.md section 9: the domain must follow the inlet length sqrt(2 R h)
  * when it exceeds a0). */
 #include "contact_internal.h"
+#include "contact_private.h"
 #include "flow_factors_emt.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
+#include "shear_law_private.h"
 
 #include <math.h>
 #include <string.h>
@@ -44,6 +48,7 @@ static vl_status check_geometry(const vl_contact_config *cfg, vl_error *err) {
     vl_error_set(err, "load_n_per_m must be positive (got %g)", cfg->load_n_per_m);
     return VL_EINPUT;
   }
+  if (cfg->shear_law && vl_shear_law_validate(cfg->shear_law, err) != VL_OK) return VL_EINPUT;
   if (!(cfg->sigma_s_pa >= 0.0 && isfinite(cfg->sigma_s_pa))) {
     vl_error_set(err, "sigma_s_pa must be >= 0 (got %g)", cfg->sigma_s_pa);
     return VL_EINPUT;
@@ -198,6 +203,10 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
                                                                 : (int)cfg->flow_factors);
     return VL_EINPUT;
   }
+  if ((unsigned)cfg->moving > VL_MOVING_COUNTERFACE) {
+    vl_error_set(err, "unknown moving body (%d)", (int)cfg->moving);
+    return VL_EINPUT;
+  }
   st = check_scales(cfg, err);
   if (st != VL_OK) return st;
   if (!(cfg->tolerance > 0.0 && cfg->tolerance < 1.0)) {
@@ -206,6 +215,35 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
   }
   if (!(cfg->eta_pa_s >= 0.0 && isfinite(cfg->eta_pa_s))) {
     vl_error_set(err, "viscosity must be >= 0 (got %g Pa s)", cfg->eta_pa_s);
+    return VL_EINPUT;
+  }
+  if (!(cfg->p_inlet_pa >= 0.0 && isfinite(cfg->p_inlet_pa) && cfg->p_outlet_pa >= 0.0 &&
+        isfinite(cfg->p_outlet_pa))) {
+    vl_error_set(err, "end pressures must be >= 0 (got %g Pa at the inlet, %g Pa at the outlet)",
+                 cfg->p_inlet_pa, cfg->p_outlet_pa);
+    return VL_EINPUT;
+  }
+  if (cfg->profile_x_m || cfg->profile_z_m) {
+    if (!cfg->profile_x_m || !cfg->profile_z_m || cfg->profile_points < 3) {
+      vl_error_set(err, "a profile needs x and z of at least 3 points (got %zu)",
+                   cfg->profile_points);
+      return VL_EINPUT;
+    }
+    for (size_t k = 0; k < cfg->profile_points; k++) {
+      if (!isfinite(cfg->profile_x_m[k]) || !isfinite(cfg->profile_z_m[k])) {
+        vl_error_set(err, "profile point %zu is not finite", k);
+        return VL_EINPUT;
+      }
+      for (size_t j = 0; j < k; j++)
+        if (cfg->profile_x_m[j] == cfg->profile_x_m[k]) {
+          vl_error_set(err, "profile points %zu and %zu have the same x (%g m)", j, k,
+                       cfg->profile_x_m[k]);
+          return VL_EINPUT;
+        }
+    }
+  }
+  if ((cfg->p_inlet_pa > 0.0 || cfg->p_outlet_pa > 0.0) && !(cfg->eta_pa_s > 0.0)) {
+    vl_error_set(err, "a sealed pressure needs a fluid (the contact is dry)");
     return VL_EINPUT;
   }
   st = check_flow_table(cfg, err);

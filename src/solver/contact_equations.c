@@ -16,6 +16,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "flattening_internal.h"
+#include "flow_factors_internal.h"
 #include "lapack_abi.h"
 
 /* Fischer-Burmeister complementarity a >= 0, b >= 0, a b = eps/2 (smoothed),
@@ -28,6 +30,18 @@ static double fb_eps(double a, double b, double eps, double *da, double *db) {
 }
 static double fb(double a, double b, double *da, double *db) {
   return fb_eps(a, b, FB_EPS, da, db);
+}
+
+/* The hard contact of a smooth dry cell, P >= 0, U >= 0, P U = 0: min(P, U)
+ * (exact; its Newton step is the active-set step: the gap row where U < P,
+ * the row P = 0 elsewhere, so the steps converge in a few set changes), or
+ * Fischer-Burmeister (smoothed) where min_rows is off. */
+static double hard_contact(const vl_contact *c, double p, double u, double *dp, double *du) {
+  if (!c->min_rows) return fb(p, u, dp, du);
+  bool gap = u < p;
+  if (dp) *dp = gap ? 0.0 : 1.0;
+  if (du) *du = gap ? 1.0 : 0.0;
+  return gap ? u : p;
 }
 
 /* Couette film carried across face f (0..n; face f lies between cells f-1
@@ -170,6 +184,9 @@ static void eval_gap(vl_contact *c, const double *y) {
   double *G = c->rough ? c->D : c->U;
   for (size_t j = 0; j < n; j++)
     c->q[j] = c->P[j] + c->F[j];
+  if (c->pamb) /* a sealed side: the pressure above its ambient deforms the rubber */
+    for (size_t j = 0; j < n; j++)
+      c->q[j] -= c->pamb[j];
   /* M is row-major: the column-major n x n matrix M^T, transposed (BLAS:
    * a plain loop is bound by the latency of its one running sum, about
    * 4x slower at n = 400, where it was a third of a dry point's time) */
@@ -177,7 +194,7 @@ static void eval_gap(vl_contact *c, const double *y) {
   double w1 = 1.0, w0 = 0.0;
   dgemv_("T", &ni, &ni, &w1, c->M, &ni, c->q, &one, &w0, G, &one, 1);
   for (size_t i = 0; i < n; i++)
-    G[i] += h0 + 0.5 * c->xi[i] * c->xi[i];
+    G[i] += h0 + (c->fprof ? c->fprof[i] : 0.5 * c->xi[i] * c->xi[i]);
   if (c->rough) {
     for (size_t i = 0; i < n; i++) {
       c->U[i] = y[i];
@@ -245,14 +262,15 @@ double vl_contact_face_poiseuille(const vl_contact *c, size_t f) {
 void vl_contact_eval_fluxes(vl_contact *c, const double *y) {
   size_t n = c->n;
   const double *pf = y + c->of, *hf = c->hf;
-  double L = c->lambda;
+  double L = c->lambda, pin, pout;
+  vl_contact_end_pressures(c, &pin, &pout);
   for (size_t f = 0; f <= n; f++) {
     size_t k[3];
     double w[3];
     int m;
     double jc = couette_face(c, f, k, w, &m), dl, dr;
-    double jp = f == 0   ? -L * c->g[0] * pf[0] / hf[0]
-                : f == n ? L * c->g[n - 1] * pf[n - 1] / hf[n]
+    double jp = f == 0   ? -L * c->g[0] * (pf[0] - pin) / hf[0]
+                : f == n ? L * c->g[n - 1] * (pf[n - 1] - pout) / hf[n]
                          : -L * face_g(c, f, &dl, &dr) * (pf[f] - pf[f - 1]) / hf[f];
     c->Jf[f] = jp + jc;
   }
@@ -261,6 +279,10 @@ void vl_contact_eval_fluxes(vl_contact *c, const double *y) {
 void vl_contact_eval_state(vl_contact *c, const double *y) {
   eval_contact_pressure(c, y);
   eval_gap(c, y);
+  if (c->state_y) { /* smooth dry: the state is that of y and this kernel */
+    memcpy(c->state_y, y, c->nunk * sizeof *c->state_y);
+    c->state_kernel = c->kernel_builds;
+  }
   if (!c->wet) return;
   eval_flow(c);
   vl_contact_eval_fluxes(c, y);
@@ -270,7 +292,16 @@ double vl_contact_load_sum(const vl_contact *c) {
   double s = 0.0;
   for (size_t i = 0; i < c->n; i++)
     s += (c->P[i] + c->F[i]) * c->wc[i];
+  if (c->pamb)
+    for (size_t i = 0; i < c->n; i++)
+      s -= c->pamb[i] * c->wc[i];
   return s / (0.5 * M_PI);
+}
+
+void vl_contact_end_pressures(const vl_contact *c, double *pin, double *pout) {
+  double unit = c->kappa * c->p0;
+  *pin = c->cfg.p_inlet_pa > 0.0 ? c->cfg.p_inlet_pa / unit : 0.0;
+  *pout = c->cfg.p_outlet_pa > 0.0 ? c->cfg.p_outlet_pa / unit : 0.0;
 }
 
 /* Reynolds row i before complementarity: rw_i (J_{i+1/2} - J_{i-1/2}), see
@@ -330,7 +361,10 @@ int vl_contact_residual(vl_contact *c, const double *y, double *f) {
   size_t nc = c->nc, nf = c->nf, of = c->of;
   vl_contact_eval_state(c, y);
   for (size_t i = 0; i < nc; i++)
-    f[i] = c->rough ? c->D[i] : fb(c->P[i], c->U[i], NULL, NULL);
+    f[i] = c->rough ? c->D[i] : hard_contact(c, c->P[i], c->U[i], NULL, NULL);
+  if (c->warm_set) /* the rows of the set {P > 0}: the first step solves that set exactly */
+    for (size_t i = 0; i < nc; i++)
+      f[i] = c->P[i] > 0.0 ? c->U[i] : c->P[i];
   for (size_t i = 0; i < nf; i++)
     f[of + i] = vl_contact_reynolds_row(c, y, i, NULL, NULL);
   f[c->ih] = vl_contact_load_sum(c) - 1.0;
@@ -361,6 +395,18 @@ static void add_dU(vl_contact *c, double *Jd, size_t ld, size_t row, size_t k, d
   for (size_t j = 0; j < c->nf; j++)
     col[j * ld] += wk * mrow[j];
   Jd[c->ih * ld + row] += w;
+}
+
+/* d/dP and d/dU of every smooth dry cell's complementarity row. The first
+ * Jacobian of an active-set solve (warm_set) takes the set {P > 0} of the
+ * state, the previous solution's (as vl_contact_residual's rows then do). */
+static void hard_contact_derivatives(vl_contact *c, double *dp, double *du) {
+  for (size_t i = 0; i < c->n; i++)
+    hard_contact(c, c->P[i], c->U[i], &dp[i], &du[i]);
+  if (c->warm_set)
+    for (size_t i = 0; i < c->n; i++)
+      dp[i] = c->P[i] > 0.0 ? 0.0 : 1.0, du[i] = 1.0 - dp[i];
+  c->warm_set = false;
 }
 
 /* The rows of the contact unknowns: elasticity (rough) or complementarity
@@ -394,13 +440,41 @@ static void jacobian_contact_rows(vl_contact *c, double *Jd) {
       }
       memset(col + n, 0, (ld - n) * sizeof *col);
     }
+  } else if (nc && !c->span) {
+    /* smooth dry contact on a uniform grid: the complementarity rows
+     * d FB/du_i dU_i/dy_j + d FB/dp_i delta_ij, written column by column
+     * and every entry once (the matrix is column-major); column j of M is
+     * -kfac times the Toeplitz coefficients from n-1-j on (as
+     * graded_influence builds M, so the same values as the rows of M
+     * the general branch below adds, at a fifth of its time) */
+    double *dp = c->fb_work, *du = c->fb_work + n, mk = -c->kfac;
+    hard_contact_derivatives(c, dp, du);
+    size_t lo = 0, hi = n; /* rows lo..hi-1 written in full */
+    if (c->gap_rows_only) {
+      while (lo < n && du[lo] == 0.0)
+        lo++;
+      while (hi > lo && du[hi - 1] == 0.0)
+        hi--;
+    }
+    for (size_t j = 0; j < n; j++) {
+      double *col = Jd + j * ld;
+      const double *t = c->kern.coef + (n - 1 - j);
+      for (size_t i = lo; i < hi; i++) /* + 0.0: a zero du gives +0, as the zeroed matrix */
+        col[i] = du[i] * (mk * t[i]) + 0.0;
+      col[j] = (j >= lo && j < hi ? col[j] : 0.0) + dp[j];
+      col[ih] = 0.0; /* the load row: vl_contact_jacobian */
+    }
+    double *col = Jd + ih * ld; /* d/d(h0) */
+    for (size_t i = 0; i < n; i++)
+      col[i] = du[i];
+    col[ih] = 0.0;
   } else {
     memset(Jd, 0, ld * ld * sizeof *Jd);
+    double *dp = c->fb_work, *du = c->fb_work + n;
+    if (nc) hard_contact_derivatives(c, dp, du);
     for (size_t i = 0; i < nc; i++) { /* smooth contact: complementarity rows */
-      double dfdp, dfdu;
-      fb(c->P[i], c->U[i], &dfdp, &dfdu);
-      add_dU(c, Jd, ld, i, i, dfdu);
-      Jd[i * ld + i] += dfdp;
+      add_dU(c, Jd, ld, i, i, du[i]);
+      Jd[i * ld + i] += dp[i];
     }
   }
 }
@@ -410,7 +484,8 @@ static void jacobian_contact_rows(vl_contact *c, double *Jd) {
 static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, size_t i) {
   size_t n = c->n, of = c->of, ld = c->nunk;
   const double *pf = y + of, *hf = c->hf;
-  double L = c->lambda;
+  double L = c->lambda, pin, pout;
+  vl_contact_end_pressures(c, &pin, &pout);
   size_t row = of + i;
   double da, db;
   vl_contact_reynolds_row(c, y, i, &da, &db);
@@ -424,10 +499,10 @@ static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, si
     double sg = side ? s : -s;
     if (f == 0) {
       dpf[1] += sg * (-L * c->g[0] / hf[0]);
-      du[2] += sg * (-L * c->dg[0] * pf[0] / hf[0]);
+      du[2] += sg * (-L * c->dg[0] * (pf[0] - pin) / hf[0]);
     } else if (f == n) {
       dpf[1] += sg * (L * c->g[n - 1] / hf[n]);
-      du[2] += sg * (L * c->dg[n - 1] * pf[n - 1] / hf[n]);
+      du[2] += sg * (L * c->dg[n - 1] * (pf[n - 1] - pout) / hf[n]);
     } else {
       double dl, dr, gf = face_g(c, f, &dl, &dr), dp = (pf[f] - pf[f - 1]) / hf[f];
       /* cells f-1 and f are i-1, i (left face) or i, i+1 (right face) */
@@ -451,7 +526,12 @@ static void jacobian_reynolds_row(vl_contact *c, const double *y, double *Jd, si
 
 void vl_contact_jacobian(vl_contact *c, const double *y, double *Jd) {
   size_t nc = c->nc, nf = c->nf, of = c->of, ld = c->nunk, ih = c->ih;
-  vl_contact_eval_state(c, y);
+  /* KINSOL asks for the Jacobian where it has just evaluated the residual:
+   * a smooth dry contact's state is then current (its gap is a product
+   * with the n x n influence matrix) */
+  if (!c->state_y || c->state_kernel != c->kernel_builds ||
+      memcmp(c->state_y, y, ld * sizeof *y) != 0)
+    vl_contact_eval_state(c, y);
   jacobian_contact_rows(c, Jd);
   for (size_t i = 0; i < nf; i++)
     jacobian_reynolds_row(c, y, Jd, i);

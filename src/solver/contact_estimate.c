@@ -1,5 +1,6 @@
 /* The error estimate of a point (numerics.h): the same point on cells
  * three times as wide. */
+#include "contact_private.h"
 #include "numerics_plan.h"
 
 #include <math.h>

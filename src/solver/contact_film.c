@@ -103,8 +103,9 @@ static double fluid_share(vl_contact *c, const double *y) {
   vl_contact_eval_state(c, y);
   double f = 0.0, t = 0.0;
   for (size_t i = 0; i < c->n; i++) {
-    f += c->F[i] * c->wc[i];
-    t += (c->P[i] + c->F[i]) * c->wc[i];
+    double amb = c->pamb ? c->pamb[i] : 0.0; /* a sealed side's ambient carries nothing */
+    f += (c->F[i] - amb) * c->wc[i];
+    t += (c->P[i] + c->F[i] - amb) * c->wc[i];
   }
   return t > 0.0 ? f / t : 1.0;
 }

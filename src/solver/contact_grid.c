@@ -4,6 +4,7 @@
  * coefficients of the uniform grid (kernel.h, Appendix A), with the
  * asperity state |Er(wH)|, aH of that speed (docs/MODEL.md section 4). */
 #include "contact_internal.h"
+#include "rheology_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -109,7 +110,7 @@ vl_status vl_contact_grid_init(vl_contact *c, vl_error *err) {
 }
 
 vl_status vl_contact_kernel_init(vl_contact *c, vl_error *err) {
-  return vl_toeplitz_build(&c->kern, c->nv, c->dxi, c->A, c->beta, c->cfg.rubber.n_terms, err);
+  return vl_toeplitz_build(&c->kern, c->nv, c->dxi, c->A, c->beta, c->nk, err);
 }
 
 /* The influence matrix M from the uniform grid's Toeplitz coefficients: on a
@@ -154,7 +155,7 @@ void vl_contact_set_speed(vl_contact *c, double v0) {
   c->sfac = c->e_abs / c->p0;
   /* v0 was validated (finite): set_speed cannot fail */
   if (c->flattening) vl_flattening_set_speed(c->flattening, v0, NULL);
-  size_t nt = c->cfg.rubber.n_terms;
+  size_t nt = c->nk;
   if (nt == 0 && c->kernel_ready) return; /* elastic: one kernel for all speeds */
   double t0 = vl_contact_now_s();
   c->kernel_ready = true;
@@ -164,4 +165,5 @@ void vl_contact_set_speed(vl_contact *c, double v0) {
   graded_influence(c);
   c->timing.t_kernel_s += vl_contact_now_s() - t0;
   c->timing.kernels++;
+  c->kernel_builds++;
 }

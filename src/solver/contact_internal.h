@@ -93,6 +93,8 @@ struct vl_contact {
    * the uniform Toeplitz coefficients. All NULL on a uniform grid (nv = n). */
   size_t nv, *first, *span;
   double *psum;
+  size_t nk;        /* Prony terms of the macroscopic kernel: cfg.rubber's, or 0 (elastic,
+                     * relaxed) when the counter-surface moves (vl_moving) */
   double *A, *beta; /* Prony strengths and v0 tau_k / a0 */
   vl_toeplitz kern;
   double *M; /* dense influence matrix, row-major: U_i += M[i n + j] P_j */
@@ -117,6 +119,22 @@ struct vl_contact {
   double *sf, *dsf;          /* viscous flattening: sqrt(epsilon_f(u)) per node and its d/du (1/m);
                               * NULL when off */
   double *theta;             /* film fraction (report only) */
+  double *fb_work;           /* smooth dry: d FB/dp and d FB/du per node (2 n, Jacobian work),
+                              * else NULL */
+  double *state_y;           /* smooth dry: the y of the last vl_contact_eval_state, else NULL */
+  bool min_rows;             /* smooth dry: complementarity min(P, U) (a semismooth, active-set
+                              * Newton) instead of Fischer-Burmeister; off on the dry helper of a
+                              * smooth film (its results stay those of FB) */
+  bool warm_set;             /* min_rows: the next Jacobian takes the contact set {P > 0} of the
+                              * state (the last converged solution), whatever the gap */
+  size_t kernel_builds;      /* influence matrices built (vl_contact_set_speed) */
+  size_t state_kernel;       /* the one state_y was evaluated with */
+  double *fprof, *sprof;     /* a tabulated profile at the nodes (contact.h): f/(a0^2/R) and its
+                              * slope f'; NULL for the parabola */
+  double *ptab;              /* the contact's copy of the profile's table (cfg points to it, so
+                              * that the helper contacts it creates later may read it) */
+  double *pamb;              /* ambient fluid pressure per cell (p0) with a sealed pressure
+                              * (cfg.p_inlet_pa for x < 0, p_outlet_pa beyond), else NULL */
   double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */
   bool film_correct;         /* Newton's steps get the film pressure of contact_film.c (during
                               * the Newton variants that continue a converged rough film) */
@@ -130,6 +148,10 @@ struct vl_contact {
   vl_contact_timing timing;  /* cost counters (vl_contact_timing_get) */
   SUNContext ctx;
   N_Vector y, y_saved, y_outer, ones, fwork;
+  bool reduced_rows;  /* min_rows and the reduced solver knows the rows from d/dU */
+  bool gap_rows_only; /* min_rows, KINSOL's Jacobian for the reduced solver: the identity rows
+                       * get their diagonal only (the solver reads no more of them) */
+  N_Vector y_min;     /* min_rows: the start of the active-set Newton, for its fallback */
   SUNMatrix J;
   SUNLinearSolver LS;
   SUNLinearSolver schur; /* the inner solver of LS when VL_LINSOL_SCHUR applies (not owned) */
@@ -195,6 +217,11 @@ void vl_contact_eval_state(vl_contact *c, const double *y);
 
 /* \int (pf + pc) dx / fN from the current state (needs vl_contact_eval_state). */
 double vl_contact_load_sum(const vl_contact *c);
+
+/* The fluid pressure beyond the inlet and outlet ends of the domain, in
+ * the units of the fluid unknowns (kappa p0): the sealed pressures of
+ * cfg, 0 without. */
+void vl_contact_end_pressures(const vl_contact *c, double *pin, double *pout);
 
 /* Reynolds row i before complementarity (needs vl_contact_eval_state). */
 double vl_contact_reynolds_residual(const vl_contact *c, size_t i);

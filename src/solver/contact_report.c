@@ -5,11 +5,28 @@
  * Poiseuille), the derived quantities of a point (films, centroid, contact
  * width, fluid load share, regime, warnings), and the fields on the grid. */
 #include "contact_internal.h"
+#include "contact_private.h"
+#include "flow_factors_internal.h"
 #include "numerics_plan.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+
+const char *vl_accuracy_name(int accuracy) {
+  switch (accuracy) {
+  case VL_ACCURACY_UNCHECKED: return "";
+  case VL_ACCURACY_MET: return "met";
+  case VL_ACCURACY_ABOVE_TARGET: return "above_target";
+  case VL_ACCURACY_NO_ESTIMATE: return "no_estimate";
+  }
+  return "?";
+}
+
+bool vl_point_unreliable(const vl_point *pt) {
+  return pt->converged &&
+         (pt->accuracy == VL_ACCURACY_ABOVE_TARGET || pt->accuracy == VL_ACCURACY_NO_ESTIMATE);
+}
 
 const char *vl_regime_name(int regime) {
   switch (regime) {
@@ -19,6 +36,18 @@ const char *vl_regime_name(int regime) {
   case VL_REGIME_HYDRODYNAMIC: return "hydrodynamic";
   }
   return "?";
+}
+
+int vl_regime_of(int wet, double fluid_load_fraction, double u_min_over_h_rms) {
+  if (!wet) return VL_REGIME_DRY;
+  int smooth = isnan(u_min_over_h_rms);
+  if (fluid_load_fraction > VL_REGIME_LOAD_HYDRODYNAMIC &&
+      (smooth || u_min_over_h_rms >= VL_REGIME_FILM_FULL))
+    return VL_REGIME_HYDRODYNAMIC;
+  if (fluid_load_fraction < VL_REGIME_LOAD_BOUNDARY &&
+      (smooth || u_min_over_h_rms < VL_REGIME_FILM_FULL))
+    return VL_REGIME_BOUNDARY;
+  return VL_REGIME_MIXED;
 }
 
 static void add_warning(vl_point *pt, const char *w) {
@@ -62,24 +91,32 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   const vl_contact_config *cfg = &c->cfg;
   double fN = cfg->load_n_per_m, R = cfg->radius_m;
   double sum_pcx = 0.0, sum_pfx = 0.0, sum_pf = 0.0, sum_area = 0.0;
+  double sum_pcs = 0.0, sum_pfs = 0.0; /* a tabulated profile: the pressures against f' */
   double pmax = 0.0, pfmax = 0.0, umin = INFINITY, couette = 0.0, poiseuille = 0.0;
-  size_t imax = 0, iumin = 0;
+  size_t imax = 0, iumin = 0, ipf = 0;
+  bool counterface = cfg->moving == VL_MOVING_COUNTERFACE;
   double *theta = c->theta;
   if (c->wet) film_fraction(c, y, theta);
   pt->eps_f_min = c->sf ? INFINITY : 1.0;
   if (c->sf)
     for (size_t i = 0; i < n; i++)
       pt->eps_f_min = fmin(pt->eps_f_min, c->sf[i] * c->sf[i]);
+  double pin, pout; /* beyond the ends: a sealed side's pressure, else 0 (kappa p0) */
+  vl_contact_end_pressures(c, &pin, &pout);
+  pin *= c->kappa, pout *= c->kappa;
   for (size_t i = 0; i < n; i++) {
-    double pc = c->P[i] * c->p0, pf = c->F[i] * c->p0, x = c->xi[i] * c->a0;
+    /* pf above a sealed side's ambient: what the rubber and the load see */
+    double amb = c->pamb ? c->pamb[i] : 0.0;
+    double pc = c->P[i] * c->p0, pf = (c->F[i] - amb) * c->p0, x = c->xi[i] * c->a0;
     double dx = c->wc[i] * c->a0;
     sum_pcx += pc * x * dx;
     sum_pfx += pf * x * dx;
+    if (c->sprof) sum_pcs += pc * c->sprof[i] * dx, sum_pfs += pf * c->sprof[i] * dx;
     sum_pf += pf * dx;
     double area = area_at(c, i);
     sum_area += area * dx;
     if (pc + pf > pmax) pmax = pc + pf, imax = i;
-    pfmax = fmax(pfmax, pf);
+    if (pf > pfmax) pfmax = pf, ipf = i;
     if (c->U[i] < umin) umin = c->U[i], iumin = i;
     if (c->wet) {
       double u = fmax(c->U[i], 0.0) * c->uscale;
@@ -88,19 +125,29 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
       vl_flow_factors_eval_table(cfg->flow_factors, cfg->flow_table, u,
                                  c->sf ? c->hrms * c->sf[i] : c->hrms, &v, NULL);
       /* node gradient: mean of the two face gradients (pf = 0 beyond the ends) */
-      double left = (c->F[i] - (i > 0 ? c->F[i - 1] : 0.0)) / (c->hf[i] * c->a0);
-      double right = ((i + 1 < n ? c->F[i + 1] : 0.0) - c->F[i]) / (c->hf[i + 1] * c->a0);
+      double left = (c->F[i] - (i > 0 ? c->F[i - 1] : pin)) / (c->hf[i] * c->a0);
+      double right = ((i + 1 < n ? c->F[i + 1] : pout) - c->F[i]) / (c->hf[i + 1] * c->a0);
       double dpdx = 0.5 * (left + right) * c->p0;
       /* a smooth hard contact (u = 0) carries no fluid shear: sigma_s acts there */
       if (!(!c->rough && area > 0.0) && u > 0.0)
         couette += theta[i] * (v.phi_f + v.phi_fs) * cfg->eta_pa_s * c->v0 / u * dx;
-      poiseuille += -v.phi_fp * 0.5 * u * dpdx * dx;
+      /* on the rigid curved body: its wall shear; on a moving flat
+       * counter-surface: the same wall shear on the rubber plus the fluid
+       * pressure on the rubber's slope, -\int pf u' = \int u pf' (the film's
+       * tangential balance, docs/MODEL.md section 11) */
+      poiseuille += (counterface ? 1.0 - 0.5 * v.phi_fp : -0.5 * v.phi_fp) * u * dpdx * dx;
     }
   }
   pt->x_centroid_m = (sum_pcx + sum_pfx) / fN;
-  pt->mu_Rc = -sum_pcx / (fN * R);
-  pt->mu_Rf = -sum_pfx / (fN * R);
-  pt->mu_Sc = cfg->sigma_s_pa * sum_area / fN;
+  /* rolling terms: the pressures against the slope x/R of the rigid body;
+   * a flat counter-surface has none (docs/MODEL.md section 11) */
+  pt->rolling_na = counterface;
+  pt->mu_Rc = counterface ? 0.0 : c->sprof ? -sum_pcs / fN : -sum_pcx / (fN * R);
+  pt->mu_Rf = counterface ? 0.0 : c->sprof ? -sum_pfs / fN : -sum_pfx / (fN * R);
+  /* the line contact slides at v0 everywhere: one sigma_s for all nodes */
+  double sigma_s =
+      cfg->shear_law ? vl_shear_law_eval(cfg->shear_law, c->v0, NULL) : cfg->sigma_s_pa;
+  pt->mu_Sc = sigma_s * sum_area / fN;
   pt->mu_Sf_couette = couette / fN;
   pt->mu_Sf_poiseuille = poiseuille / fN;
   pt->mu_Sf = pt->mu_Sf_couette + pt->mu_Sf_poiseuille;
@@ -116,7 +163,7 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   pt->u_central_m = fmax((1 - w) * c->U[k] + w * c->U[k + 1], 0.0) * c->uscale;
   /* contact extent where the total pressure >= 1% of its peak, interpolated */
   double thr = 0.01 * pmax / c->p0;
-#define PTOT(j) (c->P[j] + c->F[j])
+#define PTOT(j) (c->P[j] + c->F[j] - (c->pamb ? c->pamb[j] : 0.0))
   size_t lo = imax, hi = imax;
   while (lo > 0 && PTOT(lo - 1) >= thr)
     lo--;
@@ -126,17 +173,32 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
   if (lo > 0) xl -= c->hf[lo] * (PTOT(lo) - thr) / (PTOT(lo) - PTOT(lo - 1));
   if (hi + 1 < n) xr += c->hf[hi + 1] * (PTOT(hi) - thr) / (PTOT(hi) - PTOT(hi + 1));
   pt->contact_width_m = pmax > 0 ? (xr - xl) * c->a0 : 0.0;
+  /* the half-space model wants small slopes (docs/MODEL.md section 13) */
+  double smax = 0.0;
+  for (size_t i = lo; c->sprof && i <= hi; i++)
+    smax = fmax(smax, fabs(c->sprof[i]));
+  if (atan(smax) > VL_PROFILE_SLOPE_MAX) {
+    char msg[96];
+    snprintf(msg, sizeof msg,
+             "profile slope %.2g rad > %.1f in the pressure zone (half-space model)", atan(smax),
+             VL_PROFILE_SLOPE_MAX);
+    add_warning(pt, msg);
+  }
   pt->fluid_load_fraction = sum_pf / fN;
   pt->load_error = fabs(vl_contact_load_sum(c) - 1.0);
+  /* the flux through the face at the fluid pressure's maximum: constant
+   * along the full film, but best resolved there, where it is the Couette
+   * flux alone (the far inlet's thick film carries Couette and Poiseuille
+   * fluxes far larger than their difference, resolved only to the Reynolds
+   * rows' tolerance relative to them) */
+  pt->flux_m2_s = c->wet ? c->Jf[ipf] * 0.5 * c->v0 * c->uscale : 0.0;
   pt->E_wH_pa = c->e_abs;
   pt->a_H_m = c->a_h;
   pt->Q = c->q_rolling;
   pt->peak_pressure_pa = pmax;
   pt->x_peak_m = c->xi[imax] * c->a0;
-  pt->regime = !c->wet                          ? VL_REGIME_DRY
-               : pt->fluid_load_fraction < 0.05 ? VL_REGIME_BOUNDARY
-               : pt->fluid_load_fraction > 0.95 ? VL_REGIME_HYDRODYNAMIC
-                                                : VL_REGIME_MIXED;
+  pt->u_min_over_h_rms = c->hrms > 0.0 ? pt->u_min_m / c->hrms : NAN;
+  pt->regime = vl_regime_of(c->wet, pt->fluid_load_fraction, pt->u_min_over_h_rms);
   if (pmax > 0 && (PTOT(0) > 1e-3 * pmax / c->p0 || PTOT(n - 1) > 1e-3 * pmax / c->p0))
     add_warning(pt, "pressure reaches the domain edge (domain too short)");
   /* a smooth film is fed from far upstream: with the inlet end less than 5
@@ -149,7 +211,6 @@ void vl_contact_report(vl_contact *c, vl_point *pt) {
     add_warning(pt, "inlet shorter than 5 inlet lengths sqrt(2 R u_min) ahead of the pressure "
                     "(fully flooded film underestimated)");
 #undef PTOT
-  (void)pfmax;
 }
 
 void vl_contact_fields(const vl_contact *c, vl_fields *f) {

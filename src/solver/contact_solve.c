@@ -14,6 +14,7 @@
  * asperity state). A failed solve leaves both, the unknowns and the fluid
  * scales as they were. */
 #include "contact_internal.h"
+#include "contact_private.h"
 
 #include <float.h>
 #include <kinsol/kinsol.h>
@@ -58,6 +59,7 @@ static vl_contact *film_helper(vl_contact *c) {
     film.flattening = NULL;
     film.flattening_psd = NULL;
     film.sigma_s_pa = 0.0;
+    film.shear_law = NULL;
     film.grid_growth = 1.0;
     if (film.grid > FILM_START_GRID) film.grid = FILM_START_GRID;
     if (vl_contact_create(&film, &c->coarse, NULL) != VL_OK) c->coarse = NULL;
@@ -294,6 +296,7 @@ static vl_status solve_failed(vl_contact *c, const attempt *a, vl_point *pt, vl_
   pt->iterations = a->nni;
   pt->residual = isfinite(a->fnorm) ? a->fnorm : DBL_MAX;
   pt->regime = c->wet ? VL_REGIME_BOUNDARY : VL_REGIME_DRY;
+  pt->u_min_over_h_rms = NAN;
   return VL_ENOCONV;
 }
 

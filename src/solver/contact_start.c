@@ -10,6 +10,8 @@
  * contact on other cells; and the predictor of a continuation step in
  * speed. */
 #include "contact_internal.h"
+#include "contact_private.h"
+#include "persson_internal.h"
 
 #include <math.h>
 
@@ -143,6 +145,9 @@ void vl_contact_guess_smooth_film(vl_contact *c, double v0, const vl_contact *dr
   double scale = sum > 0.0 ? (0.5 * M_PI) / sum : 0.0, fmx = 0.0;
   for (size_t i = 0; i < n; i++)
     fmx = fmax(fmx, c->F[i] *= scale);
+  if (c->pamb) /* the film's pressure above a sealed side's ambient */
+    for (size_t i = 0; i < n; i++)
+      fmx = fmax(fmx, c->F[i] += c->pamb[i]);
   c->kappa = fmx > 0.0 ? fmx : 1.0;
   for (size_t i = 0; i < n; i++)
     y[c->of + i] = c->F[i] / c->kappa;

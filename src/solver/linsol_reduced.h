@@ -8,6 +8,8 @@
 #ifndef VL_LINSOL_REDUCED_H
 #define VL_LINSOL_REDUCED_H
 
+#include <stdbool.h>
+#include <stddef.h>
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 
@@ -18,6 +20,17 @@
 
 /* Returns NULL on allocation failure. n is the system size. */
 SUNLinearSolver vl_linsol_reduced_create(long n, SUNContext ctx);
+
+/* The rows' kinds known in advance (a dry contact's active-set Newton):
+ * while *on, rows i < n with du[i] == 0 are free (their off-diagonal
+ * entries are exact zeros), the others coupled, without reading the
+ * matrix for it. The arrays stay the caller's and must outlive S.
+ * generation: changes whenever the rows' values may (the influence
+ * matrix); while it stays, the block's LU is updated for the cells that
+ * change set (Sherman-Morrison-Woodbury and bordering) instead of being
+ * factorised again. */
+void vl_linsol_reduced_set_rows(SUNLinearSolver S, const double *du, long n, const bool *on,
+                                const size_t *generation);
 
 /* The size of the last set-up's reduced system (n when no row was free). */
 long vl_linsol_reduced_size(SUNLinearSolver S);

@@ -1,6 +1,8 @@
 /* The automatic layout of a smooth film's cells (numerics.h says which
  * lengths set it and why). */
 #include "numerics_plan.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene_internal.h"
+#include "simulation_internal.h"
 #include "viscolube/query.h"
 #include "viscolube/simulation.h"
 
@@ -77,6 +79,7 @@ vl_status vl_query_scene(const vl_query *q, const char *label, vl_scene *sc, vl_
   sc->radius_m = q->radius_m;
   sc->load_n_per_m = q->load_n_per_m;
   sc->sigma_s_pa = q->sigma_s_pa;
+  sc->sigma_s_given = q->sigma_s_given;
   sc->effects.roughness = true;
   sc->effects.fluid = true;
   sc->effects.solid_shear = q->sigma_s_pa > 0.0;
@@ -84,6 +87,7 @@ vl_status vl_query_scene(const vl_query *q, const char *label, vl_scene *sc, vl_
   if (q->film_cutoff_m > 0.0) sc->effects.film_cutoff_m = q->film_cutoff_m;
   vl_scene_default_numerics(sc);
   if (q->grid) sc->grid = q->grid, sc->auto_numerics = false; /* 0: automatic numerics */
+  if (q->target_error > 0.0) sc->target_error = q->target_error;
   sc->quantity = VL_SWEEP_V0_ETA;
   if (q->at_temperature) {
     sc->effects.temperature = true;
@@ -177,6 +181,13 @@ vl_status vl_query_friction(vl_db *db, const vl_query *q, double speed_m_s, vl_q
     out->a0_m = vl_contact_a0(vl_simulation_contact(sim));
     out->hrms_m = psd ? psd->hrms_m : 0.0;
     out->flow_factors = vl_simulation_flow_factors(sim, &out->film_cutoff_m);
+    const vl_db_pair *pair = vl_simulation_pair(sim);
+    out->has_pair = pair != NULL;
+    if (pair) out->pair = *pair;
+    out->shear_law = *vl_simulation_shear_law(sim);
+    out->sigma_s_pa = vl_shear_law_eval(&out->shear_law, speed_m_s, NULL);
+    const char *text = vl_simulation_shear_law_text(sim);
+    snprintf(out->shear_law_text, sizeof out->shear_law_text, "%s", text ? text : "");
   }
   vl_simulation_free(sim);
   free(sc);

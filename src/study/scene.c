@@ -1,9 +1,10 @@
 /* Scene files: INI parsed by libinih, with line numbers for every error. */
 #include "viscolube/scene.h"
+#include "scene_internal.h"
 
 #include "slurp.h"
 
-#include "edit_distance.h"
+#include "viscolube/edit_distance.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -31,10 +32,17 @@ typedef enum {
   K_RADIUS,
   K_LOAD,
   K_SIGMA_S,
+  K_MOVING,
+  K_SEALED_PRESSURE,
+  K_PROFILE_FILE,
+  K_STROKE,
+  K_ROD_DIAMETER,
+  K_STROKE_LENGTH,
   K_QUANTITY,
   K_FROM,
   K_TO,
   K_POINTS,
+  K_DIRECTION,
   K_FIELDS_AT,
   K_VISCOELASTIC,
   K_ROUGHNESS,
@@ -67,10 +75,17 @@ static const struct {
     [K_RADIUS] = {"contact", "radius_m", true},
     [K_LOAD] = {"contact", "load_n_per_m", true},
     [K_SIGMA_S] = {"contact", "sigma_s_pa", false},
+    [K_MOVING] = {"contact", "moving", false},
+    [K_SEALED_PRESSURE] = {"contact", "sealed_pressure_pa", false},
+    [K_PROFILE_FILE] = {"contact", "profile_file", false},
+    [K_STROKE] = {"seal", "stroke", false},
+    [K_ROD_DIAMETER] = {"seal", "rod_diameter_m", false},
+    [K_STROKE_LENGTH] = {"seal", "stroke_length_m", false},
     [K_QUANTITY] = {"sweep", "quantity", true},
     [K_FROM] = {"sweep", "from", true},
     [K_TO] = {"sweep", "to", true},
     [K_POINTS] = {"sweep", "points", true},
+    [K_DIRECTION] = {"sweep", "direction", false},
     [K_FIELDS_AT] = {"sweep", "fields_at", false},
     [K_VISCOELASTIC] = {"effects", "viscoelastic", false},
     [K_ROUGHNESS] = {"effects", "roughness", false},
@@ -111,6 +126,7 @@ static int contact_key(parse_state *, key_id, const char *, const char *, const 
 static int sweep_key(parse_state *, key_id, const char *, const char *, const char *);
 static int effects_key(parse_state *, key_id, const char *, const char *, const char *);
 static int numerics_key(parse_state *, key_id, const char *, const char *, const char *);
+static int seal_key(parse_state *, key_id, const char *, const char *, const char *);
 
 static const struct {
   const char *name;
@@ -118,6 +134,7 @@ static const struct {
 } sections[] = {
     {"scene", scene_key}, {"materials", materials_key}, {"contact", contact_key},
     {"sweep", sweep_key}, {"effects", effects_key},     {"numerics", numerics_key},
+    {"seal", seal_key},
 };
 
 const char *vl_sweep_quantity_name(vl_sweep_quantity q) {
@@ -230,7 +247,7 @@ static void unknown_section(parse_state *ps, const char *section) {
       snprintf(hint, sizeof hint, " (did you mean [%s]?)", sections[s].name);
   vl_error_set(ps->err,
                "%s:%d: unknown section [%s]%s (known: scene, materials, contact, "
-               "sweep, effects, numerics)",
+               "sweep, effects, numerics, seal)",
                ps->path, ps->line, section, hint);
   ps->status = VL_EINPUT;
   ps->err_line = ps->line;
@@ -313,6 +330,28 @@ static int contact_key(parse_state *ps, key_id id, const char *section, const ch
     if (!parse_double(value, &sc->sigma_s_pa) || sc->sigma_s_pa < 0.0)
       return fail(ps, section, key, "expected a number >= 0, got '%s'", value);
     return 1;
+  case K_MOVING:
+    if (!strcmp(value, "rubber"))
+      sc->moving = VL_MOVING_RUBBER;
+    else if (!strcmp(value, "counterface"))
+      sc->moving = VL_MOVING_COUNTERFACE;
+    else
+      return fail(ps, section, key, "expected rubber or counterface, got '%s'", value);
+    return 1;
+  case K_PROFILE_FILE: {
+    /* relative to the scene file's folder */
+    const char *slash = strrchr(ps->path, '/');
+    int dir = value[0] != '/' && slash ? (int)(slash - ps->path + 1) : 0;
+    if (!*value || strlen(value) + (size_t)dir >= sizeof sc->profile_file)
+      return fail(ps, section, key, "bad file name '%s'", value);
+    snprintf(sc->profile_file, sizeof sc->profile_file, "%.*s%s", dir, ps->path, value);
+    sc->profile_line = ps->line;
+    return 1;
+  }
+  case K_SEALED_PRESSURE:
+    if (!parse_double(value, &sc->sealed_pressure_pa) || sc->sealed_pressure_pa < 0.0)
+      return fail(ps, section, key, "expected a pressure >= 0 (Pa), got '%s'", value);
+    return 1;
   default: return fail(ps, section, key, "unknown key%s", "");
   }
 }
@@ -336,6 +375,16 @@ static int sweep_key(parse_state *ps, key_id id, const char *section, const char
   case K_POINTS:
     if (!parse_size(value, &sc->points) || sc->points > 100000)
       return fail(ps, section, key, "expected a whole number in [1, 100000], got '%s'", value);
+    return 1;
+  case K_DIRECTION:
+    if (!strcmp(value, "up"))
+      sc->direction = VL_DIRECTION_UP;
+    else if (!strcmp(value, "down"))
+      sc->direction = VL_DIRECTION_DOWN;
+    else if (!strcmp(value, "both"))
+      sc->direction = VL_DIRECTION_BOTH;
+    else
+      return fail(ps, section, key, "expected up, down or both, got '%s'", value);
     return 1;
   case K_FIELDS_AT: {
     int n = parse_list(value, sc->fields_at, VL_FIELDS_AT_MAX);
@@ -384,6 +433,27 @@ static int effects_key(parse_state *ps, key_id id, const char *section, const ch
     if (!parse_double(value, &sc->effects.temperature_c) || sc->effects.temperature_c < -273.15)
       return fail(ps, section, key, "expected a temperature in C, got '%s'", value);
     return 1;
+  default: return fail(ps, section, key, "unknown key%s", "");
+  }
+}
+
+/* A seal's strokes and the rod (docs/MODEL.md section 12). */
+static int seal_key(parse_state *ps, key_id id, const char *section, const char *key,
+                    const char *value) {
+  vl_scene *sc = ps->scene;
+  switch (id) {
+  case K_STROKE:
+    if (!strcmp(value, "out"))
+      sc->stroke = VL_STROKE_OUT;
+    else if (!strcmp(value, "in"))
+      sc->stroke = VL_STROKE_IN;
+    else if (!strcmp(value, "both"))
+      sc->stroke = VL_STROKE_BOTH;
+    else
+      return fail(ps, section, key, "expected out, in or both, got '%s'", value);
+    return 1;
+  case K_ROD_DIAMETER: POSITIVE(rod_diameter_m);
+  case K_STROKE_LENGTH: POSITIVE(stroke_length_m);
   default: return fail(ps, section, key, "unknown key%s", "");
   }
 }
@@ -620,18 +690,49 @@ static vl_status scene_check(parse_state *ps) {
     return check_fail(ps, K_QUANTITY,
                       "deborah needs [effects] viscoelastic = on (line %d sets it off)",
                       ps->key_line[K_VISCOELASTIC]);
+  if (sc->sealed_pressure_pa > 0.0 && !sc->effects.fluid)
+    return check_fail(ps, K_SEALED_PRESSURE, "a sealed pressure needs [effects] fluid = on");
+  if ((ps->key_line[K_ROD_DIAMETER] || ps->key_line[K_STROKE_LENGTH]) && !ps->key_line[K_STROKE])
+    return check_fail(ps, ps->key_line[K_ROD_DIAMETER] ? K_ROD_DIAMETER : K_STROKE_LENGTH,
+                      "needs [seal] stroke");
+  if (!ps->key_line[K_ROD_DIAMETER] != !ps->key_line[K_STROKE_LENGTH])
+    return check_fail(ps, ps->key_line[K_ROD_DIAMETER] ? K_ROD_DIAMETER : K_STROKE_LENGTH,
+                      "the volumes per cycle need both rod_diameter_m and stroke_length_m");
+  if (sc->direction == VL_DIRECTION_BOTH && sc->stroke == VL_STROKE_BOTH)
+    return check_fail(ps, K_DIRECTION,
+                      "direction = both with [seal] stroke = both would make four curves: "
+                      "sweep one stroke both ways, or both strokes one way");
+  if (sc->direction != VL_DIRECTION_UP && sc->points < 2)
+    return check_fail(ps, K_DIRECTION, "a direction needs points >= 2");
+  if (sc->stroke != VL_STROKE_NONE && !sc->effects.fluid)
+    return check_fail(ps, K_STROKE, "a seal's strokes need [effects] fluid = on");
+  if (sc->stroke != VL_STROKE_NONE && sc->moving != VL_MOVING_COUNTERFACE)
+    return check_fail(ps, K_STROKE,
+                      "a seal's strokes need [contact] moving = counterface (the seal at rest, "
+                      "the rod moving)");
+  /* v0 tau/a0 measures the macroscopic memory, which a rubber at rest has not */
+  if (sc->quantity == VL_SWEEP_DEBORAH && sc->moving == VL_MOVING_COUNTERFACE)
+    return check_fail(ps, K_QUANTITY,
+                      "deborah needs [contact] moving = rubber (line %d: with a moving "
+                      "counter-surface the rubber deforms statically, without memory)",
+                      ps->key_line[K_MOVING]);
   if (ps->key_line[K_ELASTIC_MODULUS] && sc->effects.viscoelastic)
     return check_fail(ps, K_ELASTIC_MODULUS,
                       "applies to [effects] viscoelastic = off only (the rubber is viscoelastic)");
+  /* solid shear without the key: the stored pair's law (vl_simulation_create),
+   * else the seed's 1 MPa */
+  if (sc->effects.solid_shear && !ps->key_line[K_SIGMA_S]) sc->sigma_s_pa = VL_SCENE_SIGMA_S_PA;
   if (sc->effects.solid_shear && !(sc->sigma_s_pa > 0.0))
     return check_fail(ps, K_SOLID_SHEAR, "solid_shear = on needs [contact] sigma_s_pa > 0");
   if (!sc->effects.solid_shear) sc->sigma_s_pa = 0.0;
+  sc->sigma_s_given = ps->key_line[K_SIGMA_S] != 0;
   if (sc->effects.flow_factors != VL_FLOW_FACTORS_SMOOTH && !sc->effects.roughness)
     return check_fail(ps, K_FLOW_FACTORS, "%s needs [effects] roughness = on",
                       vl_flow_factors_name(sc->effects.flow_factors));
-  /* a range given high to low is the same set of speeds: the sweep still
-   * runs upward, from the boundary regime, where its first solve is the
-   * easiest (docs/NUMERICS.md section 8) */
+  /* a range given high to low is the same set of speeds: the sweep runs
+   * upward unless [sweep] direction says otherwise, from the boundary
+   * regime, where its first solve is the easiest (docs/NUMERICS.md
+   * section 8) */
   if (sc->points > 1 && sc->to < sc->from) {
     double high = sc->from;
     sc->from = sc->to, sc->to = high;

@@ -1,21 +1,32 @@
 /* Scene -> solver (simulation.h). */
 #include "viscolube/simulation.h"
+#include "shear_law_private.h"
 #include "viscolube/persson.h"
 #include "viscolube/sweep.h"
 
 #include "flow_factors_emt.h"
 
 #include "viscolube/assumptions.h"
+#include "viscolube/dma.h"
 
+#include "assumptions_internal.h"
+#include "rheology_internal.h"
+#include "simulation_internal.h"
 #include "viscolube/flattening.h"
 
+#include <ctype.h>
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "slurp.h"
+
 struct vl_simulation {
   vl_scene scene;
-  vl_contact_config cfg; /* as given to the contact (the assumption checks read it) */
+  vl_contact_config cfg;    /* as given to the contact (the assumption checks read it) */
+  vl_contact_config cfg_in; /* [seal] stroke = both: the instroke's (mirrored, sealed outlet) */
   vl_prony rubber;
   bool have_psd;
   vl_psd psd;
@@ -28,11 +39,121 @@ struct vl_simulation {
   /* the measured master curve's window at the temperature used (rad/s);
    * NAN for a compound entered as a Prony series or an elastic scene */
   double window_min_rad_s, window_max_rad_s;
+  /* the measured isotherms' temperatures (C); NAN for a compound entered
+   * as a Prony series or measured as one master curve */
+  double measured_tmin_c, measured_tmax_c;
   vl_contact *contact;
+  bool has_pair;
+  vl_db_pair pair;
+  vl_shear_law shear_law; /* in use: the pair's at temperature, or the constant */
+  char shear_law_text[VL_DB_TEXT_MAX + 512];
   size_t n;
   double *v0;
   bool *fields;
+  double *profile; /* [contact] profile_file: x (m) then z (m), profile_n each; NULL without */
+  size_t profile_n;
 };
+
+/* Largest profile table (points) and file a scene may name. */
+#define VL_PROFILE_MAX_POINTS 100000
+#define VL_PROFILE_MAX_BYTES (16u << 20)
+
+/* One row "x, z" of a profile table: two finite numbers separated by a
+ * comma (blanks around them allowed). */
+static bool profile_row(const char *line, double *x, double *z) {
+  char *end;
+  errno = 0;
+  *x = strtod(line, &end);
+  if (end == line || errno) return false;
+  while (*end == ' ' || *end == '\t')
+    end++;
+  if (*end != ',') return false;
+  const char *p = end + 1;
+  *z = strtod(p, &end);
+  if (end == p || errno) return false;
+  while (*end == ' ' || *end == '\t' || *end == '\r')
+    end++;
+  return *end == '\0' && isfinite(*x) && isfinite(*z);
+}
+
+/* Reads the scene's profile table (docs/FORMATS.md: '#' comments, blank
+ * lines, the header x_m,z_m, then rows x,z in metres) into sim->profile.
+ * Errors name FILE:LINE. */
+static vl_status read_profile(vl_simulation *sim, vl_error *err) {
+  const vl_scene *sc = &sim->scene;
+  char *text = NULL;
+  size_t len = 0;
+  vl_status st =
+      vl_slurp(sc->profile_file, VL_PROFILE_MAX_BYTES, "a profile table", &text, &len, err);
+  if (st == VL_OK) st = vl_text_refuse_nul(text, len, sc->profile_file, err);
+  if (st != VL_OK) {
+    free(text);
+    vl_error_prefix(err, "%s:%d: [contact] profile_file", sc->path, sc->profile_line);
+    return st;
+  }
+  size_t cap = 1024, n = 0;
+  double *x = malloc(cap * sizeof *x), *z = malloc(cap * sizeof *z);
+  bool header = false;
+  int line = 0;
+  st = x && z ? VL_OK : VL_ENOMEM;
+  for (char *s = text, *next; st == VL_OK && s && *s; s = next) {
+    line++;
+    next = strchr(s, '\n');
+    if (next) *next++ = '\0';
+    while (*s == ' ' || *s == '\t')
+      s++;
+    size_t l = strlen(s);
+    while (l && (s[l - 1] == '\r' || s[l - 1] == ' ' || s[l - 1] == '\t'))
+      s[--l] = '\0';
+    if (!*s || *s == '#') continue;
+    if (!header) {
+      header = true;
+      if (strcmp(s, "x_m,z_m") && strcmp(s, "x_m, z_m")) {
+        vl_error_set(err, "%s:%d: expected the header x_m,z_m (metres), got '%.40s'",
+                     sc->profile_file, line, s);
+        st = VL_EINPUT;
+      }
+      continue;
+    }
+    if (n == cap) {
+      double *nx = n < VL_PROFILE_MAX_POINTS ? realloc(x, 2 * cap * sizeof *x) : NULL;
+      if (nx) x = nx;
+      double *nz = nx ? realloc(z, 2 * cap * sizeof *z) : NULL;
+      if (nz) z = nz, cap *= 2;
+      if (!nx || !nz) {
+        vl_error_set(err, "%s:%d: more than %d points or out of memory", sc->profile_file, line,
+                     VL_PROFILE_MAX_POINTS);
+        st = VL_EINPUT;
+        break;
+      }
+    }
+    if (!profile_row(s, &x[n], &z[n])) {
+      vl_error_set(err, "%s:%d: expected 'x, z' (two numbers in m), got '%.40s'", sc->profile_file,
+                   line, s);
+      st = VL_EINPUT;
+      break;
+    }
+    for (size_t k = 0; k < n; k++)
+      if (x[k] == x[n]) {
+        vl_error_set(err, "%s:%d: x = %g m given twice", sc->profile_file, line, x[n]);
+        st = VL_EINPUT;
+      }
+    n++;
+  }
+  if (st == VL_OK && n < 3) {
+    vl_error_set(err, "%s: a profile needs at least 3 points (got %zu)", sc->profile_file, n);
+    st = VL_EINPUT;
+  }
+  if (st == VL_OK && !(sim->profile = malloc(2 * n * sizeof *sim->profile))) st = VL_ENOMEM;
+  if (st == VL_OK) {
+    memcpy(sim->profile, x, n * sizeof *x);
+    memcpy(sim->profile + n, z, n * sizeof *z);
+    sim->profile_n = n;
+  }
+  if (st == VL_ENOMEM) vl_error_set(err, "%s: out of memory", sc->profile_file);
+  free(x), free(z), free(text);
+  return st;
+}
 
 static int cmp_double(const void *a, const void *b) {
   double x = *(const double *)a, y = *(const double *)b;
@@ -80,6 +201,14 @@ static vl_status build_speeds(vl_simulation *sim, vl_error *err) {
       if (fabs(sim->v0[i] - fv[k]) <= 1e-9 * fv[k]) sim->fields[i] = true;
   sim->n = m;
   free(fv);
+  /* [sweep] direction = down: the speeds in the order the sweep visits
+   * them, from the top (with their fields flags) */
+  for (size_t i = 0; sc->direction == VL_DIRECTION_DOWN && i < m / 2; i++) {
+    double v = sim->v0[i];
+    bool f = sim->fields[i];
+    sim->v0[i] = sim->v0[m - 1 - i], sim->fields[i] = sim->fields[m - 1 - i];
+    sim->v0[m - 1 - i] = v, sim->fields[m - 1 - i] = f;
+  }
   return VL_OK;
 }
 
@@ -125,6 +254,42 @@ vl_status vl_compound_at_temperature(const vl_db_compound *c, double t_c, vl_pro
   }
   *out = p;
   *a_T = a;
+  return VL_OK;
+}
+
+/* The stored pair's law when the scene leaves sigma_s to it (solid shear
+ * on, no sigma_s_pa given, a fluid and a surface named): at the scene's
+ * temperature and viscosity, with its provenance in shear_law_text. */
+static vl_status apply_pair(vl_simulation *sim, vl_db *db, vl_error *err) {
+  const vl_scene *sc = &sim->scene;
+  sim->shear_law = vl_shear_law_constant(sc->effects.solid_shear ? sc->sigma_s_pa : 0.0);
+  if (!sc->effects.solid_shear || sc->sigma_s_given || !sc->fluid[0] || !sc->surface[0])
+    return VL_OK;
+  bool found = false;
+  vl_status st = vl_db_pair_get(db, sc->compound, sc->surface, sc->fluid, &sim->pair, &found, err);
+  if (st != VL_OK) {
+    vl_error_prefix(err, "%s: the pair of its materials", sc->path);
+    return st;
+  }
+  if (!found) return VL_OK;
+  st = vl_shear_law_at(&sim->pair.law, sim->temperature_c, sim->eta_pa_s, &sim->shear_law, err);
+  if (st != VL_OK) return st;
+  sim->has_pair = true;
+  const vl_shear_law *l = &sim->shear_law;
+  size_t len = 0, size = sizeof sim->shear_law_text;
+  char *t = sim->shear_law_text;
+  len += (size_t)snprintf(t, size, "%s:", vl_shear_law_name(l->kind));
+  for (size_t k = 0; k < vl_shear_law_n_params(l->kind) && len < size; k++)
+    len += (size_t)snprintf(t + len, size - len, "%s %s = %.6g", k ? "," : "",
+                            vl_shear_law_param_name(l->kind, k), l->p[k]);
+  const vl_db_pair *p = &sim->pair;
+  if (len < size)
+    len += (size_t)snprintf(t + len, size - len, " (pair %s / %s / %s, %s %s", p->compound,
+                            p->surface, p->fluid, p->source, p->created_at);
+  if (len < size && !strcmp(p->source, VL_DB_SOURCE_CALIBRATED))
+    len += (size_t)snprintf(t + len, size - len, " from %s %s", p->measured_file,
+                            p->measured_fingerprint);
+  if (len < size) snprintf(t + len, size - len, ")");
   return VL_OK;
 }
 
@@ -176,6 +341,10 @@ static vl_status measured_window(vl_simulation *sim, vl_db *db, vl_error *err) {
     sim->window_min_rad_s = f.omega_min_rad_s / sim->a_T;
     sim->window_max_rad_s = f.omega_max_rad_s / sim->a_T;
   }
+  if (st == VL_OK && f.has_fit && f.n_shifts > 0) {
+    sim->measured_tmin_c = f.shift_temperature_c[0];
+    sim->measured_tmax_c = f.shift_temperature_c[f.n_shifts - 1];
+  }
   vl_db_compound_fit_free(&f);
   return st;
 }
@@ -192,6 +361,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   sim->temperature_c = NAN;
   sim->a_T = 1.0;
   sim->window_min_rad_s = sim->window_max_rad_s = NAN;
+  sim->measured_tmin_c = sim->measured_tmax_c = NAN;
   vl_status st = vl_db_compound_get(db, scene->compound, &sim->rubber, err);
   if (st != VL_OK) {
     if (st == VL_ENOTFOUND) vl_error_prefix(err, "%s: [materials] compound", scene->path);
@@ -233,6 +403,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
       }
     }
   }
+  if ((st = apply_pair(sim, db, err)) != VL_OK) goto fail;
   vl_contact_config cfg;
   vl_contact_config_defaults(&cfg);
   cfg.rubber = sim->rubber;
@@ -247,6 +418,20 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.radius_m = scene->radius_m;
   cfg.load_n_per_m = scene->load_n_per_m;
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
+  cfg.shear_law = sim->has_pair ? &sim->shear_law : NULL;
+  cfg.moving = scene->moving;
+  if (scene->profile_file[0]) {
+    if ((st = read_profile(sim, err)) != VL_OK) goto fail;
+    cfg.profile_x_m = sim->profile, cfg.profile_z_m = sim->profile + sim->profile_n;
+    cfg.profile_points = sim->profile_n;
+    cfg.profile_mirror = scene->stroke == VL_STROKE_IN;
+  }
+  /* the sealed pressure on the oil side: the film's inlet on an outstroke,
+   * its outlet on an instroke (the profile mirrored, docs/MODEL.md section 12) */
+  if (scene->stroke == VL_STROKE_IN)
+    cfg.p_outlet_pa = scene->sealed_pressure_pa;
+  else
+    cfg.p_inlet_pa = scene->sealed_pressure_pa;
   cfg.roughness = sim->table;
   /* only a scene with the fluid effect gets fluid unknowns */
   cfg.eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
@@ -273,6 +458,9 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     cfg.flattening_psd = &sim->psd;
   }
   sim->cfg = cfg;
+  sim->cfg_in = cfg;
+  sim->cfg_in.p_inlet_pa = 0.0, sim->cfg_in.p_outlet_pa = scene->sealed_pressure_pa;
+  sim->cfg_in.profile_mirror = true;
   st = vl_contact_create(&cfg, &sim->contact, err);
   if (st != VL_OK) {
     vl_error_prefix(err, "%s", scene->path);
@@ -295,6 +483,7 @@ void vl_simulation_free(vl_simulation *sim) {
   if (sim->have_psd) vl_psd_free(&sim->psd);
   free(sim->v0);
   free(sim->fields);
+  free(sim->profile);
   free(sim);
 }
 
@@ -307,7 +496,10 @@ vl_contact *vl_simulation_contact(vl_simulation *sim) { return sim->contact; }
 const vl_scene *vl_simulation_scene(const vl_simulation *sim) { return &sim->scene; }
 double vl_simulation_eta(const vl_simulation *sim) { return sim->eta_pa_s; }
 double vl_simulation_tau(const vl_simulation *sim) {
-  return sim->rubber.n_terms == 1 ? sim->rubber.tau_s[0] : 0.0;
+  /* a rubber at rest (moving counter-surface) has no macroscopic memory:
+   * no Deborah number v0 tau/a0 */
+  bool memory = sim->scene.moving == VL_MOVING_RUBBER;
+  return sim->rubber.n_terms == 1 && memory ? sim->rubber.tau_s[0] : 0.0;
 }
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim) { return &sim->rubber; }
 double vl_simulation_temperature_c(const vl_simulation *sim) { return sim->temperature_c; }
@@ -323,12 +515,43 @@ typedef struct {
   void *user;
 } run_ctx;
 
-/* Every point gets the model-assumption warnings (assumptions.h) in its
- * warning column before the caller sees it. */
+/* The instroke's points: the assumption checks only. */
+typedef struct {
+  vl_simulation *sim;
+  vl_point *out;
+} vl_simulation_run_ctx_in;
+
+static void check_point_in(void *user, size_t i, size_t total, const vl_point *pt,
+                           const vl_contact *c) {
+  vl_simulation_run_ctx_in *r = user;
+  vl_point *p = &r->out[i];
+  vl_assumptions_check(&r->sim->cfg_in, vl_simulation_psd(r->sim), p, p->warnings,
+                       sizeof p->warnings);
+  (void)pt, (void)total, (void)c;
+}
+
+/* A compound used at a temperature over VL_DMA_ISOTHERM_TOL_K outside its
+ * measured isotherms: its WLF shift is extrapolated there (the warning
+ * of every point; nothing for a compound without measured isotherms). */
+static void temperature_warning(const vl_simulation *sim, char *warnings, size_t cap) {
+  double t = sim->temperature_c, lo = sim->measured_tmin_c, hi = sim->measured_tmax_c;
+  if (isnan(t) || isnan(lo) || (t >= lo - VL_DMA_ISOTHERM_TOL_K && t <= hi + VL_DMA_ISOTHERM_TOL_K))
+    return;
+  char w[200];
+  snprintf(w, sizeof w,
+           "temperature %.4g C %s the measured isotherms (%.4g to %.4g C): the WLF shift is "
+           "extrapolated %.3g K beyond them",
+           t, t < lo ? "below" : "above", lo, hi, t < lo ? lo - t : t - hi);
+  vl_warnings_append(warnings, cap, w);
+}
+
+/* Every point gets the model-assumption warnings (assumptions.h) and the
+ * temperature warning in its warning column before the caller sees it. */
 static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
                         const vl_contact *c) {
   run_ctx *r = user;
   vl_point *p = &r->out[i]; /* pt == &out[i]: the sweep fills the caller's array */
+  temperature_warning(r->sim, p->warnings, sizeof p->warnings); /* first: it must fit */
   vl_assumptions_check(&r->sim->cfg, vl_simulation_psd(r->sim), p, p->warnings, sizeof p->warnings);
   vl_assumptions_check_window(&r->sim->cfg, vl_simulation_psd(r->sim), p, r->sim->window_min_rad_s,
                               r->sim->window_max_rad_s, p->warnings, sizeof p->warnings);
@@ -336,11 +559,128 @@ static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
   if (r->cb) r->cb(r->user, i, total, p, c);
 }
 
+/* The seal's results of point p (its stroke's friction force), with the
+ * instroke q at the same speed for stroke = both: the volumes carried out
+ * and back per cycle and whether the seal is tight. */
+static void seal_result(const vl_scene *sc, vl_point *p, const vl_point *q) {
+  vl_seal_result *s = &p->seal;
+  *s = (vl_seal_result){.stroke = sc->stroke, .volume_out_m3 = NAN, .volume_back_m3 = NAN};
+  s->tight = -1;
+  s->friction_n_per_m = p->mu * sc->load_n_per_m;
+  if (!q) return;
+  s->in_converged = q->converged;
+  s->in_mu = q->mu, s->in_mu_Sc = q->mu_Sc, s->in_mu_Sf = q->mu_Sf;
+  s->in_u_min_m = q->u_min_m, s->in_flux_m2_s = q->flux_m2_s;
+  s->in_friction_n_per_m = q->mu * sc->load_n_per_m;
+  if (sc->rod_diameter_m > 0.0 && sc->stroke_length_m > 0.0 && p->converged && q->converged) {
+    /* a stroke of length L at speed v lasts L/v; q per unit circumference */
+    double per_flux = M_PI * sc->rod_diameter_m * sc->stroke_length_m / p->v0_m_s;
+    s->volume_out_m3 = per_flux * p->flux_m2_s;
+    s->volume_back_m3 = per_flux * q->flux_m2_s;
+    s->tight = s->volume_back_m3 >= s->volume_out_m3;
+  }
+}
+
+/* [seal] stroke = both: the instroke's sweep at the same speeds (its points'
+ * warnings checked too, no callback: the curve's rows are the outstroke's),
+ * merged into the outstroke's points. */
+static vl_status run_instroke(vl_simulation *sim, vl_point *out, vl_error *err) {
+  vl_point *in = calloc(sim->n, sizeof *in);
+  if (!in) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  vl_simulation_run_ctx_in ctx = {sim, in};
+  vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  vl_sweep_stats st;
+  vl_status s =
+      vl_sweep_run_auto(&sim->cfg_in, &o, sim->n, sim->v0, in, check_point_in, &ctx, &st, err);
+  if (s == VL_OK || s == VL_ENOCONV)
+    for (size_t i = 0; i < sim->n; i++)
+      seal_result(&sim->scene, &out[i], &in[i]);
+  free(in);
+  return s == VL_ENOCONV ? VL_OK : s;
+}
+
+/* Whether the upward point p and the downward q at its speed are two
+ * states: their mu differ by more than the target and both estimates (a
+ * point without an estimate counts the target) can explain. */
+static bool two_states(const vl_point *p, const vl_point *q, double target) {
+  if (!p->converged || !q->converged) return false;
+  double e = target > 0.0 ? target : VL_TARGET_ERROR_DEFAULT;
+  double ep = isnan(p->error_estimate) ? e : p->error_estimate;
+  double eq = isnan(q->error_estimate) ? e : q->error_estimate;
+  return fabs(p->mu - q->mu) > (e + ep + eq) * fmax(fabs(p->mu), fabs(q->mu));
+}
+
+/* [sweep] direction = both: the sweep again from the top, each of its
+ * points merged into the upward point at its speed (vl_down_result); where
+ * the two differ beyond their errors the point says so. */
+static vl_status run_downward(vl_simulation *sim, vl_point *out, vl_error *err) {
+  size_t n = sim->n;
+  vl_point *dn = calloc(n, sizeof *dn);
+  double *v = malloc(n * sizeof *v);
+  if (!dn || !v) {
+    free(dn), free(v);
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  for (size_t i = 0; i < n; i++)
+    v[i] = sim->v0[n - 1 - i];
+  vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  vl_sweep_stats st;
+  vl_status s = vl_sweep_run_auto(&sim->cfg, &o, n, v, dn, NULL, NULL, &st, err);
+  for (size_t i = 0; (s == VL_OK || s == VL_ENOCONV) && i < n; i++) {
+    const vl_point *q = &dn[n - 1 - i];
+    vl_down_result *d = &out[i].down;
+    *d = (vl_down_result){true,          q->converged,  q->mu, q->error_estimate,
+                          q->u_min_m,    q->fluid_load_fraction, false};
+    d->two_states = two_states(&out[i], q, sim->scene.target_error);
+    if (!d->two_states) continue;
+    char w[200];
+    snprintf(w, sizeof w,
+             "two states: mu %.4g sweeping up, %.4g sweeping down (u_min %.3g m and %.3g m): "
+             "a fold of the curve",
+             out[i].mu, q->mu, out[i].u_min_m, q->u_min_m);
+    vl_warnings_append(out[i].warnings, sizeof out[i].warnings, w);
+  }
+  free(dn), free(v);
+  return s == VL_ENOCONV ? VL_OK : s;
+}
+
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err) {
   run_ctx r = {sim, out, cb, user};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
-  return vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
+  vl_status st =
+      vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
+  if (sim->scene.direction == VL_DIRECTION_BOTH && (st == VL_OK || st == VL_ENOCONV)) {
+    vl_status sd = run_downward(sim, out, err);
+    if (sd != VL_OK) return sd;
+  }
+  if (sim->scene.stroke == VL_STROKE_NONE || (st != VL_OK && st != VL_ENOCONV)) return st;
+  if (sim->scene.stroke != VL_STROKE_BOTH) {
+    for (size_t i = 0; i < sim->n; i++)
+      seal_result(&sim->scene, &out[i], NULL);
+    return st;
+  }
+  vl_status si = run_instroke(sim, out, err);
+  return si != VL_OK ? si : st;
+}
+
+vl_status vl_simulation_run_speeds(vl_simulation *sim, size_t n, const double *v0_m_s,
+                                   vl_point *out, vl_sweep_stats *stats, vl_error *err) {
+  run_ctx r = {sim, out, NULL, NULL};
+  vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  return vl_sweep_run_auto(&sim->cfg, &o, n, v0_m_s, out, check_point, &r, stats, err);
+}
+
+const vl_db_pair *vl_simulation_pair(const vl_simulation *sim) {
+  return sim->has_pair ? &sim->pair : NULL;
+}
+const vl_shear_law *vl_simulation_shear_law(const vl_simulation *sim) { return &sim->shear_law; }
+const char *vl_simulation_shear_law_text(const vl_simulation *sim) {
+  return sim->has_pair ? sim->shear_law_text : NULL;
 }
 
 const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cutoff_m) {

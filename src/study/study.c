@@ -4,6 +4,7 @@
  * and [effects] keys they stand for. The [study] lines are emptied, not
  * removed, so the scene parser's messages name the study file's lines. */
 #include "viscolube/study.h"
+#include "study_private.h"
 
 #include "viscolube/simulation.h"
 

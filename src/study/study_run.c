@@ -2,6 +2,7 @@
  * the curve and the outcome handed back for the writers (study_output.h)
  * to put in the task's file. Nothing here touches a file, so a task is
  * solved the same whether it is written, benchmarked or thrown away. */
+#include "study_private.h"
 #include "viscolube/study.h"
 
 #include <stdio.h>
@@ -15,6 +16,7 @@ const char *vl_task_state_name(vl_task_state s) {
   case VL_TASK_MISSING: return "missing";
   case VL_TASK_OK: return "ok";
   case VL_TASK_NOT_CONVERGED: return "not_converged";
+  case VL_TASK_ABOVE_TARGET: return "above_target";
   case VL_TASK_ERROR: return "error";
   }
   return "?";
@@ -49,10 +51,16 @@ static vl_status solve(const vl_study *s, size_t i, vl_db *db, vl_study_result *
     r->tau_s = vl_simulation_tau(sim);
     r->a0_m = vl_contact_a0(vl_simulation_contact(sim));
     r->flow_factors = vl_simulation_flow_factors(sim, &r->film_cutoff_m);
+    const char *law = vl_simulation_shear_law_text(sim);
+    snprintf(r->shear_law, sizeof r->shear_law, "%s", law ? law : "");
     o->points = r->n;
     o->converged = stats.converged;
     o->failed = stats.failed;
-    o->state = stats.failed ? VL_TASK_NOT_CONVERGED : VL_TASK_OK;
+    for (size_t k = 0; k < r->n; k++)
+      o->above_target += vl_point_unreliable(&r->points[k]);
+    o->state = stats.failed      ? VL_TASK_NOT_CONVERGED
+               : o->above_target ? VL_TASK_ABOVE_TARGET
+                                 : VL_TASK_OK;
   } else {
     o->state = VL_TASK_ERROR;
     o->error = st;

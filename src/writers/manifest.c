@@ -3,6 +3,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +16,9 @@
 #include "viscolube/json.h"
 
 #define PREVIOUS_NAME ".run.json.previous"
+/* hard links to the earlier run's files while a run writes (restored when
+ * it is interrupted: vl_manifest_interrupt) */
+#define BACKUP_NAME ".run.previous.d"
 #define PATH_MAX_VL 4352
 /* how deep and how many files the search for unclaimed files looks: an
  * output folder is shallow (DIR/<fluid>/fields/NNN.csv) */
@@ -45,7 +49,15 @@ struct vl_manifest {
   strings files, unwritten; /* unwritten: path, reason pairs */
   strings removed, unclaimed, unwritten_names;
   size_t converged, failed;
+  /* the earlier run's files, each as relative name, full path and the
+   * full path of its hard link under BACKUP_NAME (triples) */
+  strings backups;
+  char cur_path[PATH_MAX_VL + 16], prev_path[PATH_MAX_VL + 32], backup_dir[PATH_MAX_VL + 32];
+  pid_t pid; /* the process that began the run (a forked worker restores nothing) */
 };
+
+/* The run in progress, for vl_manifest_interrupt. */
+static vl_manifest *volatile active;
 
 static void now_utc(char *buf, size_t size) {
   time_t t = time(NULL);
@@ -116,6 +128,93 @@ static bool ours(const char *path) {
   return n == sizeof head - 1 && !memcmp(head, SIGNATURE, n);
 }
 
+static bool files_of(vl_manifest *m, const char *path, strings *list);
+static bool removable_name(const char *rel);
+
+/* Removes the hard links under BACKUP_NAME and the folder. */
+static void drop_backups(vl_manifest *m) {
+  for (size_t i = 0; i + 2 < m->backups.n; i += 3)
+    unlink(m->backups.s[i + 2]);
+  if (m->backup_dir[0]) rmdir(m->backup_dir);
+  strings_free(&m->backups);
+}
+
+/* Hard links to every regular file the earlier manifest at m->cur_path
+ * lists, under DIR/BACKUP_NAME: while this run replaces them (each file
+ * is written to a temporary and renamed over the old one), the earlier
+ * contents survive there until finish, and vl_manifest_interrupt puts them
+ * back. A file that cannot be linked is simply not restorable. */
+static void backup_earlier(vl_manifest *m) {
+  strings list = {0};
+  if (!files_of(m, m->cur_path, &list)) {
+    strings_free(&list);
+    return;
+  }
+  char path[2 * PATH_MAX_VL], link_path[PATH_MAX_VL + 64];
+  if (mkdir(m->backup_dir, 0777) != 0 && errno != EEXIST) {
+    strings_free(&list);
+    return;
+  }
+  for (size_t i = 0; i < list.n; i++) {
+    struct stat sb;
+    snprintf(path, sizeof path, "%s/%s", m->dir, list.s[i]);
+    snprintf(link_path, sizeof link_path, "%s/%zu", m->backup_dir, i);
+    unlink(link_path); /* left by a run that was killed outright */
+    if (!removable_name(list.s[i]) || lstat(path, &sb) != 0 || !S_ISREG(sb.st_mode) ||
+        link(path, link_path) != 0)
+      continue;
+    push(m, &m->backups, list.s[i]);
+    push(m, &m->backups, path);
+    push(m, &m->backups, link_path);
+  }
+  strings_free(&list);
+}
+
+/* Joins a, "/" and b into out[cap] without the stdio (signal handler). */
+static void join_path(char *out, size_t cap, const char *a, const char *b) {
+  size_t na = strlen(a), nb = strlen(b);
+  if (na + nb + 2 > cap) {
+    out[0] = '\0';
+    return;
+  }
+  memcpy(out, a, na);
+  out[na] = '/';
+  memcpy(out + na + 1, b, nb + 1);
+}
+
+void vl_manifest_interrupt(int sig) {
+  vl_manifest *m = active;
+  if (m && m->pid == getpid()) {
+    active = NULL;
+    /* the files this run added that the earlier one did not have */
+    size_t nf = m->files.n;
+    for (size_t i = 0; i < nf; i++) {
+      bool earlier = false;
+      for (size_t k = 0; k + 2 < m->backups.n && !earlier; k += 3)
+        earlier = !strcmp(m->backups.s[k], m->files.s[i]);
+      char path[2 * PATH_MAX_VL];
+      join_path(path, sizeof path, m->dir, m->files.s[i]);
+      if (earlier || !path[0] || unlink(path) != 0) continue;
+      /* and the folders that leaves empty, up to DIR */
+      size_t top = strlen(m->dir);
+      for (char *slash = strrchr(path, '/'); slash && (size_t)(slash - path) > top;
+           slash = strrchr(path, '/')) {
+        *slash = '\0';
+        if (rmdir(path) != 0) break;
+      }
+    }
+    /* the earlier contents back under their names, then its manifest */
+    for (size_t k = 0; k + 2 < m->backups.n; k += 3) {
+      rename(m->backups.s[k + 2], m->backups.s[k + 1]);
+      unlink(m->backups.s[k + 2]); /* a rename between links to one file does nothing */
+    }
+    rmdir(m->backup_dir);
+    rename(m->prev_path, m->cur_path);
+  }
+  signal(sig, SIG_DFL);
+  raise(sig);
+}
+
 vl_status vl_manifest_begin(const char *dir, int argc, char *const *argv, vl_manifest **out,
                             vl_error *err) {
   *out = NULL;
@@ -136,9 +235,11 @@ vl_status vl_manifest_begin(const char *dir, int argc, char *const *argv, vl_man
   /* an earlier complete run: its manifest goes aside, so that this run,
    * if interrupted, leaves no manifest describing other files. An earlier
    * interrupted run left none: its predecessor's stays aside. */
-  char cur[PATH_MAX_VL + 16], prev[PATH_MAX_VL + 32];
-  snprintf(cur, sizeof cur, "%s/%s", dir, VL_MANIFEST_NAME);
-  snprintf(prev, sizeof prev, "%s/%s", dir, PREVIOUS_NAME);
+  char *cur = m->cur_path, *prev = m->prev_path;
+  snprintf(m->cur_path, sizeof m->cur_path, "%s/%s", dir, VL_MANIFEST_NAME);
+  snprintf(m->prev_path, sizeof m->prev_path, "%s/%s", dir, PREVIOUS_NAME);
+  snprintf(m->backup_dir, sizeof m->backup_dir, "%s/%s", dir, BACKUP_NAME);
+  m->pid = getpid();
   struct stat sb;
   if (lstat(cur, &sb) == 0 && !(S_ISREG(sb.st_mode) && ours(cur))) {
     vl_error_set(err,
@@ -148,11 +249,18 @@ vl_status vl_manifest_begin(const char *dir, int argc, char *const *argv, vl_man
     vl_manifest_free(m);
     return VL_EIO;
   }
+  if (lstat(cur, &sb) == 0) backup_earlier(m);
+  if (m->nomem) {
+    vl_manifest_free(m);
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
   if (lstat(cur, &sb) == 0 && rename(cur, prev) != 0) {
     vl_error_set(err, "%s: cannot move the earlier manifest aside: %s", cur, strerror(errno));
     vl_manifest_free(m);
     return VL_EIO;
   }
+  active = m;
   *out = m;
   return VL_OK;
 }
@@ -329,10 +437,8 @@ static bool manifest_files(vl_manifest *m, const char *text, size_t len, strings
   }
 }
 
-/* The file list of the earlier manifest (moved aside by begin). */
-static bool previous_files(vl_manifest *m, strings *list) {
-  char path[PATH_MAX_VL + 32];
-  snprintf(path, sizeof path, "%s/%s", m->dir, PREVIOUS_NAME);
+/* The file list of the manifest at path. */
+static bool files_of(vl_manifest *m, const char *path, strings *list) {
   FILE *f = fopen(path, "rb");
   if (!f) return false;
   char *text = NULL;
@@ -355,6 +461,11 @@ static bool previous_files(vl_manifest *m, strings *list) {
   fclose(f);
   free(text);
   return ok;
+}
+
+/* The file list of the earlier manifest (moved aside by begin). */
+static bool previous_files(vl_manifest *m, strings *list) {
+  return files_of(m, m->prev_path, list);
 }
 
 /* ---- files of the earlier run ------------------------------------------ */
@@ -537,6 +648,8 @@ vl_status vl_manifest_finish(vl_manifest *m, vl_error *err) {
   if (vl_atomic_file_commit(&af, err) != VL_OK) return VL_EIO;
   snprintf(prev, sizeof prev, "%s/%s", m->dir, PREVIOUS_NAME);
   unlink(prev);
+  active = NULL; /* complete: nothing to restore any more */
+  drop_backups(m);
   if (m->nomem) {
     vl_error_set(err, "%s: out of memory", path);
     return VL_ENOMEM;
@@ -565,6 +678,8 @@ const char *vl_manifest_unwritten_reason(const vl_manifest *m, size_t i) {
 
 void vl_manifest_free(vl_manifest *m) {
   if (!m) return;
+  if (active == m) active = NULL;
+  drop_backups(m);
   strings *lists[] = {&m->command, &m->program,   &m->texts,   &m->options,   &m->materials,
                       &m->files,   &m->unwritten, &m->removed, &m->unclaimed, &m->unwritten_names};
   for (size_t i = 0; i < sizeof lists / sizeof lists[0]; i++)

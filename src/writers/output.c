@@ -2,16 +2,79 @@
 #include "viscolube/output.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 
+#include "output_internal.h"
 #include "viscolube/atomic_file.h"
 
-const char *const vl_curve_columns[] = {
-    "v0_m_s",    "v0_eta_pa_m", "deborah",  "mu",          "mu_Rc",           "mu_Rf",
-    "mu_Sc",     "mu_Sf",       "u_min_m",  "u_central_m", "contact_width_m", "fluid_load_fraction",
-    "regime",    "E_wH_pa",     "a_H_m",    "Q",           "x_centroid_m",    "load_error",
-    "converged", "iterations",  "residual", "eps_f_min",   "error_estimate",  "warnings",
-    NULL};
+const char *const vl_curve_columns[] = {"v0_m_s",
+                                        "v0_eta_pa_m",
+                                        "deborah",
+                                        "mu",
+                                        "mu_Rc",
+                                        "mu_Rf",
+                                        "mu_Sc",
+                                        "mu_Sf",
+                                        "u_min_m",
+                                        "u_central_m",
+                                        "contact_width_m",
+                                        "fluid_load_fraction",
+                                        "u_min_over_h_rms",
+                                        "regime",
+                                        "E_wH_pa",
+                                        "a_H_m",
+                                        "Q",
+                                        "x_centroid_m",
+                                        "load_error",
+                                        "converged",
+                                        "iterations",
+                                        "residual",
+                                        "eps_f_min",
+                                        "error_estimate",
+                                        "accuracy",
+                                        "warnings",
+                                        NULL};
+
+/* The columns a seal scene adds after these ([seal] stroke; FORMATS.md):
+ * the point's stroke, its flux and friction force, and with stroke = both
+ * the instroke's and the volumes per cycle. */
+const char *const vl_seal_columns[] = {"stroke",
+                                       "flux_m2_s",
+                                       "friction_n_per_m",
+                                       "converged_in",
+                                       "mu_in",
+                                       "mu_Sc_in",
+                                       "mu_Sf_in",
+                                       "u_min_in_m",
+                                       "flux_in_m2_s",
+                                       "friction_in_n_per_m",
+                                       "volume_out_m3",
+                                       "volume_back_m3",
+                                       "tight",
+                                       NULL};
+
+/* The columns of a scene swept both ways ([sweep] direction = both). */
+const char *const vl_down_columns[] = {"converged_down",         "mu_down",
+                                       "error_estimate_down",    "u_min_down_m",
+                                       "fluid_load_fraction_down", "two_states",
+                                       NULL};
+
+double vl_down_column_value(const vl_point *p, size_t k) {
+  const vl_down_result *d = &p->down;
+  bool ok = d->swept && d->converged;
+  double v[] = {d->swept ? (d->converged ? 1.0 : 0.0) : NAN,
+                ok ? d->mu : NAN,
+                ok ? d->error_estimate : NAN,
+                ok ? d->u_min_m : NAN,
+                ok ? d->fluid_load_fraction : NAN,
+                d->swept ? (d->two_states ? 1.0 : 0.0) : NAN};
+  return k < sizeof v / sizeof *v ? v[k] : NAN;
+}
+
+static const char *stroke_name(int s) {
+  return s == VL_STROKE_OUT ? "out" : s == VL_STROKE_IN ? "in" : s == VL_STROKE_BOTH ? "both" : "";
+}
 
 /* -0 (a sum of zeros with a minus sign, e.g. mu_Rf of a dry contact) is
  * written as 0: readers compare text, and "-0" looks like a sign. */
@@ -32,10 +95,66 @@ static void print_model_comment(FILE *out, const vl_curve_meta *meta) {
   fputc('\n', out);
 }
 
+/* The comment line that says which stored pair's law gave sigma_s. */
+static void print_shear_comment(FILE *out, const vl_curve_meta *meta) {
+  if (meta->shear_law) fprintf(out, "# sigma_s = %s\n", meta->shear_law);
+}
+
+double vl_seal_column_value(const vl_point *p, size_t k) {
+  const vl_seal_result *s = &p->seal;
+  bool ok = p->converged, both = s->stroke == VL_STROKE_BOTH, in = both && s->in_converged;
+  double v[] = {NAN,
+                ok ? p->flux_m2_s : NAN,
+                ok ? s->friction_n_per_m : NAN,
+                both ? (s->in_converged ? 1.0 : 0.0) : NAN,
+                in ? s->in_mu : NAN,
+                in ? s->in_mu_Sc : NAN,
+                in ? s->in_mu_Sf : NAN,
+                in ? s->in_u_min_m : NAN,
+                in ? s->in_flux_m2_s : NAN,
+                in ? s->in_friction_n_per_m : NAN,
+                s->volume_out_m3,
+                s->volume_back_m3,
+                s->tight >= 0 ? (double)s->tight : NAN};
+  return k < sizeof v / sizeof *v ? v[k] : NAN;
+}
+
+/* The seal columns of p (after its warnings). */
+static void seal_cells(FILE *out, const vl_point *p) {
+  const vl_seal_result *s = &p->seal;
+  int ok = p->converged, both = s->stroke == VL_STROKE_BOTH, in = both && s->in_converged;
+  fprintf(out, ",%s", stroke_name(s->stroke));
+  cell(out, p->flux_m2_s, ok);
+  cell(out, s->friction_n_per_m, ok);
+  if (both)
+    fprintf(out, ",%d", s->in_converged ? 1 : 0);
+  else
+    fputc(',', out);
+  cell(out, s->in_mu, in);
+  cell(out, s->in_mu_Sc, in);
+  cell(out, s->in_mu_Sf, in);
+  cell(out, s->in_u_min_m, in);
+  cell(out, s->in_flux_m2_s, in);
+  cell(out, s->in_friction_n_per_m, in);
+  cell(out, s->volume_out_m3, 1);
+  cell(out, s->volume_back_m3, 1);
+  if (s->tight >= 0)
+    fprintf(out, ",%d", s->tight);
+  else
+    fputc(',', out);
+}
+
 void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta) {
   print_model_comment(out, meta);
+  print_shear_comment(out, meta);
+  bool seal = n > 0 && pts[0].seal.stroke != VL_STROKE_NONE;
+  bool down = n > 0 && pts[0].down.swept;
   for (size_t c = 0; vl_curve_columns[c]; c++)
     fprintf(out, "%s%s", c ? "," : "", vl_curve_columns[c]);
+  for (size_t c = 0; seal && vl_seal_columns[c]; c++)
+    fprintf(out, ",%s", vl_seal_columns[c]);
+  for (size_t c = 0; down && vl_down_columns[c]; c++)
+    fprintf(out, ",%s", vl_down_columns[c]);
   fputc('\n', out);
   for (size_t i = 0; i < n; i++) {
     const vl_point *p = &pts[i];
@@ -44,14 +163,16 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->v0_m_s * meta->eta_pa_s, meta->eta_pa_s > 0);
     cell(out, p->v0_m_s * meta->tau_s / meta->a0_m, meta->tau_s > 0 && meta->a0_m > 0);
     cell(out, p->mu, ok);
-    cell(out, p->mu_Rc, ok);
-    cell(out, p->mu_Rf, ok);
+    /* not applicable (a moving counter-surface): empty, not a computed 0 */
+    cell(out, p->mu_Rc, ok && !p->rolling_na);
+    cell(out, p->mu_Rf, ok && !p->rolling_na);
     cell(out, p->mu_Sc, ok);
     cell(out, p->mu_Sf, ok);
     cell(out, p->u_min_m, ok);
     cell(out, p->u_central_m, ok);
     cell(out, p->contact_width_m, ok);
     cell(out, p->fluid_load_fraction, ok);
+    cell(out, p->u_min_over_h_rms, ok); /* empty on smooth surfaces */
     fprintf(out, ",%s", ok ? vl_regime_name(p->regime) : "");
     /* derived from the solved state: a failed point has none (its struct
      * holds zeros, which read as values) */
@@ -65,8 +186,19 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     cell(out, p->eps_f_min, ok); /* viscous flattening: 1 when off */
     /* empty when no estimate could be made (the coarse solve failed) */
     cell(out, p->error_estimate, ok);
+    fprintf(out, ",%s", ok ? vl_accuracy_name(p->accuracy) : "");
     /* warnings never contain commas or quotes (contact.c writes them) */
-    fprintf(out, ",%s\n", p->warnings);
+    fprintf(out, ",%s", p->warnings);
+    if (seal) seal_cells(out, p);
+    for (size_t c = 0; down && vl_down_columns[c]; c++) {
+      double v = vl_down_column_value(p, c);
+      bool flag = c == 0 || !vl_down_columns[c + 1]; /* converged_down, two_states */
+      if (flag && isfinite(v))
+        fprintf(out, ",%d", (int)v);
+      else
+        cell(out, v, 1);
+    }
+    fputc('\n', out);
   }
 }
 
@@ -112,14 +244,16 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "deborah", meta->a0_m > 0 ? p->v0_m_s * meta->tau_s / meta->a0_m : 0,
          meta->tau_s > 0 && meta->a0_m > 0);
   member(w, "mu", p->mu, ok);
-  member(w, "mu_Rc", p->mu_Rc, ok);
-  member(w, "mu_Rf", p->mu_Rf, ok);
+  member(w, "mu_Rc", p->mu_Rc, ok && !p->rolling_na);
+  member(w, "mu_Rf", p->mu_Rf, ok && !p->rolling_na);
   member(w, "mu_Sc", p->mu_Sc, ok);
   member(w, "mu_Sf", p->mu_Sf, ok);
   member(w, "u_min_m", p->u_min_m, ok);
   member(w, "u_central_m", p->u_central_m, ok);
   member(w, "contact_width_m", p->contact_width_m, ok);
   member(w, "fluid_load_fraction", p->fluid_load_fraction, ok);
+  member(w, "u_min_over_h_rms", p->u_min_over_h_rms,
+         ok && !isnan(p->u_min_over_h_rms)); /* null: smooth */
   vl_json_key_string(w, "regime", ok ? vl_regime_name(p->regime) : NULL);
   member(w, "E_wH_pa", p->E_wH_pa, ok);
   member(w, "a_H_m", p->a_H_m, ok);
@@ -132,11 +266,47 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "residual", p->residual, 1);
   member(w, "eps_f_min", p->eps_f_min, ok);
   member(w, "error_estimate", p->error_estimate, ok && isfinite(p->error_estimate));
+  vl_json_key_string(w, "accuracy", ok && p->accuracy ? vl_accuracy_name(p->accuracy) : NULL);
   vl_json_key_string(w, "warnings", p->warnings);
+  const vl_seal_result *s = &p->seal;
+  if (s->stroke != VL_STROKE_NONE) {
+    int both = s->stroke == VL_STROKE_BOTH, in = both && s->in_converged;
+    vl_json_key_string(w, "stroke", stroke_name(s->stroke));
+    member(w, "flux_m2_s", p->flux_m2_s, ok);
+    member(w, "friction_n_per_m", s->friction_n_per_m, ok);
+    if (both) {
+      vl_json_key(w, "converged_in");
+      vl_json_bool(w, s->in_converged);
+      member(w, "mu_in", s->in_mu, in);
+      member(w, "mu_Sc_in", s->in_mu_Sc, in);
+      member(w, "mu_Sf_in", s->in_mu_Sf, in);
+      member(w, "u_min_in_m", s->in_u_min_m, in);
+      member(w, "flux_in_m2_s", s->in_flux_m2_s, in);
+      member(w, "friction_in_n_per_m", s->in_friction_n_per_m, in);
+      member(w, "volume_out_m3", s->volume_out_m3, isfinite(s->volume_out_m3));
+      member(w, "volume_back_m3", s->volume_back_m3, isfinite(s->volume_back_m3));
+      vl_json_key(w, "tight");
+      if (s->tight >= 0)
+        vl_json_bool(w, s->tight);
+      else
+        vl_json_null(w);
+    }
+  }
+  const vl_down_result *d = &p->down;
+  if (d->swept) {
+    vl_json_key(w, "converged_down");
+    vl_json_bool(w, d->converged);
+    for (size_t c = 1; vl_down_columns[c + 1]; c++)
+      member(w, vl_down_columns[c], vl_down_column_value(p, c),
+             isfinite(vl_down_column_value(p, c)));
+    vl_json_key(w, "two_states");
+    vl_json_bool(w, d->two_states);
+  }
   if (meta->flow_factors) {
     vl_json_key_string(w, "flow_factors", meta->flow_factors);
     if (meta->film_cutoff_m > 0.0) member(w, "film_cutoff_m", meta->film_cutoff_m, 1);
   }
+  if (meta->shear_law) vl_json_key_string(w, "sigma_s_law", meta->shear_law);
 }
 
 void vl_point_json(vl_json *w, const vl_point *p, const vl_curve_meta *meta) {

@@ -551,6 +551,22 @@ static size_t draw_failed(fig *f, size_t n, const double *wx, const bool *ok, rg
   return count;
 }
 
+/* Hollow squares on the curve at the points that converged but are not
+ * known to their error target (vl_point_unreliable): drawn where the value
+ * is, unlike a failed point, and in another shape, so the two read apart. */
+static size_t draw_unreliable(fig *f, size_t n, const double *wx, const double *wy,
+                              const vl_point *pts, rgb color) {
+  size_t count = 0;
+  for (size_t i = 0; i < n; i++) {
+    if (!vl_point_unreliable(&pts[i]) || !isfinite(wx[i]) || !isfinite(wy[i])) continue;
+    draw_marker(f, wx[i], wy[i], M_SQUARE, 2.8, WHITE, color, false);
+    count++;
+  }
+  return count;
+}
+
+static const char *UNRELIABLE_TEXT = "above its error target";
+
 /* ---- legend, title ----------------------------------------------------- */
 
 #define LEGEND_X0 0.715
@@ -948,8 +964,11 @@ static bool draw_half_load(fig *f, const curve_ctx *c, const double *wx, const d
   return true;
 }
 
+/* Series c of the Stribeck figure: mu, its four components, and (a seal's
+ * both strokes) the instroke's mu (NAN where it did not converge). */
 static double component(const vl_point *p, int c) {
   switch (c) {
+  case 5: return p->seal.in_converged ? p->seal.in_mu : NAN;
   case 0: return p->mu;
   case 1: return p->mu_Rc;
   case 2: return p->mu_Rf;
@@ -960,18 +979,19 @@ static double component(const vl_point *p, int c) {
 
 static void draw_stribeck(fig *f, const void *vctx) {
   const curve_ctx *c = vctx;
-  static const char *const names[5] = {
-      "#<0x11>μ#<0x01> total", "#<0x11>μ#<0x01>#dRc#u rolling, contact",
-      "#<0x11>μ#<0x01>#dRf#u rolling, fluid", "#<0x11>μ#<0x01>#dSc#u sliding, contact",
-      "#<0x11>μ#<0x01>#dSf#u sliding, fluid"};
-  /* total in the seed's red, rolling dashed, contact blue, fluid orange */
-  const style styles[5] = {{PALETTE[1], 1, 3.0},
-                           {PALETTE[0], 3, 2.0},
-                           {PALETTE[4], 3, 2.0},
-                           {PALETTE[2], 1, 2.0},
-                           {PALETTE[3], 1, 2.0}};
+  static const char *const names[6] = {"#<0x11>μ#<0x01> total",
+                                       "#<0x11>μ#<0x01>#dRc#u rolling, contact",
+                                       "#<0x11>μ#<0x01>#dRf#u rolling, fluid",
+                                       "#<0x11>μ#<0x01>#dSc#u sliding, contact",
+                                       "#<0x11>μ#<0x01>#dSf#u sliding, fluid",
+                                       "#<0x11>μ#<0x01> total, instroke"};
+  /* total in the seed's red, rolling dashed, contact blue, fluid orange; a
+   * seal's instroke (the rows are the outstroke) dashed black */
+  const style styles[6] = {{PALETTE[1], 1, 3.0}, {PALETTE[0], 3, 2.0}, {PALETTE[4], 3, 2.0},
+                           {PALETTE[2], 1, 2.0}, {PALETTE[3], 1, 2.0}, {BLACK, 3, 2.5}};
   size_t n = c->n;
-  double *wx = calloc(n, sizeof *wx), *wy = calloc(6 * n, sizeof *wy);
+  int series = n && c->pts[0].seal.stroke == VL_STROKE_BOTH ? 6 : 5;
+  double *wx = calloc(n, sizeof *wx), *wy = calloc(7 * n, sizeof *wy);
   bool *ok = calloc(n, sizeof *ok);
   if (!wx || !wy || !ok) {
     free(wx), free(wy), free(ok);
@@ -980,13 +1000,13 @@ static void draw_stribeck(fig *f, const void *vctx) {
   layout_single(f);
   for (size_t i = 0; i < n; i++)
     ok[i] = c->pts[i].converged;
-  double *xv = wy + 5 * n;
+  double *xv = wy + 6 * n;
   for (size_t i = 0; i < n; i++)
     xv[i] = x_value(&c->pts[i], c->meta, c->q);
   sweep_x_axis(f, n, xv);
-  bool shown[5] = {true, false, false, false, false};
+  bool shown[6] = {true, false, false, false, false, false};
   double lo = NAN, hi = NAN;
-  for (int k = 0; k < 5; k++) {
+  for (int k = 0; k < series; k++) {
     double *y = wy + (size_t)k * n;
     for (size_t i = 0; i < n; i++) {
       y[i] = ok[i] ? component(&c->pts[i], k) : NAN;
@@ -1017,17 +1037,22 @@ static void draw_stribeck(fig *f, const void *vctx) {
   draw_axes(f, x_title(c->q), "friction coefficient #<0x11>μ#<0x01>", true);
   use_data_area(f);
   bool half = draw_half_load(f, c, wx, wy);
-  /* the components first, the total over them */
-  for (int k = 4; k >= 0; k--) {
+  /* the components first, the total over them, a seal's instroke (dashed)
+   * over that */
+  for (int j = 0; j < series; j++) {
+    int k = j < 5 ? 4 - j : j;
     if (!shown[k]) continue;
     double *y = wy + (size_t)k * n;
     draw_runs(f, n, wx, y, styles[k]);
   }
-  for (int k = 0; k < 5; k++) {
+  for (int k = 0; k < series; k++) {
     if (!shown[k]) continue;
     char label[2 * TEXT_MAX];
     if (k == 0 && alone)
-      snprintf(label, sizeof label, "#<0x11>μ#<0x01> = %s", names[alone]);
+      snprintf(label, sizeof label, "#<0x11>μ#<0x01>%s = %s", series == 6 ? " outstroke" : "",
+               names[alone]);
+    else if (k == 0 && series == 6)
+      snprintf(label, sizeof label, "%s, outstroke", names[0]);
     else
       snprintf(label, sizeof label, "%s", names[k]);
     add_legend(f, label, true, styles[k], M_NONE, false, BLACK);
@@ -1041,6 +1066,8 @@ static void draw_stribeck(fig *f, const void *vctx) {
   }
   f->failed = draw_failed(f, n, wx, ok, BLACK, 0);
   if (f->failed) add_legend(f, FAILED_TEXT, false, styles[0], M_CIRCLE, true, BLACK);
+  if (draw_unreliable(f, n, wx, wy, c->pts, BLACK))
+    add_legend(f, UNRELIABLE_TEXT, false, styles[0], M_SQUARE, true, BLACK);
   draw_legend(f, f->vy1);
   free(wx);
   free(wy);
@@ -1367,7 +1394,7 @@ static void draw_compare(fig *f, const void *vctx) {
   draw_axes(f, x_title(c->q), y_title(c->y, hrms), true);
   use_data_area(f);
   off = 0;
-  bool any_half = false, any_failed = false;
+  bool any_half = false, any_failed = false, any_unreliable = false;
   for (size_t j = 0; j < c->k; j++) {
     const vl_plot_curve *cv = &c->curves[j];
     style st = {PALETTE[j % 8], 1 + (int)((j / 8) % 4) * 1, 2.4};
@@ -1390,11 +1417,13 @@ static void draw_compare(fig *f, const void *vctx) {
     size_t nf = draw_failed(f, cv->n, xv + off, ok + off, st.color, (int)(j % 6));
     f->failed += nf;
     if (nf) any_failed = true;
+    if (draw_unreliable(f, cv->n, xv + off, yv + off, cv->pts, st.color)) any_unreliable = true;
     off += cv->n;
   }
   style none = {BLACK, 1, 1};
   if (any_half) add_legend(f, HALF_LOAD_TEXT, false, none, M_DIAMOND, false, GREY);
   if (any_failed) add_legend(f, FAILED_TEXT, false, none, M_CIRCLE, true, BLACK);
+  if (any_unreliable) add_legend(f, UNRELIABLE_TEXT, false, none, M_SQUARE, true, BLACK);
   draw_legend(f, f->vy1);
   free(xv);
   free(yv);
@@ -1527,6 +1556,76 @@ vl_status vl_plot_modulus(const char *stem, const vl_plot_modulus_data *d,
     return VL_EINPUT;
   }
   return render(stem, opt, draw_modulus, d, report, err);
+}
+
+/* ---- a pair's calibration ---------------------------------------------- */
+
+static void widen_positive(size_t n, const double *v, double *lo, double *hi) {
+  for (size_t i = 0; v && i < n; i++)
+    if (v[i] > 0 && isfinite(v[i])) *lo = fmin(*lo, v[i]), *hi = fmax(*hi, v[i]);
+}
+
+static void draw_calibration(fig *f, const void *vctx) {
+  const vl_plot_calibration_data *d = vctx;
+  layout_single(f);
+  sweep_x_axis(f, d->n, d->v_m_s);
+  double lo = INFINITY, hi = 0.0;
+  widen_positive(d->n, d->mu, &lo, &hi);
+  widen_positive(d->n, d->mu_fit, &lo, &hi);
+  widen_positive(d->n, d->mu_other, &lo, &hi);
+  widen_positive(d->n, d->mu_sc, &lo, &hi);
+  if (!(hi > 0)) lo = 0.01, hi = 1.0;
+  if (hi < 1.5 * lo) lo /= 1.5, hi *= 1.5;
+  f->y = log_axis(lo, hi, len_y(f), CH_TICK * f->ph, true);
+  draw_axes(f, "sliding speed #<0x11>v#<0x01> (m/s)", "friction coefficient #<0x11>μ#<0x01>", true);
+  use_data_area(f);
+  PLFLT *xs = malloc(d->n * sizeof *xs), *ys = malloc(d->n * sizeof *ys);
+  if (!xs || !ys) {
+    free(xs), free(ys);
+    return;
+  }
+  for (size_t i = 0; i < d->n; i++)
+    xs[i] = to_wx(f, d->v_m_s[i]);
+  const struct {
+    const double *y;
+    const char *label;
+    style st;
+  } lines[] = {{d->mu_fit, d->fit_label ? d->fit_label : "fitted μ", {PALETTE[0], 1, 2.2}},
+               {d->mu_sc, "μ#dSc#u of the fitted law", {PALETTE[1], 2, 1.6}},
+               {d->mu_other, "μ without σ#ds#u", {PALETTE[2], 3, 1.6}}};
+  for (size_t k = 0; k < sizeof lines / sizeof *lines; k++) {
+    if (!lines[k].y) continue;
+    for (size_t i = 0; i < d->n; i++)
+      ys[i] = isfinite(lines[k].y[i]) ? to_wy(f, lines[k].y[i]) : NAN;
+    draw_runs(f, d->n, xs, ys, lines[k].st);
+    add_legend(f, lines[k].label, true, lines[k].st, M_NONE, false, lines[k].st.color);
+    f->series++;
+  }
+  bool any_hollow = false;
+  for (size_t i = 0; i < d->n; i++) {
+    if (!(d->mu[i] > 0 && isfinite(d->mu[i]))) continue;
+    bool hollow = d->informative && !d->informative[i];
+    any_hollow |= hollow;
+    draw_marker(f, xs[i], to_wy(f, d->mu[i]), M_CIRCLE, 2.6, hollow ? WHITE : PALETTE[3],
+                PALETTE[3], !hollow);
+  }
+  style mst = {PALETTE[3], 1, 1.0};
+  add_legend(f, "measured", false, mst, M_CIRCLE, false, PALETTE[3]);
+  if (any_hollow)
+    add_legend(f, "measured, μ#dSc#u < 10 % of μ", false, mst, M_CIRCLE, true, PALETTE[3]);
+  f->series++;
+  draw_legend(f, f->vy1);
+  free(xs);
+  free(ys);
+}
+
+vl_status vl_plot_calibration(const char *stem, const vl_plot_calibration_data *d,
+                              const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
+  if (!d || d->n == 0 || !d->v_m_s || !d->mu || !positive_finite(d->n, d->v_m_s)) {
+    vl_error_set(err, "plot: no measured points, or a speed that is not positive");
+    return VL_EINPUT;
+  }
+  return render(stem, opt, draw_calibration, d, report, err);
 }
 
 /* ---- shift factors ----------------------------------------------------- */

@@ -1,6 +1,8 @@
 /* The files of a study (study_output.h), written from the tasks that
  * src/study/study_run.c solved: nothing here runs a solver. */
 #include "viscolube/study_output.h"
+#include "study_output_private.h"
+#include "study_private.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -10,6 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "output_internal.h"
 #include "viscolube/atomic_file.h"
 #include "viscolube/output.h"
 
@@ -71,6 +74,7 @@ static void print_head(FILE *f, const vl_study *s, size_t i, const vl_study_outc
           vl_study_fingerprint(s));
   fprintf(f, "# outcome: %s, points %zu, converged %zu, failed %zu, seconds %.6f",
           vl_task_state_name(o->state), o->points, o->converged, o->failed, o->seconds);
+  if (o->above_target) fprintf(f, ", above_target %zu", o->above_target);
   if (o->state == VL_TASK_ERROR) {
     fprintf(f, ", status %d, message ", (int)o->error);
     for (const char *c = o->message; *c; c++) /* one line */
@@ -88,7 +92,9 @@ vl_status vl_study_write_task(const vl_study *s, size_t i, const char *out_dir,
   if (st != VL_OK) return st;
   print_head(af.f, s, i, &r->outcome);
   if (r->outcome.state != VL_TASK_ERROR) {
-    const vl_curve_meta meta = {r->eta_pa_s, r->tau_s, r->a0_m, r->flow_factors, r->film_cutoff_m};
+    const vl_curve_meta meta = {r->eta_pa_s,      r->tau_s,
+                                r->a0_m,          r->flow_factors,
+                                r->film_cutoff_m, r->shear_law[0] ? r->shear_law : NULL};
     st = print_rows(af.f, vl_study_task_at(s, i), &r->scene, r->n, r->points, &meta, err);
     if (st != VL_OK) {
       vl_atomic_file_abort(&af);
@@ -115,6 +121,8 @@ static bool read_head(FILE *f, const vl_study *s, size_t i, vl_study_outcome *o)
     return false;
   for (int k = VL_TASK_OK; k <= VL_TASK_ERROR; k++)
     if (!strcmp(state, vl_task_state_name((vl_task_state)k))) r.state = (vl_task_state)k;
+  int more = 0; /* absent from files without such points (and from older versions) */
+  if (sscanf(line + used, ", above_target %zu%n", &r.above_target, &more) == 1) used += more;
   if (r.state == VL_TASK_MISSING) return false;
   if (r.state == VL_TASK_ERROR) {
     int at = 0;
@@ -216,7 +224,7 @@ static void print_task_row(FILE *f, const vl_study_task *t, const vl_study_outco
   fprintf(f, "%zu,%s,%s,%s,%.15g,%.15g,", t->id, t->compound, t->surface, t->fluid, t->load_n_per_m,
           t->radius_m);
   if (!isnan(t->temperature_c)) fprintf(f, "%.15g", t->temperature_c);
-  fprintf(f, ",%zu,%zu,%zu,", o->points, o->converged, o->failed);
+  fprintf(f, ",%zu,%zu,%zu,%zu,", o->points, o->converged, o->failed, o->above_target);
   if (o->state != VL_TASK_MISSING) fprintf(f, "%.3f", o->seconds);
   fprintf(f, ",%s,", vl_task_state_name(o->state));
   csv_text(f, o->message);
@@ -234,7 +242,8 @@ vl_status vl_study_write_results(const vl_study *s, const char *out_dir, vl_stud
     vl_atomic_file_abort(&res);
     return VL_EIO;
   }
-  fprintf(tab.f, "task,%s,points,converged,failed,seconds,status,message\n", FACTOR_COLUMNS);
+  fprintf(tab.f, "task,%s,points,converged,failed,above_target,seconds,status,message\n",
+          FACTOR_COLUMNS);
   bool header = false;
   vl_status st = VL_OK;
   for (size_t i = 0; st == VL_OK && i < vl_study_n_tasks(s); i++) {

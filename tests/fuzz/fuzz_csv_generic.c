@@ -8,6 +8,7 @@
  * each starting with the file name; an accepted one keeps every promise of csv.h
  * (all values finite, signs, strictly increasing columns, absent optional
  * columns NaN, line numbers increasing, at least one row). */
+#include "csv_private.h"
 #include "vl_fuzz.h"
 
 #include <math.h>

@@ -10,6 +10,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "roughness_internal.h"
 #include "viscolube/csv.h"
 #include "viscolube/roughness.h"
 

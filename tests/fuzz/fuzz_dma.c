@@ -12,6 +12,7 @@
  * positive frequencies and moduli, every point in an isotherm, isotherm
  * temperatures increasing and a Prony series that vl_prony_validate
  * accepts. */
+#include "dma_private.h"
 #include "vl_fuzz.h"
 
 #include <math.h>

@@ -18,7 +18,7 @@
 
 #include "viscolube/csv.h"
 
-/* The grammar, written as a table of states rather than csv.c's loops. */
+/* The grammar, written as a table of states rather than import_text.c's loops. */
 static int grammar(const char *s, size_t n) {
   enum { START, SIGN, INT, DOT0, FRAC, EXP, EXPSIGN, EXPDIG, BAD } q = START;
   for (size_t i = 0; i < n && q != BAD; i++) {

@@ -3,6 +3,7 @@
  * starting with the file name, without control bytes; an accepted one has
  * 1..VL_STUDY_TASKS_MAX tasks with a compound, positive finite load and
  * radius, and every task's scene loads with exactly the task's factors. */
+#include "study_private.h"
 #include "vl_fuzz.h"
 
 #include <math.h>

@@ -23,6 +23,11 @@
 #include <string.h>
 #include <time.h>
 
+#include "assumptions_internal.h"
+#include "contact_private.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
+#include "roughness_internal.h"
 #include "sweep_internal.h"
 #include "viscolube/assumptions.h"
 #include "viscolube/contact.h"

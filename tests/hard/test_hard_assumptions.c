@@ -10,7 +10,10 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "assumptions_internal.h"
 #include "hard_util.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
 

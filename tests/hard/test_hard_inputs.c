@@ -11,7 +11,10 @@
 
 #include <cmocka.h> /* after the four headers it needs */
 
+#include "contact_private.h"
 #include "hard_util.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 #include "vl_test_scenes.h"
 #include "vl_test_util.h"
 

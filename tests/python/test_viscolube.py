@@ -44,7 +44,7 @@ def cli(*args, expect=0):
 # The members of a point in the CLI's JSON (output.c, 17 digits).
 POINT_NUMBERS = {"v0_m_s", "v0_eta_pa_m", "deborah", "mu", "mu_Rc", "mu_Rf", "mu_Sc",
                  "mu_Sf", "u_min_m", "u_central_m", "contact_width_m", "fluid_load_fraction",
-                 "E_wH_pa", "a_H_m", "Q", "x_centroid_m", "load_error", "residual",
+                 "u_min_over_h_rms", "E_wH_pa", "a_H_m", "Q", "x_centroid_m", "load_error", "residual",
                  "eps_f_min", "error_estimate", "film_cutoff_m"}
 
 
@@ -85,7 +85,7 @@ class Scratch(unittest.TestCase):
                     self.assertEqual(cell, "1" if v else "0")
                 elif name == "iterations":
                     self.assertEqual(cell, str(int(v)))
-                elif name in ("regime", "warnings"):
+                elif name in ("regime", "accuracy", "warnings"):
                     self.assertEqual(cell, v)
                 elif cell == "":
                     self.assertTrue(math.isnan(v), (name, i, v))
@@ -145,6 +145,27 @@ class TestFriction(Scratch):
             compound="sbr-filled", surface="paper-1um", fluid="water", speed=0.3, load=200,
             radius=2e-3, sigma_s=5e5, temperature=30, flow_factors="patir-cheng")
 
+    def test_calibrate_recovers_and_stores_the_pair(self):
+        # a curve of sigma_s = 6e5 (given) is fitted back exactly; stored, it
+        # is the pair friction takes when sigma_s is not given (issue 34)
+        triple = ("sbr-unfilled", "paper-0.5um", "water")
+        with vl.Database(self.db_path) as db:
+            speeds = [1e-6, 1e-5, 1e-4, 1e-3, 1e-2]
+            mu = [db.friction(*triple, v, sigma_s=6e5).mu for v in speeds]
+            self.assertIsNone(db.friction(*triple, 1e-4).sigma_s_law)
+            r = db.calibrate(*triple, v=speeds, mu=mu, save=True, description="test")
+            self.assertTrue(r["fits"] and r["saved"])
+            self.assertLess(abs(r["parameters"]["sigma_s_pa"] / 6e5 - 1), 1e-6)
+            self.assertLess(r["rms_log10_mu"], 1e-6)
+            p = db.friction(*triple, 1e-4)
+            self.assertIn("constant: sigma_s_pa = 600000", p.sigma_s_law)
+            self.assertIn("calibrated", p.sigma_s_law)
+            self.assertLess(abs(p.mu / mu[2] - 1), 1e-6)
+            with self.assertRaises(vl.InputError):
+                db.calibrate(*triple, v=speeds, mu=[0.1, -0.1, 0.1, 0.1, 0.1])
+            with self.assertRaises(vl.ExistsError):
+                db.calibrate(*triple, v=speeds, mu=mu, save=True)
+
 
 class TestScenes(Scratch):
     def test_run_equals_cli_curve_and_fields(self):
@@ -177,6 +198,41 @@ class TestScenes(Scratch):
             b = db.run(scene)
         for name in vl.CURVE_COLUMNS:
             np.testing.assert_array_equal(a[name], b[name], name)
+
+    def test_seal_scene_equals_cli(self):
+        # a seal's strokes (docs/MODEL.md sections 11-12): the seal columns
+        # after curve.csv's, every cell as the CLI writes it; the rolling
+        # terms not applicable (NaN)
+        scene = os.path.join(self.dir, "seal.ini")
+        with open(scene, "w") as f:
+            f.write("[materials]\ncompound = model-rubber\nfluid = model-1e-1\n"
+                    "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n"
+                    "moving = counterface\nsealed_pressure_pa = 3e4\n"
+                    "[sweep]\nquantity = v0\nfrom = 0.01\nto = 1\npoints = 3\n"
+                    "[effects]\nviscoelastic = off\nfluid = on\n"
+                    "[numerics]\ngrid = 256\ndomain_a0 = -3, 1.5\n"
+                    "target_error = 0.5\n"  # coarse cells, for the time
+                    "[seal]\nstroke = both\nrod_diameter_m = 0.02\n"
+                    "stroke_length_m = 0.1\n")
+        out = os.path.join(self.dir, "out")
+        cli("--db", self.db_path, "run", scene, "--out", out, "--quiet")
+        with vl.Database(self.db_path) as db:
+            curve = db.run(scene)
+        header, rows = read_csv(os.path.join(out, "curve.csv"))
+        self.assertEqual(list(curve.keys()), header)
+        self.assertEqual(header[len(vl.CURVE_COLUMNS)], "stroke")
+        for i, row in enumerate(rows):
+            self.assertTrue(math.isnan(curve["mu_Rc"][i]) and math.isnan(curve["mu_Rf"][i]))
+            for name, cell in list(zip(header, row))[len(vl.CURVE_COLUMNS):]:
+                v = curve[name][i]
+                if name == "stroke":
+                    self.assertEqual(cell, v)
+                elif name in ("converged_in", "tight"):
+                    self.assertEqual(cell, "" if math.isnan(v) else str(int(v)), name)
+                elif cell == "":
+                    self.assertTrue(math.isnan(v), (name, i, v))
+                else:
+                    self.assertEqual(cell, text10(v), (name, i))
 
     def test_compare_equals_cli(self):
         out = os.path.join(self.dir, "cmp")
@@ -322,6 +378,109 @@ class TestProcess(Scratch):
                            env=env, cwd=self.dir)
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertGreater(float(p.stdout), 0)
+
+
+REAL = [os.path.join(SRC, "..", "shared", "data", "real"),
+        os.path.join(SRC, "..", "..", "shared", "data", "real")]
+
+
+def real_file(name):
+    """../shared/data/real/name beside the source tree (or its worktree's
+    parent), or None: the real files are never copied into the project."""
+    for d in REAL:
+        p = os.path.join(d, name)
+        if os.path.exists(p):
+            return p
+    return None
+
+
+def hn_isotherms(path, top_loss=1.0):
+    """A synthetic DMA export: Havriliak-Negami E (E0 2 MPa, Einf 2 GPa)
+    with WLF shifts (C1 12.57, C2 71.6 K at 20 C), isotherms 0..100 C at
+    0.1..100 Hz, noise-free; E'' at 100 Hz times top_loss (a resonance)."""
+    rows = ["f,E_stor,E_loss,T", "Hz,Pa,Pa,C"]
+    for j in range(21):
+        t = 5.0 * j
+        at = 10.0 ** (-12.57 * (t - 20.0) / (71.6 + t - 20.0))
+        for k in range(13):
+            f = 10.0 ** (-1.0 + 0.25 * k)
+            e = 2e9 + (2e6 - 2e9) / (1 + (1j * 2 * math.pi * f * at * 2.5e-3) ** 0.6) ** 0.35
+            loss = e.imag * (top_loss if k == 12 else 1.0)
+            rows.append("%.17g,%.17g,%.17g,%g" % (f, e.real, loss, t))
+    with open(path, "w") as fh:
+        fh.write("\n".join(rows) + "\n")
+
+
+class TestImports(Scratch):
+    """add_compound(measured=) raises the import's warnings as FitWarning,
+    as the CLI prints them, and none for a clean compound; add_surface(
+    topography=) registers a measured height map as `surface add
+    --topography`; the import error names what is missing."""
+
+    def fit_warnings(self, db, name, path):
+        import warnings
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter("always")
+            notes = db.add_compound(name, measured=path)
+        return notes, [str(x.message) for x in w if issubclass(x.category, vl.FitWarning)]
+
+    def test_measured_warnings(self):
+        clean = os.path.join(self.dir, "clean.csv")
+        hn_isotherms(clean)
+        res = os.path.join(self.dir, "resonance.csv")
+        hn_isotherms(res, top_loss=1.3)
+        with vl.Database(self.db_path) as db:
+            notes, w = self.fit_warnings(db, "clean", clean)
+            self.assertEqual(w, [])
+            self.assertIn("measured: E' ", notes)
+            notes, w = self.fit_warnings(db, "res", res)
+            rise = [x for x in w if x.startswith("res: tan delta rises at the top")]
+            self.assertEqual(len(rise), 1, w)
+        # the CLI prints the same warnings
+        out, err = cli("--db", os.path.join(self.dir, "cli.db"), "compound", "add", "res",
+                       "--measured", res)
+        for x in w:
+            self.assertIn("warning: " + x[len("res: "):], err)
+
+    def test_measured_warnings_real_epdm(self):
+        path = real_file("marcusni96_epdm_70_tf_015p.csv")
+        if not path:
+            self.skipTest("no ../shared/data/real/marcusni96_epdm_70_tf_015p.csv beside %s"
+                          % SRC)
+        with vl.Database(self.db_path) as db:
+            _, w = self.fit_warnings(db, "epdm", path)
+        text = "\n".join(w)
+        self.assertIn("isotherms at 18.4 and 25.2 C do not join", text)
+        self.assertIn("tan delta rises at the top", text)
+        self.assertIn("the fitted Einf", text)
+
+    def test_topography(self):
+        path = real_file("surfacetopography_matrix-3_afm.txt")
+        if not path:
+            self.skipTest("no ../shared/data/real/surfacetopography_matrix-3_afm.txt beside %s"
+                          % SRC)
+        with vl.Database(self.db_path) as db:
+            db.add_surface("afm", topography=path)
+            with self.assertRaises(vl.InputError):
+                db.add_surface("both", topography=path, psd=path)
+        db_cli = os.path.join(self.dir, "cli.db")
+        cli("--db", db_cli, "surface", "add", "afm", "--topography", path)
+        # the same spectrum as the CLI's
+        a, _ = cli("--db", self.db_path, "surface", "show", "afm")
+        b, _ = cli("--db", db_cli, "surface", "show", "afm")
+        strip = lambda t: [l for l in t.splitlines() if "materials" not in l and ".db" not in l]
+        self.assertEqual(strip(a), strip(b))
+
+    def test_import_error_names_the_target(self):
+        pkg = os.path.join(self.dir, "site", "viscolube")
+        os.makedirs(pkg)
+        shutil.copy(vl.__file__, pkg)  # the package without its extension
+        p = subprocess.run([sys.executable, "-c", "import viscolube"], capture_output=True,
+                           text=True, env=dict(os.environ, PYTHONPATH=os.path.dirname(pkg)))
+        self.assertNotEqual(p.returncode, 0)
+        self.assertIn("extension viscolube._core is not built", p.stderr)
+        self.assertIn("vl_python_core", p.stderr)
+        self.assertNotIn("circular import", p.stderr.splitlines()[-1])
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
-/* Edit distance for the "did you mean" hints of the readers (CSV, DMA,
- * scene files) and the database's name lookups. Private to the library. */
-#ifndef VL_EDIT_DISTANCE_H
-#define VL_EDIT_DISTANCE_H
+/* viscolube: edit distance, for "did you mean" hints: the library's
+ * readers (CSV, DMA, scene files) and name lookups use it, and so does the
+ * program for its options. */
+#ifndef VISCOLUBE_EDIT_DISTANCE_H
+#define VISCOLUBE_EDIT_DISTANCE_H
 
 #include <stdbool.h>
 #include <stddef.h>
