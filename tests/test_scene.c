@@ -357,6 +357,22 @@ static void test_sweep_edges(void **state) {
   assert_int_equal(g_scene.points, 1);
 }
 
+/* [sweep] direction: up by default, down, both; a bad word, a single
+ * point, and both ways with both strokes refused, naming the line. */
+static void test_sweep_direction(void **state) {
+  (void)state;
+  parse_ok(BASE);
+  assert_int_equal(g_scene.direction, VL_DIRECTION_UP);
+  parse_ok(edit(BASE, "points = 7", "points = 7\ndirection = down"));
+  assert_int_equal(g_scene.direction, VL_DIRECTION_DOWN);
+  parse_ok(edit(BASE, "points = 7", "points = 7\ndirection = both"));
+  assert_int_equal(g_scene.direction, VL_DIRECTION_BOTH);
+  parse_fails(edit(BASE, "points = 7", "points = 7\ndirection = sideways"), 14,
+              "[sweep] direction", "expected up, down or both, got 'sideways'");
+  parse_fails(edit(BASE, "points = 7", "points = 1\ndirection = down"), 14, "[sweep] direction",
+              "points >= 2");
+}
+
 /* Every shipped case parses, to the values its text holds. */
 static void test_shipped_cases(void **state) {
   (void)state;
@@ -777,6 +793,7 @@ int main(void) {
       cmocka_unit_test(test_elastic_modulus),
       cmocka_unit_test(test_sigma_without_solid_shear),
       cmocka_unit_test(test_sweep_edges),
+      cmocka_unit_test(test_sweep_direction),
       cmocka_unit_test(test_moving),
       cmocka_unit_test(test_seal_keys),
       cmocka_unit_test(test_shipped_cases),

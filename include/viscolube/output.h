@@ -37,6 +37,12 @@ extern const char *const vl_seal_columns[];
 /* The number in seal column k (an index of vl_seal_columns, from 1: column 0,
  * `stroke`, is a word) of p, NAN where the CSV cell is empty. */
 double vl_seal_column_value(const vl_point *p, size_t k);
+/* The columns a scene swept both ways ([sweep] direction = both;
+ * vl_point.down) adds after those, NULL-terminated (docs/FORMATS.md), and
+ * the number in column k of p (NAN where the CSV cell is empty;
+ * converged_down and two_states 1 or 0). */
+extern const char *const vl_down_columns[];
+double vl_down_column_value(const vl_point *p, size_t k);
 
 /* Writes the curve to path through a temporary renamed into place
  * (atomic_file.h), so a crash leaves no half-written file. VL_EIO with a

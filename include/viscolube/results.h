@@ -35,6 +35,18 @@ typedef struct {
   int tight;
 } vl_seal_result;
 
+/* A scene swept both ways ([sweep] direction = both): the downward sweep's
+ * point at the same speed, beside the point's own (the upward sweep's). */
+typedef struct {
+  bool swept; /* the downward sweep was run (else the rest is unset) */
+  bool converged;
+  double mu, error_estimate, u_min_m, fluid_load_fraction;
+  /* the two sweeps found different states here: their mu differ by more
+   * than the target and both estimates together (a fold of the curve: the
+   * sweep up follows one branch, the sweep down the other) */
+  bool two_states;
+} vl_down_result;
+
 /* Result of one operating point, SI units. */
 typedef struct {
   double v0_m_s;
@@ -75,6 +87,7 @@ typedef struct {
   int accuracy;               /* vl_accuracy: the estimate against the point's target */
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
   vl_seal_result seal;        /* stroke VL_STROKE_NONE unless a seal scene */
+  vl_down_result down;        /* swept false unless [sweep] direction = both */
 } vl_point;
 
 /* How a converged point's error estimate compares with its target (the

@@ -32,6 +32,14 @@ typedef enum {
   VL_SWEEP_DEBORAH /* v0 tau / a0, one-term compounds */
 } vl_sweep_quantity;
 
+/* The order a sweep visits its speeds ([sweep] direction): upward (the
+ * default: from the boundary regime, where any start converges), downward
+ * (from the lifted film), or both, one after the other, to find speeds
+ * where the model has two states (a fold of the Stribeck curve: a film
+ * that lifts off at a higher speed on the way up than it collapses on the
+ * way down). */
+typedef enum { VL_DIRECTION_UP = 0, VL_DIRECTION_DOWN, VL_DIRECTION_BOTH } vl_sweep_direction;
+
 typedef enum {
   VL_ELASTIC_RELAXED = 0, /* viscoelastic = off: E = E0 of the compound */
   VL_ELASTIC_GLASSY,      /* E = Einf */
@@ -73,6 +81,7 @@ typedef struct {
   vl_sweep_quantity quantity;
   double from, to;
   size_t points;
+  vl_sweep_direction direction;
   size_t n_fields_at;
   double fields_at[VL_FIELDS_AT_MAX]; /* in the sweep quantity's units */
   /* [effects]: only those on are built and solved */

@@ -70,7 +70,14 @@ typedef struct {
  *
  * Numerics: a smooth film gets cells planned for its film (docs/NUMERICS.md
  * section 11), re-planned when the film it expects has changed by more
- * than 1.5x since the last plan; any other contact keeps base's numerics.
+ * than 1.5x since the last plan; so does a rough film whose edge zones are
+ * below the standard cells while the fluid carries at least 1 % of the
+ * load (its film floored at 0.1 h_rms; a collapsed film, u_min 0, is
+ * solved again from a fresh start); any other contact keeps base's
+ * numerics. A rough film's estimate holds its shear beyond the outlet, and
+ * the outlet is moved out (up to 16x) while that exceeds a quarter of the
+ * target; a refined rough point's estimate comes from its levels
+ * (Richardson with the observed order).
  * Every converged point gets an error estimate (results.h,
  * error_estimate: the point solved again on cells three times as wide);
  * above the target the numerics are refined (every width halved) and the
@@ -79,7 +86,9 @@ typedef struct {
  * standard cells again), and a pressure that reaches the domain's ends
  * doubles the inlet (up to 8x) and moves the outlet by sqrt(2). A point
  * still above its target carries the warning "error estimate X % above the
- * target Y %". opt->keep_numerics keeps base's numerics throughout (every
+ * target Y %"; one whose refinement did not converge "refinement did not
+ * converge; estimate X % of the coarser cells"; one without an estimate
+ * "no estimate". opt->keep_numerics keeps base's numerics throughout (every
  * point still gets its estimate). opt may be NULL (the defaults).
  *
  * The callback receives the contact that solved the point. Returns VL_OK

@@ -129,6 +129,14 @@ static PyObject *curve_dict(size_t n, const vl_point *pts, const vl_curve_meta *
     }
     if (vlpy_set(d, vl_seal_columns[c], o) < 0) Py_CLEAR(d);
   }
+  /* a scene swept both ways: the downward sweep's columns (NaN where empty) */
+  for (size_t c = 0; d && n && pts[0].down.swept && vl_down_columns[c]; c++) {
+    npy_intp dims[1] = {(npy_intp)n};
+    PyObject *o = PyArray_SimpleNew(1, dims, NPY_DOUBLE);
+    for (size_t i = 0; o && i < n; i++)
+      ((double *)PyArray_DATA((PyArrayObject *)o))[i] = vl_down_column_value(&pts[i], c);
+    if (vlpy_set(d, vl_down_columns[c], o) < 0) Py_CLEAR(d);
+  }
   return d;
 }
 

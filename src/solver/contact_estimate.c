@@ -56,4 +56,6 @@ void vl_contact_estimate_error(vl_contact *c, vl_point *pt) {
    * purpose (an elastic contact's mu is round-off: 1e-17) */
   double scale = fmax(fabs(pt->mu), MU_FLOOR);
   pt->error_estimate = 0.5 * fabs(pt->mu - ep.mu) / scale;
+  /* the domain's outlet end: the film's shear beyond it */
+  pt->error_estimate += vl_contact_outlet_tail(c, pt);
 }

@@ -7,6 +7,7 @@
 #include "contact_internal.h"
 #include "contact_private.h"
 #include "flow_factors_internal.h"
+#include "numerics_plan.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -228,4 +229,32 @@ void vl_contact_fields(const vl_contact *c, vl_fields *f) {
     if (f->film_fraction) f->film_fraction[i] = c->wet ? theta[i] : 1.0;
     if (f->width_m) f->width_m[i] = c->wc[i] * c->a0;
   }
+}
+
+/* The film's shear beyond the outlet end, relative to mu (numerics_plan.h). */
+double vl_contact_outlet_tail(vl_contact *c, const vl_point *pt) {
+  if (!c->wet || !c->rough || !pt->converged) return 0.0;
+  size_t n = c->n;
+  const double *y = N_VGetArrayPointer(c->y);
+  vl_contact_eval_state(c, y);
+  film_fraction(c, y, c->theta);
+  const vl_contact_config *cfg = &c->cfg;
+  double u_end = fmax(c->U[n - 1], 0.0) * c->uscale;
+  if (!(u_end > 0.0)) return 0.0;
+  /* the Couette flux theta u is carried on past the end (a cavitated film
+   * keeps its flow; a full one cavitates), the gap opens like the Hertz gap
+   * x^2/2R, and the factors tend to the smooth film's (1) */
+  double q = c->theta[n - 1] * u_end, R = cfg->radius_m;
+  double x_end = (c->xi[n - 1] + 0.5 * c->wc[n - 1]) * c->a0;
+  double sum = 0.0, t = 1e-3 * c->a0, prev_f = -1.0, prev_t = 0.0;
+  for (int k = 0; k < 400 && t < 1e6 * c->a0; k++, t *= 1.05) {
+    double x = x_end + t;
+    double u = u_end + (x * x - x_end * x_end) / (2.0 * R);
+    double f = q / (u * u); /* theta / u */
+    if (prev_f >= 0.0) sum += 0.5 * (f + prev_f) * (t - prev_t);
+    else sum += f * t;
+    prev_f = f, prev_t = t;
+  }
+  double tail = cfg->eta_pa_s * c->v0 * sum / cfg->load_n_per_m;
+  return tail / fmax(fabs(pt->mu), 1e-9);
 }

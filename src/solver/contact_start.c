@@ -263,19 +263,36 @@ void vl_contact_guess_from_film(vl_contact *c, vl_contact *s) {
   c->v_state = 0.0;
 }
 
+/* How far (a0) a rough contact's domain may reach past the one it is
+ * started from: the automatic layouts of rough films (numerics_plan.c) end
+ * up to one of their inlet cells past the planned ends, and a state that
+ * could not be carried over started the wiper afresh at every new layout
+ * (where the fresh start found no film). */
+#define START_END_SLACK_A0 0.1
+
 bool vl_contact_start_from(vl_contact *dst, const vl_contact *src) {
   double v0 = src->v_state;
   if (dst->rough != src->rough || dst->wet != src->wet || !(v0 > 0.0)) return false;
-  if (dst->rough &&
-      (dst->cfg.x_min_a0 < src->cfg.x_min_a0 || dst->cfg.x_max_a0 > src->cfg.x_max_a0))
-    return false; /* separations beyond src's domain are not its end values */
+  /* separations beyond src's domain are not its end values; planned
+   * layouts end within a cell of the planned ends (START_END_SLACK_A0) */
+  if (dst->rough && dst->cfg.x_min_a0 < src->cfg.x_min_a0 - START_END_SLACK_A0) return false;
+  /* a rough contact whose outlet is moved out (sweep_auto.c): beyond src's
+   * end the separation opens like the rigid gap x^2/2 and the film is
+   * cavitated (p_f = 0) */
+  bool beyond = dst->rough && dst->cfg.x_max_a0 > src->cfg.x_max_a0 + START_END_SLACK_A0;
   const double *ys = N_VGetArrayPointer(src->y);
   double *y = N_VGetArrayPointer(dst->y);
   vl_contact_set_speed(dst, v0);
-  for (size_t i = 0; i < dst->nc; i++)
-    y[i] = interpolate(ys, src->xi, src->n, dst->xi[i]);
-  for (size_t i = 0; i < dst->nf; i++)
-    y[dst->of + i] = interpolate(ys + src->of, src->xi, src->n, dst->xi[i]);
+  double x_end = src->xi[src->n - 1];
+  for (size_t i = 0; i < dst->nc; i++) {
+    double x = dst->xi[i];
+    y[i] = interpolate(ys, src->xi, src->n, x);
+    if (beyond && x > x_end) y[i] += 0.5 * (x * x - x_end * x_end);
+  }
+  for (size_t i = 0; i < dst->nf; i++) {
+    double x = dst->xi[i];
+    y[dst->of + i] = beyond && x > x_end ? 0.0 : interpolate(ys + src->of, src->xi, src->n, x);
+  }
   y[dst->ih] = ys[src->ih];
   dst->kappa = src->kappa, dst->lambda = src->lambda, dst->rscale = src->rscale;
   dst->u_ref = src->u_ref;

@@ -20,8 +20,12 @@
  * at most 10 % a cell to the background width max(a/60, L_h/80) inside the
  * contact, and further upstream to inlet cells of a twentieth of the inlet;
  * the domain runs from a + 60 L_h (at least 2 a0 beyond the contact)
- * upstream to max(a + 0.6 a0, 2 L_h) downstream. Rough films keep at least
- * the validated rough inlet (VL_WET_ROUGH_DOMAIN_MIN_A0). */
+ * upstream to max(a + 0.6 a0, 2 L_h) downstream. Rough films (their film
+ * floored at 0.1 h_rms) are planned only where the edge zone is below a
+ * quarter of a standard a0/30 cell and the fluid carries load (else
+ * vl_plan.standard): edge cells s/8, background a0/120, the validated rough
+ * inlet (VL_WET_ROUGH_DOMAIN_MIN_A0) at least (docs/NUMERICS.md section
+ * 11, "Rough films"). */
 #ifndef VISCOLUBE_NUMERICS_PLAN_H
 #define VISCOLUBE_NUMERICS_PLAN_H
 
@@ -43,6 +47,10 @@ typedef struct {
   double half_width_m; /* contact half-width (m); 0: the relaxed Hertz a0 */
   double resolution;   /* 1 = the standard layout; 0.5 = every width halved, ... */
   double inlet_scale;  /* 1 (or 0) = the standard inlet; 2 = twice as long, ... */
+  double outlet_scale; /* 1 (or 0) = the standard outlet; 2 = twice as far, ... */
+  double fluid_share;  /* a rough film: the fluid's share of the load expected (the
+                        * last point's); below 1 % the standard cells are kept */
+  bool planned;        /* a rough film on planned cells now (kept planned longer) */
 } vl_plan_input;
 
 /* A planned layout: the configuration to give vl_contact_create (a copy of
@@ -53,6 +61,8 @@ typedef struct {
   size_t *spans;                           /* owned */
   double fine_a0, background_a0, inlet_a0; /* cell widths of the layout (a0) */
   double edge_zone_a0, inlet_length_a0;    /* s and L_h (a0) */
+  int standard; /* a rough film whose edge zones the standard graded cells
+                 * resolve: the caller may keep those (the layout is still made) */
   int capped; /* the base grid hit VL_CONTACT_MAX_GRID_LAYOUT or the cells
                * VL_AUTO_MAX_CELLS: the finest cells are wider than planned */
 } vl_plan;
@@ -64,6 +74,10 @@ vl_status vl_plan_wet(const vl_contact_config *base, double v0, const vl_plan_in
                       vl_plan *out, vl_error *err);
 void vl_plan_free(vl_plan *p);
 
+/* The least film a rough film's layout is planned for (m): a fraction of
+ * h_rms (0 for a smooth surface). */
+double vl_plan_rough_film_floor(const vl_contact_config *base);
+
 /* Relative error estimate of mu at a converged point pt of contact c: the
  * point solved again on cells three times as wide (every three cells of c
  * merged; a uniform or graded grid: a third of its cells), started from
@@ -73,5 +87,12 @@ void vl_plan_free(vl_plan *p);
  * overestimate by four). Sets pt->error_estimate (NAN when the coarse
  * solve fails: the caller reports "no estimate"). */
 void vl_contact_estimate_error(vl_contact *c, vl_point *pt);
+
+/* The friction of a rough film's shear beyond the outlet end of c's domain,
+ * relative to pt->mu (0 for any other contact): the Couette shear of the
+ * film leaving the last cell, carried on with its flux theta u and the
+ * Hertz gap x^2/2R (the cavitated film still shears there: a lip seal at
+ * 10 m/s gained 4.6 % of mu with the outlet moved from 1.6 to 12 a0). */
+double vl_contact_outlet_tail(vl_contact *c, const vl_point *pt);
 
 #endif

@@ -62,4 +62,10 @@ vl_status vl_sweep_run(vl_contact *c, size_t n, const double *v0_m_s, const vl_s
                        vl_point *out, vl_sweep_callback cb, void *user, vl_sweep_stats *stats,
                        vl_error *err);
 
+/* Test aid: while on, every refinement of the automatic sweep is taken as
+ * not converged (its finer cells discarded), the path a refinement takes
+ * when its Newton fails; tests/test_auto_refine.c checks that the coarser
+ * point is kept and warned. Not thread-safe; the program never sets it. */
+void vl_sweep_auto_fail_refinements(bool on);
+
 #endif

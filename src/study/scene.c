@@ -42,6 +42,7 @@ typedef enum {
   K_FROM,
   K_TO,
   K_POINTS,
+  K_DIRECTION,
   K_FIELDS_AT,
   K_VISCOELASTIC,
   K_ROUGHNESS,
@@ -84,6 +85,7 @@ static const struct {
     [K_FROM] = {"sweep", "from", true},
     [K_TO] = {"sweep", "to", true},
     [K_POINTS] = {"sweep", "points", true},
+    [K_DIRECTION] = {"sweep", "direction", false},
     [K_FIELDS_AT] = {"sweep", "fields_at", false},
     [K_VISCOELASTIC] = {"effects", "viscoelastic", false},
     [K_ROUGHNESS] = {"effects", "roughness", false},
@@ -373,6 +375,16 @@ static int sweep_key(parse_state *ps, key_id id, const char *section, const char
   case K_POINTS:
     if (!parse_size(value, &sc->points) || sc->points > 100000)
       return fail(ps, section, key, "expected a whole number in [1, 100000], got '%s'", value);
+    return 1;
+  case K_DIRECTION:
+    if (!strcmp(value, "up"))
+      sc->direction = VL_DIRECTION_UP;
+    else if (!strcmp(value, "down"))
+      sc->direction = VL_DIRECTION_DOWN;
+    else if (!strcmp(value, "both"))
+      sc->direction = VL_DIRECTION_BOTH;
+    else
+      return fail(ps, section, key, "expected up, down or both, got '%s'", value);
     return 1;
   case K_FIELDS_AT: {
     int n = parse_list(value, sc->fields_at, VL_FIELDS_AT_MAX);
@@ -686,6 +698,12 @@ static vl_status scene_check(parse_state *ps) {
   if (!ps->key_line[K_ROD_DIAMETER] != !ps->key_line[K_STROKE_LENGTH])
     return check_fail(ps, ps->key_line[K_ROD_DIAMETER] ? K_ROD_DIAMETER : K_STROKE_LENGTH,
                       "the volumes per cycle need both rod_diameter_m and stroke_length_m");
+  if (sc->direction == VL_DIRECTION_BOTH && sc->stroke == VL_STROKE_BOTH)
+    return check_fail(ps, K_DIRECTION,
+                      "direction = both with [seal] stroke = both would make four curves: "
+                      "sweep one stroke both ways, or both strokes one way");
+  if (sc->direction != VL_DIRECTION_UP && sc->points < 2)
+    return check_fail(ps, K_DIRECTION, "a direction needs points >= 2");
   if (sc->stroke != VL_STROKE_NONE && !sc->effects.fluid)
     return check_fail(ps, K_STROKE, "a seal's strokes need [effects] fluid = on");
   if (sc->stroke != VL_STROKE_NONE && sc->moving != VL_MOVING_COUNTERFACE)
@@ -711,9 +729,10 @@ static vl_status scene_check(parse_state *ps) {
   if (sc->effects.flow_factors != VL_FLOW_FACTORS_SMOOTH && !sc->effects.roughness)
     return check_fail(ps, K_FLOW_FACTORS, "%s needs [effects] roughness = on",
                       vl_flow_factors_name(sc->effects.flow_factors));
-  /* a range given high to low is the same set of speeds: the sweep still
-   * runs upward, from the boundary regime, where its first solve is the
-   * easiest (docs/NUMERICS.md section 8) */
+  /* a range given high to low is the same set of speeds: the sweep runs
+   * upward unless [sweep] direction says otherwise, from the boundary
+   * regime, where its first solve is the easiest (docs/NUMERICS.md
+   * section 8) */
   if (sc->points > 1 && sc->to < sc->from) {
     double high = sc->from;
     sc->from = sc->to, sc->to = high;

@@ -216,6 +216,14 @@ static vl_status build_speeds(vl_simulation *sim, vl_error *err) {
       if (fabs(sim->v0[i] - fv[k]) <= 1e-9 * fv[k]) sim->fields[i] = true;
   sim->n = m;
   free(fv);
+  /* [sweep] direction = down: the speeds in the order the sweep visits
+   * them, from the top (with their fields flags) */
+  for (size_t i = 0; sc->direction == VL_DIRECTION_DOWN && i < m / 2; i++) {
+    double v = sim->v0[i];
+    bool f = sim->fields[i];
+    sim->v0[i] = sim->v0[m - 1 - i], sim->fields[i] = sim->fields[m - 1 - i];
+    sim->v0[m - 1 - i] = v, sim->fields[m - 1 - i] = f;
+  }
   return VL_OK;
 }
 
@@ -613,12 +621,62 @@ static vl_status run_instroke(vl_simulation *sim, vl_point *out, vl_error *err) 
   return s == VL_ENOCONV ? VL_OK : s;
 }
 
+/* Whether the upward point p and the downward q at its speed are two
+ * states: their mu differ by more than the target and both estimates (a
+ * point without an estimate counts the target) can explain. */
+static bool two_states(const vl_point *p, const vl_point *q, double target) {
+  if (!p->converged || !q->converged) return false;
+  double e = target > 0.0 ? target : VL_TARGET_ERROR_DEFAULT;
+  double ep = isnan(p->error_estimate) ? e : p->error_estimate;
+  double eq = isnan(q->error_estimate) ? e : q->error_estimate;
+  return fabs(p->mu - q->mu) > (e + ep + eq) * fmax(fabs(p->mu), fabs(q->mu));
+}
+
+/* [sweep] direction = both: the sweep again from the top, each of its
+ * points merged into the upward point at its speed (vl_down_result); where
+ * the two differ beyond their errors the point says so. */
+static vl_status run_downward(vl_simulation *sim, vl_point *out, vl_error *err) {
+  size_t n = sim->n;
+  vl_point *dn = calloc(n, sizeof *dn);
+  double *v = malloc(n * sizeof *v);
+  if (!dn || !v) {
+    free(dn), free(v);
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  for (size_t i = 0; i < n; i++)
+    v[i] = sim->v0[n - 1 - i];
+  vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  vl_sweep_stats st;
+  vl_status s = vl_sweep_run_auto(&sim->cfg, &o, n, v, dn, NULL, NULL, &st, err);
+  for (size_t i = 0; (s == VL_OK || s == VL_ENOCONV) && i < n; i++) {
+    const vl_point *q = &dn[n - 1 - i];
+    vl_down_result *d = &out[i].down;
+    *d = (vl_down_result){true,          q->converged,  q->mu, q->error_estimate,
+                          q->u_min_m,    q->fluid_load_fraction, false};
+    d->two_states = two_states(&out[i], q, sim->scene.target_error);
+    if (!d->two_states) continue;
+    char w[200];
+    snprintf(w, sizeof w,
+             "two states: mu %.4g sweeping up, %.4g sweeping down (u_min %.3g m and %.3g m): "
+             "a fold of the curve",
+             out[i].mu, q->mu, out[i].u_min_m, q->u_min_m);
+    vl_warnings_append(out[i].warnings, sizeof out[i].warnings, w);
+  }
+  free(dn), free(v);
+  return s == VL_ENOCONV ? VL_OK : s;
+}
+
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err) {
   run_ctx r = {sim, out, cb, user};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
   vl_status st =
       vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
+  if (sim->scene.direction == VL_DIRECTION_BOTH && (st == VL_OK || st == VL_ENOCONV)) {
+    vl_status sd = run_downward(sim, out, err);
+    if (sd != VL_OK) return sd;
+  }
   if (sim->scene.stroke == VL_STROKE_NONE || (st != VL_OK && st != VL_ENOCONV)) return st;
   if (sim->scene.stroke != VL_STROKE_BOTH) {
     for (size_t i = 0; i < sim->n; i++)

@@ -54,6 +54,24 @@ const char *const vl_seal_columns[] = {"stroke",
                                        "tight",
                                        NULL};
 
+/* The columns of a scene swept both ways ([sweep] direction = both). */
+const char *const vl_down_columns[] = {"converged_down",         "mu_down",
+                                       "error_estimate_down",    "u_min_down_m",
+                                       "fluid_load_fraction_down", "two_states",
+                                       NULL};
+
+double vl_down_column_value(const vl_point *p, size_t k) {
+  const vl_down_result *d = &p->down;
+  bool ok = d->swept && d->converged;
+  double v[] = {d->swept ? (d->converged ? 1.0 : 0.0) : NAN,
+                ok ? d->mu : NAN,
+                ok ? d->error_estimate : NAN,
+                ok ? d->u_min_m : NAN,
+                ok ? d->fluid_load_fraction : NAN,
+                d->swept ? (d->two_states ? 1.0 : 0.0) : NAN};
+  return k < sizeof v / sizeof *v ? v[k] : NAN;
+}
+
 static const char *stroke_name(int s) {
   return s == VL_STROKE_OUT ? "out" : s == VL_STROKE_IN ? "in" : s == VL_STROKE_BOTH ? "both" : "";
 }
@@ -130,10 +148,13 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
   print_model_comment(out, meta);
   print_shear_comment(out, meta);
   bool seal = n > 0 && pts[0].seal.stroke != VL_STROKE_NONE;
+  bool down = n > 0 && pts[0].down.swept;
   for (size_t c = 0; vl_curve_columns[c]; c++)
     fprintf(out, "%s%s", c ? "," : "", vl_curve_columns[c]);
   for (size_t c = 0; seal && vl_seal_columns[c]; c++)
     fprintf(out, ",%s", vl_seal_columns[c]);
+  for (size_t c = 0; down && vl_down_columns[c]; c++)
+    fprintf(out, ",%s", vl_down_columns[c]);
   fputc('\n', out);
   for (size_t i = 0; i < n; i++) {
     const vl_point *p = &pts[i];
@@ -169,6 +190,14 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
     /* warnings never contain commas or quotes (contact.c writes them) */
     fprintf(out, ",%s", p->warnings);
     if (seal) seal_cells(out, p);
+    for (size_t c = 0; down && vl_down_columns[c]; c++) {
+      double v = vl_down_column_value(p, c);
+      bool flag = c == 0 || !vl_down_columns[c + 1]; /* converged_down, two_states */
+      if (flag && isfinite(v))
+        fprintf(out, ",%d", (int)v);
+      else
+        cell(out, v, 1);
+    }
     fputc('\n', out);
   }
 }
@@ -262,6 +291,16 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
       else
         vl_json_null(w);
     }
+  }
+  const vl_down_result *d = &p->down;
+  if (d->swept) {
+    vl_json_key(w, "converged_down");
+    vl_json_bool(w, d->converged);
+    for (size_t c = 1; vl_down_columns[c + 1]; c++)
+      member(w, vl_down_columns[c], vl_down_column_value(p, c),
+             isfinite(vl_down_column_value(p, c)));
+    vl_json_key(w, "two_states");
+    vl_json_bool(w, d->two_states);
   }
   if (meta->flow_factors) {
     vl_json_key_string(w, "flow_factors", meta->flow_factors);

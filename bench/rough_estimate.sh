@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Estimate against true error on rough wet films (issue 31; docs/NUMERICS.md
+# section 11, "Rough films: measured"). Runs each scene of bench/rough/ with the
+# automatic numerics and again as a reference (every cell width times REF_RES,
+# default 1/8, the domain's ends still checked, no refinement), and prints a
+# markdown table: per scene the points, the true error of mu (max, median), how
+# many estimates are at least the true error and at least a third of it, and the
+# time per curve.
+#   bench/rough_estimate.sh PROGRAM [OUT_DIR]      e.g. build/viscolube /tmp/rough
+# The scenes need the wiper's EPDM (a shear DMA export, EPDM_CSV), the glass and
+# steel surfaces and the O-ring's oil; they are added to a fresh database in OUT_DIR.
+# One core; the reference runs take minutes (the wiper's: about 10 on an idle core).
+set -euo pipefail
+prog=$(realpath "$1"); out=${2:-/tmp/rough-estimate}
+here=$(cd "$(dirname "$0")" && pwd)
+epdm=${EPDM_CSV:-$here/../../shared/data/real/marcusni96_epdm_70_tf_015p.csv}
+ref=${REF_RES:-0.125}
+mkdir -p "$out"
+export VISCOLUBE_DB="$out/materials.db" OPENBLAS_NUM_THREADS=1
+if [ ! -f "$VISCOLUBE_DB" ]; then
+  "$prog" compound add epdm --measured "$epdm" --moduli shear --nu 0.5 >/dev/null
+  "$prog" surface add glass --self-affine --hurst 0.8 --q0 1e6 --q1 1e9 --hrms 10e-9 >/dev/null
+  "$prog" surface add steel02 --self-affine --hurst 0.8 --q0 1e5 --q1 1e9 --hrms 0.2e-6 >/dev/null
+  "$prog" fluid add oil046 --viscosity 0.046 --description "O-ring oil (issue 31)" >/dev/null
+fi
+for scene in "$here"/rough/*.ini "$here"/../cases/fig15.ini; do
+  name=$(basename "$scene" .ini)
+  s0=$(date +%s.%N)
+  "$prog" run "$scene" --out "$out/$name" --quiet >/dev/null || true
+  echo "$(echo "$(date +%s.%N) - $s0" | bc)" > "$out/$name.seconds"
+  [ -f "$out/$name-ref/curve.csv" ] ||
+    VISCOLUBE_AUTO_RESOLUTION=$ref "$prog" run "$scene" --out "$out/$name-ref" --quiet >/dev/null || true
+done
+python3 - "$out" <<'PY'
+import csv, statistics, sys, os
+out = sys.argv[1]
+def rows(p):
+    return list(csv.DictReader(l for l in open(p) if not l.startswith('#')))
+print("| scene | points | true error max / median | estimate >= true | estimate >= true/3 | s per curve |")
+print("|---|---|---|---|---|---|")
+for name in sorted(n for n in os.listdir(out) if os.path.isdir(os.path.join(out, n)) and not n.endswith('-ref')):
+    try:
+        a, r = rows(f"{out}/{name}/curve.csv"), rows(f"{out}/{name}-ref/curve.csv")
+    except FileNotFoundError:
+        continue
+    errs, ge, ge3, n = [], 0, 0, 0
+    for x, y in zip(a, r):
+        if x['converged'] != '1' or y['converged'] != '1':
+            continue
+        t = abs(float(x['mu']) - float(y['mu'])) / abs(float(y['mu']))
+        e = float(x['error_estimate']) if x['error_estimate'] else float('nan')
+        errs.append(t); n += 1
+        ge += e >= t; ge3 += e >= t / 3
+    sec = open(f"{out}/{name}.seconds").read().strip()
+    if errs:
+        print(f"| {name} | {n} | {100*max(errs):.2g} / {100*statistics.median(errs):.2g} % | {ge} of {n} | {ge3} of {n} | {float(sec):.2f} |")
+PY
