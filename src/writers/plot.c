@@ -1031,10 +1031,13 @@ static bool draw_half_load(fig *f, const curve_ctx *c, const double *wx, const d
 }
 
 /* Series c of the Stribeck figure: mu, its four components, and (a seal's
- * both strokes) the instroke's mu (NAN where it did not converge). */
+ * both strokes) the instroke's mu, or (a scene swept both ways) the
+ * downward sweep's (NAN where it did not converge). */
 static double component(const vl_point *p, int c) {
   switch (c) {
-  case 5: return p->seal.in_converged ? p->seal.in_mu : NAN;
+  case 5:
+    if (p->down.swept) return p->down.converged ? p->down.mu : NAN;
+    return p->seal.in_converged ? p->seal.in_mu : NAN;
   case 0: return p->mu;
   case 1: return p->mu_Rc;
   case 2: return p->mu_Rf;
@@ -1056,7 +1059,9 @@ static void draw_stribeck(fig *f, const void *vctx) {
   const style styles[6] = {{PALETTE[1], 1, 3.0}, {PALETTE[0], 3, 2.0}, {PALETTE[4], 3, 2.0},
                            {PALETTE[2], 1, 2.0}, {PALETTE[3], 1, 2.0}, {BLACK, 3, 2.5}};
   size_t n = c->n;
-  int series = n && c->pts[0].seal.stroke == VL_STROKE_BOTH ? 6 : 5;
+  bool down = n && c->pts[0].down.swept; /* [sweep] direction = both */
+  int series = n && (c->pts[0].seal.stroke == VL_STROKE_BOTH || down) ? 6 : 5;
+  const char *second = down ? "sweeping up" : "outstroke";
   double *wx = calloc(n, sizeof *wx), *wy = calloc(7 * n, sizeof *wy);
   bool *ok = calloc(n, sizeof *ok);
   if (!wx || !wy || !ok) {
@@ -1115,10 +1120,12 @@ static void draw_stribeck(fig *f, const void *vctx) {
     if (!shown[k]) continue;
     char label[2 * TEXT_MAX];
     if (k == 0 && alone)
-      snprintf(label, sizeof label, "#<0x11>μ#<0x01>%s = %s", series == 6 ? " outstroke" : "",
-               names[alone]);
+      snprintf(label, sizeof label, "#<0x11>μ#<0x01>%s%s = %s", series == 6 ? " " : "",
+               series == 6 ? second : "", names[alone]);
     else if (k == 0 && series == 6)
-      snprintf(label, sizeof label, "%s, outstroke", names[0]);
+      snprintf(label, sizeof label, "%s, %s", names[0], second);
+    else if (k == 5 && down)
+      snprintf(label, sizeof label, "%s", "#<0x11>μ#<0x01> total, sweeping down");
     else
       snprintf(label, sizeof label, "%s", names[k]);
     add_legend(f, label, true, styles[k], M_NONE, false, BLACK);
