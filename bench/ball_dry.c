@@ -46,21 +46,20 @@ typedef struct {
 static int run_once(const vl_point_contact_config *cfg, double v0, one_run *r) {
   vl_error err;
   vl_point pt;
-  vl_ball_result ball;
   double t0 = cpu_s();
   vl_point_contact *c = NULL;
   if (vl_point_contact_create(cfg, &c, &err) != VL_OK) {
     fprintf(stderr, "ball_dry: %s\n", err.msg);
     return 1;
   }
-  vl_status st = vl_point_contact_solve(c, v0, &pt, &ball, &err);
+  vl_status st = vl_point_contact_solve(c, v0, &pt, &err);
   r->fresh_s = cpu_s() - t0;
   r->timing = c->timing;
   r->mu = pt.mu, r->iterations = pt.iterations;
-  r->cells = c->n, r->in_contact = ball.cells_in_contact;
+  r->cells = c->n, r->in_contact = pt.ball.cells_in_contact;
   if (st == VL_OK) {
     t0 = cpu_s();
-    st = vl_point_contact_solve(c, 1.25 * v0, &pt, &ball, &err);
+    st = vl_point_contact_solve(c, 1.25 * v0, &pt, &err);
     r->continued_s = cpu_s() - t0;
     r->iterations_continued = pt.iterations;
   }

@@ -55,10 +55,10 @@ static vl_point_contact *make(double einf_over_e0, double cells_per_a0, double h
 }
 
 /* Solves at the Deborah number De = v0 tau / a0 (0: v0 = 0). */
-static void solve_de(vl_point_contact *c, double de, vl_point *pt, vl_ball_result *ball) {
+static void solve_de(vl_point_contact *c, double de, vl_point *pt) {
   vl_error err;
   double v0 = de * vl_point_contact_a0(c) / TAU;
-  if (vl_point_contact_solve(c, v0, pt, ball, &err) != VL_OK) fail_msg("solve: %s", err.msg);
+  if (vl_point_contact_solve(c, v0, pt, &err) != VL_OK) fail_msg("solve: %s", err.msg);
   assert_true(pt->converged);
   assert_true(pt->load_error < 1e-9);
 }
@@ -70,12 +70,11 @@ typedef struct {
   double radius, peak, approach;
 } hertz_err;
 
-static hertz_err hertz_errors(const vl_point_contact *c, const vl_point *pt,
-                              const vl_ball_result *ball, double ratio) {
+static hertz_err hertz_errors(const vl_point_contact *c, const vl_point *pt, double ratio) {
   double a0 = vl_point_contact_a0(c), p0 = vl_point_contact_p0(c);
   double a = a0 * cbrt(1.0 / ratio), p = p0 * cbrt(ratio * ratio); /* a ~ Er^-1/3, p ~ Er^2/3 */
   double delta = -N_VGetArrayPointer(c->y)[c->n] * c->uscale;      /* Hertz: a^2/R */
-  hertz_err e = {sqrt(ball->contact_area_m2 / M_PI) / a - 1.0, pt->peak_pressure_pa / p - 1.0,
+  hertz_err e = {sqrt(pt->ball.contact_area_m2 / M_PI) / a - 1.0, pt->peak_pressure_pa / p - 1.0,
                  delta / (a * a / RADIUS) - 1.0};
   return e;
 }
@@ -91,12 +90,11 @@ static void test_hertz_elastic(void **state) {
   for (size_t k = 0; k < 3; k++) {
     vl_point_contact *c = make(1.0, r[k], 0.0);
     vl_point pt;
-    vl_ball_result ball;
-    solve_de(c, 0.0, &pt, &ball);
-    e[k] = hertz_errors(c, &pt, &ball, 1.0);
+    solve_de(c, 0.0, &pt);
+    e[k] = hertz_errors(c, &pt, 1.0);
     printf("Hertz r %2.0f: radius %+.2e peak %+.2e approach %+.2e mu_Rc %.1e (%zu cells in "
            "contact, %ld iterations)\n",
-           r[k], e[k].radius, e[k].peak, e[k].approach, pt.mu_Rc, ball.cells_in_contact,
+           r[k], e[k].radius, e[k].peak, e[k].approach, pt.mu_Rc, pt.ball.cells_in_contact,
            pt.iterations);
     assert_true(fabs(pt.mu_Rc) < 1e-12);
     assert_true(pt.x_centroid_m == 0.0 || fabs(pt.x_centroid_m) < 1e-12 * vl_point_contact_a0(c));
@@ -117,14 +115,13 @@ static void test_hertz_elastic(void **state) {
 static void test_viscoelastic_limits(void **state) {
   (void)state;
   vl_point pt;
-  vl_ball_result ball;
   vl_point_contact *c = make(10.0, 16, 0.0);
-  solve_de(c, 1e-7, &pt, &ball);
-  hertz_err lo = hertz_errors(c, &pt, &ball, 1.0);
+  solve_de(c, 1e-7, &pt);
+  hertz_err lo = hertz_errors(c, &pt, 1.0);
   vl_point_contact_free(c);
   c = make(10.0, 32, 0.6);
-  solve_de(c, 1e7, &pt, &ball);
-  hertz_err hi = hertz_errors(c, &pt, &ball, 10.0);
+  solve_de(c, 1e7, &pt);
+  hertz_err hi = hertz_errors(c, &pt, 10.0);
   vl_point_contact_free(c);
   printf("relaxed limit: radius %+.2e peak %+.2e; glassy: radius %+.2e peak %+.2e\n", lo.radius,
          lo.peak, hi.radius, hi.peak);
@@ -142,8 +139,7 @@ static void test_rolling_over_speed(void **state) {
   vl_point_contact *c = make(10.0, 12, 0.0);
   for (size_t k = 0; k < n; k++) {
     vl_point pt;
-    vl_ball_result ball;
-    solve_de(c, de[k], &pt, &ball);
+    solve_de(c, de[k], &pt);
     mu[k] = pt.mu_Rc * RADIUS / vl_point_contact_a0(c);
     printf("De %6.2f: mu_Rc R/a0 %.5f centroid %+.4f a0, %ld iterations\n", de[k], mu[k],
            pt.x_centroid_m / vl_point_contact_a0(c), pt.iterations);
@@ -170,8 +166,7 @@ static void test_fourier_reference(void **state) {
   vl_point_contact *c = make(10.0, 12, 0.0);
   for (size_t k = 0; k < 3; k++) {
     vl_point pt;
-    vl_ball_result ball;
-    solve_de(c, de[k], &pt, &ball);
+    solve_de(c, de[k], &pt);
     double mu = pt.mu_Rc * RADIUS / vl_point_contact_a0(c);
     vl_oracle_ball_problem pb = {.nx = c->nx,
                                  .ny = c->ny,
@@ -205,8 +200,7 @@ static void test_grid_convergence(void **state) {
   for (size_t k = 0; k < 5; k++) {
     vl_point_contact *c = make(10.0, r[k], 1.1);
     vl_point pt;
-    vl_ball_result ball;
-    solve_de(c, 1.0, &pt, &ball);
+    solve_de(c, 1.0, &pt);
     mu[k] = pt.mu_Rc;
     vl_point_contact_free(c);
   }
@@ -215,6 +209,34 @@ static void test_grid_convergence(void **state) {
            100.0 * (mu[k] / mu[4] - 1.0));
     if (k >= 1) assert_true(fabs(mu[k] / mu[4] - 1.0) < 5e-3);
   }
+}
+
+/* At low speed the memory shifts the relaxed Hertz contact upstream by
+ * s = A b/(1 + A), b = v0 tau (to first order in b/a0: the gap equation
+ * Jr0 W - Jinf A b W' = -h0 - f is solved by the relaxed Hertz pressure
+ * moved by s), so mu_Rc R/a0 -> (A/(1 + A)) De = 0.9 De for Einf/E0 = 10.
+ * The cells resolve this limit slowly: the memory samples the displacement
+ * of the piecewise-constant pressure within b of each node, and at the
+ * contact's edge that pressure jumps to zero. Measured at De = 1e-3:
+ * -14.9, -9.0, -7.1, -6.5, -5.3 % at 8, 12, 16, 20, 24 cells per a0 (order
+ * about 0.6). Asserted: the error falls with the cells and is below 8 %
+ * at 20 (docs/POINT_CONTACT.md section 6 discusses it). */
+static void test_low_speed_limit(void **state) {
+  (void)state;
+  const double r[] = {12, 20};
+  double err[2];
+  for (size_t k = 0; k < 2; k++) {
+    vl_point_contact *c = make(10.0, r[k], 1.1);
+    vl_point pt;
+    solve_de(c, 1e-3, &pt);
+    err[k] = pt.mu_Rc * RADIUS / vl_point_contact_a0(c) / (0.9 * 1e-3) - 1.0;
+    printf("De 1e-3, %2.0f cells per a0: mu_Rc R/a0 / (0.9 De) - 1 = %+.2f %%\n", r[k],
+           100.0 * err[k]);
+    vl_point_contact_free(c);
+  }
+  assert_true(err[0] < 0.0 && err[1] < 0.0);
+  assert_true(fabs(err[1]) < fabs(err[0]));
+  assert_true(fabs(err[1]) < 0.08);
 }
 
 /* A bad configuration is refused, naming the field. */
@@ -247,7 +269,7 @@ static void test_bad_config(void **state) {
   }
   vl_point pt;
   assert_int_equal(vl_point_contact_create(&cfg, &c, &err), VL_OK);
-  assert_int_equal(vl_point_contact_solve(c, -1.0, &pt, NULL, &err), VL_EINPUT);
+  assert_int_equal(vl_point_contact_solve(c, -1.0, &pt, &err), VL_EINPUT);
   assert_false(pt.converged);
   vl_point_contact_free(c);
 }
@@ -256,7 +278,8 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_hertz_elastic),      cmocka_unit_test(test_viscoelastic_limits),
       cmocka_unit_test(test_rolling_over_speed), cmocka_unit_test(test_fourier_reference),
-      cmocka_unit_test(test_grid_convergence),   cmocka_unit_test(test_bad_config),
+      cmocka_unit_test(test_grid_convergence),   cmocka_unit_test(test_low_speed_limit),
+      cmocka_unit_test(test_bad_config),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -29,6 +29,7 @@
 #include "viscolube/results.h"
 #include "viscolube/rheology.h"
 #include "viscolube/status.h"
+#include "viscolube/sweep.h"
 
 /* Numerics of a dry ball (measured in docs/POINT_CONTACT.md section 5):
  * square cells of a0/VL_BALL_CELLS_PER_A0 on [-L, L] x [0, L] a0,
@@ -74,19 +75,11 @@ void vl_point_contact_free(vl_point_contact *c);
 
 /* Solves at sliding speed v0 >= 0 (m/s; 0: the relaxed elastic contact)
  * from the current state (the last solution, else Hertz), then from
- * Hertz. On return *pt is filled; pt->converged says whether the solve met
- * the tolerance. When it did not, the state is the one before the call and
- * VL_ENOCONV is returned (err says why); never NaN. The ball's own
- * quantities (contact area, extents) are in *ball when not NULL. */
-typedef struct {
-  double contact_area_m2;   /* area where the solids touch (both halves) */
-  double contact_length_m;  /* extent along x (sliding), at y = 0 */
-  double contact_breadth_m; /* extent along y (both halves), at the widest */
-  double y_peak_m;          /* where the peak pressure is, across (>= 0) */
-  size_t cells_in_contact;  /* on the solved half */
-} vl_ball_result;
-vl_status vl_point_contact_solve(vl_point_contact *c, double v0_m_s, vl_point *pt,
-                                 vl_ball_result *ball, vl_error *err);
+ * Hertz. On return *pt is filled, with the ball's own quantities (contact
+ * area, extents) in pt->ball; pt->converged says whether the solve met the
+ * tolerance. When it did not, the state is the one before the call and
+ * VL_ENOCONV is returned (err says why); never NaN. */
+vl_status vl_point_contact_solve(vl_point_contact *c, double v0_m_s, vl_point *pt, vl_error *err);
 
 /* The fields of the solved half y >= 0, SI, cell by cell (cell
  * k = ix ny + iy: y runs fastest), arrays of vl_point_contact_cells(c)
@@ -97,7 +90,40 @@ typedef struct {
 void vl_point_contact_fields(const vl_point_contact *c, vl_fields2d *f);
 
 size_t vl_point_contact_cells(const vl_point_contact *c); /* on the solved half */
-double vl_point_contact_a0(const vl_point_contact *c);    /* m */
-double vl_point_contact_p0(const vl_point_contact *c);    /* Pa */
+
+/* Hertz's contact ellipse of an elastic half-space (reduced modulus er_pa)
+ * under a rigid ellipsoid of radii Rx, Ry and load W: the semi-axes along
+ * x and y (m) and the peak pressure (Pa; p0_pa may be NULL), from the
+ * complete elliptic integrals (Johnson, Contact Mechanics, section 4.2).
+ * VL_EINPUT unless every input is positive. */
+vl_status vl_hertz_ellipse(double radius_x_m, double radius_y_m, double load_n, double er_pa,
+                           double *ax_m, double *by_m, double *p0_pa);
+
+/* Called once per speed of a curve, in order, with the contact that solved
+ * the point (its fields: vl_point_contact_fields), NULL when the point did
+ * not converge. */
+typedef void (*vl_point_contact_callback)(void *user, size_t index, size_t total,
+                                          const vl_point *pt, const vl_point_contact *contact);
+
+/* A curve: the points v0_m_s[0..n-1] of the contact base describes, each
+ * on its own cells (automatic numerics, docs/POINT_CONTACT.md section 5:
+ * the domain around the contact ellipse Hertz predicts with the rubber's
+ * modulus at the frequency v0/a, VL_BALL_CELLS_PER_A0 cells across its
+ * shorter semi-axis, a larger domain when the contact reaches its edge),
+ * solved from the Hertz guess (else by continuation from the previous
+ * point's speed on the same cells), with an error estimate (the point on
+ * cells twice as wide) and refinement to opt->target_error (every cell
+ * size divided by sqrt 2, up to opt->max_refinements times).
+ * opt->keep_numerics: base's cells and domain for every point (each still
+ * estimated). opt may be NULL (the defaults of sweep.h). Each point is
+ * reported in out[i] and through cb (may be NULL). Returns VL_OK even when
+ * points failed (stats says how many); an error only for a bad base
+ * (VL_EINPUT naming the field) or when out of memory. */
+vl_status vl_point_contact_sweep(const vl_point_contact_config *base, const vl_auto_options *opt,
+                                 size_t n, const double *v0_m_s, vl_point *out,
+                                 vl_point_contact_callback cb, void *user, vl_sweep_stats *stats,
+                                 vl_error *err);
+double vl_point_contact_a0(const vl_point_contact *c); /* m */
+double vl_point_contact_p0(const vl_point_contact *c); /* Pa */
 
 #endif

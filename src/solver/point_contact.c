@@ -105,6 +105,7 @@ static void set_scales(vl_point_contact *c) {
   c->p0 = 3.0 * cfg->load_n / (2.0 * M_PI * c->a0 * c->a0);
   c->uscale = c->a0 * c->a0 / c->re;
   c->gx = c->re / cfg->radius_x_m, c->gy = c->re / cfg->radius_y_m;
+  c->geometry = cfg->radius_x_m == cfg->radius_y_m ? VL_GEOMETRY_BALL : VL_GEOMETRY_ELLIPSOID;
   c->kfac = 2.0 / (M_PI * M_PI) * c->er0 / c->er_inf;
   cell_counts(cfg, &c->nx, &c->ny);
   c->n = c->nx * c->ny, c->nunk = c->n + 1, c->i0 = (c->nx - 1) / 2;

@@ -29,6 +29,7 @@ typedef struct {
 
 struct vl_point_contact {
   vl_point_contact_config cfg;
+  int geometry;                           /* VL_GEOMETRY_BALL (Rx = Ry) or VL_GEOMETRY_ELLIPSOID */
   size_t nx, ny, n, nunk;                 /* cells along x and across, cells, unknowns (n + 1) */
   size_t i0;                              /* the column of cells on the axis x = 0 */
   double h;                               /* cell size / a0 */

@@ -215,8 +215,8 @@ static double contact_breadth(const vl_point_contact *c) {
   return 2.0 * top;
 }
 
-/* Fills pt (and ball) from the converged state. */
-static void report(vl_point_contact *c, vl_point *pt, vl_ball_result *ball) {
+/* Fills pt (and pt->ball) from the converged state. */
+static void report(vl_point_contact *c, vl_point *pt) {
   vl_point_contact_eval(c, N_VGetArrayPointer(c->y));
   const vl_point_contact_config *cfg = &c->cfg;
   size_t n = c->n, ny = c->ny, imax = 0, iumin = 0, in = 0;
@@ -254,13 +254,15 @@ static void report(vl_point_contact *c, vl_point *pt, vl_ball_result *ball) {
   pt->eps_f_min = 1.0;
   if (edge) add_warning(pt, "contact reaches the domain edge (domain too small)");
   if (len < 8.0 * c->h) add_warning(pt, "fewer than 8 cells across the contact");
-  if (ball) {
-    ball->contact_area_m2 = area;
-    ball->contact_length_m = len * c->a0;
-    ball->contact_breadth_m = contact_breadth(c) * c->a0;
-    ball->y_peak_m = c->Y[imax] * c->a0;
-    ball->cells_in_contact = in;
-  }
+  vl_ball_result *ball = &pt->ball;
+  ball->contact_area_m2 = area;
+  ball->contact_length_m = len * c->a0;
+  ball->contact_breadth_m = contact_breadth(c) * c->a0;
+  ball->y_min_film_m = c->Y[iumin] * c->a0;
+  ball->y_peak_m = c->Y[imax] * c->a0;
+  ball->cells_in_contact = in;
+  ball->cells_per_a0 = cfg->cells_per_a0;
+  ball->x_half_a0 = cfg->x_half_a0, ball->y_max_a0 = cfg->y_max_a0;
 }
 
 /* A failed solve: says why, goes back to the state before the call (and
@@ -281,10 +283,9 @@ static vl_status failed(vl_point_contact *c, double v0, double v_before, long nn
   return VL_ENOCONV;
 }
 
-static vl_status solve_at(vl_point_contact *c, double v0, vl_point *pt, vl_ball_result *ball,
-                          vl_error *err) {
+static vl_status solve_at(vl_point_contact *c, double v0, vl_point *pt, vl_error *err) {
   memset(pt, 0, sizeof *pt);
-  if (ball) memset(ball, 0, sizeof *ball);
+  pt->ball.geometry = c->geometry;
   pt->error_estimate = NAN;
   pt->u_min_over_h_rms = NAN;
   pt->v0_m_s = v0;
@@ -312,14 +313,13 @@ static vl_status solve_at(vl_point_contact *c, double v0, vl_point *pt, vl_ball_
   pt->iterations = nni;
   pt->residual = fnorm;
   c->v_state = v0;
-  report(c, pt, ball);
+  report(c, pt);
   return VL_OK;
 }
 
-vl_status vl_point_contact_solve(vl_point_contact *c, double v0_m_s, vl_point *pt,
-                                 vl_ball_result *ball, vl_error *err) {
+vl_status vl_point_contact_solve(vl_point_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
   int threads = vl_blas_pin_one_thread(); /* the same rounding at any OPENBLAS_NUM_THREADS */
-  vl_status st = solve_at(c, v0_m_s, pt, ball, err);
+  vl_status st = solve_at(c, v0_m_s, pt, err);
   vl_blas_restore_threads(threads);
   return st;
 }
@@ -336,6 +336,15 @@ void vl_point_contact_fields(const vl_point_contact *c, vl_fields2d *f) {
 }
 
 size_t vl_point_contact_cells(const vl_point_contact *c) { return c->n; }
+
+const char *vl_geometry_name(int geometry) {
+  switch (geometry) {
+  case VL_GEOMETRY_CYLINDER: return "cylinder";
+  case VL_GEOMETRY_BALL: return "ball";
+  case VL_GEOMETRY_ELLIPSOID: return "ellipsoid";
+  }
+  return "?";
+}
 
 double vl_point_contact_a0(const vl_point_contact *c) { return c->a0; }
 double vl_point_contact_p0(const vl_point_contact *c) { return c->p0; }
