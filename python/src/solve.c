@@ -260,7 +260,8 @@ static void keep_fields(void *user, size_t i, size_t total, const vl_point *pt,
                         const vl_contact *contact) {
   fields_store *s = user;
   (void)total;
-  if (!vl_simulation_wants_fields(s->sim, i) || !pt->converged || s->failed) return;
+  /* a point contact (geometry = ball) has 2-D fields, not given here yet */
+  if (!vl_simulation_wants_fields(s->sim, i) || !pt->converged || s->failed || !contact) return;
   size_t g = vl_contact_grid(contact);
   double *b = calloc(7 * g, sizeof *b);
   if (!b || s->n == s->cap) {
@@ -302,13 +303,12 @@ static PyObject *fields_list(const fields_store *s, const vl_point *pts, double 
 static PyObject *curve_info(const vl_scene *sc, vl_simulation *sim, const vl_curve_meta *m) {
   PyObject *d = PyDict_New();
   const vl_psd *psd = vl_simulation_psd(sim);
-  const vl_contact *c = vl_simulation_contact(sim);
   if (d &&
       (vlpy_set_text(d, "compound", sc->compound) || vlpy_set_text(d, "surface", sc->surface) ||
        vlpy_set_text(d, "fluid", sc->effects.fluid ? sc->fluid : NULL) ||
        vlpy_set_text(d, "quantity", vl_sweep_quantity_name(sc->quantity)) ||
        vlpy_set_double(d, "eta_pa_s", m->eta_pa_s) || vlpy_set_double(d, "tau_s", m->tau_s) ||
-       vlpy_set_double(d, "a0_m", m->a0_m) || vlpy_set_double(d, "p0_pa", vl_contact_p0(c)) ||
+       vlpy_set_double(d, "a0_m", m->a0_m) || vlpy_set_double(d, "p0_pa", vl_simulation_p0(sim)) ||
        vlpy_set_double(d, "hrms_m", psd ? psd->hrms_m : 0.0) ||
        vlpy_set_text(d, "flow_factors", m->flow_factors) ||
        vlpy_set_double(d, "film_cutoff_m", m->film_cutoff_m) ||
@@ -349,10 +349,12 @@ static PyObject *run_one(vl_db *db, const vl_scene *sc) {
     vlpy_raise(st, &err);
     goto done;
   }
-  vl_contact *c = vl_simulation_contact(s.sim);
-  vl_curve_meta m = {
-      vl_simulation_eta(s.sim),           vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0,
-      vl_simulation_shear_law_text(s.sim)};
+  vl_curve_meta m = {vl_simulation_eta(s.sim),
+                     vl_simulation_tau(s.sim),
+                     vl_simulation_a0(s.sim),
+                     NULL,
+                     0,
+                     vl_simulation_shear_law_text(s.sim)};
   m.flow_factors = vl_simulation_flow_factors(s.sim, &m.film_cutoff_m);
   ret = PyDict_New();
   if (ret && (vlpy_set(ret, "info", curve_info(sc, s.sim, &m)) ||
