@@ -38,6 +38,9 @@ extern const char *const vl_seal_columns[];
  * vl_point.ball) adds after them (and after a seal's), NULL-terminated
  * (docs/FORMATS.md). */
 extern const char *const vl_ball_columns[];
+/* The number in point-contact column k (an index of vl_ball_columns, from 1:
+ * column 0, `geometry`, is a word) of p, NAN where the CSV cell is empty. */
+double vl_ball_column_value(const vl_point *p, size_t k);
 /* The number in seal column k (an index of vl_seal_columns, from 1: column 0,
  * `stroke`, is a word) of p, NAN where the CSV cell is empty. */
 double vl_seal_column_value(const vl_point *p, size_t k);

@@ -132,6 +132,20 @@ static void seal_cells(FILE *out, const vl_point *p) {
     fputc(',', out);
 }
 
+double vl_ball_column_value(const vl_point *p, size_t k) {
+  const vl_ball_result *b = &p->ball;
+  double v[] = {NAN,
+                b->contact_area_m2,
+                b->contact_length_m,
+                b->contact_breadth_m,
+                p->x_min_film_m,
+                b->y_min_film_m,
+                b->y_peak_m,
+                (double)b->cells_in_contact,
+                b->cells_per_a0};
+  return p->converged && k < sizeof v / sizeof *v ? v[k] : NAN;
+}
+
 /* The point-contact columns of p (after its warnings). */
 static void ball_cells(FILE *out, const vl_point *p) {
   const vl_ball_result *b = &p->ball;
