@@ -9,12 +9,13 @@
  * its contact and estimates its error; the pressure along the sliding
  * direction at the fastest speed comes from the sweep's callback. Exit
  * status 0 when every point converged. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "viscolube.h"
 
-#define POINTS 6
+#define POINTS 5
 
 /* Keeps the pressure along y ~ 0 of the last point (the sweep's callback). */
 static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
@@ -74,8 +75,8 @@ int main(int argc, char **argv) {
   /* the curve */
   double v[POINTS];
   vl_point pts[POINTS];
-  for (size_t i = 0; i < POINTS; i++)
-    v[i] = 1e-5 * (double)(1u << (2 * i)); /* 1e-5 ... 1e-2 m/s, x4 */
+  for (size_t i = 0; i < POINTS; i++) /* 1e-3 ... 0.1 m/s: the rise and fall of mu */
+    v[i] = 1e-3 * pow(10.0, 0.5 * (double)i);
   vl_sweep_stats stats;
   int shown = 0;
   if (vl_point_contact_sweep(&cfg, NULL, POINTS, v, pts, on_point, &shown, &stats, &err) != VL_OK) {
