@@ -130,12 +130,14 @@ static vl_status solve_on(const vl_point_contact_config *cfg, double v0, double 
 }
 
 /* The error estimate of pt: the point again on cells twice as wide on the
- * same domain, |mu - mu_coarse| / (sqrt 2 - 1) / |mu|, the error of the
- * finer solve if it fell like the square root of the cell size: the
- * slowest order measured (the rolling friction of the low-speed flank,
- * De << 1, converges like h^0.6 towards its exact limit; Hertz's pressure
- * at second order), so that no point's error is understated.
- * docs/POINT_CONTACT.md section 6. NAN when the coarse solve fails. */
+ * same domain; each term's change over the error of the finer solve at
+ * the slowest order measured for it (docs/POINT_CONTACT.md section 6), so
+ * that no point's error is understated:
+ *   (|d mu_Rc| / (sqrt 2 - 1) + |d mu_Sc|) / |mu|,
+ * the rolling term's error falling like the square root of the cell size
+ * (its low-speed flank, De << 1, converges like h^0.6 towards its exact
+ * limit), the contact area's (mu_Sc) at first order or better. NAN when the
+ * coarse solve fails. */
 static double estimate(const vl_point_contact_config *cfg, double v0, vl_sweep_stats *st,
                        const vl_point *pt) {
   vl_point_contact_config coarse = *cfg;
@@ -147,7 +149,8 @@ static double estimate(const vl_point_contact_config *cfg, double v0, vl_sweep_s
   vl_status s = solve_on(&coarse, v0, 0.0, &c, &cp, st, &e);
   vl_point_contact_free(c);
   if (s != VL_OK) return NAN;
-  return fabs(pt->mu - cp.mu) / (M_SQRT2 - 1.0) / fmax(fabs(pt->mu), 1e-9);
+  double d = fabs(pt->mu_Rc - cp.mu_Rc) / (M_SQRT2 - 1.0) + fabs(pt->mu_Sc - cp.mu_Sc);
+  return d / fmax(fabs(pt->mu), 1e-9);
 }
 
 static void append_warning(vl_point *pt, const char *w) {
