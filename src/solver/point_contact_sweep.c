@@ -27,7 +27,7 @@
 
 /* The domain around the estimated contact (its semi-axes times this):
  * room for a viscoelastic contact's shift to the inlet; a contact that
- * still reaches the edge gets a domain VL_BALL_EDGE_GROWTH times larger. */
+ * still reaches the edge gets a domain BALL_EDGE_GROWTH times larger. */
 #define BALL_AUTO_MARGIN 1.3
 #define BALL_EDGE_GROWTH 1.5
 #define BALL_EDGE_RETRIES 3
