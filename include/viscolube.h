@@ -50,7 +50,8 @@
  *      A contact configured in code (contact.h) is solved point by point
  *      with vl_contact_solve(contact, v0, &pt, &err), or swept with
  *      vl_sweep_run_auto (sweep.h); examples/point.c and examples/stribeck.c
- *      do each in fifty lines. The
+ *      do each in fifty lines. A ball (point_contact.h) is solved point by
+ *      point the same way (examples/ball.c). The
  *      command line's friction query, robustly (continuation when a
  *      direct solve fails), with its defaults: vl_query_friction (query.h).
  *
@@ -88,9 +89,11 @@
 #include "viscolube/prony_fit.h"
 #include "viscolube/topography.h"
 
-/* solver: one operating point, sweeps, results, model-validity checks */
+/* solver: one operating point (a cylinder; a ball), sweeps, results,
+ * model-validity checks */
 #include "viscolube/assumptions.h"
 #include "viscolube/contact.h"
+#include "viscolube/point_contact.h"
 #include "viscolube/results.h"
 #include "viscolube/sweep.h"
 

@@ -34,6 +34,13 @@ extern const char *const vl_curve_columns[];
 /* The columns a seal scene ([seal] stroke; vl_point.seal) adds after them,
  * NULL-terminated (docs/FORMATS.md). */
 extern const char *const vl_seal_columns[];
+/* The columns a point contact ([contact] geometry = ball or ellipsoid;
+ * vl_point.ball) adds after them (and after a seal's), NULL-terminated
+ * (docs/FORMATS.md). */
+extern const char *const vl_ball_columns[];
+/* The number in point-contact column k (an index of vl_ball_columns, from 1:
+ * column 0, `geometry`, is a word) of p, NAN where the CSV cell is empty. */
+double vl_ball_column_value(const vl_point *p, size_t k);
 /* The number in seal column k (an index of vl_seal_columns, from 1: column 0,
  * `stroke`, is a word) of p, NAN where the CSV cell is empty. */
 double vl_seal_column_value(const vl_point *p, size_t k);
@@ -54,6 +61,13 @@ vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
  * cell_width_m when fl->width_m is set (a graded grid's cells differ: the
  * load is sum (p_f + p_c) cell_width). */
 vl_status vl_write_fields_csv(const char *path, const vl_fields *f, double a0_m, vl_error *err);
+
+/* A point contact's fields, the cells of the solved half y >= 0 (the
+ * contact is symmetric in y): x_m, y_m, x_over_a0, y_over_a0, p_c_pa, u_m,
+ * n rows. */
+vl_status vl_write_fields2d_csv(const char *path, size_t n, const double *x_m, const double *y_m,
+                                const double *p_c_pa, const double *u_m, double a0_m,
+                                vl_error *err);
 
 /* JSON (json.h), numbers with 10 significant digits as in the CSV: a
  * point is one object with the keys of the CSV columns (on one line); a

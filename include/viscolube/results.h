@@ -46,6 +46,28 @@ typedef struct {
    * sweep up follows one branch, the sweep down the other) */
   bool two_states;
 } vl_down_result;
+/* The rigid body's shape (a scene's [contact] geometry): the paper's
+ * infinitely long cylinder (contact.h, per unit length), or a ball or an
+ * ellipsoid, a point contact (point_contact.h, total load). */
+typedef enum { VL_GEOMETRY_CYLINDER = 0, VL_GEOMETRY_BALL, VL_GEOMETRY_ELLIPSOID } vl_geometry;
+
+/* "cylinder", "ball", "ellipsoid"; "?" for anything else. */
+const char *vl_geometry_name(int geometry);
+
+/* A point contact's own results, beside the point's (whose mu, pressures,
+ * centroid and films are those of the whole contact, both halves). */
+typedef struct {
+  int geometry;               /* vl_geometry; VL_GEOMETRY_CYLINDER (0): a line contact (no
+                               * point-contact columns) */
+  double contact_area_m2;     /* where the solids touch */
+  double contact_length_m;    /* its extent along x (sliding), near y = 0 */
+  double contact_breadth_m;   /* its widest extent along y */
+  double y_min_film_m;        /* where u is smallest, across (>= 0; x: vl_point.x_min_film_m) */
+  double y_peak_m;            /* where the pressure peaks, across (>= 0) */
+  size_t cells_in_contact;    /* cells of the solved half y >= 0 in contact */
+  double cells_per_a0;        /* the point's resolution (automatic numerics: planned per point) */
+  double x_half_a0, y_max_a0; /* its domain [-x_half, x_half] x [0, y_max], in a0 */
+} vl_ball_result;
 
 /* Result of one operating point, SI units. */
 typedef struct {
@@ -88,6 +110,7 @@ typedef struct {
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
   vl_seal_result seal;        /* stroke VL_STROKE_NONE unless a seal scene */
   vl_down_result down;        /* swept false unless [sweep] direction = both */
+  vl_ball_result ball;        /* geometry VL_GEOMETRY_CYLINDER unless a point contact */
 } vl_point;
 
 /* How a converged point's error estimate compares with its target (the

@@ -61,7 +61,11 @@ typedef struct {
   vl_elastic_choice elastic;
   double elastic_modulus_pa;
   /* [contact] */
-  double radius_m, load_n_per_m, sigma_s_pa;
+  int geometry; /* vl_geometry (results.h): cylinder (0, the default), ball, ellipsoid */
+  /* a cylinder's radius and load per unit length; a ball's radius (radius_y_m
+   * the same) and total load load_n; an ellipsoid's radii radius_m (along
+   * the sliding direction, x) and radius_y_m (across) and load_n */
+  double radius_m, radius_y_m, load_n_per_m, load_n, sigma_s_pa;
   /* sigma_s_pa was given (the scene's key, a query's sigma_s): without it,
    * a scene with solid_shear takes the law of the stored pair of its
    * compound, surface and fluid when there is one (vl_simulation_create) */

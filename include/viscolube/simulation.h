@@ -9,6 +9,7 @@
 
 #include "viscolube/contact.h"
 #include "viscolube/database.h"
+#include "viscolube/point_contact.h"
 #include "viscolube/scene.h"
 #include "viscolube/status.h"
 #include "viscolube/sweep.h"
@@ -32,7 +33,17 @@ size_t vl_simulation_points(const vl_simulation *sim);
 /* True when fields are to be written at point i. */
 bool vl_simulation_wants_fields(const vl_simulation *sim, size_t i);
 
+/* The line contact's solver; NULL for a point contact ([contact] geometry =
+ * ball or ellipsoid), whose points are each solved on their own cells
+ * (vl_simulation_run_point_contact). */
 vl_contact *vl_simulation_contact(vl_simulation *sim);
+/* The Hertz scales of the relaxed modulus (docs/MODEL.md section 9 for a
+ * cylinder, point_contact.h for a ball): a0 (m) and p0 (Pa). */
+double vl_simulation_a0(const vl_simulation *sim);
+double vl_simulation_p0(const vl_simulation *sim);
+/* A point contact's Hertz ellipse with the relaxed modulus (semi-axes along
+ * x and y, m); VL_EINPUT for a cylinder. */
+vl_status vl_simulation_hertz_ellipse(const vl_simulation *sim, double *ax_m, double *by_m);
 double vl_simulation_eta(const vl_simulation *sim); /* Pa s, 0 if no fluid named; with
                                                      * [effects] temperature and fluid on:
                                                      * at the scene's temperature */
@@ -66,5 +77,12 @@ const char *vl_simulation_flow_factors(const vl_simulation *sim, double *film_cu
  * query `friction` needs nothing else. */
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err);
+/* The same for a point contact (vl_point_contact_sweep: automatic numerics
+ * per point, estimates, refinement), cb seeing each point's contact (its
+ * 2-D fields); vl_simulation_run also runs a point contact's scene, its
+ * callback then without a contact. VL_EINPUT for a cylinder. */
+vl_status vl_simulation_run_point_contact(vl_simulation *sim, vl_point *out,
+                                          vl_point_contact_callback cb, void *user,
+                                          vl_sweep_stats *stats, vl_error *err);
 
 #endif

@@ -137,6 +137,24 @@ static PyObject *curve_dict(size_t n, const vl_point *pts, const vl_curve_meta *
       ((double *)PyArray_DATA((PyArrayObject *)o))[i] = vl_down_column_value(&pts[i], c);
     if (vlpy_set(d, vl_down_columns[c], o) < 0) Py_CLEAR(d);
   }
+  /* a point contact's columns: `geometry` a list of words, the others numbers */
+  bool ball = n && pts[0].ball.geometry != VL_GEOMETRY_CYLINDER;
+  for (size_t c = 0; d && ball && vl_ball_columns[c]; c++) {
+    npy_intp dims[1] = {(npy_intp)n};
+    PyObject *o = c == 0 ? PyList_New((Py_ssize_t)n) : PyArray_SimpleNew(1, dims, NPY_DOUBLE);
+    for (size_t i = 0; o && i < n; i++) {
+      if (c > 0) {
+        ((double *)PyArray_DATA((PyArrayObject *)o))[i] = vl_ball_column_value(&pts[i], c);
+        continue;
+      }
+      PyObject *t = PyUnicode_FromString(vl_geometry_name(pts[i].ball.geometry));
+      if (!t)
+        Py_CLEAR(o);
+      else
+        PyList_SET_ITEM(o, (Py_ssize_t)i, t);
+    }
+    if (vlpy_set(d, vl_ball_columns[c], o) < 0) Py_CLEAR(d);
+  }
   return d;
 }
 
@@ -260,8 +278,30 @@ typedef struct {
   size_t n, cap;
   size_t *index;
   vl_fields *fields;
+  double **maps; /* a point contact: x, y, p_c, u of maps_n[k] cells each, in one block */
+  size_t *maps_n;
   int failed;
 } fields_store;
+
+/* A point contact's 2-D fields (the callback of vl_simulation_run_point_contact). */
+static void keep_maps(void *user, size_t i, size_t total, const vl_point *pt,
+                      const vl_point_contact *c) {
+  fields_store *s = user;
+  (void)total;
+  if (!vl_simulation_wants_fields(s->sim, i) || !pt->converged || s->failed || !c) return;
+  size_t g = vl_point_contact_cells(c);
+  double *b = calloc(4 * g, sizeof *b);
+  if (!b || s->n == s->cap) {
+    free(b);
+    s->failed = 1;
+    return;
+  }
+  s->index[s->n] = i;
+  s->maps[s->n] = b;
+  s->maps_n[s->n++] = g;
+  vl_fields2d f = {b, b + g, b + 2 * g, b + 3 * g};
+  vl_point_contact_fields(c, &f);
+}
 
 static void keep_fields(void *user, size_t i, size_t total, const vl_point *pt,
                         const vl_contact *contact) {
@@ -281,8 +321,33 @@ static void keep_fields(void *user, size_t i, size_t total, const vl_point *pt,
   vl_contact_fields(contact, &s->fields[s->n - 1]);
 }
 
+/* A point contact's fields kept, as a list of dicts with the columns of its
+ * fields/NNN.csv (docs/FORMATS.md). */
+static PyObject *maps_list(const fields_store *s, const vl_point *pts, double a0_m) {
+  PyObject *l = PyList_New(0);
+  for (size_t k = 0; l && k < s->n; k++) {
+    size_t g = s->maps_n[k];
+    const double *x = s->maps[k], *y = x + g, *p = x + 2 * g, *u = x + 3 * g;
+    PyObject *d = PyDict_New(), *xa = vlpy_array(x, g), *ya = vlpy_array(y, g);
+    for (size_t i = 0; xa && ya && i < g; i++) {
+      ((double *)PyArray_DATA((PyArrayObject *)xa))[i] /= a0_m;
+      ((double *)PyArray_DATA((PyArrayObject *)ya))[i] /= a0_m;
+    }
+    if (!d || vlpy_set(d, "index", PyLong_FromSize_t(s->index[k])) ||
+        vlpy_set_double(d, "v0_m_s", pts[s->index[k]].v0_m_s) ||
+        vlpy_set(d, "x_m", vlpy_array(x, g)) || vlpy_set(d, "y_m", vlpy_array(y, g)) ||
+        vlpy_set(d, "x_over_a0", xa) || vlpy_set(d, "y_over_a0", ya) ||
+        vlpy_set(d, "p_c_pa", vlpy_array(p, g)) || vlpy_set(d, "u_m", vlpy_array(u, g)) ||
+        PyList_Append(l, d) < 0)
+      Py_CLEAR(l);
+    Py_XDECREF(d);
+  }
+  return l;
+}
+
 /* The fields kept, as a list of dicts with the columns of fields/NNN.csv. */
 static PyObject *fields_list(const fields_store *s, const vl_point *pts, double a0_m) {
+  if (s->maps) return maps_list(s, pts, a0_m);
   PyObject *l = PyList_New(0);
   for (size_t k = 0; l && k < s->n; k++) {
     const vl_fields *f = &s->fields[k];
@@ -309,13 +374,12 @@ static PyObject *fields_list(const fields_store *s, const vl_point *pts, double 
 static PyObject *curve_info(const vl_scene *sc, vl_simulation *sim, const vl_curve_meta *m) {
   PyObject *d = PyDict_New();
   const vl_psd *psd = vl_simulation_psd(sim);
-  const vl_contact *c = vl_simulation_contact(sim);
   if (d &&
       (vlpy_set_text(d, "compound", sc->compound) || vlpy_set_text(d, "surface", sc->surface) ||
        vlpy_set_text(d, "fluid", sc->effects.fluid ? sc->fluid : NULL) ||
        vlpy_set_text(d, "quantity", vl_sweep_quantity_name(sc->quantity)) ||
        vlpy_set_double(d, "eta_pa_s", m->eta_pa_s) || vlpy_set_double(d, "tau_s", m->tau_s) ||
-       vlpy_set_double(d, "a0_m", m->a0_m) || vlpy_set_double(d, "p0_pa", vl_contact_p0(c)) ||
+       vlpy_set_double(d, "a0_m", m->a0_m) || vlpy_set_double(d, "p0_pa", vl_simulation_p0(sim)) ||
        vlpy_set_double(d, "hrms_m", psd ? psd->hrms_m : 0.0) ||
        vlpy_set_text(d, "flow_factors", m->flow_factors) ||
        vlpy_set_double(d, "film_cutoff_m", m->film_cutoff_m) ||
@@ -327,9 +391,13 @@ static PyObject *curve_info(const vl_scene *sc, vl_simulation *sim, const vl_cur
 }
 
 static void store_free(fields_store *s) {
-  for (size_t k = 0; k < s->n; k++)
-    free(s->fields[k].x_m);
+  for (size_t k = 0; k < s->n; k++) {
+    if (s->fields) free(s->fields[k].x_m);
+    if (s->maps) free(s->maps[k]);
+  }
   free(s->fields);
+  free(s->maps);
+  free(s->maps_n);
   free(s->index);
 }
 
@@ -346,20 +414,32 @@ static PyObject *run_one(vl_db *db, const vl_scene *sc) {
     pts = calloc(n, sizeof *pts);
     s.cap = n;
     s.index = calloc(n, sizeof *s.index);
-    s.fields = calloc(n, sizeof *s.fields);
-    if (!pts || !s.index || !s.fields) st = VL_ENOMEM, vl_error_set(&err, "out of memory");
+    bool point = sc->geometry != VL_GEOMETRY_CYLINDER;
+    if (point) {
+      s.maps = calloc(n, sizeof *s.maps);
+      s.maps_n = calloc(n, sizeof *s.maps_n);
+    } else {
+      s.fields = calloc(n, sizeof *s.fields);
+    }
+    if (!pts || !s.index || (point ? !s.maps || !s.maps_n : !s.fields))
+      st = VL_ENOMEM, vl_error_set(&err, "out of memory");
   }
   vl_sweep_stats stats;
-  if (st == VL_OK) st = vl_simulation_run(s.sim, pts, keep_fields, &s, &stats, &err);
+  if (st == VL_OK && sc->geometry != VL_GEOMETRY_CYLINDER)
+    st = vl_simulation_run_point_contact(s.sim, pts, keep_maps, &s, &stats, &err);
+  else if (st == VL_OK)
+    st = vl_simulation_run(s.sim, pts, keep_fields, &s, &stats, &err);
   if (st == VL_OK && s.failed) st = VL_ENOMEM, vl_error_set(&err, "out of memory (fields)");
   if (st != VL_OK) {
     vlpy_raise(st, &err);
     goto done;
   }
-  vl_contact *c = vl_simulation_contact(s.sim);
-  vl_curve_meta m = {
-      vl_simulation_eta(s.sim),           vl_simulation_tau(s.sim), vl_contact_a0(c), NULL, 0,
-      vl_simulation_shear_law_text(s.sim)};
+  vl_curve_meta m = {vl_simulation_eta(s.sim),
+                     vl_simulation_tau(s.sim),
+                     vl_simulation_a0(s.sim),
+                     NULL,
+                     0,
+                     vl_simulation_shear_law_text(s.sim)};
   m.flow_factors = vl_simulation_flow_factors(s.sim, &m.film_cutoff_m);
   ret = PyDict_New();
   if (ret && (vlpy_set(ret, "info", curve_info(sc, s.sim, &m)) ||

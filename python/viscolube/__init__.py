@@ -123,6 +123,10 @@ class Curve(dict):
     (docs/FORMATS.md): `stroke` (str), flux_m2_s, friction_n_per_m, the
     instroke's *_in columns, volume_out_m3, volume_back_m3, and
     converged_in, tight as 1.0/0.0 (NaN when not known).
+    A point contact ([contact] geometry = ball or ellipsoid) adds its
+    columns (docs/POINT_CONTACT.md): `geometry` (str), contact_area_m2,
+    contact_length_m, contact_breadth_m, x_min_film_m, y_min_film_m,
+    y_peak_m, cells_in_contact, cells_per_a0.
 
     .info    the curve's context: compound, surface, fluid, quantity,
              eta_pa_s, tau_s, a0_m, p0_pa, hrms_m, flow_factors,
@@ -130,7 +134,8 @@ class Curve(dict):
     .fields  one dict per point the scene asked fields at (fields_at):
              index, v0_m_s and the arrays of fields/NNN.csv (x_m,
              x_over_a0, p_f_pa, p_c_pa, u_m, area_ratio, film_fraction,
-             cell_width_m)
+             cell_width_m; a point contact: x_m, y_m, x_over_a0,
+             y_over_a0, p_c_pa, u_m on the cells of the half y >= 0)
     """
 
     def __init__(self, raw):

@@ -583,9 +583,8 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
     *st = VL_EIO;
   }
   if (*st == VL_OK) {
-    vl_curve_meta meta = {
-        cv->eta, vl_simulation_tau(sim),           vl_contact_a0(vl_simulation_contact(sim)), NULL,
-        0.0,     vl_simulation_shear_law_text(sim)};
+    vl_curve_meta meta = {cv->eta, vl_simulation_tau(sim),           vl_simulation_a0(sim), NULL,
+                          0.0,     vl_simulation_shear_law_text(sim)};
     meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
     snprintf(path, sizeof path, "%s/curve.csv", dir);
     /* a file that does not fit is noted and the others still written */

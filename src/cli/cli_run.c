@@ -24,6 +24,11 @@ static void run_usage(FILE *out) {
         "  DIR/separation        minimum separation u_min/h_rms (u_min in um when smooth)\n"
         "  DIR/fields-pc, -pf, -u  p_c/p0, p_f/p0 (wet) and u/h_rms against x/a0, one curve\n"
         "                        per fields_at speed, labelled with its number\n"
+        "A ball or an ellipsoid ([contact] geometry, a dry point contact) writes its 2-D\n"
+        "fields (x_m, y_m, p_c, u of the half y >= 0) and, with --plot, DIR/map-pc-K and\n"
+        "DIR/map-u-K (p_c/p0 and u over the contact plane, the Hertz ellipse dashed) for\n"
+        "the K-th fields_at speed instead of separation and fields-*; its curve.csv adds\n"
+        "the contact area, extents and the minimum film's position.\n"
         "Points that did not converge are drawn as hollow circles above the x axis,\n"
         "never joined to their neighbours.\n"
         "A scene whose [materials] fluid lists several fluids runs one curve per fluid,\n"
@@ -65,11 +70,16 @@ typedef struct {
   size_t *kept_index; /* point index of each kept slot */
   vl_fields *kept;    /* n = 0 while (or when) the point has not converged */
   double *kept_buf;
+  /* a point contact ([contact] geometry = ball, ellipsoid): its 2-D fields,
+   * the kept ones as maps (kept_map[k], cells kept_cells[k], 0 when the
+   * point has not converged) */
+  double *map_buf;
+  vl_plot_map_data *kept_map;
+  size_t *kept_cells;
 } run_ctx;
 
-static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
-                     const vl_contact *contact) {
-  run_ctx *ctx = user;
+/* The progress line of point i (on a terminal, unless quiet). */
+static void progress(const run_ctx *ctx, size_t i, size_t total, const vl_point *pt) {
   if (ctx->tty && !ctx->quiet) {
     /* elapsed, and the rest at the mean cost so far (points differ, so
      * "about") */
@@ -80,6 +90,12 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
     if (i + 1 == total) fputc('\n', stderr);
     fflush(stderr);
   }
+}
+
+static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
+                     const vl_contact *contact) {
+  run_ctx *ctx = user;
+  progress(ctx, i, total, pt);
   if (!vl_simulation_wants_fields(ctx->sim, i) || !pt->converged) return;
   vl_fields *f = &ctx->fields;
   for (size_t k = 0; k < ctx->n_kept; k++)
@@ -95,6 +111,61 @@ static void on_point(void *user, size_t i, size_t total, const vl_point *pt,
   vl_error err = {{0}};
   vl_status st = vl_write_fields_csv(path, f, vl_contact_a0(contact), &err);
   vl_cli_manifest_file(ctx->man, path, st, &err);
+}
+
+/* The cells of a point contact's field along y (cell k = ix ny + iy: the
+ * cells before x changes). */
+static size_t cells_across(const double *x_m, size_t n) {
+  size_t ny = 1;
+  while (ny < n && x_m[ny] == x_m[0])
+    ny++;
+  return ny;
+}
+
+/* A point contact's point: the progress line, its 2-D fields at the
+ * fields_at speeds (DIR/fields/NNN.csv) and, with --plot, kept for the
+ * maps. */
+static void on_ball_point(void *user, size_t i, size_t total, const vl_point *pt,
+                          const vl_point_contact *c) {
+  run_ctx *ctx = user;
+  progress(ctx, i, total, pt);
+  if (!vl_simulation_wants_fields(ctx->sim, i) || !pt->converged || !c) return;
+  size_t n = vl_point_contact_cells(c), cap = VL_BALL_MAX_CELLS, slot = ctx->n_kept;
+  for (size_t k = 0; k < ctx->n_kept; k++)
+    if (ctx->kept_index[k] == i) slot = k;
+  double *b = ctx->map_buf + 4 * cap * (slot < ctx->n_kept ? slot + 1 : 0);
+  vl_fields2d f = {b, b + cap, b + 2 * cap, b + 3 * cap};
+  vl_point_contact_fields(c, &f);
+  if (slot < ctx->n_kept) {
+    ctx->kept_cells[slot] = n;
+    ctx->kept_map[slot] = (vl_plot_map_data){
+        n / cells_across(f.x_m, n), cells_across(f.x_m, n), f.x_m, f.y_m, f.p_c_pa, f.u_m};
+  }
+  char path[4200];
+  snprintf(path, sizeof path, "%s/fields/%03zu.csv", ctx->out_dir, i);
+  vl_error err = {{0}};
+  vl_status st = vl_write_fields2d_csv(path, n, f.x_m, f.y_m, f.p_c_pa, f.u_m,
+                                       vl_simulation_a0(ctx->sim), &err);
+  vl_cli_manifest_file(ctx->man, path, st, &err);
+}
+
+/* A point contact's buffers: one set of fields, and one per kept speed
+ * (--plot). */
+static vl_status ball_buffers(run_ctx *ctx, size_t n, bool plot, vl_error *err) {
+  size_t cap = VL_BALL_MAX_CELLS;
+  for (size_t i = 0; plot && i < n; i++)
+    ctx->n_kept += vl_simulation_wants_fields(ctx->sim, i);
+  ctx->map_buf = calloc(4 * cap * (ctx->n_kept + 1), sizeof *ctx->map_buf);
+  ctx->kept_index = calloc(ctx->n_kept + 1, sizeof *ctx->kept_index);
+  ctx->kept_map = calloc(ctx->n_kept + 1, sizeof *ctx->kept_map);
+  ctx->kept_cells = calloc(ctx->n_kept + 1, sizeof *ctx->kept_cells);
+  if (!ctx->map_buf || !ctx->kept_index || !ctx->kept_map || !ctx->kept_cells) {
+    vl_error_set(err, "out of memory");
+    return VL_ENOMEM;
+  }
+  for (size_t i = 0, k = 0; i < n && k < ctx->n_kept; i++)
+    if (vl_simulation_wants_fields(ctx->sim, i)) ctx->kept_index[k++] = i;
+  return VL_OK;
 }
 
 /* Sets aside the fields of the fields_at speeds for the figures. */
@@ -142,9 +213,20 @@ static void scene_subtitle(const vl_scene *scene, vl_simulation *sim, const vl_c
     snprintf(fluids, sizeof fluids, " in %s%s%s%s", scene->fluid, eta[0] ? " (η = " : "", eta,
              eta[0] ? " Pa s)" : "");
   }
-  int n = snprintf(buf, size, "%s on %s%s · fN = %s N/m · R = %s mm", scene->compound,
-                   scene->effects.roughness ? scene->surface : "a smooth surface", fluids, load,
-                   radius);
+  char body[256];
+  if (scene->geometry == VL_GEOMETRY_CYLINDER) {
+    snprintf(body, sizeof body, "fN = %s N/m · R = %s mm", load, radius);
+  } else { /* a point contact: its total load, its radius or radii */
+    char ry[48];
+    vl_plot_format_value(load, sizeof load, scene->load_n);
+    vl_plot_format_value(ry, sizeof ry, scene->radius_y_m * 1e3);
+    if (scene->geometry == VL_GEOMETRY_BALL)
+      snprintf(body, sizeof body, "ball, W = %s N · R = %s mm", load, radius);
+    else
+      snprintf(body, sizeof body, "ellipsoid, W = %s N · Rx = %s mm, Ry = %s mm", load, radius, ry);
+  }
+  int n = snprintf(buf, size, "%s on %s%s · %s", scene->compound,
+                   scene->effects.roughness ? scene->surface : "a smooth surface", fluids, body);
   if (meta && meta->flow_factors && n >= 0 && (size_t)n < size)
     n += snprintf(buf + n, size - (size_t)n, " · flow factors %s", meta->flow_factors);
   if (scene->effects.temperature && n >= 0 && (size_t)n < size)
@@ -192,8 +274,7 @@ static vl_status plot_field_figures(const char *out_dir, const vl_scene *scene, 
                                     double h_rms, const run_ctx *ctx, const char **label_ptrs,
                                     const char *subject, const vl_plot_options *opt_in, char *list,
                                     size_t list_size, size_t *len, vl_error *err) {
-  const vl_contact *c = vl_simulation_contact(sim);
-  vl_plot_scales sc = {vl_contact_a0(c), vl_contact_p0(c), h_rms};
+  vl_plot_scales sc = {vl_simulation_a0(sim), vl_simulation_p0(sim), h_rms};
   static const struct {
     vl_plot_field field;
     const char *name, *kind;
@@ -213,6 +294,35 @@ static vl_status plot_field_figures(const char *out_dir, const vl_scene *scene, 
     if (st != VL_OK && st != VL_EIO) return st;
     if (*len < list_size)
       *len += (size_t)snprintf(list + *len, list_size - *len, ", %s", figs[k].name);
+  }
+  return VL_OK;
+}
+
+/* A point contact's maps of p_c and u at the kept speeds (DIR/map-pc-K,
+ * DIR/map-u-K, K as the marks on the Stribeck figure), the relaxed Hertz
+ * ellipse over them; appended to list. */
+static vl_status plot_maps(const char *out_dir, vl_simulation *sim, const run_ctx *ctx,
+                           const char **label_ptrs, const vl_plot_options *opt_in, char *list,
+                           size_t list_size, size_t *len, vl_error *err) {
+  vl_plot_scales sc = {vl_simulation_a0(sim), vl_simulation_p0(sim), 0.0};
+  double ax = 0.0, by = 0.0;
+  vl_simulation_hertz_ellipse(sim, &ax, &by);
+  for (size_t k = 0; k < ctx->n_kept; k++) {
+    if (!ctx->kept_cells[k]) continue; /* did not converge: no map */
+    for (int u = 0; u < 2; u++) {
+      char stem[4200], sub[1200];
+      vl_plot_options opt = *opt_in;
+      snprintf(sub, sizeof sub, "%s | %s", opt_in->subtitle ? opt_in->subtitle : "", label_ptrs[k]);
+      opt.subtitle = sub;
+      snprintf(stem, sizeof stem, "%s/map-%s-%zu", out_dir, u ? "u" : "pc", k + 1);
+      vl_status st = vl_plot_map(stem, u ? VL_PLOT_FIELD_U : VL_PLOT_FIELD_PC, &ctx->kept_map[k],
+                                 &sc, ax, by, &opt, NULL, err);
+      vl_cli_manifest_figure(ctx->man, stem, st, err);
+      if (st != VL_OK && st != VL_EIO) return st;
+      if (*len < list_size)
+        *len +=
+            (size_t)snprintf(list + *len, list_size - *len, ", map-%s-%zu", u ? "u" : "pc", k + 1);
+    }
   }
   return VL_OK;
 }
@@ -254,6 +364,11 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
   st = vl_plot_stribeck(stem, n, pts, meta, scene->quantity, ctx->n_kept, marks, &opt, NULL, err);
   vl_cli_manifest_figure(ctx->man, stem, st, err);
   if (st != VL_OK && st != VL_EIO) goto done;
+  if (scene->geometry != VL_GEOMETRY_CYLINDER) { /* dry: no film; the maps instead */
+    size_t len = (size_t)snprintf(list, list_size, "stribeck");
+    st = plot_maps(out_dir, sim, ctx, label_ptrs, &opt, list, list_size, &len, err);
+    goto done;
+  }
   snprintf(stem, sizeof stem, "%s/separation", out_dir);
   figure_title(title, sizeof title, "Minimum separation", subject);
   st = vl_plot_separation(stem, n, pts, meta, scene->quantity, h_rms, ctx->n_kept, marks, &opt,
@@ -290,9 +405,10 @@ typedef struct {
 /* The table of a curve: one row per point, then the solver's statistics. */
 static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
                         const vl_curve_meta *meta, const vl_sweep_stats *stats) {
-  printf("%11s %11s %10s %10s %10s %10s %10s %10s %12s %4s %4s %8s\n", "v0_m_s",
+  bool ball = scene->geometry != VL_GEOMETRY_CYLINDER;
+  printf("%11s %11s %10s %10s %10s %10s %10s %10s %12s %4s %4s %8s%s\n", "v0_m_s",
          vl_sweep_quantity_name(scene->quantity), "mu", "mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf",
-         "u_min_m", "regime", "conv", "iter", "err_est");
+         "u_min_m", "regime", "conv", "iter", "err_est", ball ? "    area_m2" : "");
   for (size_t i = 0; i < n; i++) {
     const vl_point *p = &pts[i];
     double q = sweep_value(scene->quantity, p, meta);
@@ -302,12 +418,17 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
     if (vl_point_unreliable(p)) /* not known to its target: marked as such */
       snprintf(est + strlen(est), sizeof est - strlen(est), "!");
     if (p->converged)
-      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld %8s\n",
-             p->v0_m_s, q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0,
-             p->u_min_m, vl_regime_name(p->regime), "yes", p->iterations, est);
+      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld %8s", p->v0_m_s,
+             q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m,
+             vl_regime_name(p->regime), "yes", p->iterations, est);
     else
-      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld %8s\n", p->v0_m_s, q, "-",
+      printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld %8s", p->v0_m_s, q, "-",
              "-", "-", "-", "-", "-", "-", "NO", p->iterations, "-");
+    if (ball && p->converged)
+      printf(" %11.4g", p->ball.contact_area_m2);
+    else if (ball)
+      printf(" %11s", "-");
+    putchar('\n');
   }
   printf("%zu converged, %zu failed, %ld Newton iterations, %.3f s (%.1f ms per point)\n",
          stats->converged, stats->failed, stats->newton_iterations, stats->seconds,
@@ -351,6 +472,7 @@ static vl_status curve_prepare(const run_job *job, const vl_scene *scene, vl_sim
   ctx->man = job->man;
   ctx->tty = isatty(STDERR_FILENO);
   ctx->quiet = job->quiet;
+  if (scene->geometry != VL_GEOMETRY_CYLINDER) return ball_buffers(ctx, n, job->plot, err);
   if (job->plot) return keep_fields(ctx, n, grid, err);
   return VL_OK;
 }
@@ -359,6 +481,21 @@ static vl_status curve_prepare(const run_job *job, const vl_scene *scene, vl_sim
  * table, the line that introduces the curve. */
 static void curve_announce(const run_job *job, const vl_scene *scene, vl_simulation *sim,
                            const char *fluid_key, size_t n) {
+  if (scene->geometry != VL_GEOMETRY_CYLINDER) { /* a point contact's numerics, per point */
+    char numerics[200];
+    snprintf(numerics, sizeof numerics,
+             "point contact: cells planned per point (%d across the contact's shorter "
+             "semi-axis), target error %g, tolerance %g",
+             VL_BALL_CELLS_PER_A0, scene->target_error, scene->tolerance);
+    vl_manifest_add_option(job->man, "numerics", numerics);
+    if (!job->json)
+      printf("scene %s%s%s: %s, %zu points, automatic numerics (target error %g %%), a0 = %.4g "
+             "m, p0 = %.4g Pa\n",
+             job->scene_path, scene->title[0] ? " - " : "", scene->title,
+             vl_geometry_name(scene->geometry), n, 100.0 * scene->target_error,
+             vl_simulation_a0(sim), vl_simulation_p0(sim));
+    return;
+  }
   const vl_contact *contact = vl_simulation_contact(sim);
   vl_contact_numerics_used nu;
   vl_contact_numerics_of(contact, &nu);
@@ -385,12 +522,9 @@ static void curve_announce(const run_job *job, const vl_scene *scene, vl_simulat
 
 /* The curve's description for the writers, and its lines before the table. */
 static vl_curve_meta curve_meta(const run_job *job, const vl_scene *scene, vl_simulation *sim) {
-  vl_curve_meta meta = {vl_simulation_eta(sim),
-                        vl_simulation_tau(sim),
-                        vl_contact_a0(vl_simulation_contact(sim)),
-                        NULL,
-                        0.0,
-                        vl_simulation_shear_law_text(sim)};
+  vl_curve_meta meta = {
+      vl_simulation_eta(sim),           vl_simulation_tau(sim), vl_simulation_a0(sim), NULL, 0.0,
+      vl_simulation_shear_law_text(sim)};
   meta.flow_factors = vl_simulation_flow_factors(sim, &meta.film_cutoff_m);
   if (!job->json && meta.flow_factors) print_flow_model(&meta);
   if (!job->json && scene->effects.temperature)
@@ -461,7 +595,10 @@ static vl_status run_one(run_job *job, const vl_scene *scene, const char *out_di
     if (!job->json) printf("sigma_s: %s\n", meta.shear_law);
   }
   vl_sweep_stats stats;
-  st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, err);
+  if (scene->geometry != VL_GEOMETRY_CYLINDER)
+    st = vl_simulation_run_point_contact(sim, pts, on_ball_point, &ctx, &stats, err);
+  else
+    st = vl_simulation_run(sim, pts, on_point, &ctx, &stats, err);
   if (st != VL_OK) goto done;
   vl_manifest_add_counts(job->man, stats.converged, stats.failed);
   st = curve_outputs(job, scene, sim, out_dir, fluid_key, n, pts, &meta, &stats, &ctx, err);
@@ -474,6 +611,9 @@ done:
   free(ctx.kept_buf);
   free(ctx.kept);
   free(ctx.kept_index);
+  free(ctx.map_buf);
+  free(ctx.kept_map);
+  free(ctx.kept_cells);
   free(buf);
   free(pts);
   vl_simulation_free(sim);

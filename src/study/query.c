@@ -179,7 +179,7 @@ vl_status vl_query_friction(vl_db *db, const vl_query *q, double speed_m_s, vl_q
   if (st == VL_OK) {
     const vl_psd *psd = vl_simulation_psd(sim);
     out->shift_factor = vl_simulation_shift_factor(sim);
-    out->a0_m = vl_contact_a0(vl_simulation_contact(sim));
+    out->a0_m = vl_simulation_a0(sim);
     out->hrms_m = psd ? psd->hrms_m : 0.0;
     out->flow_factors = vl_simulation_flow_factors(sim, &out->film_cutoff_m);
     const vl_db_pair *pair = vl_simulation_pair(sim);

@@ -5,6 +5,7 @@
 #include "slurp.h"
 
 #include "viscolube/edit_distance.h"
+#include "viscolube/point_contact.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -29,8 +30,11 @@ typedef enum {
   K_SURFACE,
   K_FLUID_NAME,
   K_ELASTIC_MODULUS,
+  K_GEOMETRY,
   K_RADIUS,
+  K_RADII,
   K_LOAD,
+  K_LOAD_N,
   K_SIGMA_S,
   K_MOVING,
   K_SEALED_PRESSURE,
@@ -72,8 +76,14 @@ static const struct {
     [K_SURFACE] = {"materials", "surface", false},
     [K_FLUID_NAME] = {"materials", "fluid", false},
     [K_ELASTIC_MODULUS] = {"materials", "elastic_modulus", false},
-    [K_RADIUS] = {"contact", "radius_m", true},
-    [K_LOAD] = {"contact", "load_n_per_m", true},
+    [K_GEOMETRY] = {"contact", "geometry", false},
+    /* required by geometry (scene_check): radius_m and load_n_per_m for a
+     * cylinder, radius_m and load_n for a ball, radii_m and load_n for an
+     * ellipsoid */
+    [K_RADIUS] = {"contact", "radius_m", false},
+    [K_RADII] = {"contact", "radii_m", false},
+    [K_LOAD] = {"contact", "load_n_per_m", false},
+    [K_LOAD_N] = {"contact", "load_n", false},
     [K_SIGMA_S] = {"contact", "sigma_s_pa", false},
     [K_MOVING] = {"contact", "moving", false},
     [K_SEALED_PRESSURE] = {"contact", "sealed_pressure_pa", false},
@@ -324,8 +334,29 @@ static int contact_key(parse_state *ps, key_id id, const char *section, const ch
                        const char *value) {
   vl_scene *sc = ps->scene;
   switch (id) {
+  case K_GEOMETRY:
+    if (!strcmp(value, "cylinder"))
+      sc->geometry = VL_GEOMETRY_CYLINDER;
+    else if (!strcmp(value, "ball"))
+      sc->geometry = VL_GEOMETRY_BALL;
+    else if (!strcmp(value, "ellipsoid"))
+      sc->geometry = VL_GEOMETRY_ELLIPSOID;
+    else
+      return fail(ps, section, key, "expected cylinder, ball or ellipsoid, got '%s'", value);
+    return 1;
   case K_RADIUS: POSITIVE(radius_m);
+  case K_RADII: {
+    double r[2];
+    if (parse_list(value, r, 2) != 2 || !(r[0] > 0.0 && r[1] > 0.0))
+      return fail(ps, section, key,
+                  "expected 'Rx, Ry': two positive radii (m), along the sliding direction and "
+                  "across it, got '%s'",
+                  value);
+    sc->radius_m = r[0], sc->radius_y_m = r[1];
+    return 1;
+  }
   case K_LOAD: POSITIVE(load_n_per_m);
+  case K_LOAD_N: POSITIVE(load_n);
   case K_SIGMA_S:
     if (!parse_double(value, &sc->sigma_s_pa) || sc->sigma_s_pa < 0.0)
       return fail(ps, section, key, "expected a number >= 0, got '%s'", value);
@@ -650,6 +681,73 @@ static vl_status check_fail(parse_state *ps, key_id id, const char *fmt, ...) {
   return VL_EINPUT;
 }
 
+/* "missing required key" for key id. */
+static vl_status missing(parse_state *ps, key_id id, const char *why) {
+  vl_error_set(ps->err, "%s: missing required key [%s] %s%s", ps->path, keys[id].section,
+               keys[id].key, why);
+  return VL_EINPUT;
+}
+
+/* The keys of the rigid body's geometry: a cylinder takes radius_m and
+ * load_n_per_m, a ball radius_m and load_n, an ellipsoid radii_m and
+ * load_n; any other combination names the key that does not fit. */
+static vl_status geometry_check(parse_state *ps) {
+  vl_scene *sc = ps->scene;
+  int g = sc->geometry;
+  const char *name = vl_geometry_name(g);
+  key_id radius = g == VL_GEOMETRY_ELLIPSOID ? K_RADII : K_RADIUS;
+  key_id load = g == VL_GEOMETRY_CYLINDER ? K_LOAD : K_LOAD_N;
+  key_id wrong_radius = g == VL_GEOMETRY_ELLIPSOID ? K_RADIUS : K_RADII;
+  key_id wrong_load = g == VL_GEOMETRY_CYLINDER ? K_LOAD_N : K_LOAD;
+  if (ps->key_line[wrong_radius])
+    return check_fail(ps, wrong_radius, "[contact] geometry = %s takes %s%s instead", name,
+                      keys[radius].key, g == VL_GEOMETRY_ELLIPSOID ? " = Rx, Ry" : " (one radius)");
+  if (ps->key_line[wrong_load])
+    return check_fail(
+        ps, wrong_load, "[contact] geometry = %s takes %s%s instead", name, keys[load].key,
+        g == VL_GEOMETRY_CYLINDER ? " (N per metre of its length)" : " (the total load, N)");
+  if (!ps->key_line[radius])
+    return missing(ps, radius, g == VL_GEOMETRY_CYLINDER ? "" : " (geometry = ball or ellipsoid)");
+  if (!ps->key_line[load])
+    return missing(ps, load, g == VL_GEOMETRY_CYLINDER ? "" : " (geometry = ball or ellipsoid)");
+  if (g == VL_GEOMETRY_BALL) sc->radius_y_m = sc->radius_m;
+  return VL_OK;
+}
+
+/* What a point contact (a ball, an ellipsoid) does not take yet: it is
+ * dry and smooth (docs/POINT_CONTACT.md). The first key that asks for more
+ * is named. */
+static vl_status point_contact_check(parse_state *ps) {
+  vl_scene *sc = ps->scene;
+  struct {
+    key_id id;
+    bool on;
+    const char *why;
+  } no[] = {
+      {K_FLUID, sc->effects.fluid, "a lubricated ball is not available yet (dry only)"},
+      {K_ROUGHNESS, sc->effects.roughness, "a rough ball is not available yet (smooth only)"},
+      {K_VISCOUS_FLATTENING, sc->effects.viscous_flattening, "needs a rough lubricated contact"},
+      {K_MOVING, sc->moving != VL_MOVING_RUBBER, "a ball rolls or slides on a moving rubber only"},
+      {K_SEALED_PRESSURE, ps->key_line[K_SEALED_PRESSURE] != 0, "applies to a cylinder only"},
+      {K_PROFILE_FILE, ps->key_line[K_PROFILE_FILE] != 0, "applies to a cylinder only"},
+      {K_STROKE, ps->key_line[K_STROKE] != 0, "applies to a cylinder only"},
+      {K_GRID, ps->key_line[K_GRID] != 0,
+       "a line contact's cells: a ball's are planned per point (docs/POINT_CONTACT.md)"},
+      {K_GRID_GROWTH, ps->key_line[K_GRID_GROWTH] != 0, "applies to a cylinder only"},
+      {K_DOMAIN, ps->key_line[K_DOMAIN] != 0,
+       "a line contact's domain: a ball's is planned per point (docs/POINT_CONTACT.md)"},
+      {K_LINEAR_SOLVER, ps->key_line[K_LINEAR_SOLVER] != 0, "applies to a cylinder only"},
+      {K_PERSSON_TABLE, ps->key_line[K_PERSSON_TABLE] != 0, "applies to a rough contact only"},
+  };
+  for (size_t k = 0; k < sizeof no / sizeof no[0]; k++)
+    if (no[k].on)
+      return check_fail(ps, no[k].id, "not with [contact] geometry = %s: %s",
+                        vl_geometry_name(sc->geometry), no[k].why);
+  if (!ps->key_line[K_TOLERANCE]) sc->tolerance = VL_BALL_TOLERANCE;
+  sc->auto_numerics = true;
+  return VL_OK;
+}
+
 /* Requirements between keys, checked once the whole file is read. */
 static vl_status scene_check(parse_state *ps) {
   vl_scene *sc = ps->scene;
@@ -660,6 +758,8 @@ static vl_status scene_check(parse_state *ps) {
       return VL_EINPUT;
     }
   }
+  vl_status gs = geometry_check(ps);
+  if (gs != VL_OK) return gs;
   /* the numerics the file does not set follow from its effects */
   vl_scene d = *sc;
   vl_scene_default_numerics(&d);
@@ -763,6 +863,7 @@ static vl_status scene_check(parse_state *ps) {
     return check_fail(ps, K_TEMPERATURE_C,
                       "applies to [effects] temperature = on only (the materials are taken "
                       "at their reference temperatures)");
+  if (sc->geometry != VL_GEOMETRY_CYLINDER) return point_contact_check(ps);
   return VL_OK;
 }
 

@@ -10,6 +10,7 @@
 #include "viscolube/dma.h"
 
 #include "assumptions_internal.h"
+#include "point_contact_internal.h"
 #include "rheology_internal.h"
 #include "simulation_internal.h"
 #include "viscolube/flattening.h"
@@ -42,7 +43,13 @@ struct vl_simulation {
   /* the measured isotherms' temperatures (C); NAN for a compound entered
    * as a Prony series or measured as one master curve */
   double measured_tmin_c, measured_tmax_c;
-  vl_contact *contact;
+  vl_contact *contact; /* NULL for a point contact */
+  /* [contact] geometry = ball or ellipsoid: the point contact's base
+   * configuration (each point gets its own cells: vl_point_contact_sweep)
+   * and its Hertz scales */
+  bool point;
+  vl_point_contact_config point_cfg;
+  double a0_m, p0_pa;
   bool has_pair;
   vl_db_pair pair;
   vl_shear_law shear_law; /* in use: the pair's at temperature, or the constant */
@@ -180,7 +187,7 @@ static double speed_of(const vl_simulation *sim, double value) {
   switch (sim->scene.quantity) {
   case VL_SWEEP_V0: return value;
   case VL_SWEEP_V0_ETA: return value / sim->eta_pa_s;
-  case VL_SWEEP_DEBORAH: return value * vl_contact_a0(sim->contact) / sim->rubber.tau_s[0];
+  case VL_SWEEP_DEBORAH: return value * vl_simulation_a0(sim) / sim->rubber.tau_s[0];
   }
   return value;
 }
@@ -368,6 +375,42 @@ static vl_status measured_window(vl_simulation *sim, vl_db *db, vl_error *err) {
   return st;
 }
 
+/* The rubber of the scene's contact: the compound's Prony series, or with
+ * [effects] viscoelastic = off an elastic one (relaxed, glassy or given
+ * modulus): no Prony kernel is then built or evaluated. */
+static vl_prony scene_rubber(const vl_simulation *sim) {
+  vl_prony r = sim->rubber;
+  const vl_scene *scene = &sim->scene;
+  if (!scene->effects.viscoelastic) {
+    r.e_inf_pa = scene->elastic == VL_ELASTIC_GLASSY  ? sim->rubber.e_inf_pa
+                 : scene->elastic == VL_ELASTIC_GIVEN ? scene->elastic_modulus_pa
+                                                      : vl_prony_e0(&sim->rubber);
+    r.n_terms = 0;
+  }
+  return r;
+}
+
+/* A ball or an ellipsoid (docs/POINT_CONTACT.md): dry and smooth, so only
+ * the rubber, the geometry, the load and sigma_s; checked here (a bad
+ * radius or load is named now, not at the first point). */
+static vl_status point_contact_setup(vl_simulation *sim, vl_error *err) {
+  const vl_scene *scene = &sim->scene;
+  vl_point_contact_config *pc = &sim->point_cfg;
+  vl_point_contact_config_defaults(pc);
+  pc->rubber = scene_rubber(sim);
+  pc->radius_x_m = scene->radius_m, pc->radius_y_m = scene->radius_y_m;
+  pc->load_n = scene->load_n;
+  pc->sigma_s_pa = scene->effects.solid_shear && !sim->has_pair ? scene->sigma_s_pa : 0.0;
+  pc->tolerance = scene->tolerance;
+  vl_point_contact *probe = NULL;
+  vl_status st = vl_point_contact_build(pc, &probe, err);
+  if (st == VL_OK) sim->a0_m = probe->a0, sim->p0_pa = probe->p0;
+  vl_point_contact_release(probe);
+  if (st != VL_OK) vl_error_prefix(err, "%s", scene->path);
+  sim->point = true;
+  return st;
+}
+
 vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation **out,
                                vl_error *err) {
   *out = NULL;
@@ -423,17 +466,15 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
     }
   }
   if ((st = apply_pair(sim, db, err)) != VL_OK) goto fail;
+  if (scene->geometry != VL_GEOMETRY_CYLINDER) {
+    if ((st = point_contact_setup(sim, err)) != VL_OK || (st = build_speeds(sim, err)) != VL_OK)
+      goto fail;
+    *out = sim;
+    return VL_OK;
+  }
   vl_contact_config cfg;
   vl_contact_config_defaults(&cfg);
-  cfg.rubber = sim->rubber;
-  if (!scene->effects.viscoelastic) {
-    /* Elastic: no Prony kernels are built or evaluated. */
-    double e = scene->elastic == VL_ELASTIC_GLASSY  ? sim->rubber.e_inf_pa
-               : scene->elastic == VL_ELASTIC_GIVEN ? scene->elastic_modulus_pa
-                                                    : vl_prony_e0(&sim->rubber);
-    cfg.rubber.n_terms = 0;
-    cfg.rubber.e_inf_pa = e;
-  }
+  cfg.rubber = scene_rubber(sim);
   cfg.radius_m = scene->radius_m;
   cfg.load_n_per_m = scene->load_n_per_m;
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
@@ -512,6 +553,18 @@ bool vl_simulation_wants_fields(const vl_simulation *sim, size_t i) {
   return i < sim->n && sim->fields[i];
 }
 vl_contact *vl_simulation_contact(vl_simulation *sim) { return sim->contact; }
+double vl_simulation_a0(const vl_simulation *sim) {
+  return sim->point ? sim->a0_m : vl_contact_a0(sim->contact);
+}
+double vl_simulation_p0(const vl_simulation *sim) {
+  return sim->point ? sim->p0_pa : vl_contact_p0(sim->contact);
+}
+vl_status vl_simulation_hertz_ellipse(const vl_simulation *sim, double *ax_m, double *by_m) {
+  if (!sim->point) return VL_EINPUT;
+  const vl_point_contact_config *pc = &sim->point_cfg;
+  double er0 = vl_prony_e0(&pc->rubber) * vl_prony_reduced_factor(&pc->rubber);
+  return vl_hertz_ellipse(pc->radius_x_m, pc->radius_y_m, pc->load_n, er0, ax_m, by_m, NULL);
+}
 const vl_scene *vl_simulation_scene(const vl_simulation *sim) { return &sim->scene; }
 double vl_simulation_eta(const vl_simulation *sim) { return sim->eta_pa_s; }
 double vl_simulation_tau(const vl_simulation *sim) {
@@ -667,8 +720,52 @@ static vl_status run_downward(vl_simulation *sim, vl_point *out, vl_error *err) 
   return s == VL_ENOCONV ? VL_OK : s;
 }
 
+/* A point contact's point: the temperature warning, and mu_Sc from the
+ * stored pair's law at v0 (sigma_s does not enter the solution). */
+typedef struct {
+  vl_simulation *sim;
+  vl_point *out;
+  vl_point_contact_callback cb;
+  vl_sweep_callback line_cb; /* vl_simulation_run's, called without a contact */
+  void *user;
+} point_ctx;
+
+static void check_point_contact(void *user, size_t i, size_t total, const vl_point *pt,
+                                const vl_point_contact *c) {
+  point_ctx *r = user;
+  vl_point *p = &r->out[i];
+  temperature_warning(r->sim, p->warnings, sizeof p->warnings);
+  if (p->converged && r->sim->has_pair && r->sim->scene.effects.solid_shear) {
+    double sigma = vl_shear_law_eval(&r->sim->shear_law, p->v0_m_s, NULL);
+    p->mu_Sc = sigma * p->ball.contact_area_m2 / r->sim->scene.load_n;
+    p->mu = p->mu_Rc + p->mu_Rf + p->mu_Sc + p->mu_Sf;
+  }
+  (void)pt;
+  if (r->cb) r->cb(r->user, i, total, p, c);
+  if (r->line_cb) r->line_cb(r->user, i, total, p, NULL);
+}
+
+vl_status vl_simulation_run_point_contact(vl_simulation *sim, vl_point *out,
+                                          vl_point_contact_callback cb, void *user,
+                                          vl_sweep_stats *stats, vl_error *err) {
+  if (!sim->point) {
+    vl_error_set(err, "%s: not a point contact ([contact] geometry = cylinder)", sim->scene.path);
+    return VL_EINPUT;
+  }
+  point_ctx r = {sim, out, cb, NULL, user};
+  vl_auto_options o = {sim->scene.target_error, -1, false};
+  return vl_point_contact_sweep(&sim->point_cfg, &o, sim->n, sim->v0, out, check_point_contact, &r,
+                                stats, err);
+}
+
 vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback cb, void *user,
                             vl_sweep_stats *stats, vl_error *err) {
+  if (sim->point) {
+    point_ctx p = {sim, out, NULL, cb, user};
+    vl_auto_options o = {sim->scene.target_error, -1, false};
+    return vl_point_contact_sweep(&sim->point_cfg, &o, sim->n, sim->v0, out, check_point_contact,
+                                  &p, stats, err);
+  }
   run_ctx r = {sim, out, cb, user};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
   vl_status st =

@@ -49,7 +49,7 @@ static vl_status solve(const vl_study *s, size_t i, vl_db *db, vl_study_result *
   if (st == VL_OK) {
     r->eta_pa_s = vl_simulation_eta(sim);
     r->tau_s = vl_simulation_tau(sim);
-    r->a0_m = vl_contact_a0(vl_simulation_contact(sim));
+    r->a0_m = vl_simulation_a0(sim);
     r->flow_factors = vl_simulation_flow_factors(sim, &r->film_cutoff_m);
     const char *law = vl_simulation_shear_law_text(sim);
     snprintf(r->shear_law, sizeof r->shear_law, "%s", law ? law : "");

@@ -71,6 +71,11 @@ double vl_down_column_value(const vl_point *p, size_t k) {
                 d->swept ? (d->two_states ? 1.0 : 0.0) : NAN};
   return k < sizeof v / sizeof *v ? v[k] : NAN;
 }
+/* The columns a point contact adds after them ([contact] geometry = ball or
+ * ellipsoid; vl_point.ball; FORMATS.md). */
+const char *const vl_ball_columns[] = {
+    "geometry",     "contact_area_m2", "contact_length_m", "contact_breadth_m", "x_min_film_m",
+    "y_min_film_m", "y_peak_m",        "cells_in_contact", "cells_per_a0",      NULL};
 
 static const char *stroke_name(int s) {
   return s == VL_STROKE_OUT ? "out" : s == VL_STROKE_IN ? "in" : s == VL_STROKE_BOTH ? "both" : "";
@@ -144,17 +149,49 @@ static void seal_cells(FILE *out, const vl_point *p) {
     fputc(',', out);
 }
 
+double vl_ball_column_value(const vl_point *p, size_t k) {
+  const vl_ball_result *b = &p->ball;
+  double v[] = {NAN,
+                b->contact_area_m2,
+                b->contact_length_m,
+                b->contact_breadth_m,
+                p->x_min_film_m,
+                b->y_min_film_m,
+                b->y_peak_m,
+                (double)b->cells_in_contact,
+                b->cells_per_a0};
+  return p->converged && k < sizeof v / sizeof *v ? v[k] : NAN;
+}
+
+/* The point-contact columns of p (after its warnings). */
+static void ball_cells(FILE *out, const vl_point *p) {
+  const vl_ball_result *b = &p->ball;
+  int ok = p->converged;
+  fprintf(out, ",%s", vl_geometry_name(b->geometry));
+  cell(out, b->contact_area_m2, ok);
+  cell(out, b->contact_length_m, ok);
+  cell(out, b->contact_breadth_m, ok);
+  cell(out, p->x_min_film_m, ok);
+  cell(out, b->y_min_film_m, ok);
+  cell(out, b->y_peak_m, ok);
+  cell(out, (double)b->cells_in_contact, ok);
+  cell(out, b->cells_per_a0, ok);
+}
+
 void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve_meta *meta) {
   print_model_comment(out, meta);
   print_shear_comment(out, meta);
   bool seal = n > 0 && pts[0].seal.stroke != VL_STROKE_NONE;
   bool down = n > 0 && pts[0].down.swept;
+  bool ball = n > 0 && pts[0].ball.geometry != VL_GEOMETRY_CYLINDER;
   for (size_t c = 0; vl_curve_columns[c]; c++)
     fprintf(out, "%s%s", c ? "," : "", vl_curve_columns[c]);
   for (size_t c = 0; seal && vl_seal_columns[c]; c++)
     fprintf(out, ",%s", vl_seal_columns[c]);
   for (size_t c = 0; down && vl_down_columns[c]; c++)
     fprintf(out, ",%s", vl_down_columns[c]);
+  for (size_t c = 0; ball && vl_ball_columns[c]; c++)
+    fprintf(out, ",%s", vl_ball_columns[c]);
   fputc('\n', out);
   for (size_t i = 0; i < n; i++) {
     const vl_point *p = &pts[i];
@@ -198,6 +235,7 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
       else
         cell(out, v, 1);
     }
+    if (ball) ball_cells(out, p);
     fputc('\n', out);
   }
 }
@@ -207,6 +245,20 @@ vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
   vl_atomic_file af;
   if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
   vl_print_curve_csv(af.f, n, pts, meta);
+  return vl_atomic_file_commit(&af, err);
+}
+
+vl_status vl_write_fields2d_csv(const char *path, size_t n, const double *x_m, const double *y_m,
+                                const double *p_c_pa, const double *u_m, double a0_m,
+                                vl_error *err) {
+  vl_atomic_file af;
+  if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
+  FILE *f = af.f;
+  fputs("x_m,y_m,x_over_a0,y_over_a0,p_c_pa,u_m\n", f);
+  for (size_t i = 0; i < n; i++)
+    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", plain_zero(x_m[i]), plain_zero(y_m[i]),
+            plain_zero(x_m[i] / a0_m), plain_zero(y_m[i] / a0_m), plain_zero(p_c_pa[i]),
+            plain_zero(u_m[i]));
   return vl_atomic_file_commit(&af, err);
 }
 
@@ -268,6 +320,18 @@ void vl_point_json_members(vl_json *w, const vl_point *p, const vl_curve_meta *m
   member(w, "error_estimate", p->error_estimate, ok && isfinite(p->error_estimate));
   vl_json_key_string(w, "accuracy", ok && p->accuracy ? vl_accuracy_name(p->accuracy) : NULL);
   vl_json_key_string(w, "warnings", p->warnings);
+  const vl_ball_result *b = &p->ball;
+  if (b->geometry != VL_GEOMETRY_CYLINDER) {
+    vl_json_key_string(w, "geometry", vl_geometry_name(b->geometry));
+    member(w, "contact_area_m2", b->contact_area_m2, ok);
+    member(w, "contact_length_m", b->contact_length_m, ok);
+    member(w, "contact_breadth_m", b->contact_breadth_m, ok);
+    member(w, "x_min_film_m", p->x_min_film_m, ok);
+    member(w, "y_min_film_m", b->y_min_film_m, ok);
+    member(w, "y_peak_m", b->y_peak_m, ok);
+    member(w, "cells_in_contact", (double)b->cells_in_contact, ok);
+    member(w, "cells_per_a0", b->cells_per_a0, ok);
+  }
   const vl_seal_result *s = &p->seal;
   if (s->stroke != VL_STROKE_NONE) {
     int both = s->stroke == VL_STROKE_BOTH, in = both && s->in_converged;

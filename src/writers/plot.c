@@ -1951,3 +1951,167 @@ vl_status vl_plot_psd(const char *stem, const vl_plot_psd_data *d, const vl_plot
   }
   return render(stem, opt, "Roughness power spectrum", draw_psd, d, report, err);
 }
+
+/* ---- a point contact's field over the contact plane --------------------- */
+
+typedef struct {
+  vl_plot_field field;
+  const vl_plot_map_data *d;
+  vl_plot_scales sc;
+  double hertz_ax, hertz_by; /* the Hertz ellipse, in a0 (0: not drawn) */
+} map_ctx;
+
+/* The value of cell k shown (NAN: the cell is left white: out of contact). */
+static double map_value(const map_ctx *c, size_t k) {
+  if (c->field == VL_PLOT_FIELD_PC)
+    return c->d->p_c_pa[k] > 0.0 ? c->d->p_c_pa[k] / c->sc.p0_pa : NAN;
+  return c->d->u_m[k] * 1e6;
+}
+
+/* Viridis from dark (t = 0) to yellow (t = 1), as `sequential` but to its end. */
+static rgb viridis(double t) {
+  static const rgb stops[6] = {{68, 1, 84},    {65, 68, 135},  {42, 120, 142},
+                               {34, 168, 132}, {122, 209, 81}, {253, 231, 37}};
+  t = t < 0 ? 0 : t > 1 ? 1 : t;
+  double s = t * 5;
+  int i = (int)floor(s);
+  if (i >= 5) i = 4;
+  double u = s - i;
+  return (rgb){(unsigned char)lround(stops[i].r + u * (stops[i + 1].r - stops[i].r)),
+               (unsigned char)lround(stops[i].g + u * (stops[i + 1].g - stops[i].g)),
+               (unsigned char)lround(stops[i].b + u * (stops[i + 1].b - stops[i].b))};
+}
+
+static void fill_rect(fig *f, double x0, double y0, double x1, double y1, rgb col) {
+  PLFLT xs[4] = {x0, x1, x1, x0}, ys[4] = {y0, y0, y1, y1};
+  set_color(f, col);
+  plfill(4, xs, ys);
+}
+
+/* The cells (and their mirror images across y = 0), coloured by value over
+ * [0, hi]. */
+static void draw_map_cells(fig *f, const map_ctx *c, double hx, double hy, double hi) {
+  const vl_plot_map_data *d = c->d;
+  pllsty(1);
+  plwidth(0.0); /* the driver strokes a fill's edge with the current pen */
+  for (size_t k = 0; k < d->nx * d->ny; k++) {
+    double v = map_value(c, k);
+    if (!isfinite(v)) continue;
+    rgb col = viridis(hi > 0 ? v / hi : 0);
+    double x = d->x_m[k] / c->sc.a0_m, y = d->y_m[k] / c->sc.a0_m;
+    for (int s = -1; s <= 1; s += 2)
+      fill_rect(f, x - 0.5 * hx, s * y - 0.5 * hy, x + 0.5 * hx, s * y + 0.5 * hy, col);
+  }
+}
+
+/* The colour bar right of the map: 64 bands over [0, hi] and its labels. */
+static void draw_colour_bar(fig *f, double hi, const char *title) {
+  double x0 = f->vx1 + 0.03, x1 = x0 + 0.025, top = f->vy1 - 0.05; /* room for its title */
+  plvpor(x0, x1, f->vy0, top);
+  fig b = *f;
+  b.vx0 = x0, b.vx1 = x1, b.vy1 = top;
+  b.x = (axis){.lo = 0, .hi = 1};
+  b.y = linear_axis(0, hi > 0 ? hi : 1, len_y(&b), CH_TICK * f->ph, true, true);
+  plwind(0, 1, b.y.lo, b.y.hi);
+  pllsty(1);
+  plwidth(0.0);
+  for (int i = 0; i < 64; i++) {
+    double y0 = b.y.lo + (b.y.hi - b.y.lo) * i / 64.0,
+           y1 = b.y.lo + (b.y.hi - b.y.lo) * (i + 1) / 64.0;
+    fill_rect(&b, 0, y0, 1, y1, viridis((i + 0.5) / 64.0));
+  }
+  set_color(&b, BLACK);
+  plwidth(1.0);
+  plbox("bc", 0, 0, "bc", 0, 0);
+  set_ch(&b, CH_TICK);
+  for (long k = 0;; k++) {
+    double v = (double)k * b.y.step;
+    if (v > b.y.hi + 1e-9 * b.y.step) break;
+    char buf[64];
+    linear_label(buf, sizeof buf, v, b.y.decimals);
+    plmtex("rv", 0.6, (v - b.y.lo) / (b.y.hi - b.y.lo), 0.0, buf);
+  }
+  set_ch(&b, CH_TITLE);
+  plmtex("t", 1.0, 0.5, 0.5, title);
+  f->scratch = b.scratch;
+}
+
+/* The ellipse (semi-axes ax, by in a0), dashed. */
+static void draw_ellipse(fig *f, double ax, double by) {
+  PLFLT xs[129], ys[129];
+  for (int i = 0; i <= 128; i++) {
+    double t = 2 * M_PI * i / 128.0;
+    xs[i] = ax * cos(t), ys[i] = by * sin(t);
+  }
+  set_style(f, (style){BLACK, 3, 1.6});
+  plline(129, xs, ys);
+}
+
+static void draw_map(fig *f, const void *vctx) {
+  const map_ctx *c = vctx;
+  const vl_plot_map_data *d = c->d;
+  size_t n = d->nx * d->ny;
+  double xlo = INFINITY, xhi = -INFINITY, ymax = 0.0, hi = 0.0;
+  for (size_t k = 0; k < n; k++) {
+    double x = d->x_m[k] / c->sc.a0_m, y = d->y_m[k] / c->sc.a0_m, v = map_value(c, k);
+    xlo = fmin(xlo, x), xhi = fmax(xhi, x), ymax = fmax(ymax, y);
+    if (isfinite(v)) hi = fmax(hi, v);
+  }
+  /* cell sizes from the centres (uniform cells) */
+  double hx = d->nx > 1 ? (d->x_m[d->ny] - d->x_m[0]) / c->sc.a0_m : 2 * fmax(fabs(xlo), 1e-3);
+  double hy = d->ny > 1 ? (d->y_m[1] - d->y_m[0]) / c->sc.a0_m : 2 * fmax(ymax, 1e-3);
+  double X0 = xlo - 0.5 * hx, X1 = xhi + 0.5 * hx, Y1 = ymax + 0.5 * hy;
+  /* equal scales: the data area fitted into the room left of the colour bar */
+  double room_x = 0.70 - 0.105, room_y = TOP - 0.115;
+  double sx = room_x * f->pw / (X1 - X0), sy = room_y * f->ph / (2 * Y1), s = fmin(sx, sy);
+  f->vx0 = 0.105, f->vx1 = 0.105 + s * (X1 - X0) / f->pw;
+  f->vy0 = 0.115, f->vy1 = 0.115 + s * 2 * Y1 / f->ph;
+  f->x = linear_axis(X0, X1, len_x(f), CH_TICK * f->ph, true, false);
+  f->y = linear_axis(-Y1, Y1, len_y(f), CH_TICK * f->ph, true, true);
+  /* the axes (and their grid) first: the cells cover the grid where they
+   * are coloured; the frame again over them */
+  draw_axes(f, "#<0x11>x#<0x01>/#<0x11>a#<0x01>#d0#u (sliding direction)",
+            "#<0x11>y#<0x01>/#<0x11>a#<0x01>#d0#u", true);
+  use_data_area(f);
+  draw_map_cells(f, c, hx, hy, hi);
+  if (c->hertz_ax > 0 && c->hertz_by > 0) draw_ellipse(f, c->hertz_ax, c->hertz_by);
+  set_color(f, BLACK);
+  pllsty(1);
+  plwidth(1.2);
+  plbox("bc", 0, 0, "bc", 0, 0);
+  const char *title = c->field == VL_PLOT_FIELD_PC ? "#<0x11>p#<0x01>#dc#u/#<0x11>p#<0x01>#d0#u"
+                                                   : "#<0x11>u#<0x01> (µm)";
+  draw_colour_bar(f, hi, title);
+  if (c->hertz_ax > 0 && c->hertz_by > 0) { /* the key of the dashed line, bottom right */
+    plvpor(0, 1, 0, 1);
+    plwind(0, 1, 0, 1);
+    set_style(f, (style){BLACK, 3, 1.6});
+    segment(0.72, 0.035, 0.77, 0.035);
+    set_color(f, BLACK);
+    set_ch(f, CH_LEGEND);
+    plptex(0.78, 0.035, 1, 0, 0, "Hertz, relaxed modulus");
+  }
+  f->series = 1;
+}
+
+vl_status vl_plot_map(const char *stem, vl_plot_field field, const vl_plot_map_data *d,
+                      const vl_plot_scales *scales, double hertz_ax_m, double hertz_by_m,
+                      const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
+  if (!d || !scales || d->nx == 0 || d->ny == 0 || !d->x_m || !d->y_m ||
+      (field == VL_PLOT_FIELD_PC && !d->p_c_pa) || (field == VL_PLOT_FIELD_U && !d->u_m)) {
+    vl_error_set(err, "plot: no map");
+    return VL_EINPUT;
+  }
+  if (field != VL_PLOT_FIELD_PC && field != VL_PLOT_FIELD_U) {
+    vl_error_set(err, "plot: a map of p_c or u only (got field %d)", (int)field);
+    return VL_EINPUT;
+  }
+  if (!(scales->a0_m > 0) || !(scales->p0_pa > 0) || !isfinite(scales->a0_m) ||
+      !isfinite(scales->p0_pa)) {
+    vl_error_set(err, "plot: scales need a0 > 0, p0 > 0");
+    return VL_EINPUT;
+  }
+  map_ctx c = {field, d, *scales, hertz_ax_m / scales->a0_m, hertz_by_m / scales->a0_m};
+  return render(stem, opt, field == VL_PLOT_FIELD_PC ? "Contact pressure map" : "Separation map",
+                draw_map, &c, report, err);
+}

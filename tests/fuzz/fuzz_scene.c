@@ -27,7 +27,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   }
   FUZZ_CHECK(sc.compound[0] != '\0', "no compound");
   FUZZ_CHECK(isfinite(sc.radius_m) && sc.radius_m > 0.0, "radius %g", sc.radius_m);
-  FUZZ_CHECK(isfinite(sc.load_n_per_m) && sc.load_n_per_m > 0.0, "load %g", sc.load_n_per_m);
+  if (sc.geometry == VL_GEOMETRY_CYLINDER) /* a cylinder's load per length, a ball's total */
+    FUZZ_CHECK(isfinite(sc.load_n_per_m) && sc.load_n_per_m > 0.0, "load %g", sc.load_n_per_m);
+  else
+    FUZZ_CHECK(isfinite(sc.load_n) && sc.load_n > 0.0 && isfinite(sc.radius_y_m) &&
+                   sc.radius_y_m > 0.0 && !sc.effects.fluid && !sc.effects.roughness,
+               "point contact: load %g, radius across %g", sc.load_n, sc.radius_y_m);
   FUZZ_CHECK(isfinite(sc.sigma_s_pa) && sc.sigma_s_pa >= 0.0, "sigma_s %g", sc.sigma_s_pa);
   FUZZ_CHECK(isfinite(sc.from) && sc.from > 0.0 && isfinite(sc.to) && sc.to > 0.0, "sweep [%g, %g]",
              sc.from, sc.to);

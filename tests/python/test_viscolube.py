@@ -234,6 +234,32 @@ class TestScenes(Scratch):
                 else:
                     self.assertEqual(cell, text10(v), (name, i))
 
+    def test_ball_scene_equals_cli(self):
+        # a point contact (docs/POINT_CONTACT.md): its columns after
+        # curve.csv's and its 2-D fields, every cell as the CLI writes it
+        scene = os.path.join(self.dir, "ball.ini")
+        with open(scene, "w") as f:
+            f.write("[materials]\ncompound = model-rubber\n"
+                    "[contact]\ngeometry = ball\nradius_m = 0.0095\nload_n = 3\n"
+                    "[sweep]\nquantity = deborah\nfrom = 0.3\nto = 3\npoints = 2\n"
+                    "fields_at = 3\n[effects]\nviscoelastic = on\n")
+        out = os.path.join(self.dir, "out")
+        cli("--db", self.db_path, "run", scene, "--out", out, "--quiet")
+        with vl.Database(self.db_path) as db:
+            curve = db.run(scene)
+        header, rows = read_csv(os.path.join(out, "curve.csv"))
+        self.assertEqual(list(curve.keys()), header)
+        self.assertEqual(header[len(vl.CURVE_COLUMNS)], "geometry")
+        for i, row in enumerate(rows):
+            for name, cell in list(zip(header, row))[len(vl.CURVE_COLUMNS):]:
+                v = curve[name][i]
+                self.assertEqual(cell, v if name == "geometry" else text10(v), (name, i))
+        self.assertEqual(len(curve.fields), 1)
+        f = curve.fields[0]
+        header, rows = read_csv(os.path.join(out, "fields", "%03d.csv" % f["index"]))
+        for j, name in enumerate(header):
+            self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
+
     def test_compare_equals_cli(self):
         out = os.path.join(self.dir, "cmp")
         cli("--db", self.db_path, "compare", "--compounds", "sbr-unfilled,sbr-filled",
