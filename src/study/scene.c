@@ -35,6 +35,10 @@ typedef enum {
   K_MOVING,
   K_SEALED_PRESSURE,
   K_PROFILE_FILE,
+  K_PROFILE,
+  K_LIP_TIP_RADIUS,
+  K_LIP_OIL_ANGLE,
+  K_LIP_AIR_ANGLE,
   K_STROKE,
   K_ROD_DIAMETER,
   K_STROKE_LENGTH,
@@ -71,12 +75,16 @@ static const struct {
     [K_SURFACE] = {"materials", "surface", false},
     [K_FLUID_NAME] = {"materials", "fluid", false},
     [K_ELASTIC_MODULUS] = {"materials", "elastic_modulus", false},
-    [K_RADIUS] = {"contact", "radius_m", true},
+    [K_RADIUS] = {"contact", "radius_m", false}, /* required unless profile = lip */
     [K_LOAD] = {"contact", "load_n_per_m", true},
     [K_SIGMA_S] = {"contact", "sigma_s_pa", false},
     [K_MOVING] = {"contact", "moving", false},
     [K_SEALED_PRESSURE] = {"contact", "sealed_pressure_pa", false},
     [K_PROFILE_FILE] = {"contact", "profile_file", false},
+    [K_PROFILE] = {"contact", "profile", false},
+    [K_LIP_TIP_RADIUS] = {"contact", "lip_tip_radius_m", false},
+    [K_LIP_OIL_ANGLE] = {"contact", "lip_oil_angle_deg", false},
+    [K_LIP_AIR_ANGLE] = {"contact", "lip_air_angle_deg", false},
     [K_STROKE] = {"seal", "stroke", false},
     [K_ROD_DIAMETER] = {"seal", "rod_diameter_m", false},
     [K_STROKE_LENGTH] = {"seal", "stroke_length_m", false},
@@ -344,6 +352,20 @@ static int contact_key(parse_state *ps, key_id id, const char *section, const ch
       return fail(ps, section, key, "bad file name '%s'", value);
     snprintf(sc->profile_file, sizeof sc->profile_file, "%.*s%s", dir, ps->path, value);
     sc->profile_line = ps->line;
+    return 1;
+  }
+  case K_PROFILE:
+    if (!strcmp(value, "cylinder") || !strcmp(value, "lip"))
+      sc->lip = value[0] == 'l';
+    else
+      return fail(ps, section, key, "expected cylinder or lip, got '%s'", value);
+    return 1;
+  case K_LIP_TIP_RADIUS: POSITIVE(lip_tip_radius_m);
+  case K_LIP_OIL_ANGLE:
+  case K_LIP_AIR_ANGLE: {
+    double *a = id == K_LIP_OIL_ANGLE ? &sc->lip_oil_angle_deg : &sc->lip_air_angle_deg;
+    if (!parse_double(value, a) || !(*a > 0.0 && *a < 90.0))
+      return fail(ps, section, key, "expected a flank angle in (0, 90) degrees, got '%s'", value);
     return 1;
   }
   case K_SEALED_PRESSURE:
@@ -638,6 +660,34 @@ static vl_status check_fail(parse_state *ps, key_id id, const char *fmt, ...) {
   return VL_EINPUT;
 }
 
+/* The profile keys: the cylinder's radius_m, or a lip with all three of
+ * its keys and no radius_m (its tip radius is lip_tip_radius_m), or a
+ * table (profile_file, radius_m for the scales). */
+static vl_status check_profile(parse_state *ps) {
+  vl_scene *sc = ps->scene;
+  static const key_id lip_keys[3] = {K_LIP_TIP_RADIUS, K_LIP_OIL_ANGLE, K_LIP_AIR_ANGLE};
+  for (int k = 0; k < 3; k++) {
+    if (sc->lip && !ps->key_line[lip_keys[k]])
+      return check_fail(ps, K_PROFILE, "lip needs [contact] %s", keys[lip_keys[k]].key);
+    if (!sc->lip && ps->key_line[lip_keys[k]])
+      return check_fail(ps, lip_keys[k], "applies to [contact] profile = lip only");
+  }
+  if (sc->lip && ps->key_line[K_RADIUS])
+    return check_fail(ps, K_RADIUS,
+                      "not with profile = lip (line %d): the lip's tip radius is "
+                      "lip_tip_radius_m; remove radius_m",
+                      ps->key_line[K_PROFILE]);
+  if (sc->lip && ps->key_line[K_PROFILE_FILE])
+    return check_fail(ps, K_PROFILE_FILE,
+                      "not with profile = lip (line %d): give the lip or the table",
+                      ps->key_line[K_PROFILE]);
+  if (!sc->lip && !ps->key_line[K_RADIUS]) {
+    vl_error_set(ps->err, "%s: missing required key [contact] radius_m", ps->path);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
 /* Requirements between keys, checked once the whole file is read. */
 static vl_status scene_check(parse_state *ps) {
   vl_scene *sc = ps->scene;
@@ -648,6 +698,8 @@ static vl_status scene_check(parse_state *ps) {
       return VL_EINPUT;
     }
   }
+  vl_status st = check_profile(ps);
+  if (st != VL_OK) return st;
   /* the numerics the file does not set follow from its effects */
   vl_scene d = *sc;
   vl_scene_default_numerics(&d);
@@ -824,4 +876,16 @@ done:
   free(text);
   fclose(f);
   return printable(st, err);
+}
+
+vl_status vl_scene_as_seal(vl_scene *sc, vl_error *err) {
+  if (sc->moving != VL_MOVING_COUNTERFACE || !sc->effects.fluid) {
+    vl_error_set(err,
+                 "%s: a seal needs [contact] moving = counterface (the seal at rest, the rod "
+                 "moving) and [effects] fluid = on%s",
+                 sc->path, sc->moving != VL_MOVING_COUNTERFACE ? " (moving is rubber)" : "");
+    return VL_EINPUT;
+  }
+  sc->stroke = VL_STROKE_BOTH;
+  return VL_OK;
 }

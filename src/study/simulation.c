@@ -10,6 +10,7 @@
 #include "viscolube/dma.h"
 
 #include "assumptions_internal.h"
+#include "contact_private.h"
 #include "rheology_internal.h"
 #include "simulation_internal.h"
 #include "viscolube/flattening.h"
@@ -27,6 +28,7 @@ struct vl_simulation {
   vl_scene scene;
   vl_contact_config cfg;    /* as given to the contact (the assumption checks read it) */
   vl_contact_config cfg_in; /* [seal] stroke = both: the instroke's (mirrored, sealed outlet) */
+  vl_sweep_stats in_stats;  /* the last run's instroke (zero without one) */
   vl_prony rubber;
   bool have_psd;
   vl_psd psd;
@@ -341,6 +343,21 @@ static vl_status measured_window(vl_simulation *sim, vl_db *db, vl_error *err) {
   return st;
 }
 
+/* A lip's scales and every profile's domain: the lip's contact may be far
+ * wider than the tip's Hertz contact (its flanks carry), so the scales are
+ * those of the cylinder whose dry contact is as wide (a0 the lip's
+ * half-width), and the domain of default numerics reaches past the
+ * contact of either stroke (vl_contact_numerics_follow_profile). A
+ * table's radius_m stays the scene's. */
+static vl_status profile_scales(const vl_scene *scene, vl_contact_config *cfg, vl_error *err) {
+  vl_status st = VL_OK;
+  double c, a;
+  if (scene->lip) st = vl_contact_profile_contact(cfg, &c, &a, &cfg->radius_m, err);
+  if (st == VL_OK && scene->auto_numerics) st = vl_contact_numerics_follow_profile(cfg, err);
+  if (st != VL_OK) vl_error_prefix(err, "%s: [contact] profile", scene->path);
+  return st;
+}
+
 vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation **out,
                                vl_error *err) {
   *out = NULL;
@@ -409,6 +426,12 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   }
   cfg.radius_m = scene->radius_m;
   cfg.load_n_per_m = scene->load_n_per_m;
+  if (scene->lip) {
+    cfg.lip_tip_radius_m = scene->lip_tip_radius_m;
+    cfg.lip_oil_angle_rad = scene->lip_oil_angle_deg * M_PI / 180.0;
+    cfg.lip_air_angle_rad = scene->lip_air_angle_deg * M_PI / 180.0;
+    cfg.radius_m = cfg.lip_tip_radius_m; /* for the check; the scales' below */
+  }
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
   cfg.shear_law = sim->has_pair ? &sim->shear_law : NULL;
   cfg.moving = scene->moving;
@@ -435,6 +458,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.x_max_a0 = scene->domain_max_a0;
   cfg.tolerance = scene->tolerance;
   cfg.linear_solver = scene->linear_solver;
+  if ((st = profile_scales(scene, &cfg, err)) != VL_OK) goto fail;
   if (scene->effects.viscous_flattening) {
     /* epsilon_f of the rubber the contact uses (elastic or at the scene's
      * temperature), the surface, the contact's load and radius (aH, so wH)
@@ -494,6 +518,9 @@ double vl_simulation_tau(const vl_simulation *sim) {
   return sim->rubber.n_terms == 1 && memory ? sim->rubber.tau_s[0] : 0.0;
 }
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim) { return &sim->rubber; }
+const vl_sweep_stats *vl_simulation_instroke_stats(const vl_simulation *sim) {
+  return &sim->in_stats;
+}
 double vl_simulation_temperature_c(const vl_simulation *sim) { return sim->temperature_c; }
 double vl_simulation_shift_factor(const vl_simulation *sim) { return sim->a_T; }
 const vl_psd *vl_simulation_psd(const vl_simulation *sim) {
@@ -556,13 +583,22 @@ static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
  * and back per cycle and whether the seal is tight. */
 static void seal_result(const vl_scene *sc, vl_point *p, const vl_point *q) {
   vl_seal_result *s = &p->seal;
-  *s = (vl_seal_result){.stroke = sc->stroke, .volume_out_m3 = NAN, .volume_back_m3 = NAN};
+  *s = (vl_seal_result){.stroke = sc->stroke,
+                        .volume_out_m3 = NAN,
+                        .volume_back_m3 = NAN,
+                        .in_error_estimate = NAN,
+                        .in_flux_error_estimate = NAN};
   s->tight = -1;
   s->friction_n_per_m = p->mu * sc->load_n_per_m;
   if (!q) return;
   s->in_converged = q->converged;
   s->in_mu = q->mu, s->in_mu_Sc = q->mu_Sc, s->in_mu_Sf = q->mu_Sf;
   s->in_u_min_m = q->u_min_m, s->in_flux_m2_s = q->flux_m2_s;
+  s->in_u_central_m = q->u_central_m;
+  s->in_error_estimate = q->error_estimate, s->in_flux_error_estimate = q->flux_error_estimate;
+  s->in_accuracy = q->accuracy;
+  s->in_iterations = q->iterations, s->in_residual = q->residual;
+  snprintf(s->in_warnings, sizeof s->in_warnings, "%s", q->warnings);
   s->in_friction_n_per_m = q->mu * sc->load_n_per_m;
   if (sc->rod_diameter_m > 0.0 && sc->stroke_length_m > 0.0 && p->converged && q->converged) {
     /* a stroke of length L at speed v lasts L/v; q per unit circumference */
@@ -584,9 +620,8 @@ static vl_status run_instroke(vl_simulation *sim, vl_point *out, vl_error *err) 
   }
   vl_simulation_run_ctx_in ctx = {sim, in};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
-  vl_sweep_stats st;
-  vl_status s =
-      vl_sweep_run_auto(&sim->cfg_in, &o, sim->n, sim->v0, in, check_point_in, &ctx, &st, err);
+  vl_status s = vl_sweep_run_auto(&sim->cfg_in, &o, sim->n, sim->v0, in, check_point_in, &ctx,
+                                  &sim->in_stats, err);
   if (s == VL_OK || s == VL_ENOCONV)
     for (size_t i = 0; i < sim->n; i++)
       seal_result(&sim->scene, &out[i], &in[i]);
@@ -598,6 +633,7 @@ vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback
                             vl_sweep_stats *stats, vl_error *err) {
   run_ctx r = {sim, out, cb, user};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  memset(&sim->in_stats, 0, sizeof sim->in_stats);
   vl_status st =
       vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
   if (sim->scene.stroke == VL_STROKE_NONE || (st != VL_OK && st != VL_ENOCONV)) return st;
