@@ -255,6 +255,22 @@ typedef struct {
    * still sets the scales: the study layer gives it the radius of the
    * cylinder whose dry contact is as wide as the lip's. */
   double lip_tip_radius_m, lip_oil_angle_rad, lip_air_angle_rad;
+  /* An imposed static contact pressure instead of a profile (docs/MODEL.md
+   * section 14; NULL: none): static_points >= 3 points (x_m, p_pa), any
+   * order, distinct x, p >= 0, zero at the lowest and the highest x
+   * (the contact's edges), linear between. The rubber's shape is not
+   * given: it is the one on which the dry smooth contact has this
+   * pressure (f = -w[p_s] over the span where p_s > 0, w the elastic
+   * displacement with the relaxed modulus, continued straight beyond
+   * with the slope at each edge); the film's change of the pressure
+   * deforms the rubber elastically around that state. The table is
+   * shifted so that the middle of its span sits at x = 0; profile_mirror
+   * mirrors it. Moving counter-surface only, no table or lip; load_n_per_m
+   * must be the table's integral and radius_m sets the scales
+   * (vl_contact_static_scales, private, gives both). Copied by
+   * vl_contact_create. */
+  const double *static_x_m, *static_p_pa;
+  size_t static_points;
 } vl_contact_config;
 
 /* Sets the numerics of cfg (grid, grid_growth, domain, tolerance,

@@ -95,8 +95,8 @@ vl_status vl_plot_stribeck(const char *stem, size_t n, const vl_point *pts,
  * not converge is a hollow marker above the x axis; one above its error
  * target a hollow square. VL_EINPUT: no points, not both strokes, a speed
  * not positive; other errors as vl_plot_stribeck. */
-vl_status vl_plot_seal(const char *stem, size_t n, const vl_point *pts,
-                       const vl_plot_options *opt, vl_plot_report *report, vl_error *err);
+vl_status vl_plot_seal(const char *stem, size_t n, const vl_point *pts, const vl_plot_options *opt,
+                       vl_plot_report *report, vl_error *err);
 
 /* The minimum separation against x: u_min/h_rms when h_rms_m > 0, else
  * u_min in um; the y axis is logarithmic when the data span more than a

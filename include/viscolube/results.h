@@ -32,7 +32,7 @@ typedef struct {
    * error_estimate and flux_error_estimate) and its vl_accuracy */
   double in_error_estimate, in_flux_error_estimate;
   int in_accuracy;
-  long in_iterations;            /* the instroke's Newton iterations and final residual */
+  long in_iterations; /* the instroke's Newton iterations and final residual */
   double in_residual;
   char in_warnings[VL_WARN_MAX]; /* the instroke's, as vl_point.warnings */
   /* VL_STROKE_BOTH with a rod diameter D and a stroke length L: the fluid

@@ -70,6 +70,11 @@ typedef struct {
    * oil side (an outstroke's inlet) and the air side */
   bool lip;
   double lip_tip_radius_m, lip_oil_angle_deg, lip_air_angle_deg;
+  /* an imposed static contact pressure (x_m, p_pa table; docs/MODEL.md
+   * section 14), the path joined to the scene's folder; empty: none. With
+   * it radius_m and load_n_per_m are unset (the table gives them) */
+  char pressure_file[2048];
+  int pressure_line;
   /* [seal]: a seal's strokes (results.h vl_stroke; VL_STROKE_NONE without
    * the section), the rod diameter and stroke length (m; 0: not given, no
    * volumes per cycle) */

@@ -467,7 +467,8 @@ static vl_status curve_outputs(run_job *job, const vl_scene *scene, vl_simulatio
   }
   if (!job->json) {
     if (cst == VL_OK) printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
-    if (job->plot) printf("plots (png, svg) in %s: %s%s\n", out_dir, plots, job->seal ? ", seal" : "");
+    if (job->plot)
+      printf("plots (png, svg) in %s: %s%s\n", out_dir, plots, job->seal ? ", seal" : "");
   }
   /* stdout first, so that the lines follow the table in a shared log */
   fflush(stdout);
@@ -775,7 +776,8 @@ static int run_command(const vl_cli_globals *g, int argc, char **argv, int seal)
     goto done;
   }
   /* last: the manifest, once every file is in place */
-  rc = vl_cli_manifest_finish(job.man, cmd, quiet, vl_cli_points_status(job.failed, job.unreliable));
+  rc =
+      vl_cli_manifest_finish(job.man, cmd, quiet, vl_cli_points_status(job.failed, job.unreliable));
   job.man = NULL;
 done:
   vl_manifest_free(job.man); /* a failed run leaves no manifest: the folder is incomplete */
@@ -786,7 +788,9 @@ done:
   return rc;
 }
 
-int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) { return run_command(g, argc, argv, 0); }
+int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
+  return run_command(g, argc, argv, 0);
+}
 
 int vl_cli_seal(const vl_cli_globals *g, int argc, char **argv) {
   return run_command(g, argc, argv, 1);

@@ -55,8 +55,8 @@ void vl_cli_print_seal_table(size_t n, const vl_point *pts) {
     char c[2][6][24], eo[16], ei[16];
     for (int s = 0; s < 2; s++) {
       bool ok = st[s]->converged;
-      cell(c[s][0], sizeof c[s][0], ok ? (s ? p->seal.in_friction_n_per_m : p->seal.friction_n_per_m)
-                                       : NAN);
+      cell(c[s][0], sizeof c[s][0],
+           ok ? (s ? p->seal.in_friction_n_per_m : p->seal.friction_n_per_m) : NAN);
       cell(c[s][1], sizeof c[s][1], ok ? st[s]->u_min_m : NAN);
       cell(c[s][2], sizeof c[s][2], ok ? st[s]->u_central_m : NAN);
       cell(c[s][3], sizeof c[s][3], ok ? st[s]->flux_m2_s : NAN);

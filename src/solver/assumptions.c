@@ -116,9 +116,9 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
     snprintf(w, sizeof w, "contact spans %.2g cells < 8 (refine the grid)", width / dx);
     append(warnings, cap, w);
   }
-  /* a lip's or a table's radius_m only sets the scales: its small slopes
+  /* a lip's, a table's or a static pressure's radius_m only sets the scales: its small slopes
    * are checked on the profile itself (the solver's profile slope warning) */
-  bool profile = cfg->profile_x_m || cfg->lip_tip_radius_m > 0.0;
+  bool profile = cfg->profile_x_m || cfg->lip_tip_radius_m > 0.0 || cfg->static_x_m;
   if (!profile && half > HALF_SPACE_MAX * cfg->radius_m) {
     mask |= VL_ASSUME_HALF_SPACE;
     snprintf(w, sizeof w, "contact half-width %.2g R > 0.2 R (parabolic gap and small strain)",

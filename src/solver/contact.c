@@ -134,6 +134,63 @@ static vl_status build_profile(vl_contact *c, vl_error *err) {
   return VL_OK;
 }
 
+/* An imposed static pressure p_s (contact.h; docs/MODEL.md section 14):
+ * the profile on which the dry smooth contact carries p_s, from the
+ * contact's own influence coefficients (so that on its grid P = p_s
+ * solves the dry contact): f_i = -(M p_s)_i where p_s > 0, continued
+ * straight beyond the outermost loaded nodes with the slope of their last
+ * two; f' by differences. Needs the elastic kernel (vl_contact_set_speed
+ * done). The table is copied (c->stab) for the helpers made later. */
+static vl_status build_static_profile(vl_contact *c, vl_error *err) {
+  const vl_contact_config *cfg = &c->cfg;
+  if (!cfg->static_x_m) return VL_OK;
+  size_t m = cfg->static_points, n = c->n;
+  c->stab = malloc(2 * m * sizeof *c->stab);
+  c->fprof = malloc(3 * n * sizeof *c->fprof);
+  if (!c->stab || !c->fprof) return vl_contact_nomem(c, err);
+  memcpy(c->stab, cfg->static_x_m, m * sizeof *c->stab);
+  memcpy(c->stab + m, cfg->static_p_pa, m * sizeof *c->stab);
+  c->cfg.static_x_m = c->stab, c->cfg.static_p_pa = c->stab + m;
+  c->sprof = c->fprof + n;
+  double *ps = c->fprof + 2 * n;
+  vl_static_pressure t;
+  vl_status st = vl_static_pressure_init(&t, cfg, err);
+  if (st != VL_OK) return st;
+  size_t lo = n, hi = 0;
+  for (size_t i = 0; i < n; i++) {
+    ps[i] = vl_static_pressure_at(&t, c->xi[i] * c->a0) / c->p0;
+    if (ps[i] > 0.0) lo = i < lo ? i : lo, hi = i;
+  }
+  vl_static_pressure_free(&t);
+  if (lo + 1 >= hi) {
+    vl_error_set(err, "a static pressure spans fewer than 3 cells of the grid");
+    return VL_EINPUT;
+  }
+  for (size_t i = lo; i <= hi; i++) {
+    double w = 0.0;
+    for (size_t j = 0; j < n; j++)
+      w += c->M[i * n + j] * ps[j];
+    c->fprof[i] = -w;
+  }
+  double sl = (c->fprof[lo + 1] - c->fprof[lo]) / (c->xi[lo + 1] - c->xi[lo]);
+  double sr = (c->fprof[hi] - c->fprof[hi - 1]) / (c->xi[hi] - c->xi[hi - 1]);
+  for (size_t i = 0; i < lo; i++)
+    c->fprof[i] = c->fprof[lo] + sl * (c->xi[i] - c->xi[lo]);
+  for (size_t i = hi + 1; i < n; i++)
+    c->fprof[i] = c->fprof[hi] + sr * (c->xi[i] - c->xi[hi]);
+  double fmin = INFINITY;
+  for (size_t i = 0; i < n; i++)
+    fmin = fmin < c->fprof[i] ? fmin : c->fprof[i];
+  for (size_t i = 0; i < n; i++)
+    c->fprof[i] -= fmin; /* the tip at 0: h0 takes any constant */
+  /* the slope (m/m): f is in a0^2/R over x in a0 */
+  for (size_t i = 0; i < n; i++) {
+    size_t a = i > 0 ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
+    c->sprof[i] = (c->fprof[b] - c->fprof[a]) / (c->xi[b] - c->xi[a]) * c->uscale / c->a0;
+  }
+  return VL_OK;
+}
+
 size_t vl_contact_merge_cells(const size_t *span, size_t n, size_t *out) {
   size_t m = 0, k = 0;
   for (; k + 3 <= n; k += 3) /* odd + odd + odd: odd, its node a uniform node */
@@ -209,6 +266,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   if ((st = vl_contact_kinsol_init(c, err)) != VL_OK) goto fail;
   if ((st = create_helpers(c, err)) != VL_OK) goto fail;
   vl_contact_set_speed(c, 0.0);
+  if ((st = build_static_profile(c, err)) != VL_OK) goto fail;
   vl_contact_reset(c);
   *out = c;
   return VL_OK;
@@ -257,6 +315,7 @@ void vl_contact_free(vl_contact *c) {
   free(c->pamb);
   free(c->fprof);
   free(c->ptab);
+  free(c->stab);
   free(c->film_work);
   free(c->fb_work);
   free(c);

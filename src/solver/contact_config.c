@@ -215,6 +215,28 @@ static vl_status check_lip(const vl_contact_config *cfg, vl_error *err) {
   return VL_OK;
 }
 
+/* An imposed static pressure: a table that is one, on a rubber at rest
+ * (its deformation is static), alone (no profile), carrying the load. */
+static vl_status check_static(const vl_contact_config *cfg, vl_error *err) {
+  if (!cfg->static_x_m && !cfg->static_p_pa) return VL_OK;
+  if (cfg->moving != VL_MOVING_COUNTERFACE || cfg->profile_x_m || cfg->lip_tip_radius_m != 0.0) {
+    vl_error_set(err, "a static pressure needs a moving counter-surface and no profile table "
+                      "or lip (the pressure stands for the profile)");
+    return VL_EINPUT;
+  }
+  vl_static_pressure t;
+  vl_status st = vl_static_pressure_init(&t, cfg, err);
+  if (st != VL_OK) return st;
+  double load = t.load_n_per_m;
+  vl_static_pressure_free(&t);
+  if (!(fabs(cfg->load_n_per_m - load) <= 1e-9 * load)) {
+    vl_error_set(err, "a static pressure carries %.10g N/m, load_n_per_m is %.10g", load,
+                 cfg->load_n_per_m);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
 vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
   vl_status st = vl_prony_validate(&cfg->rubber, err);
   if (st == VL_OK) st = check_geometry(cfg, err);
@@ -268,6 +290,7 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
     }
   }
   st = check_lip(cfg, err);
+  if (st == VL_OK) st = check_static(cfg, err);
   if (st != VL_OK) return st;
   if ((cfg->p_inlet_pa > 0.0 || cfg->p_outlet_pa > 0.0) && !(cfg->eta_pa_s > 0.0)) {
     vl_error_set(err, "a sealed pressure needs a fluid (the contact is dry)");
@@ -330,5 +353,17 @@ vl_status vl_contact_numerics_follow_profile(vl_contact_config *cfg, vl_error *e
   if (cfg->grid_growth > 1.0)
     cfg->grade_start_a0 = fmax(VL_GRADE_START_A0, reach + (VL_GRADE_START_A0 - 1.0));
   cfg->x_min_a0 = lo, cfg->x_max_a0 = hi;
+  return VL_OK;
+}
+
+vl_status vl_contact_static_scales(const vl_contact_config *cfg, double *load_n_per_m,
+                                   double *radius_m, vl_error *err) {
+  vl_static_pressure t;
+  vl_status st = vl_static_pressure_init(&t, cfg, err);
+  if (st != VL_OK) return st;
+  double er = vl_prony_e0(&cfg->rubber) * vl_prony_reduced_factor(&cfg->rubber);
+  *load_n_per_m = t.load_n_per_m;
+  *radius_m = M_PI * er * t.half_width_m * t.half_width_m / (4.0 * t.load_n_per_m);
+  vl_static_pressure_free(&t);
   return VL_OK;
 }

@@ -55,6 +55,14 @@ double vl_contact_inlet_length_m(const vl_contact_config *cfg, double v0_m_s);
 vl_status vl_contact_profile_contact(const vl_contact_config *cfg, double *centre_m,
                                      double *half_width_m, double *radius_m, vl_error *err);
 
+/* The load and the scales' radius of cfg's static pressure (the rubber
+ * set): its integral (trapezoids of the table), and the radius of the
+ * cylinder whose relaxed Hertz contact is as wide as the pressure's span
+ * (a0 = half the span). VL_EINPUT as vl_contact_create for a table that is
+ * not one. */
+vl_status vl_contact_static_scales(const vl_contact_config *cfg, double *load_n_per_m,
+                                   double *radius_m, vl_error *err);
+
 /* Widens the domain of cfg (a lip or a table: its profile, mirrored and
  * not, as an outstroke and an instroke see it) so that the dry contact of
  * the profile (vl_contact_profile_contact) lies inside it with the margins

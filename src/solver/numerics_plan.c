@@ -22,9 +22,9 @@ typedef struct {
   double a;      /* contact half-width */
   double xl, xr; /* its edges: -a, a for the cylinder; a lip's or a table's contact may lie
                   * off the tip x = 0 */
-  double lh;   /* hydrodynamic inlet length sqrt(2 R h) */
-  double s;    /* edge-zone width of a soft film (INFINITY: not soft) */
-  double core; /* upstream end of the zone of background cells */
+  double lh;     /* hydrodynamic inlet length sqrt(2 R h) */
+  double s;      /* edge-zone width of a soft film (INFINITY: not soft) */
+  double core;   /* upstream end of the zone of background cells */
   double x_lo, x_hi;
   double fine, back, inlet; /* cell widths: edges, background, far inlet */
 } lengths;

@@ -234,3 +234,74 @@ double vl_profile_rise_length(const vl_profile *p, double h_m) {
   }
   return 0.5 * (lo + hi);
 }
+
+vl_status vl_static_pressure_init(vl_static_pressure *t, const vl_contact_config *cfg,
+                                  vl_error *err) {
+  memset(t, 0, sizeof *t);
+  size_t m = cfg->static_points;
+  if (!cfg->static_x_m || !cfg->static_p_pa || m < 3) {
+    vl_error_set(err, "a static pressure needs x and p of at least 3 points (got %zu)", m);
+    return VL_EINPUT;
+  }
+  double *w = malloc(2 * m * sizeof *w);
+  if (!w) {
+    vl_error_set(err, "out of memory for a static pressure of %zu points", m);
+    return VL_ENOMEM;
+  }
+  double *x = w, *p = w + m;
+  vl_status st = VL_OK;
+  for (size_t k = 0; k < m && st == VL_OK; k++) {
+    x[k] = cfg->profile_mirror ? -cfg->static_x_m[k] : cfg->static_x_m[k];
+    p[k] = cfg->static_p_pa[k];
+    if (!isfinite(x[k]) || !isfinite(p[k]) || p[k] < 0.0) {
+      vl_error_set(err, "static pressure point %zu: x = %g m, p = %g Pa (finite, p >= 0)", k + 1,
+                   cfg->static_x_m[k], p[k]);
+      st = VL_EINPUT;
+    }
+  }
+  if (st == VL_OK) sort_points(x, p, m);
+  double pmax = 0.0, load = 0.0;
+  for (size_t k = 0; k < m && st == VL_OK; k++) {
+    pmax = fmax(pmax, p[k]);
+    if (k > 0 && x[k] == x[k - 1]) {
+      vl_error_set(err, "static pressure: x = %g m given twice", x[k]);
+      st = VL_EINPUT;
+    }
+    if (k > 0) load += 0.5 * (p[k] + p[k - 1]) * (x[k] - x[k - 1]);
+  }
+  if (st == VL_OK && (p[0] != 0.0 || p[m - 1] != 0.0 || !(pmax > 0.0))) {
+    vl_error_set(err,
+                 "static pressure: it must be 0 at both ends of the table (the contact's "
+                 "edges) and positive between (got %g Pa at x = %g m, %g Pa at x = %g m)",
+                 p[0], x[0], p[m - 1], x[m - 1]);
+    st = VL_EINPUT;
+  }
+  if (st != VL_OK) {
+    free(w);
+    return st;
+  }
+  double mid = 0.5 * (x[0] + x[m - 1]);
+  for (size_t k = 0; k < m; k++)
+    x[k] -= mid;
+  *t = (vl_static_pressure){m, x, p, load, 0.5 * (x[m - 1] - x[0])};
+  return VL_OK;
+}
+
+void vl_static_pressure_free(vl_static_pressure *t) {
+  free(t->x);
+  memset(t, 0, sizeof *t);
+}
+
+double vl_static_pressure_at(const vl_static_pressure *t, double x) {
+  if (!(x > t->x[0] && x < t->x[t->m - 1])) return 0.0;
+  size_t lo = 0, hi = t->m - 1;
+  while (hi - lo > 1) {
+    size_t mid = (lo + hi) / 2;
+    if (t->x[mid] <= x)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  double s = (x - t->x[lo]) / (t->x[hi] - t->x[lo]);
+  return (1.0 - s) * t->p[lo] + s * t->p[hi];
+}

@@ -58,4 +58,22 @@ vl_status vl_profile_dry_contact(const vl_profile *p, double load_n_per_m, doubl
  * inlet length), shorter on a steep flank. */
 double vl_profile_rise_length(const vl_profile *p, double h_m);
 
+/* An imposed static contact pressure (vl_contact_config.static_x_m; docs/
+ * MODEL.md section 14): the table sorted (mirrored when cfg->profile_mirror)
+ * and shifted so that the middle of its span sits at x = 0. */
+typedef struct {
+  size_t m;
+  double *x, *p;                     /* one block of 2 m values (owned) */
+  double load_n_per_m, half_width_m; /* its integral (trapezoids) and half its span */
+} vl_static_pressure;
+
+/* VL_EINPUT naming the point when the table is not one (fewer than 3 points,
+ * a value not finite, an x twice, p < 0, p not zero at both ends, no p >
+ * 0); VL_ENOMEM. Free with vl_static_pressure_free. */
+vl_status vl_static_pressure_init(vl_static_pressure *t, const vl_contact_config *cfg,
+                                  vl_error *err);
+void vl_static_pressure_free(vl_static_pressure *t);
+/* p_s(x) (Pa), linear between the points, 0 beyond. */
+double vl_static_pressure_at(const vl_static_pressure *t, double x_m);
+
 #endif

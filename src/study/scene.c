@@ -36,6 +36,7 @@ typedef enum {
   K_SEALED_PRESSURE,
   K_PROFILE_FILE,
   K_PROFILE,
+  K_PRESSURE_PROFILE_FILE,
   K_LIP_TIP_RADIUS,
   K_LIP_OIL_ANGLE,
   K_LIP_AIR_ANGLE,
@@ -75,13 +76,14 @@ static const struct {
     [K_SURFACE] = {"materials", "surface", false},
     [K_FLUID_NAME] = {"materials", "fluid", false},
     [K_ELASTIC_MODULUS] = {"materials", "elastic_modulus", false},
-    [K_RADIUS] = {"contact", "radius_m", false}, /* required unless profile = lip */
-    [K_LOAD] = {"contact", "load_n_per_m", true},
+    [K_RADIUS] = {"contact", "radius_m", false},   /* required unless profile = lip */
+    [K_LOAD] = {"contact", "load_n_per_m", false}, /* required unless pressure_profile_file */
     [K_SIGMA_S] = {"contact", "sigma_s_pa", false},
     [K_MOVING] = {"contact", "moving", false},
     [K_SEALED_PRESSURE] = {"contact", "sealed_pressure_pa", false},
     [K_PROFILE_FILE] = {"contact", "profile_file", false},
     [K_PROFILE] = {"contact", "profile", false},
+    [K_PRESSURE_PROFILE_FILE] = {"contact", "pressure_profile_file", false},
     [K_LIP_TIP_RADIUS] = {"contact", "lip_tip_radius_m", false},
     [K_LIP_OIL_ANGLE] = {"contact", "lip_oil_angle_deg", false},
     [K_LIP_AIR_ANGLE] = {"contact", "lip_air_angle_deg", false},
@@ -344,14 +346,20 @@ static int contact_key(parse_state *ps, key_id id, const char *section, const ch
     else
       return fail(ps, section, key, "expected rubber or counterface, got '%s'", value);
     return 1;
-  case K_PROFILE_FILE: {
+  case K_PROFILE_FILE:
+  case K_PRESSURE_PROFILE_FILE: {
     /* relative to the scene file's folder */
+    char *dst = id == K_PROFILE_FILE ? sc->profile_file : sc->pressure_file;
+    size_t size = id == K_PROFILE_FILE ? sizeof sc->profile_file : sizeof sc->pressure_file;
     const char *slash = strrchr(ps->path, '/');
     int dir = value[0] != '/' && slash ? (int)(slash - ps->path + 1) : 0;
-    if (!*value || strlen(value) + (size_t)dir >= sizeof sc->profile_file)
+    if (!*value || strlen(value) + (size_t)dir >= size)
       return fail(ps, section, key, "bad file name '%s'", value);
-    snprintf(sc->profile_file, sizeof sc->profile_file, "%.*s%s", dir, ps->path, value);
-    sc->profile_line = ps->line;
+    snprintf(dst, size, "%.*s%s", dir, ps->path, value);
+    if (id == K_PROFILE_FILE)
+      sc->profile_line = ps->line;
+    else
+      sc->pressure_line = ps->line;
     return 1;
   }
   case K_PROFILE:
@@ -660,6 +668,24 @@ static vl_status check_fail(parse_state *ps, key_id id, const char *fmt, ...) {
   return VL_EINPUT;
 }
 
+/* An imposed static pressure (pressure_profile_file): it stands for the
+ * rubber's shape and preload, so no radius_m, load_n_per_m or profile; the
+ * rubber at rest (moving = counterface). */
+static vl_status check_pressure_profile(parse_state *ps) {
+  static const key_id excluded[4] = {K_RADIUS, K_LOAD, K_PROFILE, K_PROFILE_FILE};
+  for (int k = 0; k < 4; k++)
+    if (ps->key_line[excluded[k]])
+      return check_fail(ps, excluded[k],
+                        "not with pressure_profile_file (line %d): the imposed pressure gives "
+                        "the load and the contact's shape",
+                        ps->key_line[K_PRESSURE_PROFILE_FILE]);
+  if (ps->scene->moving != VL_MOVING_COUNTERFACE)
+    return check_fail(ps, K_PRESSURE_PROFILE_FILE,
+                      "needs [contact] moving = counterface (a static pressure: the rubber at "
+                      "rest, the counter-surface moving)");
+  return VL_OK;
+}
+
 /* The profile keys: the cylinder's radius_m, or a lip with all three of
  * its keys and no radius_m (its tip radius is lip_tip_radius_m), or a
  * table (profile_file, radius_m for the scales). */
@@ -681,10 +707,13 @@ static vl_status check_profile(parse_state *ps) {
     return check_fail(ps, K_PROFILE_FILE,
                       "not with profile = lip (line %d): give the lip or the table",
                       ps->key_line[K_PROFILE]);
-  if (!sc->lip && !ps->key_line[K_RADIUS]) {
-    vl_error_set(ps->err, "%s: missing required key [contact] radius_m", ps->path);
-    return VL_EINPUT;
-  }
+  if (ps->key_line[K_PRESSURE_PROFILE_FILE]) return check_pressure_profile(ps);
+  static const key_id needed[2] = {K_RADIUS, K_LOAD};
+  for (int k = 0; k < 2; k++)
+    if (!ps->key_line[needed[k]] && (k == 1 || !sc->lip)) {
+      vl_error_set(ps->err, "%s: missing required key [contact] %s", ps->path, keys[needed[k]].key);
+      return VL_EINPUT;
+    }
   return VL_OK;
 }
 

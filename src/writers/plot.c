@@ -1187,8 +1187,8 @@ static void draw_seal(fig *f, const void *vctx) {
   free(xv), free(wx), free(v), free(wy), free(ok);
 }
 
-vl_status vl_plot_seal(const char *stem, size_t n, const vl_point *pts,
-                       const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
+vl_status vl_plot_seal(const char *stem, size_t n, const vl_point *pts, const vl_plot_options *opt,
+                       vl_plot_report *report, vl_error *err) {
   if (n == 0 || !pts || pts[0].seal.stroke != VL_STROKE_BOTH) {
     vl_error_set(err, "plot: a seal's figure needs the points of both strokes");
     return VL_EINPUT;

@@ -49,12 +49,12 @@ typedef struct {
 static stroke_values stroke_of(const vl_point *p, bool in) {
   const vl_seal_result *s = &p->seal;
   if (!in)
-    return (stroke_values){p->converged,    s->friction_n_per_m, p->mu,
-                           p->u_min_m,      p->u_central_m,      p->flux_m2_s,
+    return (stroke_values){p->converged,      s->friction_n_per_m,    p->mu,
+                           p->u_min_m,        p->u_central_m,         p->flux_m2_s,
                            p->error_estimate, p->flux_error_estimate, p->accuracy,
                            p->warnings};
-  return (stroke_values){s->in_converged,   s->in_friction_n_per_m, s->in_mu,
-                         s->in_u_min_m,     s->in_u_central_m,      s->in_flux_m2_s,
+  return (stroke_values){s->in_converged,      s->in_friction_n_per_m,    s->in_mu,
+                         s->in_u_min_m,        s->in_u_central_m,         s->in_flux_m2_s,
                          s->in_error_estimate, s->in_flux_error_estimate, s->in_accuracy,
                          s->in_warnings};
 }
@@ -63,10 +63,10 @@ double vl_seal_table_value(const vl_point *p, size_t k) {
   if (k == 0) return p->v0_m_s;
   const vl_seal_result *s = &p->seal;
   if (k >= 15 && k <= 17)
-    return k == 15 ? s->volume_out_m3
-           : k == 16 ? s->volume_back_m3
+    return k == 15         ? s->volume_out_m3
+           : k == 16       ? s->volume_back_m3
            : s->tight >= 0 ? (double)s->tight
-                            : NAN;
+                           : NAN;
   if (k == 18 || k == 19) return stroke_of(p, k == 19).converged ? 1.0 : 0.0;
   if (k >= FIRST_TEXT || k == 0) return NAN;
   stroke_values v = stroke_of(p, k % 2 == 0);
