@@ -193,6 +193,10 @@ typedef struct {
    * costs tens of cells instead of hundreds. The last cell may end up to
    * one uniform cell beyond x_min_a0. */
   double grid_growth;
+  /* Where the graded inlet starts, x = -grade_start_a0 a0 (0: the default
+   * VL_GRADE_START_A0; a lip's or a table's contact may reach further
+   * upstream, vl_contact_numerics_follow_profile). */
+  double grade_start_a0;
   /* An explicit cell layout (NULL: the uniform or graded grid above): cell
    * k is cell_spans[k] consecutive cells of the uniform grid of `grid` cells
    * on the domain, odd (so that its node is a uniform node and its influence
@@ -241,6 +245,32 @@ typedef struct {
   const double *profile_x_m, *profile_z_m;
   size_t profile_points;
   bool profile_mirror;
+  /* A parametric lip instead (docs/MODEL.md section 13; lip_tip_radius_m 0:
+   * none; not with a table): the tip's parabola f = x^2/(2 r), r the tip
+   * radius, between the tangent points x = -r tan(oil) and r tan(air), and
+   * straight flanks beyond: of slope tan(lip_oil_angle_rad) on the oil side
+   * x < 0 (the inlet of an outstroke), tan(lip_air_angle_rad) on the air
+   * side, value and slope continuous at the joins; both angles in
+   * (0, pi/2). profile_mirror swaps the sides (an instroke). radius_m
+   * still sets the scales: the study layer gives it the radius of the
+   * cylinder whose dry contact is as wide as the lip's. */
+  double lip_tip_radius_m, lip_oil_angle_rad, lip_air_angle_rad;
+  /* An imposed static contact pressure instead of a profile (docs/MODEL.md
+   * section 14; NULL: none): static_points >= 3 points (x_m, p_pa), any
+   * order, distinct x, p >= 0, zero at the lowest and the highest x
+   * (the contact's edges), linear between. The rubber's shape is not
+   * given: it is the one on which the dry smooth contact has this
+   * pressure (f = -w[p_s] over the span where p_s > 0, w the elastic
+   * displacement with the relaxed modulus, continued straight beyond
+   * with the slope at each edge); the film's change of the pressure
+   * deforms the rubber elastically around that state. The table is
+   * shifted so that the middle of its span sits at x = 0; profile_mirror
+   * mirrors it. Moving counter-surface only, no table or lip; load_n_per_m
+   * must be the table's integral and radius_m sets the scales
+   * (vl_contact_static_scales, private, gives both). Copied by
+   * vl_contact_create. */
+  const double *static_x_m, *static_p_pa;
+  size_t static_points;
 } vl_contact_config;
 
 /* Sets the numerics of cfg (grid, grid_growth, domain, tolerance,

@@ -77,4 +77,30 @@ void vl_curve_json(vl_json *w, size_t n, const vl_point *pts, const vl_curve_met
  * ends), for a point written with more keys of its own. */
 void vl_point_json_members(vl_json *w, const vl_point *pt, const vl_curve_meta *meta);
 
+/* A seal's table (`viscolube seal`; docs/FORMATS.md "seal.csv"): a row
+ * per speed with both strokes, from points whose seal result holds the
+ * instroke (vl_point.seal, stroke VL_STROKE_BOTH): friction force per
+ * length, mu, minimum and central film, flux per unit circumference and
+ * the error estimates of the friction and of the flux, per stroke
+ * (columns *_out, *_in); the volumes carried out and back per cycle and
+ * whether the seal is tight; convergence, accuracy and warnings per
+ * stroke. NULL-terminated column names. */
+extern const char *const vl_seal_table_columns[];
+/* The number in column k of p's row, NAN where the CSV cell is empty (a
+ * stroke that did not converge, a value not known) and for the text
+ * columns (accuracy_*, warnings_*). */
+double vl_seal_table_value(const vl_point *p, size_t k);
+/* The text of column k (accuracy_out, accuracy_in, warnings_out,
+ * warnings_in) of p's row, "" when empty; NULL for a number column. */
+const char *vl_seal_table_text(const vl_point *p, size_t k);
+/* The table as CSV (a '#' line saying what it holds, then the header) to
+ * path, through a temporary renamed into place. */
+vl_status vl_write_seal_csv(const char *path, size_t n, const vl_point *pts, vl_error *err);
+/* The same as JSON: an array of {"v0_m_s", "out": {converged,
+ * friction_n_per_m, mu, u_min_m, u_central_m, flux_m2_s, error_estimate,
+ * flux_error_estimate, accuracy, warnings}, "in": {...}, "volume_out_m3",
+ * "volume_back_m3", "tight"}, a point a line; null where the CSV is empty. */
+void vl_seal_json(vl_json *w, size_t n, const vl_point *pts);
+vl_status vl_write_seal_json(const char *path, size_t n, const vl_point *pts, vl_error *err);
+
 #endif

@@ -92,6 +92,17 @@ vl_status vl_plot_stribeck(const char *stem, size_t n, const vl_point *pts,
                            const size_t *marks, const vl_plot_options *opt, vl_plot_report *report,
                            vl_error *err);
 
+/* A seal's two strokes against the sliding speed v0 (log axis): above, the
+ * friction force per length of the outstroke (solid) and the instroke
+ * (dashed); below, the flux per unit circumference of each (logarithmic
+ * when positive over more than a factor 30). pts: a seal's points with
+ * both strokes (vl_point.seal.stroke VL_STROKE_BOTH). A stroke that did
+ * not converge is a hollow marker above the x axis; one above its error
+ * target a hollow square. VL_EINPUT: no points, not both strokes, a speed
+ * not positive; other errors as vl_plot_stribeck. */
+vl_status vl_plot_seal(const char *stem, size_t n, const vl_point *pts, const vl_plot_options *opt,
+                       vl_plot_report *report, vl_error *err);
+
 /* The minimum separation against x: u_min/h_rms when h_rms_m > 0, else
  * u_min in um; the y axis is logarithmic when the data span more than a
  * factor 30. Marks and errors as vl_plot_stribeck. */

@@ -27,6 +27,14 @@ typedef struct {
    * motion, air to oil) */
   bool in_converged;
   double in_mu, in_mu_Sc, in_mu_Sf, in_u_min_m, in_flux_m2_s, in_friction_n_per_m;
+  double in_u_central_m;
+  /* the instroke's error estimates (of mu and of the flux, as the point's
+   * error_estimate and flux_error_estimate) and its vl_accuracy */
+  double in_error_estimate, in_flux_error_estimate;
+  int in_accuracy;
+  long in_iterations; /* the instroke's Newton iterations and final residual */
+  double in_residual;
+  char in_warnings[VL_WARN_MAX]; /* the instroke's, as vl_point.warnings */
   /* VL_STROKE_BOTH with a rod diameter D and a stroke length L: the fluid
    * carried out per cycle pi D L q_out/v and back pi D L q_in/v (m^3), and
    * whether the seal is tight (back >= out: 1, else 0); NAN and -1 when not
@@ -106,6 +114,9 @@ typedef struct {
   /* relative error of mu estimated from a coarser solve (sweep.h; the
    * point on cells three times as wide); NAN when none was made or it failed */
   double error_estimate;
+  /* the same estimate of flux_m2_s (0.5 |q - q_coarse| / |q|), for a seal's
+   * leakage; NAN as error_estimate, and when dry */
+  double flux_error_estimate;
   int accuracy;               /* vl_accuracy: the estimate against the point's target */
   char warnings[VL_WARN_MAX]; /* ';'-separated, empty when none */
   vl_seal_result seal;        /* stroke VL_STROKE_NONE unless a seal scene */

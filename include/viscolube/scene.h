@@ -76,6 +76,17 @@ typedef struct {
    * given joined to the scene's folder; empty: the cylinder's parabola */
   char profile_file[2048];
   int profile_line; /* the key's line in the scene (for messages) */
+  /* profile = lip: a parametric lip (docs/MODEL.md section 13) of tip
+   * radius lip_tip_radius_m (radius_m then unset: the scales' radius is
+   * computed, vl_contact_profile_contact) and flank angles (degrees) on the
+   * oil side (an outstroke's inlet) and the air side */
+  bool lip;
+  double lip_tip_radius_m, lip_oil_angle_deg, lip_air_angle_deg;
+  /* an imposed static contact pressure (x_m, p_pa table; docs/MODEL.md
+   * section 14), the path joined to the scene's folder; empty: none. With
+   * it radius_m and load_n_per_m are unset (the table gives them) */
+  char pressure_file[2048];
+  int pressure_line;
   /* [seal]: a seal's strokes (results.h vl_stroke; VL_STROKE_NONE without
    * the section), the rod diameter and stroke length (m; 0: not given, no
    * volumes per cycle) */
@@ -121,6 +132,13 @@ vl_status vl_scene_load(const char *path, vl_scene *scene, vl_error *err);
 
 /* The same from text (path is used in messages only). */
 vl_status vl_scene_parse(const char *text, const char *path, vl_scene *scene, vl_error *err);
+
+/* Makes a loaded scene solve a seal's two strokes (`viscolube seal`, the
+ * Python seal()): [seal] stroke = both whatever it said. VL_EINPUT (err
+ * names the scene and why) unless the scene is one of a seal: [contact]
+ * moving = counterface (the seal at rest, the rod moving) and [effects]
+ * fluid = on. */
+vl_status vl_scene_as_seal(vl_scene *scene, vl_error *err);
 
 const char *vl_sweep_quantity_name(vl_sweep_quantity q);
 

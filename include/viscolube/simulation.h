@@ -85,4 +85,9 @@ vl_status vl_simulation_run_point_contact(vl_simulation *sim, vl_point *out,
                                           vl_point_contact_callback cb, void *user,
                                           vl_sweep_stats *stats, vl_error *err);
 
+/* The statistics of the last run's instroke ([seal] stroke = both: its
+ * sweep at the same speeds, whose results are in each point's seal
+ * result; the run's own statistics are the outstroke's); zero otherwise. */
+const vl_sweep_stats *vl_simulation_instroke_stats(const vl_simulation *sim);
+
 #endif

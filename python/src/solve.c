@@ -158,6 +158,31 @@ static PyObject *curve_dict(size_t n, const vl_point *pts, const vl_curve_meta *
   return d;
 }
 
+/* A seal's table (seal.csv, viscolube/output.h): {column: numpy array of
+ * float64 (NaN where the CSV is empty; converged_*, tight 1.0/0.0) or list
+ * of str (accuracy_*, warnings_*)}. */
+static PyObject *seal_dict(size_t n, const vl_point *pts) {
+  PyObject *d = PyDict_New();
+  npy_intp dims[1] = {(npy_intp)n};
+  for (size_t c = 0; d && vl_seal_table_columns[c]; c++) {
+    bool text = n && vl_seal_table_text(&pts[0], c);
+    PyObject *o = text ? PyList_New((Py_ssize_t)n) : PyArray_SimpleNew(1, dims, NPY_DOUBLE);
+    for (size_t i = 0; o && i < n; i++) {
+      if (!text) {
+        ((double *)PyArray_DATA((PyArrayObject *)o))[i] = vl_seal_table_value(&pts[i], c);
+        continue;
+      }
+      PyObject *t = PyUnicode_FromString(vl_seal_table_text(&pts[i], c));
+      if (!t)
+        Py_CLEAR(o);
+      else
+        PyList_SET_ITEM(o, (Py_ssize_t)i, t);
+    }
+    if (vlpy_set(d, vl_seal_table_columns[c], o) < 0) Py_CLEAR(d);
+  }
+  return d;
+}
+
 /* ---- queries ------------------------------------------------------------- */
 
 /* The arguments every query takes; the rest go to *extra (speed, or the
@@ -446,6 +471,9 @@ static PyObject *run_one(vl_db *db, const vl_scene *sc) {
               vlpy_set(ret, "curve", curve_dict(n, pts, &m)) ||
               vlpy_set(ret, "fields", fields_list(&s, pts, m.a0_m))))
     Py_CLEAR(ret);
+  /* a seal's both strokes: its table too */
+  if (ret && n && pts[0].seal.stroke == VL_STROKE_BOTH && vlpy_set(ret, "seal", seal_dict(n, pts)))
+    Py_CLEAR(ret);
 done:
   store_free(&s);
   free(pts);
@@ -474,15 +502,18 @@ static PyObject *run_all(vl_db *db, const vl_scene *sc) {
 }
 
 PyObject *vlpy_run_scene(DatabaseObject *self, PyObject *args, PyObject *kw) {
-  static char *kwlist[] = {"text", "path", NULL};
+  static char *kwlist[] = {"text", "path", "seal", NULL};
   const char *text = NULL, *path = NULL;
-  if (!PyArg_ParseTupleAndKeywords(args, kw, "zs", kwlist, &text, &path)) return NULL;
+  int seal = 0;
+  if (!PyArg_ParseTupleAndKeywords(args, kw, "zs|p", kwlist, &text, &path, &seal)) return NULL;
   vl_db *db = vlpy_db(self);
   if (!db) return NULL;
   vl_scene *sc = malloc(sizeof *sc);
   if (!sc) return PyErr_NoMemory();
   vl_error err = {{0}};
   vl_status st = text ? vl_scene_parse(text, path, sc, &err) : vl_scene_load(path, sc, &err);
+  /* seal(): both strokes, as `viscolube seal` */
+  if (st == VL_OK && seal) st = vl_scene_as_seal(sc, &err);
   PyObject *ret = st == VL_OK ? run_all(db, sc) : vlpy_raise(st, &err);
   free(sc);
   return ret;

@@ -46,7 +46,8 @@ from ._core import (DatabaseError, Error, ExistsError, FileError, InputError,
                     OutOfMemoryError)
 
 __version__ = _core.PROJECT_VERSION
-__all__ = ["FitWarning", "Database", "Curve", "Point", "scene_text", "CURVE_COLUMNS", "Error",
+__all__ = ["FitWarning", "Database", "Curve", "Point", "Seal", "scene_text", "CURVE_COLUMNS",
+           "Error",
            "InputError", "NotFoundError", "ExistsError", "DatabaseError",
            "FileError", "NoConvergenceError", "OutOfMemoryError",
            "InternalError"]
@@ -163,6 +164,43 @@ class Curve(dict):
         """The curve as one numpy structured array (a record per point)."""
         cols = list(self.keys())
         return np.rec.fromarrays([self[c] for c in cols], names=cols)
+
+
+class Seal(dict):
+    """A seal's two strokes at each speed (`viscolube seal`, seal.csv):
+    {column: numpy array}, the columns of seal.csv in its order
+    (`v0_m_s`, `friction_out_n_per_m`, `friction_in_n_per_m`, `mu_out`,
+    `mu_in`, `u_min_out_m`, ..., `flux_out_m2_s`, `flux_in_m2_s`, the error
+    estimates `error_*` of the friction and `flux_error_*` of the flux,
+    `volume_out_m3`, `volume_back_m3`, `tight`, `converged_*` as float64
+    1.0/0.0, and `accuracy_*`, `warnings_*` as arrays of str). NaN where
+    seal.csv has an empty cell (a stroke that did not converge; the volumes
+    and `tight` without [seal] rod_diameter_m and stroke_length_m).
+
+    .curve   the run's Curve (the outstroke's rows with the seal columns)
+    .info    as Curve.info
+    """
+
+    def __init__(self, raw):
+        super().__init__()
+        for name, values in raw["seal"].items():
+            if isinstance(values, list):
+                values = np.array(values, dtype=str)
+            self[name] = values
+        self.curve = Curve(raw)
+        self.info = self.curve.info
+
+    @property
+    def tight(self):
+        """Boolean array: the seal carries back at least what it lets out
+        (False where not known)."""
+        return self["tight"] == 1.0
+
+    def __getattr__(self, key):
+        try:
+            return self[key]
+        except KeyError:
+            raise AttributeError(key) from None
 
 
 def _ini_value(v):
@@ -353,6 +391,20 @@ class Database:
         if len(curves) == 1:
             return curves[0]
         return {c.info["fluid"]: c for c in curves}
+
+    def seal(self, scene):
+        """Both strokes of a seal scene, exactly as `viscolube seal`: a
+        path or a dict as run() takes; the scene must have [contact] moving
+        = counterface and a fluid ([seal] stroke is set to both). Returns a
+        Seal, or for several fluids {fluid: Seal}."""
+        if isinstance(scene, dict):
+            raw = self._db.run_scene(scene_text(scene), "<scene dict>", seal=True)
+        else:
+            raw = self._db.run_scene(None, _path(scene), seal=True)
+        seals = [Seal(r) for r in raw]
+        if len(seals) == 1:
+            return seals[0]
+        return {s.info["fluid"]: s for s in seals}
 
     def compare(self, compounds, surface, fluid, v_from=None, v_to=None,
                 points=None, load=None, radius=None, sigma_s=None,

@@ -23,6 +23,23 @@ int vl_cli_pair(const vl_cli_globals *g, int argc, char **argv);
 /* `run SCENE [--out DIR] [--json]` (argv[0] is "run"). Returns exit code. */
 int vl_cli_run(const vl_cli_globals *g, int argc, char **argv);
 
+/* `seal SCENE [--out DIR] [--json] [--plot]` (cli_run.c: `run` with both
+ * strokes of a seal and the outputs of cli_seal.c). */
+int vl_cli_seal(const vl_cli_globals *g, int argc, char **argv);
+/* ---- a seal's outputs (cli_seal.c) ---- */
+/* The instroke of a seal's points pts[0..n) as points of their own (speed,
+ * convergence, iterations, residual, friction, film, flux, estimates,
+ * accuracy, warnings), for the lists of failures and warnings; malloc'd,
+ * NULL when out of memory. */
+vl_point *vl_cli_instroke_points(size_t n, const vl_point *pts);
+/* The console table of both strokes at each speed (seal.csv's main columns). */
+void vl_cli_print_seal_table(size_t n, const vl_point *pts);
+/* Writes out_dir/seal.csv, out_dir/seal.json and, when plot is not NULL,
+ * the figure out_dir/seal (png, svg), each recorded in the manifest (a file
+ * that could not be written is noted there, not returned). Returns an
+ * error of the figure other than VL_EIO. */
+vl_status vl_cli_seal_files(vl_manifest *man, const char *out_dir, size_t n, const vl_point *pts,
+                            const vl_plot_options *plot, vl_error *err);
 /* `study STUDY --out DIR [--jobs N]` (cli_study.c). */
 int vl_cli_study(const vl_cli_globals *g, int argc, char **argv);
 

@@ -1,4 +1,6 @@
-/* `viscolube run SCENE [--out DIR] [--json] [--plot]` */
+/* `viscolube run SCENE [--out DIR] [--json] [--plot]`, and `viscolube seal
+ * SCENE ...`: the same run of a seal's two strokes with its own outputs
+ * (cli_seal.c). */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -214,9 +216,8 @@ static void scene_subtitle(const vl_scene *scene, vl_simulation *sim, const vl_c
              eta[0] ? " Pa s)" : "");
   }
   char body[256];
-  if (scene->geometry == VL_GEOMETRY_CYLINDER) {
-    snprintf(body, sizeof body, "fN = %s N/m · R = %s mm", load, radius);
-  } else { /* a point contact: its total load, its radius or radii */
+  if (scene->geometry == VL_GEOMETRY_BALL || scene->geometry == VL_GEOMETRY_ELLIPSOID) {
+    /* a point contact: its total load, its radius or radii */
     char ry[48];
     vl_plot_format_value(load, sizeof load, scene->load_n);
     vl_plot_format_value(ry, sizeof ry, scene->radius_y_m * 1e3);
@@ -224,6 +225,13 @@ static void scene_subtitle(const vl_scene *scene, vl_simulation *sim, const vl_c
       snprintf(body, sizeof body, "ball, W = %s N · R = %s mm", load, radius);
     else
       snprintf(body, sizeof body, "ellipsoid, W = %s N · Rx = %s mm, Ry = %s mm", load, radius, ry);
+  } else if (scene->lip) { /* the lip's own parameters: radius_m is not the scene's */
+    char tip[48];
+    vl_plot_format_value(tip, sizeof tip, scene->lip_tip_radius_m * 1e3);
+    snprintf(body, sizeof body, "fN = %s N/m · lip r = %s mm, %g°/%g°", load, tip,
+             scene->lip_oil_angle_deg, scene->lip_air_angle_deg);
+  } else {
+    snprintf(body, sizeof body, "fN = %s N/m · R = %s mm", load, radius);
   }
   int n = snprintf(buf, size, "%s on %s%s · %s", scene->compound,
                    scene->effects.roughness ? scene->surface : "a smooth surface", fluids, body);
@@ -417,9 +425,15 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
       snprintf(est, sizeof est, "%.2g%%", 100.0 * p->error_estimate);
     if (vl_point_unreliable(p)) /* not known to its target: marked as such */
       snprintf(est + strlen(est), sizeof est - strlen(est), "!");
+    /* the rolling terms of a moving counter-surface: not applicable, not 0 */
+    char rc[16] = "n/a", rf[16] = "n/a";
+    if (!p->rolling_na) {
+      snprintf(rc, sizeof rc, "%.3g", p->mu_Rc + 0.0);
+      snprintf(rf, sizeof rf, "%.3g", p->mu_Rf + 0.0);
+    }
     if (p->converged)
-      printf("%11.4g %11.4g %10.4g %10.3g %10.3g %10.3g %10.3g %10.4g %12s %4s %4ld %8s", p->v0_m_s,
-             q, p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0, p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m,
+      printf("%11.4g %11.4g %10.4g %10s %10s %10.3g %10.3g %10.4g %12s %4s %4ld %8s", p->v0_m_s,
+             q, p->mu, rc, rf, p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m,
              vl_regime_name(p->regime), "yes", p->iterations, est);
     else
       printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld %8s", p->v0_m_s, q, "-",
@@ -444,6 +458,7 @@ typedef struct {
   vl_manifest *man;
   size_t failed;     /* points that did not converge, over the curves */
   size_t unreliable; /* converged, but above their error target or without an estimate */
+  int seal;          /* `seal`: both strokes of a seal, with the seal's outputs */
 } run_job;
 
 /* The output folders and buffers of a curve of n points into ctx, *pts
@@ -534,6 +549,52 @@ static vl_curve_meta curve_meta(const run_job *job, const vl_scene *scene, vl_si
   return meta;
 }
 
+/* `seal`: DIR/seal.csv, DIR/seal.json, with --plot the figure DIR/seal, and
+ * the table of both strokes (or the seal's JSON) on stdout. */
+static vl_status seal_outputs(run_job *job, const vl_scene *scene, vl_simulation *sim,
+                              const char *out_dir, const char *fluid_key, size_t n,
+                              const vl_point *pts, const vl_sweep_stats *stats, vl_error *err) {
+  char title[1536], subtitle[1024];
+  snprintf(title, sizeof title, "%s%s%s", scene->title[0] ? scene->title : scene->path,
+           fluid_key ? " | fluid " : "", fluid_key ? fluid_key : "");
+  scene_subtitle(scene, sim, NULL, subtitle, sizeof subtitle);
+  vl_plot_options opt;
+  vl_plot_options_defaults(&opt);
+  opt.title = title, opt.subtitle = subtitle;
+  vl_status st = vl_cli_seal_files(job->man, out_dir, n, pts, job->plot ? &opt : NULL, err);
+  if (st != VL_OK) return st;
+  if (job->json) {
+    if (fluid_key) vl_json_key(job->json, fluid_key);
+    vl_seal_json(job->json, n, pts);
+    return VL_OK;
+  }
+  const vl_sweep_stats *in = vl_simulation_instroke_stats(sim);
+  vl_cli_print_seal_table(n, pts);
+  printf("outstroke: %zu converged, %zu failed, %ld Newton iterations, %.3f s; instroke: %zu "
+         "converged, %zu failed, %ld Newton iterations, %.3f s\n",
+         stats->converged, stats->failed, stats->newton_iterations, stats->seconds, in->converged,
+         in->failed, in->newton_iterations, in->seconds);
+  char path[4200];
+  snprintf(path, sizeof path, "%s/seal.csv", out_dir);
+  printf("wrote %s and seal.json\n", path);
+  return VL_OK;
+}
+
+/* `seal`: the instroke's failures, warnings and points above their target
+ * on stderr, counted into the exit status. */
+static vl_status instroke_lists(run_job *job, const char *fluid_key, size_t n,
+                                const vl_point *pts) {
+  vl_point *in = vl_cli_instroke_points(n, pts);
+  if (!in) return VL_ENOMEM;
+  char label[VL_NAME_MAX + 16];
+  snprintf(label, sizeof label, "%s%sinstroke", fluid_key ? fluid_key : "", fluid_key ? ", " : "");
+  if (!job->json && !job->quiet) vl_cli_print_warnings(stderr, label, n, in);
+  job->failed += vl_cli_print_failures(stderr, "seal", label, n, in, "written with empty cells");
+  job->unreliable += vl_cli_print_unreliable(stderr, "seal", label, n, in);
+  free(in);
+  return VL_OK;
+}
+
 /* After the sweep: DIR/curve.csv, the figures, the table or JSON, then the
  * warnings and failures on stderr. */
 static vl_status curve_outputs(run_job *job, const vl_scene *scene, vl_simulation *sim,
@@ -552,22 +613,29 @@ static vl_status curve_outputs(run_job *job, const vl_scene *scene, vl_simulatio
         write_plots(out_dir, scene, fluid_key, sim, n, pts, meta, ctx, plots, sizeof plots, err);
     if (st != VL_OK) return st;
   }
-  if (job->json) {
+  if (job->seal) {
+    vl_status st = seal_outputs(job, scene, sim, out_dir, fluid_key, n, pts, stats, err);
+    if (st != VL_OK) return st;
+  } else if (job->json) {
     if (fluid_key) vl_json_key(job->json, fluid_key);
     vl_curve_json(job->json, n, pts, meta);
   } else {
     print_table(scene, n, pts, meta, stats);
+  }
+  if (!job->json) {
     if (cst == VL_OK) printf("wrote %s%s\n", curve_path, scene->n_fields_at ? " and fields/" : "");
-    if (job->plot) printf("plots (png, svg) in %s: %s\n", out_dir, plots);
+    if (job->plot)
+      printf("plots (png, svg) in %s: %s%s\n", out_dir, plots, job->seal ? ", seal" : "");
   }
   /* stdout first, so that the lines follow the table in a shared log */
   fflush(stdout);
+  const char *cmd = job->seal ? "seal" : "run";
   if (!job->json && !job->quiet) vl_cli_print_warnings(stderr, fluid_key, n, pts);
   char where[4300];
   snprintf(where, sizeof where, "written with converged = 0 in %s", curve_path);
-  vl_cli_print_failures(stderr, "run", fluid_key, n, pts, where);
-  job->unreliable += vl_cli_print_unreliable(stderr, "run", fluid_key, n, pts);
-  return VL_OK;
+  vl_cli_print_failures(stderr, cmd, fluid_key, n, pts, where);
+  job->unreliable += vl_cli_print_unreliable(stderr, cmd, fluid_key, n, pts);
+  return job->seal ? instroke_lists(job, fluid_key, n, pts) : VL_OK;
 }
 
 /* Runs one curve of the scene (one fluid) into out_dir. fluid_key: NULL
@@ -730,10 +798,34 @@ const char *__lsan_default_options(void);
 const char *__lsan_default_options(void) { return "print_suppressions=0"; }
 #endif
 
-/* The options of `run`: -1 to go on, else the exit status (0 after
- * --help). */
-static int run_options(int argc, char **argv, const char **scene_path, const char **out_dir,
-                       int *json, int *plot, int *quiet) {
+static void seal_usage(FILE *out) {
+  fputs("usage: viscolube seal SCENE [--out DIR] [--json] [--plot] [--quiet]\n"
+        "\n"
+        "Solves both strokes of a seal over the scene's speeds: the outstroke (the rod\n"
+        "leaving the oil side) and the instroke (the profile mirrored, the sealed pressure\n"
+        "at the film's outlet), whatever [seal] stroke says. The scene is a seal's:\n"
+        "[contact] moving = counterface and [effects] fluid = on (docs/MODEL.md\n"
+        "sections 11-13, docs/CASES.md \"seals\"). Writes, besides what `run` writes\n"
+        "(curve.csv with the seal columns, fields/, run.json):\n"
+        "  DIR/seal.csv   a row per speed, both strokes: friction force per length,\n"
+        "                 mu, minimum and central film, flux per unit circumference,\n"
+        "                 the error estimates of the friction and of the flux, and with\n"
+        "                 [seal] rod_diameter_m and stroke_length_m the volumes carried\n"
+        "                 out and back per cycle and whether the seal is tight\n"
+        "  DIR/seal.json  the same (null where the CSV is empty)\n"
+        "With --plot also DIR/seal (png, svg): the friction force and the flux of\n"
+        "both strokes against the speed, besides run's figures.\n"
+        "Prints the table of both strokes, or with --json the seal's JSON. Exit\n"
+        "status as `run`, counting the points of both strokes: 7 when some did not\n"
+        "converge, 8 when some are above their error target, 2 a scene that is not a\n"
+        "seal's.\n",
+        out);
+}
+
+/* The options of `run` and `seal`: -1 to go on, else the exit status (0
+ * after --help). */
+static int run_options(int seal, int argc, char **argv, const char **scene_path,
+                       const char **out_dir, int *json, int *plot, int *quiet) {
   vl_cli_option opts[] = {
       {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
       {.name = "--json", .kind = VL_CLI_FLAG, .dest = json},
@@ -745,11 +837,14 @@ static int run_options(int argc, char **argv, const char **scene_path, const cha
        .dest = out_dir,
        .missing = "option %s needs a %s"},
   };
-  vl_cli_parser p = vl_cli_file_command("run", opts, sizeof opts / sizeof opts[0], scene_path,
-                                        "one scene at a time (got '%s' and '%s')", run_usage);
+  void (*usage)(FILE *) = seal ? seal_usage : run_usage;
+  vl_cli_parser p =
+      vl_cli_file_command(seal ? "seal" : "run", opts, sizeof opts / sizeof opts[0], scene_path,
+                          "one scene at a time (got '%s' and '%s')", usage);
   int rc = vl_cli_parse(&p, argc, argv, 1);
   if (rc >= 0) return rc;
-  if (!*scene_path) return vl_cli_usage_error("run", NULL, run_usage, "missing SCENE");
+  if (!*scene_path)
+    return vl_cli_usage_error(seal ? "seal" : "run", NULL, usage, "missing SCENE");
   return -1;
 }
 
@@ -766,10 +861,11 @@ static void default_out_dir(const char *scene_path, char *buf, size_t size) {
 /* Everything checked before anything is computed: the scene loaded, the
  * plotting library there (--plot), the names, the database opened (*db),
  * the output folders, and the scene's text read (*text, for the manifest). */
-static vl_status run_prepare(const vl_cli_globals *g, const char *scene_path, int plot,
+static vl_status run_prepare(const vl_cli_globals *g, const char *scene_path, int plot, int seal,
                              const char *out_dir, vl_scene *scene, vl_db **db, char **text,
                              vl_error *err) {
   vl_status st = vl_scene_load(scene_path, scene, err);
+  if (st == VL_OK && seal) st = vl_scene_as_seal(scene, err);
   if (st != VL_OK) return st;
   /* before the sweep, not after minutes of solving */
   if (plot && !vl_plot_available(err)) return VL_EIO;
@@ -809,15 +905,21 @@ static vl_status run_curves(run_job *job, const vl_scene *scene, const char *out
   return plot_all_fluids(scene, out_dir, curves, job->json != NULL, job->man, err);
 }
 
-int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
-  const char *scene_path = NULL, *out_dir = NULL;
+/* `run`, or with seal `seal` (the same run of both strokes, with the seal's
+ * outputs). */
+static int run_command(const vl_cli_globals *g, int argc, char **argv, int seal) {
+  const char *scene_path = NULL, *out_dir = NULL, *cmd = seal ? "seal" : "run";
   int json = 0, plot = 0, quiet = g->quiet;
-  int rc = run_options(argc, argv, &scene_path, &out_dir, &json, &plot, &quiet);
+  int rc = run_options(seal, argc, argv, &scene_path, &out_dir, &json, &plot, &quiet);
   if (rc >= 0) return rc;
   vl_error err = {{0}};
   vl_scene scene;
   vl_json w;
-  run_job job = {.scene_path = scene_path, .json = json ? &w : NULL, .plot = plot, .quiet = quiet};
+  run_job job = {.scene_path = scene_path,
+                 .json = json ? &w : NULL,
+                 .plot = plot,
+                 .quiet = quiet,
+                 .seal = seal};
   char *scene_text = NULL, default_dir[2048];
   kept_curve curves[VL_FLUIDS_MAX] = {{0}};
   if (!out_dir) {
@@ -825,21 +927,22 @@ int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
     out_dir = default_dir;
   }
   rc = 0;
-  vl_status st = run_prepare(g, scene_path, plot, out_dir, &scene, &job.db, &scene_text, &err);
-  if (st == VL_OK && !(job.man = vl_cli_manifest_begin(g, "run", out_dir, &rc))) goto done;
+  vl_status st =
+      run_prepare(g, scene_path, plot, seal, out_dir, &scene, &job.db, &scene_text, &err);
+  if (st == VL_OK && !(job.man = vl_cli_manifest_begin(g, cmd, out_dir, &rc))) goto done;
   if (st == VL_OK) {
     run_manifest(job.man, job.db, &scene, scene_text);
     vl_json_init(&w, stdout, 10);
     st = run_curves(&job, &scene, out_dir, curves, &err);
   }
   if (st != VL_OK) {
-    fprintf(stderr, "viscolube run: %s\n", err.msg[0] ? err.msg : vl_status_name(st));
+    fprintf(stderr, "viscolube %s: %s\n", cmd, err.msg[0] ? err.msg : vl_status_name(st));
     rc = vl_status_exit_code(st);
     goto done;
   }
   /* last: the manifest, once every file is in place */
-  rc = vl_cli_manifest_finish(job.man, "run", quiet,
-                              vl_cli_points_status(job.failed, job.unreliable));
+  rc =
+      vl_cli_manifest_finish(job.man, cmd, quiet, vl_cli_points_status(job.failed, job.unreliable));
   job.man = NULL;
 done:
   vl_manifest_free(job.man); /* a failed run leaves no manifest: the folder is incomplete */
@@ -848,4 +951,12 @@ done:
     free(curves[k].pts);
   vl_db_close(job.db);
   return rc;
+}
+
+int vl_cli_run(const vl_cli_globals *g, int argc, char **argv) {
+  return run_command(g, argc, argv, 0);
+}
+
+int vl_cli_seal(const vl_cli_globals *g, int argc, char **argv) {
+  return run_command(g, argc, argv, 1);
 }

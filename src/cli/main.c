@@ -24,6 +24,8 @@ static void usage(FILE *out) {
       "  surface    roughness power spectra: list, show, add, remove, flow-factors\n"
       "  fluid      lubricants: list, show, add, remove\n"
       "  run        run a scene file: viscolube run SCENE [--out DIR] [--json]\n"
+      "  seal       both strokes of a seal scene: friction, film, leakage, tightness:\n"
+      "             viscolube seal SCENE [--out DIR] [--json] [--plot]\n"
       "  study      many curves from a study file, serially, with --jobs N or under mpirun:\n"
       "             viscolube study STUDY --out DIR [--jobs N]\n"
       "  pair       a compound/surface/fluid's sigma_s law: list, show, add, remove, calibrate\n"
@@ -100,6 +102,7 @@ static int dispatch(int argc, char **argv) {
   if (!strcmp(noun, "compound") || !strcmp(noun, "surface") || !strcmp(noun, "fluid"))
     return vl_cli_materials(&g, argc - i, argv + i);
   if (!strcmp(noun, "run")) return vl_cli_run(&g, argc - i, argv + i);
+  if (!strcmp(noun, "seal")) return vl_cli_seal(&g, argc - i, argv + i);
   if (!strcmp(noun, "study")) return vl_cli_study(&g, argc - i, argv + i);
   if (!strcmp(noun, "friction")) return vl_cli_friction(&g, argc - i, argv + i);
   if (!strcmp(noun, "compare")) return vl_cli_compare(&g, argc - i, argv + i);

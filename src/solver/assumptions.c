@@ -136,7 +136,10 @@ unsigned vl_assumptions_check(const vl_contact_config *cfg, const vl_psd *psd, c
              beside(v, sizeof v, width / dx, GRID_MIN_CELLS));
     append(warnings, cap, w);
   }
-  if (half > HALF_SPACE_MAX * cfg->radius_m) {
+  /* a lip's, a table's or a static pressure's radius_m only sets the scales: its small slopes
+   * are checked on the profile itself (the solver's profile slope warning) */
+  bool profile = cfg->profile_x_m || cfg->lip_tip_radius_m > 0.0 || cfg->static_x_m;
+  if (!profile && half > HALF_SPACE_MAX * cfg->radius_m) {
     mask |= VL_ASSUME_HALF_SPACE;
     snprintf(w, sizeof w, "contact half-width %s R > 0.2 R (parabolic gap and small strain)",
              beside(v, sizeof v, half / cfg->radius_m, HALF_SPACE_MAX));

@@ -8,6 +8,7 @@
 #include "contact_private.h"
 #include "flattening_internal.h"
 #include "persson_internal.h"
+#include "profile.h"
 #include "rheology_internal.h"
 
 #include <kinsol/kinsol.h>
@@ -110,103 +111,86 @@ static vl_status alloc_state(vl_contact *c, vl_error *err) {
   return VL_OK;
 }
 
-/* Sorts the points (x, z) by x (insertion: tables are small). */
-static void sort_points(double *x, double *z, size_t m) {
-  for (size_t i = 1; i < m; i++) {
-    double xi = x[i], zi = z[i];
-    size_t j = i;
-    for (; j > 0 && x[j - 1] > xi; j--)
-      x[j] = x[j - 1], z[j] = z[j - 1];
-    x[j] = xi, z[j] = zi;
-  }
-}
-
-/* Slope at point i of the parabola through points i-1, i, i+1 (at the ends
- * through the three end points): exact for a quadratic, so the Hermite
- * interpolant reproduces a parabola. */
-static double three_point_slope(const double *x, const double *z, size_t m, size_t i) {
-  size_t a = i == 0 ? 0 : i + 1 == m ? m - 3 : i - 1;
-  double x0 = x[a], x1 = x[a + 1], x2 = x[a + 2], t = x[i];
-  return z[a] * (2.0 * t - x1 - x2) / ((x0 - x1) * (x0 - x2)) +
-         z[a + 1] * (2.0 * t - x0 - x2) / ((x1 - x0) * (x1 - x2)) +
-         z[a + 2] * (2.0 * t - x0 - x1) / ((x2 - x0) * (x2 - x1));
-}
-
-/* f and f' at t of the table (sorted, slopes d): cubic Hermite inside,
- * straight beyond the ends. */
-static double profile_at(const double *x, const double *z, const double *d, size_t m, double t,
-                         double *slope) {
-  if (t <= x[0]) return *slope = d[0], z[0] + d[0] * (t - x[0]);
-  if (t >= x[m - 1]) return *slope = d[m - 1], z[m - 1] + d[m - 1] * (t - x[m - 1]);
-  size_t lo = 0, hi = m - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (x[mid] <= t)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  double h = x[hi] - x[lo], s = (t - x[lo]) / h, s2 = s * s, s3 = s2 * s;
-  double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-  *slope = (6 * s2 - 6 * s) / h * z[lo] + (3 * s2 - 4 * s + 1) * d[lo] +
-           (-6 * s2 + 6 * s) / h * z[hi] + (3 * s2 - 2 * s) * d[hi];
-  return h00 * z[lo] + h10 * h * d[lo] + h01 * z[hi] + h11 * h * d[hi];
-}
-
-/* The tabulated profile of cfg at the nodes (contact.h): c->fprof, c->sprof. */
+/* The profile of cfg at the nodes (contact.h; profile.h): c->fprof, c->sprof;
+ * none for the cylinder's parabola. A table is copied (c->ptab): cfg points
+ * to the copy, which the helper contacts made later read. */
 static vl_status build_profile(vl_contact *c, vl_error *err) {
   const vl_contact_config *cfg = &c->cfg;
-  if (!cfg->profile_x_m) return VL_OK;
+  if (!cfg->profile_x_m && !(cfg->lip_tip_radius_m > 0.0)) return VL_OK;
   size_t m = cfg->profile_points, n = c->n;
-  double *w = calloc(3 * m, sizeof *w); /* zeroed, though filled below: GCC cannot tell */
   c->fprof = malloc(2 * n * sizeof *c->fprof);
-  c->ptab = malloc(2 * m * sizeof *c->ptab);
-  if (!w || !c->fprof || !c->ptab) {
-    free(w);
-    return vl_contact_nomem(c, err);
-  }
-  memcpy(c->ptab, cfg->profile_x_m, m * sizeof *c->ptab);
-  memcpy(c->ptab + m, cfg->profile_z_m, m * sizeof *c->ptab);
-  c->cfg.profile_x_m = c->ptab, c->cfg.profile_z_m = c->ptab + m;
+  if (!c->fprof) return vl_contact_nomem(c, err);
   c->sprof = c->fprof + n;
-  double *x = w, *z = w + m, *d = w + 2 * m;
-  size_t imin = 0;
-  for (size_t k = 0; k < m; k++) {
-    x[k] = cfg->profile_mirror ? -cfg->profile_x_m[k] : cfg->profile_x_m[k];
-    z[k] = cfg->profile_z_m[k];
+  if (cfg->profile_x_m) {
+    c->ptab = malloc(2 * m * sizeof *c->ptab);
+    if (!c->ptab) return vl_contact_nomem(c, err);
+    memcpy(c->ptab, cfg->profile_x_m, m * sizeof *c->ptab);
+    memcpy(c->ptab + m, cfg->profile_z_m, m * sizeof *c->ptab);
+    c->cfg.profile_x_m = c->ptab, c->cfg.profile_z_m = c->ptab + m;
   }
-  sort_points(x, z, m);
-  for (size_t k = 0; k < m; k++)
-    if (z[k] < z[imin]) imin = k;
-  for (size_t k = 0; k < m; k++)
-    d[k] = three_point_slope(x, z, m, k);
-  /* the tip: the interpolant's minimum next to the lowest point (where its
-   * slope changes sign; bisection), so that a table need not hold it */
-  double lo = x[imin > 0 ? imin - 1 : 0], hi = x[imin + 1 < m ? imin + 1 : m - 1], sl;
-  profile_at(x, z, d, m, lo, &sl);
-  bool falls = sl < 0.0;
-  profile_at(x, z, d, m, hi, &sl);
-  if (falls && sl > 0.0) {
-    for (int it = 0; it < 200 && hi - lo > 0.0; it++) {
-      double mid = 0.5 * (lo + hi);
-      if (mid == lo || mid == hi) break;
-      profile_at(x, z, d, m, mid, &sl);
-      if (sl < 0.0)
-        lo = mid;
-      else
-        hi = mid;
-    }
-  } else {
-    lo = x[imin];
-  }
-  double x0 = lo, z0 = profile_at(x, z, d, m, lo, &sl);
-  for (size_t k = 0; k < m; k++)
-    x[k] -= x0, z[k] -= z0; /* the tip at x = 0, z = 0 (the slopes do not change) */
+  vl_profile p;
+  vl_status st = vl_profile_init(&p, cfg, err);
+  if (st != VL_OK) return st;
+  for (size_t i = 0; i < n; i++)
+    c->fprof[i] = vl_profile_height(&p, c->xi[i] * c->a0, &c->sprof[i]) / c->uscale;
+  vl_profile_free(&p);
+  return VL_OK;
+}
+
+/* An imposed static pressure p_s (contact.h; docs/MODEL.md section 14):
+ * the profile on which the dry smooth contact carries p_s, from the
+ * contact's own influence coefficients (so that on its grid P = p_s
+ * solves the dry contact): f_i = -(M p_s)_i where p_s > 0, continued
+ * straight beyond the outermost loaded nodes with the slope of their last
+ * two; f' by differences. Needs the elastic kernel (vl_contact_set_speed
+ * done). The table is copied (c->stab) for the helpers made later. */
+static vl_status build_static_profile(vl_contact *c, vl_error *err) {
+  const vl_contact_config *cfg = &c->cfg;
+  if (!cfg->static_x_m) return VL_OK;
+  size_t m = cfg->static_points, n = c->n;
+  c->stab = malloc(2 * m * sizeof *c->stab);
+  c->fprof = malloc(3 * n * sizeof *c->fprof);
+  if (!c->stab || !c->fprof) return vl_contact_nomem(c, err);
+  memcpy(c->stab, cfg->static_x_m, m * sizeof *c->stab);
+  memcpy(c->stab + m, cfg->static_p_pa, m * sizeof *c->stab);
+  c->cfg.static_x_m = c->stab, c->cfg.static_p_pa = c->stab + m;
+  c->sprof = c->fprof + n;
+  double *ps = c->fprof + 2 * n;
+  vl_static_pressure t;
+  vl_status st = vl_static_pressure_init(&t, cfg, err);
+  if (st != VL_OK) return st;
+  size_t lo = n, hi = 0;
   for (size_t i = 0; i < n; i++) {
-    double f = profile_at(x, z, d, m, c->xi[i] * c->a0, &c->sprof[i]);
-    c->fprof[i] = f / c->uscale;
+    ps[i] = vl_static_pressure_at(&t, c->xi[i] * c->a0) / c->p0;
+    if (ps[i] > 0.0) lo = i < lo ? i : lo, hi = i;
   }
-  free(w);
+  vl_static_pressure_free(&t);
+  if (lo + 1 >= hi) {
+    vl_error_set(err, "a static pressure spans fewer than 3 cells of the grid");
+    return VL_EINPUT;
+  }
+  for (size_t i = lo; i <= hi; i++) {
+    double w = 0.0;
+    for (size_t j = 0; j < n; j++)
+      w += c->M[i * n + j] * ps[j];
+    c->fprof[i] = -w;
+  }
+  double sl = (c->fprof[lo + 1] - c->fprof[lo]) / (c->xi[lo + 1] - c->xi[lo]);
+  double sr = (c->fprof[hi] - c->fprof[hi - 1]) / (c->xi[hi] - c->xi[hi - 1]);
+  for (size_t i = 0; i < lo; i++)
+    c->fprof[i] = c->fprof[lo] + sl * (c->xi[i] - c->xi[lo]);
+  for (size_t i = hi + 1; i < n; i++)
+    c->fprof[i] = c->fprof[hi] + sr * (c->xi[i] - c->xi[hi]);
+  double fmin = INFINITY;
+  for (size_t i = 0; i < n; i++)
+    fmin = fmin < c->fprof[i] ? fmin : c->fprof[i];
+  for (size_t i = 0; i < n; i++)
+    c->fprof[i] -= fmin; /* the tip at 0: h0 takes any constant */
+  /* the slope (m/m): f is in a0^2/R over x in a0 */
+  for (size_t i = 0; i < n; i++) {
+    size_t a = i > 0 ? i - 1 : 0, b = i + 1 < n ? i + 1 : n - 1;
+    c->sprof[i] = (c->fprof[b] - c->fprof[a]) / (c->xi[b] - c->xi[a]) * c->uscale / c->a0;
+  }
   return VL_OK;
 }
 
@@ -285,6 +269,7 @@ vl_status vl_contact_create(const vl_contact_config *cfg, vl_contact **out, vl_e
   if ((st = vl_contact_kinsol_init(c, err)) != VL_OK) goto fail;
   if ((st = create_helpers(c, err)) != VL_OK) goto fail;
   vl_contact_set_speed(c, 0.0);
+  if ((st = build_static_profile(c, err)) != VL_OK) goto fail;
   vl_contact_reset(c);
   *out = c;
   return VL_OK;
@@ -334,6 +319,7 @@ void vl_contact_free(vl_contact *c) {
   free(c->pamb);
   free(c->fprof);
   free(c->ptab);
+  free(c->stab);
   free(c->film_work);
   free(c->fb_work);
   free(c);

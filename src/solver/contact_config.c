@@ -8,6 +8,7 @@
 #include "contact_private.h"
 #include "flow_factors_emt.h"
 #include "persson_internal.h"
+#include "profile.h"
 #include "rheology_internal.h"
 #include "shear_law_private.h"
 
@@ -190,6 +191,52 @@ static vl_status check_flow_table(const vl_contact_config *cfg, vl_error *err) {
   return VL_OK;
 }
 
+/* A parametric lip: a tip radius and two flank angles in (0, pi/2), or
+ * none of them; not with a table. */
+static vl_status check_lip(const vl_contact_config *cfg, vl_error *err) {
+  bool any = cfg->lip_tip_radius_m != 0.0 || cfg->lip_oil_angle_rad != 0.0 ||
+             cfg->lip_air_angle_rad != 0.0;
+  if (!any) return VL_OK;
+  if (!(cfg->lip_tip_radius_m > 0.0 && isfinite(cfg->lip_tip_radius_m))) {
+    vl_error_set(err, "lip: the tip radius must be positive (got %g m)", cfg->lip_tip_radius_m);
+    return VL_EINPUT;
+  }
+  const double angle[2] = {cfg->lip_oil_angle_rad, cfg->lip_air_angle_rad};
+  for (int k = 0; k < 2; k++)
+    if (!(angle[k] > 0.0 && angle[k] < 0.5 * M_PI)) {
+      vl_error_set(err, "lip: the %s-side angle must lie in (0, pi/2) rad (got %g)",
+                   k ? "air" : "oil", angle[k]);
+      return VL_EINPUT;
+    }
+  if (cfg->profile_x_m) {
+    vl_error_set(err, "a lip and a profile table: give one of them");
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
+/* An imposed static pressure: a table that is one, on a rubber at rest
+ * (its deformation is static), alone (no profile), carrying the load. */
+static vl_status check_static(const vl_contact_config *cfg, vl_error *err) {
+  if (!cfg->static_x_m && !cfg->static_p_pa) return VL_OK;
+  if (cfg->moving != VL_MOVING_COUNTERFACE || cfg->profile_x_m || cfg->lip_tip_radius_m != 0.0) {
+    vl_error_set(err, "a static pressure needs a moving counter-surface and no profile table "
+                      "or lip (the pressure stands for the profile)");
+    return VL_EINPUT;
+  }
+  vl_static_pressure t;
+  vl_status st = vl_static_pressure_init(&t, cfg, err);
+  if (st != VL_OK) return st;
+  double load = t.load_n_per_m;
+  vl_static_pressure_free(&t);
+  if (!(fabs(cfg->load_n_per_m - load) <= 1e-9 * load)) {
+    vl_error_set(err, "a static pressure carries %.10g N/m, load_n_per_m is %.10g", load,
+                 cfg->load_n_per_m);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
 vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
   vl_status st = vl_prony_validate(&cfg->rubber, err);
   if (st == VL_OK) st = check_geometry(cfg, err);
@@ -242,6 +289,9 @@ vl_status vl_contact_config_check(const vl_contact_config *cfg, vl_error *err) {
         }
     }
   }
+  st = check_lip(cfg, err);
+  if (st == VL_OK) st = check_static(cfg, err);
+  if (st != VL_OK) return st;
   if ((cfg->p_inlet_pa > 0.0 || cfg->p_outlet_pa > 0.0) && !(cfg->eta_pa_s > 0.0)) {
     vl_error_set(err, "a sealed pressure needs a fluid (the contact is dry)");
     return VL_EINPUT;
@@ -263,4 +313,57 @@ double vl_contact_film_estimate(const vl_contact_config *cfg, double v0) {
 
 double vl_contact_inlet_length_m(const vl_contact_config *cfg, double v0_m_s) {
   return sqrt(2.0 * cfg->radius_m * vl_contact_film_estimate(cfg, v0_m_s));
+}
+
+vl_status vl_contact_profile_contact(const vl_contact_config *cfg, double *centre_m,
+                                     double *half_width_m, double *radius_m, vl_error *err) {
+  vl_status st = vl_contact_config_check(cfg, err);
+  if (st != VL_OK) return st;
+  double er = vl_prony_e0(&cfg->rubber) * vl_prony_reduced_factor(&cfg->rubber);
+  vl_profile p;
+  if ((st = vl_profile_init(&p, cfg, err)) != VL_OK) return st;
+  st = vl_profile_dry_contact(&p, cfg->load_n_per_m, er, centre_m, half_width_m, err);
+  vl_profile_free(&p);
+  if (st == VL_OK && radius_m)
+    *radius_m = M_PI * er * *half_width_m * *half_width_m / (4.0 * cfg->load_n_per_m);
+  return st;
+}
+
+vl_status vl_contact_numerics_follow_profile(vl_contact_config *cfg, vl_error *err) {
+  if (!cfg->profile_x_m && !(cfg->lip_tip_radius_m > 0.0)) return VL_OK;
+  double c, a;
+  vl_status st = vl_contact_profile_contact(cfg, &c, &a, NULL, err);
+  if (st != VL_OK) return st;
+  double er = vl_prony_e0(&cfg->rubber) * vl_prony_reduced_factor(&cfg->rubber);
+  double a0 = sqrt(4.0 * cfg->load_n_per_m * cfg->radius_m / (M_PI * er));
+  /* both strokes: the mirrored profile's contact is centred at -c */
+  double reach = (fabs(c) + a) / a0;
+  bool wet = cfg->eta_pa_s > 0.0;
+  double lo = cfg->x_min_a0, hi = cfg->x_max_a0, span = hi - lo;
+  if (wet) {
+    hi = fmax(hi, reach + (VL_WET_DOMAIN_MAX_A0 - 1.0));
+    lo = fmin(lo, -reach - (VL_WET_DOMAIN_MAX_A0 - 1.0));
+  } else {
+    hi = fmax(hi, reach + (VL_DRY_DOMAIN_MAX_A0 - 1.0));
+    lo = fmin(lo, -hi);
+  }
+  cfg->grid = (size_t)round((double)cfg->grid * (hi - lo) / span);
+  /* a graded inlet starts beyond the contact, as it does 1 a0 beyond the
+   * cylinder's */
+  if (cfg->grid_growth > 1.0)
+    cfg->grade_start_a0 = fmax(VL_GRADE_START_A0, reach + (VL_GRADE_START_A0 - 1.0));
+  cfg->x_min_a0 = lo, cfg->x_max_a0 = hi;
+  return VL_OK;
+}
+
+vl_status vl_contact_static_scales(const vl_contact_config *cfg, double *load_n_per_m,
+                                   double *radius_m, vl_error *err) {
+  vl_static_pressure t;
+  vl_status st = vl_static_pressure_init(&t, cfg, err);
+  if (st != VL_OK) return st;
+  double er = vl_prony_e0(&cfg->rubber) * vl_prony_reduced_factor(&cfg->rubber);
+  *load_n_per_m = t.load_n_per_m;
+  *radius_m = M_PI * er * t.half_width_m * t.half_width_m / (4.0 * t.load_n_per_m);
+  vl_static_pressure_free(&t);
+  return VL_OK;
 }

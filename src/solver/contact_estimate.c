@@ -38,7 +38,7 @@ static vl_contact *estimator(vl_contact *c) {
 }
 
 void vl_contact_estimate_error(vl_contact *c, vl_point *pt) {
-  pt->error_estimate = NAN;
+  pt->error_estimate = pt->flux_error_estimate = NAN;
   if (!pt->converged) return;
   vl_contact *e = estimator(c);
   if (!e) return;
@@ -58,4 +58,7 @@ void vl_contact_estimate_error(vl_contact *c, vl_point *pt) {
   pt->error_estimate = 0.5 * fabs(pt->mu - ep.mu) / scale;
   /* the domain's outlet end: the film's shear beyond it */
   pt->error_estimate += vl_contact_outlet_tail(c, pt);
+  /* the leakage the same way (a seal's flux, docs/MODEL.md section 12) */
+  if (c->wet && pt->flux_m2_s != 0.0)
+    pt->flux_error_estimate = 0.5 * fabs(pt->flux_m2_s - ep.flux_m2_s) / fabs(pt->flux_m2_s);
 }

@@ -11,16 +11,16 @@
 #include <string.h>
 
 /* Cells of the grid (vl_contact_config.grid_growth): nv uniform cells on
- * [x_min, x_max]; upstream of -VL_GRADE_START_A0 they are merged, from the
+ * [x_min, x_max]; upstream of -start_a0 they are merged, from the
  * contact outwards, into runs of odd length growing by `growth` (never
  * shrinking), the last run taking the rest, between one and two of the
  * previous runs (one uniform cell more when the rest is even: the domain
  * then starts one uniform cell earlier). Writes span[] left to right (room
  * for nv + 1 cells) and the uniform cells covered in *nv_out. Returns the
  * number of cells. */
-static size_t grid_layout(size_t nv, double x_min, double x_max, double growth, size_t *span,
-                          size_t *nv_out) {
-  double dx = (x_max - x_min) / (double)nv, start = -VL_GRADE_START_A0;
+static size_t grid_layout(size_t nv, double x_min, double x_max, double growth, double start_a0,
+                          size_t *span, size_t *nv_out) {
+  double dx = (x_max - x_min) / (double)nv, start = -start_a0;
   size_t ig = 0;
   if (growth > 1.0 && x_min < start) ig = (size_t)fmin(floor((start - x_min) / dx), (double)nv);
   size_t cells = 0, rem = ig, prev = 1, covered = 0;
@@ -81,7 +81,9 @@ vl_status vl_contact_grid_init(vl_contact *c, vl_error *err) {
     memcpy(c->span, cfg->cell_spans, cfg->n_cells * sizeof *c->span);
     c->n = cfg->n_cells, c->nv = cfg->grid;
   } else {
-    c->n = grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, c->span, &c->nv);
+    double start = cfg->grade_start_a0 > 0.0 ? cfg->grade_start_a0 : VL_GRADE_START_A0;
+    c->n = grid_layout(cfg->grid, cfg->x_min_a0, cfg->x_max_a0, cfg->grid_growth, start, c->span,
+                       &c->nv);
   }
   if (c->n == cfg->grid && c->nv == cfg->grid) { /* nothing merged: the uniform grid */
     free(c->span);

@@ -139,6 +139,7 @@ struct vl_contact {
                               * slope f'; NULL for the parabola */
   double *ptab;              /* the contact's copy of the profile's table (cfg points to it, so
                               * that the helper contacts it creates later may read it) */
+  double *stab;              /* the same for a static pressure's table (cfg.static_x_m) */
   double *pamb;              /* ambient fluid pressure per cell (p0) with a sealed pressure
                               * (cfg.p_inlet_pa for x < 0, p_outlet_pa beyond), else NULL */
   double *film_work;         /* rough wet: 2 nunk + 3 n work values of contact_film.c, else NULL */

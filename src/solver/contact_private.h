@@ -43,4 +43,34 @@ void vl_contact_reset(vl_contact *c);
  * Hc = 1.226 (0.6 % at X = 20). Reads rubber, radius, load, viscosity. */
 double vl_contact_inlet_length_m(const vl_contact_config *cfg, double v0_m_s);
 
+/* The dry contact of cfg's profile (the parabola of radius_m, the table or
+ * the lip, mirrored or not) on the rubber's relaxed elastic modulus under
+ * load_n_per_m, smooth surfaces: the strip [centre - a, centre + a] (m, from
+ * the tip), from the closed-form conditions of a two-dimensional punch with
+ * free edges (a convex profile). *radius_m (may be NULL): the radius of the
+ * cylinder whose Hertz contact is as wide, pi Er0 a^2/(4 fN): the radius
+ * that makes the scales a0 = a (docs/MODEL.md section 9). VL_EINPUT for a
+ * configuration vl_contact_create would refuse, or a profile on which no
+ * width carries the load. */
+vl_status vl_contact_profile_contact(const vl_contact_config *cfg, double *centre_m,
+                                     double *half_width_m, double *radius_m, vl_error *err);
+
+/* The load and the scales' radius of cfg's static pressure (the rubber
+ * set): its integral (trapezoids of the table), and the radius of the
+ * cylinder whose relaxed Hertz contact is as wide as the pressure's span
+ * (a0 = half the span). VL_EINPUT as vl_contact_create for a table that is
+ * not one. */
+vl_status vl_contact_static_scales(const vl_contact_config *cfg, double *load_n_per_m,
+                                   double *radius_m, vl_error *err);
+
+/* Widens the domain of cfg (a lip or a table: its profile, mirrored and
+ * not, as an outstroke and an instroke see it) so that the dry contact of
+ * the profile (vl_contact_profile_contact) lies inside it with the margins
+ * the cylinder's defaults keep about its Hertz contact [-a0, a0]: 0.6 a0
+ * downstream of a wet contact, 0.5 a0 on both sides of a dry one; the
+ * grid grows in proportion (the cells keep their width), and a graded inlet
+ * starts 1 a0 upstream of the contact (grade_start_a0). The cylinder's
+ * configuration is left as it is. VL_EINPUT as vl_contact_profile_contact. */
+vl_status vl_contact_numerics_follow_profile(vl_contact_config *cfg, vl_error *err);
+
 #endif

@@ -333,7 +333,7 @@ static vl_status solve_failed(vl_contact *c, const attempt *a, vl_point *pt, vl_
   free(flag_name);
   vl_contact_restore(c, c->y_saved, &a->saved);
   memset(pt, 0, sizeof *pt);
-  pt->error_estimate = NAN;
+  pt->error_estimate = pt->flux_error_estimate = NAN;
   pt->v0_m_s = a->v0;
   pt->converged = false;
   pt->iterations = a->nni;
@@ -349,7 +349,7 @@ static vl_status solve_failed(vl_contact *c, const attempt *a, vl_point *pt, vl_
 static vl_status solve_at(vl_contact *c, double v0_m_s, bool viscosity, vl_point *pt,
                           vl_error *err) {
   memset(pt, 0, sizeof *pt);
-  pt->error_estimate = NAN;
+  pt->error_estimate = pt->flux_error_estimate = NAN;
   pt->v0_m_s = v0_m_s;
   if (!(v0_m_s >= 0.0 && isfinite(v0_m_s)) || (c->wet && !(v0_m_s > 0.0))) {
     vl_error_set(err, "speed must be finite and %s 0 (got %g m/s)", c->wet ? ">" : ">=", v0_m_s);
@@ -411,7 +411,7 @@ static vl_status continue_in_viscosity(vl_contact *c, double v0_m_s, double eta_
 vl_status vl_contact_solve_viscosity(vl_contact *c, double v0_m_s, double eta_pa_s,
                                      double max_ratio, vl_point *pt, vl_error *err) {
   memset(pt, 0, sizeof *pt);
-  pt->error_estimate = NAN;
+  pt->error_estimate = pt->flux_error_estimate = NAN;
   pt->v0_m_s = v0_m_s;
   if (!c->wet || !(eta_pa_s > 0.0 && isfinite(eta_pa_s)) || !(max_ratio > 1.0)) {
     vl_error_set(err,

@@ -2,6 +2,7 @@
  * lengths set it and why). */
 #include "numerics_plan.h"
 #include "persson_internal.h"
+#include "profile.h"
 #include "rheology_internal.h"
 
 #include <math.h>
@@ -51,10 +52,12 @@
 
 /* The planner's lengths, all in a0. */
 typedef struct {
-  double a;    /* contact half-width */
-  double lh;   /* hydrodynamic inlet length sqrt(2 R h) */
-  double s;    /* edge-zone width of a soft film (INFINITY: not soft) */
-  double core; /* upstream end of the zone of background cells */
+  double a;      /* contact half-width */
+  double xl, xr; /* its edges: -a, a for the cylinder; a lip's or a table's contact may lie
+                  * off the tip x = 0 */
+  double lh;     /* hydrodynamic inlet length sqrt(2 R h) */
+  double s;      /* edge-zone width of a soft film (INFINITY: not soft) */
+  double core;   /* upstream end of the zone of background cells */
   double x_lo, x_hi;
   double fine, back, inlet; /* cell widths: edges, background, far inlet */
   double inlet_growth;      /* of the cells upstream of core, per cell */
@@ -66,10 +69,35 @@ static double width_at(const lengths *L, double x) {
   double w = L->back + L->inlet_growth * fmax(0.0, -L->core - x);
   w = fmin(w, L->inlet);
   if (isfinite(L->s)) {
-    double d = fmin(fabs(x - L->a), fabs(x + L->a));
+    double d = fmin(fabs(x - L->xr), fabs(x - L->xl));
     w = fmin(w, L->fine + GROWTH * d);
   }
   return w;
+}
+
+/* A lip's or a table's lengths (in a0) in place of the cylinder's: the
+ * edges of its dry contact (profile.h), the inlet length as the distance
+ * upstream of the tip over which the profile rises by the film h (sqrt(2 R
+ * h) on the cylinder, shorter on a steep flank), and the scale delta (m) of
+ * the gap's opening outside the edges, a f'(a) = a^2/R on the cylinder: the
+ * half-width times the steeper edge slope. False for the cylinder (or when
+ * the profile's contact cannot be found: the cylinder's lengths then). */
+static bool profile_lengths(const vl_contact_config *base, double h, double a0, lengths *L,
+                            double *delta) {
+  if (!base->profile_x_m && !(base->lip_tip_radius_m > 0.0)) return false;
+  vl_profile p;
+  if (vl_profile_init(&p, base, NULL) != VL_OK) return false;
+  double er = vl_prony_e0(&base->rubber) * vl_prony_reduced_factor(&base->rubber), c, a, sl, sr;
+  bool ok = vl_profile_dry_contact(&p, base->load_n_per_m, er, &c, &a, NULL) == VL_OK;
+  if (ok) {
+    vl_profile_height(&p, c - a, &sl);
+    vl_profile_height(&p, c + a, &sr);
+    L->a = a / a0, L->xl = (c - a) / a0, L->xr = (c + a) / a0;
+    L->lh = vl_profile_rise_length(&p, h) / a0;
+    *delta = a * fmax(fabs(sl), fabs(sr));
+  }
+  vl_profile_free(&p);
+  return ok;
 }
 
 static void plan_lengths(const vl_contact_config *base, double v0, const vl_plan_input *in,
@@ -79,16 +107,20 @@ static void plan_lengths(const vl_contact_config *base, double v0, const vl_plan
   double r = in && in->resolution > 0.0 ? in->resolution : 1.0;
   bool rough = base->roughness != NULL;
   if (rough) h = fmax(h, vl_plan_rough_film_floor(base));
-  L->a = in && in->half_width_m > 0.0 ? in->half_width_m / a0 : 1.0;
-  L->lh = sqrt(2.0 * R * h) / a0;
-  double delta = L->a * L->a * a0 * a0 / R; /* m */
+  double delta;
+  if (!profile_lengths(base, h, a0, L, &delta)) {
+    L->a = in && in->half_width_m > 0.0 ? in->half_width_m / a0 : 1.0;
+    L->xl = -L->a, L->xr = L->a;
+    L->lh = sqrt(2.0 * R * h) / a0;
+    delta = L->a * L->a * a0 * a0 / R; /* m */
+  }
   double s = L->a * pow(3.0 * h / (4.0 * M_SQRT2 * delta), 2.0 / 3.0);
   L->s = s < L->a / 3.0 ? s : INFINITY; /* edge zones only where the film is thin */
-  L->core = fmax(L->a, 3.0 * L->lh);
+  L->core = fmax(-L->xl, 3.0 * L->lh);
   double in_scale = in && in->inlet_scale > 0.0 ? in->inlet_scale : 1.0;
   double out_scale = in && in->outlet_scale > 0.0 ? in->outlet_scale : 1.0;
-  L->x_lo = -in_scale * fmax(L->a + 2.0, L->a + INLET_LH * L->lh);
-  L->x_hi = out_scale * fmax(fmax(L->a + 0.6, VL_WET_DOMAIN_MAX_A0), OUTLET_LH * L->lh);
+  L->x_lo = -in_scale * fmax(-L->xl + 2.0, -L->xl + INLET_LH * L->lh);
+  L->x_hi = out_scale * fmax(fmax(L->xr + 0.6, VL_WET_DOMAIN_MAX_A0), OUTLET_LH * L->lh);
   /* the pressure spreads over the larger of the contact and the inlet length */
   L->back = r * fmax(L->a / 60.0, L->lh / 80.0);
   L->fine = isfinite(L->s) ? fmin(L->back, r * L->s / 32.0) : L->back;

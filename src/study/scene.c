@@ -39,6 +39,11 @@ typedef enum {
   K_MOVING,
   K_SEALED_PRESSURE,
   K_PROFILE_FILE,
+  K_PROFILE,
+  K_PRESSURE_PROFILE_FILE,
+  K_LIP_TIP_RADIUS,
+  K_LIP_OIL_ANGLE,
+  K_LIP_AIR_ANGLE,
   K_STROKE,
   K_ROD_DIAMETER,
   K_STROKE_LENGTH,
@@ -78,8 +83,9 @@ static const struct {
     [K_ELASTIC_MODULUS] = {"materials", "elastic_modulus", false},
     [K_GEOMETRY] = {"contact", "geometry", false},
     /* required by geometry (scene_check): radius_m and load_n_per_m for a
-     * cylinder, radius_m and load_n for a ball, radii_m and load_n for an
-     * ellipsoid */
+     * cylinder (radius_m not with profile = lip, neither with
+     * pressure_profile_file), radius_m and load_n for a ball, radii_m and
+     * load_n for an ellipsoid */
     [K_RADIUS] = {"contact", "radius_m", false},
     [K_RADII] = {"contact", "radii_m", false},
     [K_LOAD] = {"contact", "load_n_per_m", false},
@@ -88,6 +94,11 @@ static const struct {
     [K_MOVING] = {"contact", "moving", false},
     [K_SEALED_PRESSURE] = {"contact", "sealed_pressure_pa", false},
     [K_PROFILE_FILE] = {"contact", "profile_file", false},
+    [K_PROFILE] = {"contact", "profile", false},
+    [K_PRESSURE_PROFILE_FILE] = {"contact", "pressure_profile_file", false},
+    [K_LIP_TIP_RADIUS] = {"contact", "lip_tip_radius_m", false},
+    [K_LIP_OIL_ANGLE] = {"contact", "lip_oil_angle_deg", false},
+    [K_LIP_AIR_ANGLE] = {"contact", "lip_air_angle_deg", false},
     [K_STROKE] = {"seal", "stroke", false},
     [K_ROD_DIAMETER] = {"seal", "rod_diameter_m", false},
     [K_STROKE_LENGTH] = {"seal", "stroke_length_m", false},
@@ -369,14 +380,34 @@ static int contact_key(parse_state *ps, key_id id, const char *section, const ch
     else
       return fail(ps, section, key, "expected rubber or counterface, got '%s'", value);
     return 1;
-  case K_PROFILE_FILE: {
+  case K_PROFILE_FILE:
+  case K_PRESSURE_PROFILE_FILE: {
     /* relative to the scene file's folder */
+    char *dst = id == K_PROFILE_FILE ? sc->profile_file : sc->pressure_file;
+    size_t size = id == K_PROFILE_FILE ? sizeof sc->profile_file : sizeof sc->pressure_file;
     const char *slash = strrchr(ps->path, '/');
     int dir = value[0] != '/' && slash ? (int)(slash - ps->path + 1) : 0;
-    if (!*value || strlen(value) + (size_t)dir >= sizeof sc->profile_file)
+    if (!*value || strlen(value) + (size_t)dir >= size)
       return fail(ps, section, key, "bad file name '%s'", value);
-    snprintf(sc->profile_file, sizeof sc->profile_file, "%.*s%s", dir, ps->path, value);
-    sc->profile_line = ps->line;
+    snprintf(dst, size, "%.*s%s", dir, ps->path, value);
+    if (id == K_PROFILE_FILE)
+      sc->profile_line = ps->line;
+    else
+      sc->pressure_line = ps->line;
+    return 1;
+  }
+  case K_PROFILE:
+    if (!strcmp(value, "cylinder") || !strcmp(value, "lip"))
+      sc->lip = value[0] == 'l';
+    else
+      return fail(ps, section, key, "expected cylinder or lip, got '%s'", value);
+    return 1;
+  case K_LIP_TIP_RADIUS: POSITIVE(lip_tip_radius_m);
+  case K_LIP_OIL_ANGLE:
+  case K_LIP_AIR_ANGLE: {
+    double *a = id == K_LIP_OIL_ANGLE ? &sc->lip_oil_angle_deg : &sc->lip_air_angle_deg;
+    if (!parse_double(value, a) || !(*a > 0.0 && *a < 90.0))
+      return fail(ps, section, key, "expected a flank angle in (0, 90) degrees, got '%s'", value);
     return 1;
   }
   case K_SEALED_PRESSURE:
@@ -706,6 +737,7 @@ static vl_status geometry_check(parse_state *ps) {
     return check_fail(
         ps, wrong_load, "[contact] geometry = %s takes %s%s instead", name, keys[load].key,
         g == VL_GEOMETRY_CYLINDER ? " (N per metre of its length)" : " (the total load, N)");
+  if (g == VL_GEOMETRY_CYLINDER) return VL_OK; /* its radius and load: check_profile */
   if (!ps->key_line[radius])
     return missing(ps, radius, g == VL_GEOMETRY_CYLINDER ? "" : " (geometry = ball or ellipsoid)");
   if (!ps->key_line[load])
@@ -730,6 +762,9 @@ static vl_status point_contact_check(parse_state *ps) {
       {K_MOVING, sc->moving != VL_MOVING_RUBBER, "a ball rolls or slides on a moving rubber only"},
       {K_SEALED_PRESSURE, ps->key_line[K_SEALED_PRESSURE] != 0, "applies to a cylinder only"},
       {K_PROFILE_FILE, ps->key_line[K_PROFILE_FILE] != 0, "applies to a cylinder only"},
+      {K_PROFILE, ps->key_line[K_PROFILE] != 0, "applies to a cylinder only"},
+      {K_PRESSURE_PROFILE_FILE, ps->key_line[K_PRESSURE_PROFILE_FILE] != 0,
+       "applies to a cylinder only"},
       {K_STROKE, ps->key_line[K_STROKE] != 0, "applies to a cylinder only"},
       {K_GRID, ps->key_line[K_GRID] != 0,
        "a line contact's cells: a ball's are planned per point (docs/POINT_CONTACT.md)"},
@@ -748,6 +783,55 @@ static vl_status point_contact_check(parse_state *ps) {
   return VL_OK;
 }
 
+/* An imposed static pressure (pressure_profile_file): it stands for the
+ * rubber's shape and preload, so no radius_m, load_n_per_m or profile; the
+ * rubber at rest (moving = counterface). */
+static vl_status check_pressure_profile(parse_state *ps) {
+  static const key_id excluded[4] = {K_RADIUS, K_LOAD, K_PROFILE, K_PROFILE_FILE};
+  for (int k = 0; k < 4; k++)
+    if (ps->key_line[excluded[k]])
+      return check_fail(ps, excluded[k],
+                        "not with pressure_profile_file (line %d): the imposed pressure gives "
+                        "the load and the contact's shape",
+                        ps->key_line[K_PRESSURE_PROFILE_FILE]);
+  if (ps->scene->moving != VL_MOVING_COUNTERFACE)
+    return check_fail(ps, K_PRESSURE_PROFILE_FILE,
+                      "needs [contact] moving = counterface (a static pressure: the rubber at "
+                      "rest, the counter-surface moving)");
+  return VL_OK;
+}
+
+/* The profile keys: the cylinder's radius_m, or a lip with all three of
+ * its keys and no radius_m (its tip radius is lip_tip_radius_m), or a
+ * table (profile_file, radius_m for the scales). */
+static vl_status check_profile(parse_state *ps) {
+  vl_scene *sc = ps->scene;
+  static const key_id lip_keys[3] = {K_LIP_TIP_RADIUS, K_LIP_OIL_ANGLE, K_LIP_AIR_ANGLE};
+  for (int k = 0; k < 3; k++) {
+    if (sc->lip && !ps->key_line[lip_keys[k]])
+      return check_fail(ps, K_PROFILE, "lip needs [contact] %s", keys[lip_keys[k]].key);
+    if (!sc->lip && ps->key_line[lip_keys[k]])
+      return check_fail(ps, lip_keys[k], "applies to [contact] profile = lip only");
+  }
+  if (sc->lip && ps->key_line[K_RADIUS])
+    return check_fail(ps, K_RADIUS,
+                      "not with profile = lip (line %d): the lip's tip radius is "
+                      "lip_tip_radius_m; remove radius_m",
+                      ps->key_line[K_PROFILE]);
+  if (sc->lip && ps->key_line[K_PROFILE_FILE])
+    return check_fail(ps, K_PROFILE_FILE,
+                      "not with profile = lip (line %d): give the lip or the table",
+                      ps->key_line[K_PROFILE]);
+  if (ps->key_line[K_PRESSURE_PROFILE_FILE]) return check_pressure_profile(ps);
+  static const key_id needed[2] = {K_RADIUS, K_LOAD};
+  for (int k = 0; k < 2; k++)
+    if (!ps->key_line[needed[k]] && (k == 1 || !sc->lip)) {
+      vl_error_set(ps->err, "%s: missing required key [contact] %s", ps->path, keys[needed[k]].key);
+      return VL_EINPUT;
+    }
+  return VL_OK;
+}
+
 /* Requirements between keys, checked once the whole file is read. */
 static vl_status scene_check(parse_state *ps) {
   vl_scene *sc = ps->scene;
@@ -759,6 +843,7 @@ static vl_status scene_check(parse_state *ps) {
     }
   }
   vl_status gs = geometry_check(ps);
+  if (gs == VL_OK && sc->geometry == VL_GEOMETRY_CYLINDER) gs = check_profile(ps);
   if (gs != VL_OK) return gs;
   /* the numerics the file does not set follow from its effects */
   vl_scene d = *sc;
@@ -944,4 +1029,16 @@ done:
   free(text);
   fclose(f);
   return printable(st, err);
+}
+
+vl_status vl_scene_as_seal(vl_scene *sc, vl_error *err) {
+  if (sc->moving != VL_MOVING_COUNTERFACE || !sc->effects.fluid) {
+    vl_error_set(err,
+                 "%s: a seal needs [contact] moving = counterface (the seal at rest, the rod "
+                 "moving) and [effects] fluid = on%s",
+                 sc->path, sc->moving != VL_MOVING_COUNTERFACE ? " (moving is rubber)" : "");
+    return VL_EINPUT;
+  }
+  sc->stroke = VL_STROKE_BOTH;
+  return VL_OK;
 }

@@ -11,6 +11,7 @@
 
 #include "assumptions_internal.h"
 #include "point_contact_internal.h"
+#include "contact_private.h"
 #include "rheology_internal.h"
 #include "simulation_internal.h"
 #include "viscolube/flattening.h"
@@ -28,6 +29,7 @@ struct vl_simulation {
   vl_scene scene;
   vl_contact_config cfg;    /* as given to the contact (the assumption checks read it) */
   vl_contact_config cfg_in; /* [seal] stroke = both: the instroke's (mirrored, sealed outlet) */
+  vl_sweep_stats in_stats;  /* the last run's instroke (zero without one) */
   vl_prony rubber;
   bool have_psd;
   vl_psd psd;
@@ -57,7 +59,8 @@ struct vl_simulation {
   size_t n;
   double *v0;
   bool *fields;
-  double *profile; /* [contact] profile_file: x (m) then z (m), profile_n each; NULL without */
+  double *profile; /* [contact] profile_file (x, z in m) or pressure_profile_file (x in m, p in
+                    * Pa): x then the values, profile_n each; NULL without */
   size_t profile_n;
 };
 
@@ -98,26 +101,42 @@ static bool profile_row(const char *line, double *x, double *z) {
   return *end == '\0' && isfinite(*x) && isfinite(*z);
 }
 
-/* Reads the scene's profile table (docs/FORMATS.md: '#' comments, blank
- * lines, the header x_m,z_m, then rows x,z in metres) into sim->profile.
- * Errors name FILE:LINE. */
-static vl_status read_profile(vl_simulation *sim, vl_error *err) {
-  const vl_scene *sc = &sim->scene;
+/* A two-column table of the scene (docs/FORMATS.md: '#' comments, blank
+ * lines, the header, then rows of two numbers): a profile (x_m,z_m) or a
+ * static pressure (x_m,p_pa). */
+typedef struct {
+  const char *file;    /* the table's path */
+  int key_line;        /* the scene's line naming it */
+  const char *key;     /* its key, for messages */
+  const char *header;  /* "x_m,z_m" */
+  const char *columns; /* "x, z" */
+  const char *units;   /* "two numbers in m" */
+} table_spec;
+
+/* Reads the table of t into *out (x then the values, *n each; malloc'd) and
+ * the line of each row into *lines (malloc'd; NULL: not kept). Errors name
+ * FILE:LINE. */
+static vl_status read_table(const vl_scene *sc, const table_spec *t, double **out, size_t *n_out,
+                            int **lines, vl_error *err) {
   char *text = NULL;
   size_t len = 0;
-  vl_status st =
-      vl_slurp(sc->profile_file, VL_PROFILE_MAX_BYTES, "a profile table", &text, &len, err);
-  if (st == VL_OK) st = vl_text_refuse_nul(text, len, sc->profile_file, err);
+  vl_status st = vl_slurp(t->file, VL_PROFILE_MAX_BYTES, "a table", &text, &len, err);
+  if (st == VL_OK) st = vl_text_refuse_nul(text, len, t->file, err);
   if (st != VL_OK) {
     free(text);
-    vl_error_prefix(err, "%s:%d: [contact] profile_file", sc->path, sc->profile_line);
+    vl_error_prefix(err, "%s:%d: [contact] %s", sc->path, t->key_line, t->key);
     return st;
   }
   size_t cap = 1024, n = 0;
   double *x = malloc(cap * sizeof *x), *z = malloc(cap * sizeof *z);
+  int *ln = malloc(cap * sizeof *ln);
   bool header = false;
   int line = 0;
-  st = x && z ? VL_OK : VL_ENOMEM;
+  char spaced[64];
+  snprintf(spaced, sizeof spaced, "%s", t->header);
+  char *comma = strchr(spaced, ',');
+  if (comma) memmove(comma + 2, comma + 1, strlen(comma + 1) + 1), comma[1] = ' ';
+  st = x && z && ln ? VL_OK : VL_ENOMEM;
   for (char *s = text, *next; st == VL_OK && s && *s; s = next) {
     line++;
     next = strchr(s, '\n');
@@ -130,9 +149,9 @@ static vl_status read_profile(vl_simulation *sim, vl_error *err) {
     if (!*s || *s == '#') continue;
     if (!header) {
       header = true;
-      if (strcmp(s, "x_m,z_m") && strcmp(s, "x_m, z_m")) {
-        vl_error_set(err, "%s:%d: expected the header x_m,z_m (metres), got '%.40s'",
-                     sc->profile_file, line, s);
+      if (strcmp(s, t->header) && strcmp(s, spaced)) {
+        vl_error_set(err, "%s:%d: expected the header %s, got '%.40s'", t->file, line, t->header,
+                     s);
         st = VL_EINPUT;
       }
       continue;
@@ -141,39 +160,82 @@ static vl_status read_profile(vl_simulation *sim, vl_error *err) {
       double *nx = n < VL_PROFILE_MAX_POINTS ? realloc(x, 2 * cap * sizeof *x) : NULL;
       if (nx) x = nx;
       double *nz = nx ? realloc(z, 2 * cap * sizeof *z) : NULL;
-      if (nz) z = nz, cap *= 2;
-      if (!nx || !nz) {
-        vl_error_set(err, "%s:%d: more than %d points or out of memory", sc->profile_file, line,
+      if (nz) z = nz;
+      int *nl = nz ? realloc(ln, 2 * cap * sizeof *ln) : NULL;
+      if (nl) ln = nl, cap *= 2;
+      if (!nx || !nz || !nl) {
+        vl_error_set(err, "%s:%d: more than %d points or out of memory", t->file, line,
                      VL_PROFILE_MAX_POINTS);
         st = VL_EINPUT;
         break;
       }
     }
     if (!profile_row(s, &x[n], &z[n])) {
-      vl_error_set(err, "%s:%d: expected 'x, z' (two numbers in m), got '%.40s'", sc->profile_file,
-                   line, s);
+      vl_error_set(err, "%s:%d: expected '%s' (%s), got '%.40s'", t->file, line, t->columns,
+                   t->units, s);
       st = VL_EINPUT;
       break;
     }
     for (size_t k = 0; k < n; k++)
       if (x[k] == x[n]) {
-        vl_error_set(err, "%s:%d: x = %g m given twice", sc->profile_file, line, x[n]);
+        vl_error_set(err, "%s:%d: x = %g m given twice (line %d)", t->file, line, x[n], ln[k]);
         st = VL_EINPUT;
       }
-    n++;
+    ln[n++] = line;
   }
   if (st == VL_OK && n < 3) {
-    vl_error_set(err, "%s: a profile needs at least 3 points (got %zu)", sc->profile_file, n);
+    vl_error_set(err, "%s: a table of at least 3 points is needed (got %zu)", t->file, n);
     st = VL_EINPUT;
   }
-  if (st == VL_OK && !(sim->profile = malloc(2 * n * sizeof *sim->profile))) st = VL_ENOMEM;
+  if (st == VL_OK && !(*out = malloc(2 * n * sizeof **out))) st = VL_ENOMEM;
   if (st == VL_OK) {
-    memcpy(sim->profile, x, n * sizeof *x);
-    memcpy(sim->profile + n, z, n * sizeof *z);
-    sim->profile_n = n;
+    memcpy(*out, x, n * sizeof *x);
+    memcpy(*out + n, z, n * sizeof *z);
+    *n_out = n;
+    if (lines) *lines = ln, ln = NULL;
   }
-  if (st == VL_ENOMEM) vl_error_set(err, "%s: out of memory", sc->profile_file);
-  free(x), free(z), free(text);
+  if (st == VL_ENOMEM) vl_error_set(err, "%s: out of memory", t->file);
+  free(x), free(z), free(ln), free(text);
+  return st;
+}
+
+/* The scene's profile table (x_m,z_m) into sim->profile. */
+static vl_status read_profile(vl_simulation *sim, vl_error *err) {
+  const vl_scene *sc = &sim->scene;
+  table_spec t = {sc->profile_file, sc->profile_line, "profile_file",
+                  "x_m,z_m",        "x, z",           "two numbers in m"};
+  return read_table(sc, &t, &sim->profile, &sim->profile_n, NULL, err);
+}
+
+/* The scene's static pressure (x_m,p_pa) into sim->profile: each pressure
+ * >= 0, and 0 at the lowest and highest x (the contact's edges); errors
+ * name the table's line. */
+static vl_status read_pressure(vl_simulation *sim, vl_error *err) {
+  const vl_scene *sc = &sim->scene;
+  table_spec t = {sc->pressure_file, sc->pressure_line, "pressure_profile_file", "x_m,p_pa", "x, p",
+                  "x in m, p in Pa"};
+  int *ln = NULL;
+  vl_status st = read_table(sc, &t, &sim->profile, &sim->profile_n, &ln, err);
+  if (st != VL_OK) return st;
+  size_t n = sim->profile_n, lo = 0, hi = 0;
+  const double *x = sim->profile, *p = sim->profile + n;
+  for (size_t k = 0; k < n && st == VL_OK; k++) {
+    if (p[k] < 0.0) {
+      vl_error_set(err, "%s:%d: a contact pressure must be >= 0 (got %g Pa)", t.file, ln[k], p[k]);
+      st = VL_EINPUT;
+    }
+    if (x[k] < x[lo]) lo = k;
+    if (x[k] > x[hi]) hi = k;
+  }
+  size_t end = p[lo] != 0.0 ? lo : hi;
+  if (st == VL_OK && (p[lo] != 0.0 || p[hi] != 0.0)) {
+    vl_error_set(err,
+                 "%s:%d: the pressure must fall to 0 at both ends of the table (the edges of "
+                 "the contact), got %g Pa at x = %g m",
+                 t.file, ln[end], p[end], x[end]);
+    st = VL_EINPUT;
+  }
+  free(ln);
   return st;
 }
 
@@ -411,6 +473,39 @@ static vl_status point_contact_setup(vl_simulation *sim, vl_error *err) {
   return st;
 }
 
+/* An imposed static pressure: the table, and the load and scales it
+ * gives (vl_contact_static_scales), also into the simulation's scene. */
+static vl_status static_pressure(vl_simulation *sim, vl_contact_config *cfg, vl_error *err) {
+  vl_status st = read_pressure(sim, err);
+  if (st != VL_OK) return st;
+  cfg->static_x_m = sim->profile, cfg->static_p_pa = sim->profile + sim->profile_n;
+  cfg->static_points = sim->profile_n;
+  cfg->profile_mirror = sim->scene.stroke == VL_STROKE_IN;
+  st = vl_contact_static_scales(cfg, &cfg->load_n_per_m, &cfg->radius_m, err);
+  if (st != VL_OK) {
+    vl_error_prefix(err, "%s:%d: [contact] pressure_profile_file", sim->scene.path,
+                    sim->scene.pressure_line);
+    return st;
+  }
+  sim->scene.load_n_per_m = cfg->load_n_per_m, sim->scene.radius_m = cfg->radius_m;
+  return VL_OK;
+}
+
+/* A lip's scales and every profile's domain: the lip's contact may be far
+ * wider than the tip's Hertz contact (its flanks carry), so the scales are
+ * those of the cylinder whose dry contact is as wide (a0 the lip's
+ * half-width), and the domain of default numerics reaches past the
+ * contact of either stroke (vl_contact_numerics_follow_profile). A
+ * table's radius_m stays the scene's. */
+static vl_status profile_scales(const vl_scene *scene, vl_contact_config *cfg, vl_error *err) {
+  vl_status st = VL_OK;
+  double c, a;
+  if (scene->lip) st = vl_contact_profile_contact(cfg, &c, &a, &cfg->radius_m, err);
+  if (st == VL_OK && scene->auto_numerics) st = vl_contact_numerics_follow_profile(cfg, err);
+  if (st != VL_OK) vl_error_prefix(err, "%s: [contact] profile", scene->path);
+  return st;
+}
+
 vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation **out,
                                vl_error *err) {
   *out = NULL;
@@ -477,9 +572,16 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.rubber = scene_rubber(sim);
   cfg.radius_m = scene->radius_m;
   cfg.load_n_per_m = scene->load_n_per_m;
+  if (scene->lip) {
+    cfg.lip_tip_radius_m = scene->lip_tip_radius_m;
+    cfg.lip_oil_angle_rad = scene->lip_oil_angle_deg * M_PI / 180.0;
+    cfg.lip_air_angle_rad = scene->lip_air_angle_deg * M_PI / 180.0;
+    cfg.radius_m = cfg.lip_tip_radius_m; /* for the check; the scales' below */
+  }
   cfg.sigma_s_pa = scene->effects.solid_shear ? scene->sigma_s_pa : 0.0;
   cfg.shear_law = sim->has_pair ? &sim->shear_law : NULL;
   cfg.moving = scene->moving;
+  if (scene->pressure_file[0] && (st = static_pressure(sim, &cfg, err)) != VL_OK) goto fail;
   if (scene->profile_file[0]) {
     if ((st = read_profile(sim, err)) != VL_OK) goto fail;
     cfg.profile_x_m = sim->profile, cfg.profile_z_m = sim->profile + sim->profile_n;
@@ -503,6 +605,7 @@ vl_status vl_simulation_create(const vl_scene *scene, vl_db *db, vl_simulation *
   cfg.x_max_a0 = scene->domain_max_a0;
   cfg.tolerance = scene->tolerance;
   cfg.linear_solver = scene->linear_solver;
+  if ((st = profile_scales(scene, &cfg, err)) != VL_OK) goto fail;
   if (scene->effects.viscous_flattening) {
     /* epsilon_f of the rubber the contact uses (elastic or at the scene's
      * temperature), the surface, the contact's load and radius (aH, so wH)
@@ -574,6 +677,9 @@ double vl_simulation_tau(const vl_simulation *sim) {
   return sim->rubber.n_terms == 1 && memory ? sim->rubber.tau_s[0] : 0.0;
 }
 const vl_prony *vl_simulation_rubber(const vl_simulation *sim) { return &sim->rubber; }
+const vl_sweep_stats *vl_simulation_instroke_stats(const vl_simulation *sim) {
+  return &sim->in_stats;
+}
 double vl_simulation_temperature_c(const vl_simulation *sim) { return sim->temperature_c; }
 double vl_simulation_shift_factor(const vl_simulation *sim) { return sim->a_T; }
 const vl_psd *vl_simulation_psd(const vl_simulation *sim) {
@@ -636,13 +742,22 @@ static void check_point(void *user, size_t i, size_t total, const vl_point *pt,
  * and back per cycle and whether the seal is tight. */
 static void seal_result(const vl_scene *sc, vl_point *p, const vl_point *q) {
   vl_seal_result *s = &p->seal;
-  *s = (vl_seal_result){.stroke = sc->stroke, .volume_out_m3 = NAN, .volume_back_m3 = NAN};
+  *s = (vl_seal_result){.stroke = sc->stroke,
+                        .volume_out_m3 = NAN,
+                        .volume_back_m3 = NAN,
+                        .in_error_estimate = NAN,
+                        .in_flux_error_estimate = NAN};
   s->tight = -1;
-  s->friction_n_per_m = p->mu * sc->load_n_per_m;
+  s->friction_n_per_m = p->mu * sc->load_n_per_m; /* a static pressure's: set from its table */
   if (!q) return;
   s->in_converged = q->converged;
   s->in_mu = q->mu, s->in_mu_Sc = q->mu_Sc, s->in_mu_Sf = q->mu_Sf;
   s->in_u_min_m = q->u_min_m, s->in_flux_m2_s = q->flux_m2_s;
+  s->in_u_central_m = q->u_central_m;
+  s->in_error_estimate = q->error_estimate, s->in_flux_error_estimate = q->flux_error_estimate;
+  s->in_accuracy = q->accuracy;
+  s->in_iterations = q->iterations, s->in_residual = q->residual;
+  snprintf(s->in_warnings, sizeof s->in_warnings, "%s", q->warnings);
   s->in_friction_n_per_m = q->mu * sc->load_n_per_m;
   if (sc->rod_diameter_m > 0.0 && sc->stroke_length_m > 0.0 && p->converged && q->converged) {
     /* a stroke of length L at speed v lasts L/v; q per unit circumference */
@@ -664,9 +779,8 @@ static vl_status run_instroke(vl_simulation *sim, vl_point *out, vl_error *err) 
   }
   vl_simulation_run_ctx_in ctx = {sim, in};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
-  vl_sweep_stats st;
-  vl_status s =
-      vl_sweep_run_auto(&sim->cfg_in, &o, sim->n, sim->v0, in, check_point_in, &ctx, &st, err);
+  vl_status s = vl_sweep_run_auto(&sim->cfg_in, &o, sim->n, sim->v0, in, check_point_in, &ctx,
+                                  &sim->in_stats, err);
   if (s == VL_OK || s == VL_ENOCONV)
     for (size_t i = 0; i < sim->n; i++)
       seal_result(&sim->scene, &out[i], &in[i]);
@@ -768,6 +882,7 @@ vl_status vl_simulation_run(vl_simulation *sim, vl_point *out, vl_sweep_callback
   }
   run_ctx r = {sim, out, cb, user};
   vl_auto_options o = {sim->scene.target_error, -1, !sim->scene.auto_numerics};
+  memset(&sim->in_stats, 0, sizeof sim->in_stats);
   vl_status st =
       vl_sweep_run_auto(&sim->cfg, &o, sim->n, sim->v0, out, check_point, &r, stats, err);
   if (sim->scene.direction == VL_DIRECTION_BOTH && (st == VL_OK || st == VL_ENOCONV)) {

@@ -184,6 +184,10 @@ void vl_print_curve_csv(FILE *out, size_t n, const vl_point *pts, const vl_curve
   bool seal = n > 0 && pts[0].seal.stroke != VL_STROKE_NONE;
   bool down = n > 0 && pts[0].down.swept;
   bool ball = n > 0 && pts[0].ball.geometry != VL_GEOMETRY_CYLINDER;
+  if (n > 0 && pts[0].rolling_na)
+    fputs("# mu_Rc, mu_Rf: not applicable (moving = counterface: the rubber at rest, the flat "
+          "counter-surface has no slope): empty; mu = mu_Sc + mu_Sf\n",
+          out);
   for (size_t c = 0; vl_curve_columns[c]; c++)
     fprintf(out, "%s%s", c ? "," : "", vl_curve_columns[c]);
   for (size_t c = 0; seal && vl_seal_columns[c]; c++)

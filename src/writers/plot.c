@@ -1158,6 +1158,123 @@ vl_status vl_plot_stribeck(const char *stem, size_t n, const vl_point *pts,
   return render(stem, opt, "Stribeck curve", draw_stribeck, &c, report, err);
 }
 
+/* ---- a seal's strokes ---------------------------------------------------- */
+
+/* Quantity k (0 the friction force per length, 1 the flux per unit
+ * circumference) of the outstroke (in false) or the instroke at p; NAN where
+ * that stroke did not converge. */
+static double seal_value(const vl_point *p, bool in, int k) {
+  const vl_seal_result *s = &p->seal;
+  if (in ? !s->in_converged : !p->converged) return NAN;
+  if (k == 0) return in ? s->in_friction_n_per_m : s->friction_n_per_m;
+  return in ? s->in_flux_m2_s : p->flux_m2_s;
+}
+
+/* A stroke that converged but is not known to its error target. */
+static bool seal_unreliable(const vl_point *p, bool in) {
+  if (!in) return vl_point_unreliable(p);
+  int a = p->seal.in_accuracy;
+  return p->seal.in_converged && (a == VL_ACCURACY_ABOVE_TARGET || a == VL_ACCURACY_NO_ESTIMATE);
+}
+
+typedef struct {
+  size_t n;
+  const vl_point *pts;
+} seal_ctx;
+
+/* The y axis of a panel over values v[0..2n): logarithmic when they are
+ * all positive and span more than a factor 30, else linear. */
+static void seal_y_axis(fig *f, size_t n2, const double *v) {
+  double lo, hi;
+  range_of(n2, v, &lo, &hi);
+  if (isfinite(lo) && lo > 0 && hi / lo > 30)
+    f->y = log_axis(lo, hi, len_y(f), CH_TICK * f->ph, true);
+  else
+    value_y_axis(f, lo, hi, true);
+}
+
+/* One panel: both strokes of quantity k, their failed and unreliable
+ * points; the legend entries once (k = 0). */
+static void seal_panel(fig *f, const seal_ctx *c, int k, const double *xv, double *v, double *wx,
+                       double *wy, bool *ok) {
+  size_t n = c->n;
+  static const char *const names[2] = {"outstroke (oil → air)", "instroke (air → oil)"};
+  const style styles[2] = {{PALETTE[1], 1, 2.5}, {PALETTE[0], 3, 2.5}};
+  for (int s = 0; s < 2; s++)
+    for (size_t i = 0; i < n; i++)
+      v[s * n + i] = seal_value(&c->pts[i], s == 1, k);
+  seal_y_axis(f, 2 * n, v);
+  for (size_t i = 0; i < n; i++)
+    wx[i] = to_wx(f, xv[i]);
+  draw_axes(f, k ? "sliding speed #<0x11>v#<0x01>#d0#u (m/s)" : NULL,
+            k ? "flux per circumference (m²/s)" : "friction force per length (N/m)", k == 1);
+  use_data_area(f);
+  size_t failed = 0, unreliable = 0;
+  for (int s = 0; s < 2; s++) {
+    for (size_t i = 0; i < n; i++) {
+      wy[i] = to_wy(f, v[s * n + i]);
+      ok[i] = isfinite(v[s * n + i]);
+    }
+    draw_runs(f, n, wx, wy, styles[s]);
+    if (k == 0) {
+      add_legend(f, names[s], true, styles[s], M_NONE, false, BLACK);
+      f->series++;
+    }
+    failed += draw_failed(f, n, wx, ok, styles[s].color, s);
+    for (size_t i = 0; i < n; i++)
+      if (seal_unreliable(&c->pts[i], s == 1) && isfinite(wx[i]) && isfinite(wy[i])) {
+        draw_marker(f, wx[i], wy[i], M_SQUARE, 2.8, WHITE, BLACK, false);
+        unreliable++;
+      }
+  }
+  if (k == 1) {
+    f->failed = failed;
+    if (failed) add_legend(f, FAILED_TEXT, false, styles[0], M_CIRCLE, true, BLACK);
+    if (unreliable) add_legend(f, UNRELIABLE_TEXT, false, styles[0], M_SQUARE, true, BLACK);
+  }
+}
+
+static void draw_seal(fig *f, const void *vctx) {
+  const seal_ctx *c = vctx;
+  size_t n = c->n;
+  double *xv = calloc(n, sizeof *xv), *wx = calloc(n, sizeof *wx);
+  double *v = calloc(2 * n, sizeof *v), *wy = calloc(n, sizeof *wy);
+  bool *ok = calloc(n, sizeof *ok);
+  if (!xv || !wx || !v || !wy || !ok) {
+    free(xv), free(wx), free(v), free(wy), free(ok);
+    return;
+  }
+  for (size_t i = 0; i < n; i++)
+    xv[i] = c->pts[i].v0_m_s;
+  f->vx0 = 0.105;
+  f->vx1 = 0.69;
+  f->vy0 = 0.53;
+  f->vy1 = TOP;
+  sweep_x_axis(f, n, xv);
+  seal_panel(f, c, 0, xv, v, wx, wy, ok);
+  f->vy0 = 0.115;
+  f->vy1 = 0.475;
+  seal_panel(f, c, 1, xv, v, wx, wy, ok);
+  f->vy0 = 0.115;
+  draw_legend(f, TOP);
+  free(xv), free(wx), free(v), free(wy), free(ok);
+}
+
+vl_status vl_plot_seal(const char *stem, size_t n, const vl_point *pts, const vl_plot_options *opt,
+                       vl_plot_report *report, vl_error *err) {
+  if (n == 0 || !pts || pts[0].seal.stroke != VL_STROKE_BOTH) {
+    vl_error_set(err, "plot: a seal's figure needs the points of both strokes");
+    return VL_EINPUT;
+  }
+  for (size_t i = 0; i < n; i++)
+    if (!(pts[i].v0_m_s > 0) || !isfinite(pts[i].v0_m_s)) {
+      vl_error_set(err, "plot: speed %zu is not positive (%g m/s)", i + 1, pts[i].v0_m_s);
+      return VL_EINPUT;
+    }
+  seal_ctx c = {n, pts};
+  return render(stem, opt, "Seal: friction and leakage per stroke", draw_seal, &c, report, err);
+}
+
 /* ---- separation -------------------------------------------------------- */
 
 static void draw_separation(fig *f, const void *vctx) {

@@ -260,6 +260,43 @@ class TestScenes(Scratch):
         for j, name in enumerate(header):
             self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
 
+    def test_seal_equals_cli(self):
+        # db.seal is `viscolube seal`: seal.csv cell for cell, both strokes
+        # whatever [seal] says (here nothing), a scene of a moving rubber
+        # refused with the library's message
+        scene = os.path.join(self.dir, "oring.ini")
+        text = ("[materials]\ncompound = model-rubber\nfluid = model-1e-1\n"
+                "[contact]\nradius_m = 0.01\nload_n_per_m = 1000\n%s"
+                "sealed_pressure_pa = 3e4\n"
+                "[sweep]\nquantity = v0\nfrom = 0.01\nto = 0.1\npoints = 2\n"
+                "[effects]\nviscoelastic = off\nfluid = on\n"
+                "[numerics]\ngrid = 256\ndomain_a0 = -3, 1.5\ntarget_error = 0.5\n")
+        with open(scene, "w") as f:
+            f.write(text % "moving = counterface\n")
+        out = os.path.join(self.dir, "out")
+        cli("--db", self.db_path, "seal", scene, "--out", out, "--quiet")
+        with vl.Database(self.db_path) as db:
+            seal = db.seal(scene)
+            header, rows = read_csv(os.path.join(out, "seal.csv"))
+            self.assertEqual(list(seal.keys()), header)
+            for i, row in enumerate(rows):
+                for name, cell in zip(header, row):
+                    v = seal[name][i]
+                    if name.startswith(("accuracy", "warnings")):
+                        self.assertEqual(cell, v, name)
+                    elif cell == "":
+                        self.assertTrue(math.isnan(v), (name, i, v))
+                    else:
+                        self.assertEqual(cell, text10(v), (name, i))
+            self.assertTrue(np.all(seal["flux_out_m2_s"] > seal["flux_in_m2_s"]))
+            self.assertEqual(len(seal.curve["mu"]), 2)
+            bad = os.path.join(self.dir, "rubber.ini")
+            with open(bad, "w") as f:
+                f.write(text % "")
+            with self.assertRaises(vl.InputError) as e:
+                db.seal(bad)
+            self.assertIn("a seal needs [contact] moving = counterface", e.exception.message)
+
     def test_compare_equals_cli(self):
         out = os.path.join(self.dir, "cmp")
         cli("--db", self.db_path, "compare", "--compounds", "sbr-unfilled,sbr-filled",
