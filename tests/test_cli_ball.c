@@ -99,6 +99,9 @@ static void test_not_yet(void **state) {
   expect_refused(BALL, "[numerics]\ngrid = 256\n", "[numerics] grid", "planned per point");
   expect_refused(BALL, "[numerics]\ndomain_a0 = -2, 2\n", "[numerics] domain_a0", NULL);
   expect_refused(BALL "\nmoving = counterface", "", "[contact] moving", NULL);
+  expect_refused(BALL, "[sweep]\ndirection = both\n", "[sweep] direction", "runs upward");
+  expect_refused(BALL "\npressure_profile_file = p.csv", "", "[contact] pressure_profile_file",
+                 "cylinder only");
 }
 
 static char *read_in(const char *dir, const char *name) {

@@ -763,6 +763,8 @@ static vl_status point_contact_check(parse_state *ps) {
       {K_SEALED_PRESSURE, ps->key_line[K_SEALED_PRESSURE] != 0, "applies to a cylinder only"},
       {K_PROFILE_FILE, ps->key_line[K_PROFILE_FILE] != 0, "applies to a cylinder only"},
       {K_PROFILE, ps->key_line[K_PROFILE] != 0, "applies to a cylinder only"},
+      {K_DIRECTION, sc->direction != VL_DIRECTION_UP,
+       "a ball's sweep runs upward (its points are independent solves, no branches to follow)"},
       {K_PRESSURE_PROFILE_FILE, ps->key_line[K_PRESSURE_PROFILE_FILE] != 0,
        "applies to a cylinder only"},
       {K_STROKE, ps->key_line[K_STROKE] != 0, "applies to a cylinder only"},
