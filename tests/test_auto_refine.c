@@ -56,7 +56,8 @@ static size_t run(const vl_contact_config *cfg, int max_refinements, size_t n, c
     fail_msg("automatic sweep: %s", err.msg);
   for (size_t i = 0; i < n; i++)
     if (!pt[i].converged) fail_msg("%g m/s did not converge", v[i]);
-  print_message("  [%d refinements: %.2f s, %d fresh, %d newton]\n", max_refinements, sst.seconds, (int)sst.fresh_starts, (int)sst.newton_iterations);
+  print_message("  [%d refinements: %.2f s, %d fresh, %d newton]\n", max_refinements, sst.seconds,
+                (int)sst.fresh_starts, (int)sst.newton_iterations);
   return p.grid;
 }
 

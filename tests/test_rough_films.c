@@ -145,8 +145,9 @@ static void test_wiper_like_lifted(void **state) {
   vl_sweep_stats st;
   if (vl_sweep_run_auto(&cfg, &o, 1, v, pt, NULL, NULL, &st, &err) != VL_OK)
     fail_msg("automatic sweep: %s", err.msg);
-  print_message("%.2f s, %ld Newton iterations, %ld fresh starts, %ld recovered below\n", st.seconds,
-                (long)st.newton_iterations, (long)st.fresh_starts, (long)st.recovered_below);
+  print_message("%.2f s, %ld Newton iterations, %ld fresh starts, %ld recovered below\n",
+                st.seconds, (long)st.newton_iterations, (long)st.fresh_starts,
+                (long)st.recovered_below);
   for (size_t i = 0; i < 1; i++) {
     print_message("%g m/s: mu %.5g u_min %.3g m fluid %.3f estimate %.3g warnings \"%s\"\n", v[i],
                   pt[i].mu, pt[i].u_min_m, pt[i].fluid_load_fraction, pt[i].error_estimate,

@@ -367,8 +367,8 @@ static void test_sweep_direction(void **state) {
   assert_int_equal(g_scene.direction, VL_DIRECTION_DOWN);
   parse_ok(edit(BASE, "points = 7", "points = 7\ndirection = both"));
   assert_int_equal(g_scene.direction, VL_DIRECTION_BOTH);
-  parse_fails(edit(BASE, "points = 7", "points = 7\ndirection = sideways"), 14,
-              "[sweep] direction", "expected up, down or both, got 'sideways'");
+  parse_fails(edit(BASE, "points = 7", "points = 7\ndirection = sideways"), 14, "[sweep] direction",
+              "expected up, down or both, got 'sideways'");
   parse_fails(edit(BASE, "points = 7", "points = 1\ndirection = down"), 14, "[sweep] direction",
               "points >= 2");
 }

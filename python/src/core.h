@@ -69,8 +69,8 @@ VLPY_HIDDEN PyObject *vlpy_calibrate(DatabaseObject *self, PyObject *args, PyObj
       {"friction", (PyCFunction)(void (*)(void))vlpy_friction, METH_VARARGS | METH_KEYWORDS,       \
        "One operating point (vl_query_friction)."},                                                \
       {"run_scene", (PyCFunction)(void (*)(void))vlpy_run_scene, METH_VARARGS | METH_KEYWORDS,     \
-       "run_scene(text, path, seal=False): the curves (and fields) of a scene given as INI "     \
-       "text; seal: both strokes of a seal, with its table."},            \
+       "run_scene(text, path, seal=False): the curves (and fields) of a scene given as INI "       \
+       "text; seal: both strokes of a seal, with its table."},                                     \
       {"run_query", (PyCFunction)(void (*)(void))vlpy_run_query, METH_VARARGS | METH_KEYWORDS,     \
        "The Stribeck sweep of a query (compare)."},                                                \
       {"check_query", (PyCFunction)(void (*)(void))vlpy_check_query, METH_VARARGS | METH_KEYWORDS, \

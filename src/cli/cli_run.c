@@ -432,9 +432,9 @@ static void print_table(const vl_scene *scene, size_t n, const vl_point *pts,
       snprintf(rf, sizeof rf, "%.3g", p->mu_Rf + 0.0);
     }
     if (p->converged)
-      printf("%11.4g %11.4g %10.4g %10s %10s %10.3g %10.3g %10.4g %12s %4s %4ld %8s", p->v0_m_s,
-             q, p->mu, rc, rf, p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m,
-             vl_regime_name(p->regime), "yes", p->iterations, est);
+      printf("%11.4g %11.4g %10.4g %10s %10s %10.3g %10.3g %10.4g %12s %4s %4ld %8s", p->v0_m_s, q,
+             p->mu, rc, rf, p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m, vl_regime_name(p->regime),
+             "yes", p->iterations, est);
     else
       printf("%11.4g %11.4g %10s %10s %10s %10s %10s %10s %12s %4s %4ld %8s", p->v0_m_s, q, "-",
              "-", "-", "-", "-", "-", "-", "NO", p->iterations, "-");
@@ -843,8 +843,7 @@ static int run_options(int seal, int argc, char **argv, const char **scene_path,
                           "one scene at a time (got '%s' and '%s')", usage);
   int rc = vl_cli_parse(&p, argc, argv, 1);
   if (rc >= 0) return rc;
-  if (!*scene_path)
-    return vl_cli_usage_error(seal ? "seal" : "run", NULL, usage, "missing SCENE");
+  if (!*scene_path) return vl_cli_usage_error(seal ? "seal" : "run", NULL, usage, "missing SCENE");
   return -1;
 }
 

@@ -251,8 +251,10 @@ double vl_contact_outlet_tail(vl_contact *c, const vl_point *pt) {
     double x = x_end + t;
     double u = u_end + (x * x - x_end * x_end) / (2.0 * R);
     double f = q / (u * u); /* theta / u */
-    if (prev_f >= 0.0) sum += 0.5 * (f + prev_f) * (t - prev_t);
-    else sum += f * t;
+    if (prev_f >= 0.0)
+      sum += 0.5 * (f + prev_f) * (t - prev_t);
+    else
+      sum += f * t;
     prev_f = f, prev_t = t;
   }
   double tail = cfg->eta_pa_s * c->v0 * sum / cfg->load_n_per_m;

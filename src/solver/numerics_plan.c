@@ -131,8 +131,8 @@ static void plan_lengths(const vl_contact_config *base, double v0, const vl_plan
     /* edge zones narrower than ROUGH_PLAN_EDGE standard cells: planned, with
      * the finer background (else the standard cells, L->planned false) */
     double edge = in && in->planned ? ROUGH_KEEP_EDGE : ROUGH_PLAN_EDGE;
-    L->planned = L->s < L->a / (edge * ROUGH_BACKGROUND) && in &&
-                 in->fluid_share >= ROUGH_PLAN_FLUID_SHARE;
+    L->planned =
+        L->s < L->a / (edge * ROUGH_BACKGROUND) && in && in->fluid_share >= ROUGH_PLAN_FLUID_SHARE;
     double back = L->planned ? ROUGH_BACKGROUND_PLANNED : ROUGH_BACKGROUND;
     L->back = r * fmax(L->a / back, L->lh / 80.0);
     L->fine = isfinite(L->s) ? fmin(L->back, r * L->s / ROUGH_EDGE_CELLS) : L->back;

@@ -63,8 +63,8 @@ typedef struct {
   double edge_zone_a0, inlet_length_a0;    /* s and L_h (a0) */
   int standard; /* a rough film whose edge zones the standard graded cells
                  * resolve: the caller may keep those (the layout is still made) */
-  int capped; /* the base grid hit VL_CONTACT_MAX_GRID_LAYOUT or the cells
-               * VL_AUTO_MAX_CELLS: the finest cells are wider than planned */
+  int capped;   /* the base grid hit VL_CONTACT_MAX_GRID_LAYOUT or the cells
+                 * VL_AUTO_MAX_CELLS: the finest cells are wider than planned */
 } vl_plan;
 
 /* Plans the numerics of the wet contact base (materials, geometry, fluid set;

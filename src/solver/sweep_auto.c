@@ -30,14 +30,14 @@ typedef struct {
   bool layout; /* smooth film: planned cells */
   vl_contact *c;
   vl_plan plan;
-  double plan_film;             /* the film the layout was planned for (m) */
-  double resolution;            /* vl_plan_input.resolution, or the grid's divisor */
-  double inlet_scale;           /* vl_plan_input.inlet_scale, or the inlet's factor */
-  double outlet_scale;          /* vl_plan_input.outlet_scale, or the outlet's factor */
-  double standard;              /* the resolution every point starts from (1) */
-  bool reference;               /* a reference run: the domain's ends refined, not the cells */
-  bool unplanned; /* this rough point keeps the standard cells, refined by halving: its
-                   * planned cells did not converge, or its asperities hold it apart */
+  double plan_film;    /* the film the layout was planned for (m) */
+  double resolution;   /* vl_plan_input.resolution, or the grid's divisor */
+  double inlet_scale;  /* vl_plan_input.inlet_scale, or the inlet's factor */
+  double outlet_scale; /* vl_plan_input.outlet_scale, or the outlet's factor */
+  double standard;     /* the resolution every point starts from (1) */
+  bool reference;      /* a reference run: the domain's ends refined, not the cells */
+  bool unplanned;      /* this rough point keeps the standard cells, refined by halving: its
+                        * planned cells did not converge, or its asperities hold it apart */
   double c_resolution, c_inlet; /* the numerics c was built with */
   /* Contacts of uniform or graded cells (which do not depend on the speed)
    * that were set aside, to be used again by a later point with the same
@@ -116,8 +116,13 @@ static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact
   memset(plan, 0, sizeof *plan);
   *out = NULL;
   if (a->layout && !(a->unplanned && a->base.roughness)) {
-    vl_plan_input in = {0.0, 0.0, a->resolution, a->inlet_scale, a->outlet_scale,
-                        prev ? prev->fluid_load_fraction : 0.0, a->plan.spans != NULL};
+    vl_plan_input in = {0.0,
+                        0.0,
+                        a->resolution,
+                        a->inlet_scale,
+                        a->outlet_scale,
+                        prev ? prev->fluid_load_fraction : 0.0,
+                        a->plan.spans != NULL};
     in.film_m = expected_film(a, v, prev);
     st = vl_plan_wet(&a->base, v, &in, plan, err);
     if (st != VL_OK) return st;
@@ -176,8 +181,13 @@ static vl_status rebuild(auto_state *a, double v, const vl_point *prev, bool kee
   if (keep && a->c && a->base.roughness && !a->plan.spans && a->c_resolution == a->standard &&
       a->c_inlet == 1.0 && a->outlet_scale == 1.0) {
     vl_plan p;
-    vl_plan_input in = {expected_film(a, v, prev), 0.0, a->standard, 1.0, 1.0,
-                        prev ? prev->fluid_load_fraction : 0.0, false};
+    vl_plan_input in = {expected_film(a, v, prev),
+                        0.0,
+                        a->standard,
+                        1.0,
+                        1.0,
+                        prev ? prev->fluid_load_fraction : 0.0,
+                        false};
     if (vl_plan_wet(&a->base, v, &in, &p, NULL) == VL_OK) {
       bool standard = p.standard;
       vl_plan_free(&p);
@@ -417,8 +427,8 @@ static void set_accuracy(vl_point *pt, double target) {
     append_warning(pt, "no error estimate (the coarser solve failed)");
   } else if (pt->accuracy == VL_ACCURACY_ABOVE_TARGET) {
     char w[120];
-    snprintf(w, sizeof w, "error estimate %.2g %% above the target %.2g %%", 100.0 * pt->error_estimate,
-             100.0 * target);
+    snprintf(w, sizeof w, "error estimate %.2g %% above the target %.2g %%",
+             100.0 * pt->error_estimate, 100.0 * target);
     append_warning(pt, w);
   }
 }
@@ -486,8 +496,10 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
     }
     if (s != VL_OK) return s;
     vl_contact_estimate_error(a->c, pt);
-    if (a->base.roughness && coarse && !edge && !outlet) richardson(a->c, pt, mu_level, &levels);
-    else mu_level[0] = pt->mu, levels = 1; /* another domain: a new sequence */
+    if (a->base.roughness && coarse && !edge && !outlet)
+      richardson(a->c, pt, mu_level, &levels);
+    else
+      mu_level[0] = pt->mu, levels = 1; /* another domain: a new sequence */
     if (coarse && !edge && !outlet && !(pt->error_estimate < REFINE_MIN_GAIN * old_estimate))
       stop = "estimate not falling with refinement";
   }

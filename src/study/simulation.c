@@ -10,8 +10,8 @@
 #include "viscolube/dma.h"
 
 #include "assumptions_internal.h"
-#include "point_contact_internal.h"
 #include "contact_private.h"
+#include "point_contact_internal.h"
 #include "rheology_internal.h"
 #include "simulation_internal.h"
 #include "viscolube/flattening.h"
@@ -819,8 +819,8 @@ static vl_status run_downward(vl_simulation *sim, vl_point *out, vl_error *err) 
   for (size_t i = 0; (s == VL_OK || s == VL_ENOCONV) && i < n; i++) {
     const vl_point *q = &dn[n - 1 - i];
     vl_down_result *d = &out[i].down;
-    *d = (vl_down_result){true,          q->converged,  q->mu, q->error_estimate,
-                          q->u_min_m,    q->fluid_load_fraction, false};
+    *d = (vl_down_result){true,       q->converged,           q->mu, q->error_estimate,
+                          q->u_min_m, q->fluid_load_fraction, false};
     d->two_states = two_states(&out[i], q, sim->scene.target_error);
     if (!d->two_states) continue;
     char w[200];

@@ -55,10 +55,9 @@ const char *const vl_seal_columns[] = {"stroke",
                                        NULL};
 
 /* The columns of a scene swept both ways ([sweep] direction = both). */
-const char *const vl_down_columns[] = {"converged_down",         "mu_down",
-                                       "error_estimate_down",    "u_min_down_m",
-                                       "fluid_load_fraction_down", "two_states",
-                                       NULL};
+const char *const vl_down_columns[] = {
+    "converged_down", "mu_down", "error_estimate_down", "u_min_down_m", "fluid_load_fraction_down",
+    "two_states",     NULL};
 
 double vl_down_column_value(const vl_point *p, size_t k) {
   const vl_down_result *d = &p->down;
