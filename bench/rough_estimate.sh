@@ -9,7 +9,10 @@
 #   bench/rough_estimate.sh PROGRAM [OUT_DIR]      e.g. build/viscolube /tmp/rough
 # The scenes need the wiper's EPDM (a shear DMA export, EPDM_CSV), the glass and
 # steel surfaces and the O-ring's oil; they are added to a fresh database in OUT_DIR.
-# One core; the reference runs take minutes (the wiper's: about 10 on an idle core).
+# One core; the reference runs take minutes (the wiper's: about 6 of CPU, the small
+# lip's and the syringe's 5-9 each). The scenes: the wiper, a smaller lip, an O-ring,
+# sbr on glass (issue 31's first family) and a syringe plunger, a lip seal, a soft gel
+# lens and a tread block (the second).
 set -euo pipefail
 prog=$(realpath "$1"); out=${2:-/tmp/rough-estimate}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -22,6 +25,10 @@ if [ ! -f "$VISCOLUBE_DB" ]; then
   "$prog" surface add glass --self-affine --hurst 0.8 --q0 1e6 --q1 1e9 --hrms 10e-9 >/dev/null
   "$prog" surface add steel02 --self-affine --hurst 0.8 --q0 1e5 --q1 1e9 --hrms 0.2e-6 >/dev/null
   "$prog" fluid add oil046 --viscosity 0.046 --description "O-ring oil (issue 31)" >/dev/null
+  # the soft gel of soft-lens.ini: one retardation time, E0 = Einf/5 = 0.2 MPa
+  printf 'A,tau_s\n4,1e-3\n' > "$out/gel.csv"
+  "$prog" compound add gel --prony "$out/gel.csv" --e-inf 1e6 --nu 0.5 \
+    --description "soft gel (issue 31)" >/dev/null
 fi
 for scene in "$here"/rough/*.ini "$here"/../cases/fig15.ini; do
   name=$(basename "$scene" .ini)
