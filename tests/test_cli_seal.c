@@ -169,7 +169,7 @@ static void test_seal_console(void **state) {
 
 /* Points above their error target in the instroke are listed as the
  * instroke's and give exit status 8 (target 1e-6: every point of both
- * strokes is above it). */
+ * strokes is above it), by `seal` and by `run` of a stroke = both scene. */
 static void test_seal_status(void **state) {
   (void)state;
   const char *s = scene("t.ini", "moving = counterface\n", "target_error = 1e-6\n");
@@ -178,6 +178,13 @@ static void test_seal_status(void **state) {
   printf("  exit %d\n%s", rc, err);
   assert_int_equal(rc, 8);
   assert_non_null(strstr(err, "viscolube seal: instroke: 2 of 2 points are not known"));
+  free(out), free(err);
+  /* `run` of a scene with both strokes counts its instroke the same way */
+  s = scene("b.ini", "moving = counterface\n", "target_error = 1e-6\n[seal]\nstroke = both\n");
+  rc = vl_test_run(&out, &err, "run %s --out %s/b", s, vl_test_dir);
+  printf("  exit %d\n%s", rc, err);
+  assert_int_equal(rc, 8);
+  assert_non_null(strstr(err, "viscolube run: instroke: 2 of 2 points are not known"));
   free(out), free(err);
 }
 

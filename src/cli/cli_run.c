@@ -580,17 +580,19 @@ static vl_status seal_outputs(run_job *job, const vl_scene *scene, vl_simulation
   return VL_OK;
 }
 
-/* `seal`: the instroke's failures, warnings and points above their target
- * on stderr, counted into the exit status. */
-static vl_status instroke_lists(run_job *job, const char *fluid_key, size_t n,
+/* The instroke's failures, warnings and points above their target on
+ * stderr, counted into the exit status (`seal`, and `run` of a scene with
+ * [seal] stroke = both: its rows are the outstroke's, the instroke's points
+ * fail or miss their target just as much). */
+static vl_status instroke_lists(run_job *job, const char *cmd, const char *fluid_key, size_t n,
                                 const vl_point *pts) {
   vl_point *in = vl_cli_instroke_points(n, pts);
   if (!in) return VL_ENOMEM;
   char label[VL_NAME_MAX + 16];
   snprintf(label, sizeof label, "%s%sinstroke", fluid_key ? fluid_key : "", fluid_key ? ", " : "");
   if (!job->json && !job->quiet) vl_cli_print_warnings(stderr, label, n, in);
-  job->failed += vl_cli_print_failures(stderr, "seal", label, n, in, "written with empty cells");
-  job->unreliable += vl_cli_print_unreliable(stderr, "seal", label, n, in);
+  job->failed += vl_cli_print_failures(stderr, cmd, label, n, in, "written with empty cells");
+  job->unreliable += vl_cli_print_unreliable(stderr, cmd, label, n, in);
   free(in);
   return VL_OK;
 }
@@ -635,7 +637,8 @@ static vl_status curve_outputs(run_job *job, const vl_scene *scene, vl_simulatio
   snprintf(where, sizeof where, "written with converged = 0 in %s", curve_path);
   vl_cli_print_failures(stderr, cmd, fluid_key, n, pts, where);
   job->unreliable += vl_cli_print_unreliable(stderr, cmd, fluid_key, n, pts);
-  return job->seal ? instroke_lists(job, fluid_key, n, pts) : VL_OK;
+  bool both = n && pts[0].seal.stroke == VL_STROKE_BOTH;
+  return job->seal || both ? instroke_lists(job, cmd, fluid_key, n, pts) : VL_OK;
 }
 
 /* Runs one curve of the scene (one fluid) into out_dir. fluid_key: NULL
