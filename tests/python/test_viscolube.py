@@ -168,6 +168,32 @@ class TestFriction(Scratch):
 
 
 class TestScenes(Scratch):
+
+    def run_both(self, scene):
+        """The scene run by the CLI and by db.run: the curve, and curve.csv's
+        output folder, header and rows, its columns checked to be the curve's."""
+        out = os.path.join(self.dir, "out")
+        cli("--db", self.db_path, "run", scene, "--out", out, "--quiet")
+        with vl.Database(self.db_path) as db:
+            curve = db.run(scene)
+        header, rows = read_csv(os.path.join(out, "curve.csv"))
+        self.assertEqual(list(curve.keys()), header)
+        return curve, out, header, rows
+
+    def assert_extra_columns(self, curve, header, rows, words=(), flags=()):
+        """The columns after curve.csv's own, cell for cell: words as written,
+        flags as 0/1 or empty, numbers to ten digits or empty where NaN."""
+        for i, row in enumerate(rows):
+            for name, cell in list(zip(header, row))[len(vl.CURVE_COLUMNS):]:
+                v = curve[name][i]
+                if name in words:
+                    self.assertEqual(cell, v, (name, i))
+                elif name in flags:
+                    self.assertEqual(cell, "" if math.isnan(v) else str(int(v)), (name, i))
+                elif cell == "":
+                    self.assertTrue(math.isnan(v), (name, i, v))
+                else:
+                    self.assertEqual(cell, text10(v), (name, i))
     def test_run_equals_cli_curve_and_fields(self):
         scene = os.path.join(SRC, "cases", "fig05.ini")
         out = os.path.join(self.dir, "out")
@@ -214,25 +240,12 @@ class TestScenes(Scratch):
                     "target_error = 0.5\n"  # coarse cells, for the time
                     "[seal]\nstroke = both\nrod_diameter_m = 0.02\n"
                     "stroke_length_m = 0.1\n")
-        out = os.path.join(self.dir, "out")
-        cli("--db", self.db_path, "run", scene, "--out", out, "--quiet")
-        with vl.Database(self.db_path) as db:
-            curve = db.run(scene)
-        header, rows = read_csv(os.path.join(out, "curve.csv"))
-        self.assertEqual(list(curve.keys()), header)
+        curve, _, header, rows = self.run_both(scene)
         self.assertEqual(header[len(vl.CURVE_COLUMNS)], "stroke")
-        for i, row in enumerate(rows):
+        for i in range(len(rows)):
             self.assertTrue(math.isnan(curve["mu_Rc"][i]) and math.isnan(curve["mu_Rf"][i]))
-            for name, cell in list(zip(header, row))[len(vl.CURVE_COLUMNS):]:
-                v = curve[name][i]
-                if name == "stroke":
-                    self.assertEqual(cell, v)
-                elif name in ("converged_in", "tight"):
-                    self.assertEqual(cell, "" if math.isnan(v) else str(int(v)), name)
-                elif cell == "":
-                    self.assertTrue(math.isnan(v), (name, i, v))
-                else:
-                    self.assertEqual(cell, text10(v), (name, i))
+        self.assert_extra_columns(curve, header, rows, words=("stroke",),
+                                  flags=("converged_in", "tight"))
 
     def test_ball_scene_equals_cli(self):
         # a point contact (docs/POINT_CONTACT.md): its columns after
@@ -243,17 +256,9 @@ class TestScenes(Scratch):
                     "[contact]\ngeometry = ball\nradius_m = 0.0095\nload_n = 3\n"
                     "[sweep]\nquantity = deborah\nfrom = 0.3\nto = 3\npoints = 2\n"
                     "fields_at = 3\n[effects]\nviscoelastic = on\n")
-        out = os.path.join(self.dir, "out")
-        cli("--db", self.db_path, "run", scene, "--out", out, "--quiet")
-        with vl.Database(self.db_path) as db:
-            curve = db.run(scene)
-        header, rows = read_csv(os.path.join(out, "curve.csv"))
-        self.assertEqual(list(curve.keys()), header)
+        curve, out, header, rows = self.run_both(scene)
         self.assertEqual(header[len(vl.CURVE_COLUMNS)], "geometry")
-        for i, row in enumerate(rows):
-            for name, cell in list(zip(header, row))[len(vl.CURVE_COLUMNS):]:
-                v = curve[name][i]
-                self.assertEqual(cell, v if name == "geometry" else text10(v), (name, i))
+        self.assert_extra_columns(curve, header, rows, words=("geometry",))
         self.assertEqual(len(curve.fields), 1)
         f = curve.fields[0]
         header, rows = read_csv(os.path.join(out, "fields", "%03d.csv" % f["index"]))
