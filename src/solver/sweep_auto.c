@@ -92,13 +92,17 @@ static void free_state(auto_state *a) {
 
 /* The film the layout at v is planned for: the last point's u_min carried
  * to v, or the estimate of a smooth film (0: the planner's own); the
- * planner floors a rough film at a fraction of h_rms. */
+ * planner floors a rough film at a fraction of h_rms. A rough film whose
+ * last point collapsed (u_min 0) gets the smooth film's estimate too, not
+ * the floor: the syringe plunger of bench/rough/ after its collapsed 0.1
+ * mm/s point planned 3 points for a film of 1 nm where the film is 70-340
+ * nm, and each failed every path of vl_contact_reach on them (20-48 s). */
 static double expected_film(const auto_state *a, double v, const vl_point *prev) {
   double h = 0.0;
   double e = a->base.roughness ? ROUGH_FILM_SPEED_EXPONENT : FILM_SPEED_EXPONENT;
   if (prev && prev->u_min_m > 0.0) h = prev->u_min_m * pow(v / prev->v0_m_s, e);
   if (a->base.roughness) {
-    if (!prev) h = vl_contact_film_estimate(&a->base, v);
+    if (!(h > 0.0)) h = vl_contact_film_estimate(&a->base, v);
     h = fmax(h, vl_plan_rough_film_floor(&a->base));
   }
   return h;
@@ -433,43 +437,14 @@ static void set_accuracy(vl_point *pt, double target) {
   }
 }
 
-/* One point: solved, estimated, refined while above the target and the
- * refinements still lower the estimate. */
-static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, const vl_point *prev,
-                            vl_point *pt, vl_sweep_stats *st, vl_error *err) {
-  vl_status s = VL_OK;
-  /* every point starts from the standard cells: a refinement costs about
-   * 8x per Newton step on dense matrices, and only the points that need it
-   * should pay (kept refined, a hard stretch of a real rubber's curve took
-   * 47 s for 12 points, 2.9 s at the standard cells) */
-  a->unplanned = false;
-  bool coarsen = a->resolution < a->standard || a->outlet_scale != 1.0;
-  if (coarsen) a->resolution = a->standard, a->outlet_scale = 1.0;
-  if ((coarsen || needs_plan(a, v, prev)) && (s = rebuild(a, v, prev, !coarsen, err)) != VL_OK)
-    return s;
-  s = vl_contact_reach(a->c, v, 6, pt, st, err);
-  /* a rough film on the standard cells that turns out to carry load with
-   * edge zones below those cells: solved again on its planned cells */
-  bool fresh = false;
-  if (s == VL_OK && a->base.roughness && !a->plan.spans && held_by_asperities(a, pt))
-    a->unplanned = true;
-  else if (s == VL_OK && a->layout && a->base.roughness && !a->plan.spans &&
-           pt->fluid_load_fraction >= 0.01)
-    fresh = replan(a, v, pt, st);
-  /* a collapsed rough film (U <= 0 somewhere: outside Persson's contact law,
-   * a solution of coarse cells) while the fluid carries load: a fresh start
-   * on the same cells, which finds the lifted film where there is one */
-  if (s == VL_OK && !fresh && a->base.roughness && a->plan.spans && pt->u_min_m <= 0.0 &&
-      pt->fluid_load_fraction >= 0.01)
-    lifted_start(a, v, pt, &s, st);
-  if (s != VL_OK) return s;
-  if (collapsed_film(a, pt)) {
-    pt->error_estimate = NAN;
-    pt->accuracy = VL_ACCURACY_NO_ESTIMATE;
-    append_warning(pt, "collapsed film (u_min 0 while the fluid carries load): a state of cells "
-                       "too coarse, kept only if no film is reached from a neighbour");
-    return VL_ENOCONV;
-  }
+/* The estimate of pt, converged at v on a's contact, and its refinement
+ * while above the target and the refinements still lower the estimate
+ * (with the domain's ends moved out where they are too close); pt's
+ * accuracy set. VL_OK unless a refinement hit an error other than
+ * non-convergence (a failed refinement keeps pt, with a warning). */
+static vl_status estimate_and_refine(auto_state *a, const vl_auto_options *o, double v,
+                                     vl_point *pt, vl_sweep_stats *st, vl_error *err) {
+  vl_status s;
   vl_contact_estimate_error(a->c, pt);
   const char *stop = NULL;
   char failed[160] = "";
@@ -512,13 +487,52 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
   return VL_OK;
 }
 
+/* One point: solved, estimated and refined (estimate_and_refine). */
+static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, const vl_point *prev,
+                            vl_point *pt, vl_sweep_stats *st, vl_error *err) {
+  vl_status s = VL_OK;
+  /* every point starts from the standard cells: a refinement costs about
+   * 8x per Newton step on dense matrices, and only the points that need it
+   * should pay (kept refined, a hard stretch of a real rubber's curve took
+   * 47 s for 12 points, 2.9 s at the standard cells) */
+  a->unplanned = false;
+  bool coarsen = a->resolution < a->standard || a->outlet_scale != 1.0;
+  if (coarsen) a->resolution = a->standard, a->outlet_scale = 1.0;
+  if ((coarsen || needs_plan(a, v, prev)) && (s = rebuild(a, v, prev, !coarsen, err)) != VL_OK)
+    return s;
+  s = vl_contact_reach(a->c, v, 6, pt, st, err);
+  /* a rough film on the standard cells that turns out to carry load with
+   * edge zones below those cells: solved again on its planned cells */
+  bool fresh = false;
+  if (s == VL_OK && a->base.roughness && !a->plan.spans && held_by_asperities(a, pt))
+    a->unplanned = true;
+  else if (s == VL_OK && a->layout && a->base.roughness && !a->plan.spans &&
+           pt->fluid_load_fraction >= 0.01)
+    fresh = replan(a, v, pt, st);
+  /* a collapsed rough film (U <= 0 somewhere: outside Persson's contact law,
+   * a solution of coarse cells) while the fluid carries load: a fresh start
+   * on the same cells, which finds the lifted film where there is one */
+  if (s == VL_OK && !fresh && a->base.roughness && a->plan.spans && pt->u_min_m <= 0.0 &&
+      pt->fluid_load_fraction >= 0.01)
+    lifted_start(a, v, pt, &s, st);
+  if (s != VL_OK) return s;
+  if (collapsed_film(a, pt)) {
+    pt->error_estimate = NAN;
+    pt->accuracy = VL_ACCURACY_NO_ESTIMATE;
+    append_warning(pt, "collapsed film (u_min 0 while the fluid carries load): a state of cells "
+                       "too coarse, kept only if no film is reached from a neighbour");
+    return VL_ENOCONV;
+  }
+  return estimate_and_refine(a, o, v, pt, st, err);
+}
+
 /* A collapsed film at v (collapsed_film) reached from a's lifted state
  * above by continuation on a's own cells (no re-planning, which would start
  * from the standard cells that collapse, and Newton capped at
  * REFINE_MAX_ITERATIONS: the wiper at 1 mm/s takes 17 iterations from 3.8
  * mm/s; a wiper-like contact of tests/test_rough_films.c, whose lifted
  * neighbour is itself 110 % off, spent 120 s in a deep descent that failed);
- * the point, with its estimate, when it lands on a lifted film. */
+ * the point, estimated and refined, when it lands on a lifted film. */
 #define LIFT_MAX_DEPTH 2 /* at most 4 sub-steps: on refined cells each costs seconds */
 static bool lift_from_above(auto_state *a, const vl_auto_options *o, double v, vl_point *pt,
                             vl_sweep_stats *st) {
@@ -527,15 +541,16 @@ static bool lift_from_above(auto_state *a, const vl_auto_options *o, double v, v
   vl_status s = vl_contact_ramp(a->c, v, LIFT_MAX_DEPTH, pt, st, &e);
   vl_contact_set_max_iterations(a->c, a->base.max_iterations);
   if (s != VL_OK || !(pt->u_min_m > 0.0)) return false;
-  vl_contact_estimate_error(a->c, pt);
-  set_accuracy(pt, o->target_error);
-  return true;
+  return estimate_and_refine(a, o, v, pt, st, &e) == VL_OK;
 }
 
 /* Points lo .. hi-1 failed and hi has converged on a's contact: each failed
  * point is solved again by continuation down from its neighbour above,
- * nearest first, until one fails (path 5 of vl_sweep_run, sweep.h), with its
- * own cells, estimate and refinement. The descent runs on a copy of a's
+ * nearest first, until one fails (path 5 of vl_sweep_run, sweep.h): first
+ * on the neighbour's cells (lift_from_above), then, for a point that did
+ * not converge, as a point of its own (auto_point: the standard cells, on
+ * which the syringe's 0.4 mm/s point collapsed below its lifted neighbour),
+ * each with its estimate and refinement. The descent runs on a copy of a's
  * contact, so a goes on from hi unchanged. Every point lo .. hi-1 is
  * reported here, in decreasing speed. */
 static void auto_recover_below(const auto_state *a, const vl_auto_options *o,
@@ -557,11 +572,10 @@ static void auto_recover_below(const auto_state *a, const vl_auto_options *o,
     for (; k > lo; k--) {
       vl_point pt;
       vl_error e;
-      if (r->out[k - 1].converged) { /* a collapsed film (collapsed_film) */
-        if (!lift_from_above(&down, o, r->v[k - 1], &pt, r->st)) break;
-      } else if (auto_point(&down, o, r->v[k - 1], &r->out[k], &pt, r->st, &e) != VL_OK) {
+      if (!lift_from_above(&down, o, r->v[k - 1], &pt, r->st) &&
+          (r->out[k - 1].converged ||
+           auto_point(&down, o, r->v[k - 1], &r->out[k], &pt, r->st, &e) != VL_OK))
         break;
-      }
       r->out[k - 1] = pt;
       r->st->recovered_below++;
       vl_sweep_report_point(r, k - 1, down.c);
