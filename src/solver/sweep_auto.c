@@ -90,6 +90,37 @@ static void free_state(auto_state *a) {
   vl_plan_free(&a->plan);
 }
 
+/* A rough contact whose smallest separation is below this fraction of the
+ * floor of the planned films (vl_plan_rough_film_floor) is held apart by
+ * its asperities (boundary lubrication: the fluid that carries load sits in
+ * the roughness' valleys, which the flow factors average), not by a film
+ * with edge zones, where the smooth film expected at its speed is below the
+ * floor too: planned cells do not resolve anything there. fig05 on a 30 nm
+ * surface at 1e-6 ... 6e-4 m/s (u_min 2e-12 ... 1e-11 m, the fluid carrying
+ * 45-52 %, a smooth film of 0.06 h_rms at most) spent 5-6 s per point on
+ * planned cells that did not converge. Where the smooth film is thicker than
+ * the floor, such a separation is a collapsed film (below): the soft gel
+ * lens of bench/rough/ (12 nm expected on 10 nm glass at 0.1 mm/s) gave mu
+ * 40.7 at u_min 8e-12 m on the standard cells, 31.6 on cells half as wide,
+ * and its estimate said 7.7 %. */
+#define BOUNDARY_SEPARATION_SHARE 0.1
+
+/* Whether pt's film has collapsed: no separation (u_min 0: a state below
+ * Persson's contact law), or a separation far below the floor where a
+ * smooth film would stand above it. Without roughness: u_min 0. */
+static bool collapsed_separation(const auto_state *a, const vl_point *pt) {
+  if (!(pt->u_min_m > 0.0)) return true;
+  double floor = vl_plan_rough_film_floor(&a->base);
+  return pt->u_min_m < BOUNDARY_SEPARATION_SHARE * floor &&
+         vl_contact_film_estimate(&a->base, pt->v0_m_s) >= floor;
+}
+
+static bool held_by_asperities(const auto_state *a, const vl_point *pt) {
+  double floor = vl_plan_rough_film_floor(&a->base);
+  return pt->u_min_m > 0.0 && pt->u_min_m < BOUNDARY_SEPARATION_SHARE * floor &&
+         !collapsed_separation(a, pt);
+}
+
 /* The film the layout at v is planned for: the last point's u_min carried
  * to v, or the estimate of a smooth film (0: the planner's own); the
  * planner floors a rough film at a fraction of h_rms. A rough film whose
@@ -100,7 +131,7 @@ static void free_state(auto_state *a) {
 static double expected_film(const auto_state *a, double v, const vl_point *prev) {
   double h = 0.0;
   double e = a->base.roughness ? ROUGH_FILM_SPEED_EXPONENT : FILM_SPEED_EXPONENT;
-  if (prev && prev->u_min_m > 0.0) h = prev->u_min_m * pow(v / prev->v0_m_s, e);
+  if (prev && !collapsed_separation(a, prev)) h = prev->u_min_m * pow(v / prev->v0_m_s, e);
   if (a->base.roughness) {
     if (!(h > 0.0)) h = vl_contact_film_estimate(&a->base, v);
     h = fmax(h, vl_plan_rough_film_floor(&a->base));
@@ -217,22 +248,6 @@ static bool can_refine(const auto_state *a) {
   return 2 * vl_contact_grid(a->c) <= VL_AUTO_MAX_CELLS;
 }
 
-/* A rough contact whose smallest separation is below this fraction of the
- * floor of the planned films (vl_plan_rough_film_floor), but not zero, is
- * held apart by its asperities (boundary lubrication: the fluid that
- * carries load sits in the roughness' valleys, which the flow factors
- * average), not by a film with edge zones: planned cells do not resolve
- * anything there. fig05 on a 30 nm surface at 1e-6 ... 6e-4 m/s (u_min
- * 2e-12 ... 1e-11 m, the fluid carrying 45-52 %) spent 5-6 s per point on
- * planned cells that did not converge. A collapsed film (u_min 0) is the
- * suspect one and is planned. */
-#define BOUNDARY_SEPARATION_SHARE 0.1
-
-static bool held_by_asperities(const auto_state *a, const vl_point *pt) {
-  double floor = vl_plan_rough_film_floor(&a->base);
-  return pt->u_min_m > 0.0 && pt->u_min_m < BOUNDARY_SEPARATION_SHARE * floor;
-}
-
 /* Whether a smooth film's layout no longer fits the film expected at v. */
 static bool needs_plan(const auto_state *a, double v, const vl_point *prev) {
   if (!a->c) return true;
@@ -323,7 +338,7 @@ static void lifted_start(auto_state *a, double v, vl_point *pt, vl_status *s, vl
   st->fresh_starts++;
   vl_status ns = vl_contact_solve(a->c, v, &np, &e);
   st->newton_iterations += np.iterations;
-  if (ns == VL_OK && (np.u_min_m > 0.0 || *s != VL_OK)) {
+  if (ns == VL_OK && (!collapsed_separation(a, &np) || *s != VL_OK)) {
     *pt = np, *s = VL_OK;
   } else if (had) {
     vl_contact_mark_return(a->c, &m);
@@ -352,7 +367,7 @@ static bool replan(auto_state *a, double v, vl_point *pt, vl_sweep_stats *st) {
   }
   vl_point np;
   vl_status s = VL_ENOCONV;
-  if (continued && pt->u_min_m > 0.0) {
+  if (continued && !collapsed_separation(a, pt)) {
     vl_contact_set_max_iterations(c, c->cfg.max_iterations < REFINE_MAX_ITERATIONS
                                          ? c->cfg.max_iterations
                                          : REFINE_MAX_ITERATIONS);
@@ -367,7 +382,7 @@ static bool replan(auto_state *a, double v, vl_point *pt, vl_sweep_stats *st) {
     s = vl_contact_solve(c, v, &np, &e);
     st->newton_iterations += np.iterations;
   }
-  if (s == VL_OK && !(pt->u_min_m > 0.0 && np.u_min_m <= 0.0)) {
+  if (s == VL_OK && !(!collapsed_separation(a, pt) && collapsed_separation(a, &np))) {
     install(a, c, &plan, film);
     *pt = np;
     return fresh;
@@ -389,7 +404,7 @@ static bool replan(auto_state *a, double v, vl_point *pt, vl_sweep_stats *st) {
  * (path 5 of sweep.h); it keeps the collapsed state, without an estimate,
  * when that fails too. */
 static bool collapsed_film(const auto_state *a, const vl_point *pt) {
-  return a->layout && a->base.roughness && !a->reference && pt->u_min_m <= 0.0 &&
+  return a->layout && a->base.roughness && !a->reference && collapsed_separation(a, pt) &&
          pt->fluid_load_fraction >= 0.01;
 }
 
@@ -512,15 +527,16 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
   /* a collapsed rough film (U <= 0 somewhere: outside Persson's contact law,
    * a solution of coarse cells) while the fluid carries load: a fresh start
    * on the same cells, which finds the lifted film where there is one */
-  if (s == VL_OK && !fresh && a->base.roughness && a->plan.spans && pt->u_min_m <= 0.0 &&
+  if (s == VL_OK && !fresh && a->base.roughness && a->plan.spans && collapsed_separation(a, pt) &&
       pt->fluid_load_fraction >= 0.01)
     lifted_start(a, v, pt, &s, st);
   if (s != VL_OK) return s;
   if (collapsed_film(a, pt)) {
     pt->error_estimate = NAN;
     pt->accuracy = VL_ACCURACY_NO_ESTIMATE;
-    append_warning(pt, "collapsed film (u_min 0 while the fluid carries load): a state of cells "
-                       "too coarse, kept only if no film is reached from a neighbour");
+    append_warning(pt, "collapsed film (u_min 0, or far below the film expected, while the fluid "
+                       "carries load): a state of cells too coarse, kept only if no film is "
+                       "reached from a neighbour");
     return VL_ENOCONV;
   }
   return estimate_and_refine(a, o, v, pt, st, err);
@@ -540,7 +556,7 @@ static bool lift_from_above(auto_state *a, const vl_auto_options *o, double v, v
   vl_contact_set_max_iterations(a->c, REFINE_MAX_ITERATIONS);
   vl_status s = vl_contact_ramp(a->c, v, LIFT_MAX_DEPTH, pt, st, &e);
   vl_contact_set_max_iterations(a->c, a->base.max_iterations);
-  if (s != VL_OK || !(pt->u_min_m > 0.0)) return false;
+  if (s != VL_OK || collapsed_separation(a, pt)) return false;
   return estimate_and_refine(a, o, v, pt, st, &e) == VL_OK;
 }
 
