@@ -47,7 +47,7 @@ static vl_contact_config elastic_film(double e0, double eta) {
 /* One fresh solve on the planned layout at resolution r. */
 static int solve_planned(const vl_contact_config *base, double v0, double r, vl_point *pt,
                          size_t *cells) {
-  vl_plan_input in = {0.0, 0.0, r, 1.0, 1.0, 0.0, false};
+  vl_plan_input in = {0.0, 0.0, r, 1.0, 1.0, 0.0, false, 0};
   vl_plan plan;
   vl_error err;
   if (vl_plan_wet(base, v0, &in, &plan, &err) != VL_OK) {

@@ -43,7 +43,7 @@ static vl_point solve(const vl_contact_config *cfg, double v0) {
 
 /* The planned layout at resolution r, solved from a fresh start. */
 static vl_point solve_planned(const vl_contact_config *base, double v0, double r) {
-  vl_plan_input in = {0.0, 0.0, r, 1.0, 1.0, 0.0, false};
+  vl_plan_input in = {0.0, 0.0, r, 1.0, 1.0, 0.0, false, 0};
   vl_plan plan;
   vl_error err;
   if (vl_plan_wet(base, v0, &in, &plan, &err) != VL_OK) fail_msg("plan: %s", err.msg);

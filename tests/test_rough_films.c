@@ -57,7 +57,7 @@ static void test_plan_rough_film(void **state) {
   vl_plan p;
   vl_error err;
   /* a film of 2 nm carrying 90 % of the load */
-  vl_plan_input in = {2e-9, 0.0, 1.0, 1.0, 1.0, 0.9, false};
+  vl_plan_input in = {2e-9, 0.0, 1.0, 1.0, 1.0, 0.9, false, 0};
   assert_int_equal(vl_plan_wet(&cfg, 1e-3, &in, &p, &err), VL_OK);
   print_message("planned: %zu cells, edge zone %.3g a0, fine %.3g a0, background %.3g a0, "
                 "domain [%.4g, %.4g] a0\n",

@@ -169,7 +169,8 @@ vl_status vl_plan_wet(const vl_contact_config *base, double v0, const vl_plan_in
   double a0 = sqrt(4.0 * base->load_n_per_m * base->radius_m / (M_PI * er));
   lengths L;
   plan_lengths(base, v0, in, a0, &L);
-  out->spans = malloc(VL_AUTO_MAX_CELLS * sizeof *out->spans);
+  size_t room = in && in->max_cells > 0 ? in->max_cells : VL_AUTO_MAX_CELLS;
+  out->spans = malloc(room * sizeof *out->spans);
   if (!out->spans) {
     vl_error_set(err, "out of memory for a cell layout");
     return VL_ENOMEM;
@@ -178,7 +179,7 @@ vl_status vl_plan_wet(const vl_contact_config *base, double v0, const vl_plan_in
   for (int tries = 0; tries < 40 && n == 0; tries++) {
     double dx = fmax(L.fine, (L.x_hi - L.x_lo) / VL_CONTACT_MAX_GRID_LAYOUT);
     if (dx > L.fine) out->capped = 1;
-    n = lay_out(&L, dx, out->spans, VL_AUTO_MAX_CELLS, &nv);
+    n = lay_out(&L, dx, out->spans, room, &nv);
     if (n == 0 || nv > VL_CONTACT_MAX_GRID_LAYOUT) { /* too many cells: all widths wider */
       n = 0;
       L.fine *= 1.25, L.back *= 1.25, L.inlet *= 1.25;
@@ -187,7 +188,7 @@ vl_status vl_plan_wet(const vl_contact_config *base, double v0, const vl_plan_in
   }
   if (n < VL_CONTACT_MIN_GRID) {
     vl_plan_free(out);
-    vl_error_set(err, "automatic layout: no layout within %d cells", VL_AUTO_MAX_CELLS);
+    vl_error_set(err, "automatic layout: no layout within %zu cells", room);
     return VL_EINPUT;
   }
   double dx = fmax(L.fine, (L.x_hi - L.x_lo) / VL_CONTACT_MAX_GRID_LAYOUT);

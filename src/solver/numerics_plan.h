@@ -51,6 +51,8 @@ typedef struct {
   double fluid_share;  /* a rough film: the fluid's share of the load expected (the
                         * last point's); below 1 % the standard cells are kept */
   bool planned;        /* a rough film on planned cells now (kept planned longer) */
+  size_t max_cells;    /* most cells of the layout; 0: VL_AUTO_MAX_CELLS (a reference run
+                        * takes more) */
 } vl_plan_input;
 
 /* A planned layout: the configuration to give vl_contact_create (a copy of

@@ -36,6 +36,7 @@ typedef struct {
   double outlet_scale; /* vl_plan_input.outlet_scale, or the outlet's factor */
   double standard;     /* the resolution every point starts from (1) */
   bool reference;      /* a reference run: the domain's ends refined, not the cells */
+  size_t max_cells;    /* most cells of a layout or refinement (VL_AUTO_MAX_CELLS) */
   bool unplanned;      /* this rough point keeps the standard cells, refined by halving: its
                         * planned cells did not converge, or its asperities hold it apart */
   double c_resolution, c_inlet; /* the numerics c was built with */
@@ -157,7 +158,8 @@ static vl_status build(auto_state *a, double v, const vl_point *prev, vl_contact
                         a->inlet_scale,
                         a->outlet_scale,
                         prev ? prev->fluid_load_fraction : 0.0,
-                        a->plan.spans != NULL};
+                        a->plan.spans != NULL,
+                        a->max_cells};
     in.film_m = expected_film(a, v, prev);
     st = vl_plan_wet(&a->base, v, &in, plan, err);
     if (st != VL_OK) return st;
@@ -222,7 +224,8 @@ static vl_status rebuild(auto_state *a, double v, const vl_point *prev, bool kee
                         1.0,
                         1.0,
                         prev ? prev->fluid_load_fraction : 0.0,
-                        false};
+                        false,
+                        a->max_cells};
     if (vl_plan_wet(&a->base, v, &in, &p, NULL) == VL_OK) {
       bool standard = p.standard;
       vl_plan_free(&p);
@@ -242,10 +245,10 @@ static vl_status rebuild(auto_state *a, double v, const vl_point *prev, bool kee
 
 /* Whether another refinement stays within the cost bound: a planned layout
  * that was not capped, or a grid whose doubled cells stay within
- * VL_AUTO_MAX_CELLS. */
+ * a->max_cells. */
 static bool can_refine(const auto_state *a) {
   if (a->plan.spans) return !a->plan.capped;
-  return 2 * vl_contact_grid(a->c) <= VL_AUTO_MAX_CELLS;
+  return 2 * vl_contact_grid(a->c) <= a->max_cells;
 }
 
 /* Whether a smooth film's layout no longer fits the film expected at v. */
@@ -577,6 +580,7 @@ static void auto_recover_below(const auto_state *a, const vl_auto_options *o,
                      .resolution = a->resolution,
                      .standard = a->standard,
                      .reference = a->reference,
+                     .max_cells = a->max_cells,
                      .inlet_scale = a->inlet_scale,
                      .outlet_scale = a->outlet_scale,
                      .c_resolution = a->c_resolution,
@@ -622,6 +626,11 @@ vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options
   const char *ref = getenv("VISCOLUBE_AUTO_RESOLUTION");
   if (ref && atof(ref) > 0.0 && atof(ref) <= 1.0) a.standard = atof(ref), a.reference = true;
   a.resolution = a.standard;
+  /* and the most cells a layout or refinement takes (reference runs: more
+   * than the automatic sweep's finest level reaches) */
+  a.max_cells = VL_AUTO_MAX_CELLS;
+  const char *cap = getenv("VISCOLUBE_AUTO_MAX_CELLS");
+  if (cap && atol(cap) >= VL_AUTO_MAX_CELLS) a.max_cells = (size_t)atol(cap);
   a.layout = !o.keep_numerics && base->eta_pa_s > 0.0;
   vl_sweep_stats st;
   memset(&st, 0, sizeof st);
