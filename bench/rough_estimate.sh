@@ -3,7 +3,7 @@
 # section 11, "Rough films: measured"). Runs each scene of bench/rough/ with the
 # automatic numerics and again as a reference: the same sweep refined until its
 # own estimate is below REF_TARGET (default 0.1 %: cells refined until mu moves
-# under 0.2 %), with up to REF_CELLS cells (default 3000, twice the automatic
+# under 0.2 %), with up to 8 refinements and REF_CELLS cells (default 3000, twice the automatic
 # sweep's 1500, so that the reference has a level the automatic sweep never
 # reaches), and prints a markdown table: per scene the points, the true error of
 # mu (max, median), how many estimates are at least the true error and at least
@@ -45,7 +45,7 @@ for scene in ${SCENES:-"$here"/rough/*.ini "$here"/../cases/fig15.ini}; do
     else
       { cat "$scene"; printf '[numerics]\ntarget_error = %s\n' "$ref_target"; } > "$out/$name-ref.ini"
     fi
-    VISCOLUBE_AUTO_MAX_CELLS=$ref_cells "$prog" run "$out/$name-ref.ini" --out "$out/$name-ref" \
+    VISCOLUBE_AUTO_MAX_CELLS=$ref_cells VISCOLUBE_AUTO_MAX_REFINEMENTS=8 "$prog" run "$out/$name-ref.ini" --out "$out/$name-ref" \
       --quiet >/dev/null || true
   fi
 done

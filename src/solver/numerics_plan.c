@@ -43,11 +43,6 @@
  * 0.098, u_min 1.8 nm, 91 % of the load on the fluid). */
 #define ROUGH_PLAN_EDGE 4.0
 #define ROUGH_KEEP_EDGE 2.0
-/* ... and only where the fluid carries at least this share of the load (a
- * film that carries none has no friction to lose in its edge zones: fig15's
- * carries 5e-6 to 2e-4 of the load with s down to a0/160, and is within
- * 0.26 % of its reference on the standard cells) */
-#define ROUGH_PLAN_FLUID_SHARE 0.01
 #define ROUGH_BACKGROUND_PLANNED 120.0
 
 /* The planner's lengths, all in a0. */
@@ -131,8 +126,8 @@ static void plan_lengths(const vl_contact_config *base, double v0, const vl_plan
     /* edge zones narrower than ROUGH_PLAN_EDGE standard cells: planned, with
      * the finer background (else the standard cells, L->planned false) */
     double edge = in && in->planned ? ROUGH_KEEP_EDGE : ROUGH_PLAN_EDGE;
-    L->planned =
-        L->s < L->a / (edge * ROUGH_BACKGROUND) && in && in->fluid_share >= ROUGH_PLAN_FLUID_SHARE;
+    L->planned = L->s < L->a / (edge * ROUGH_BACKGROUND) && in &&
+                 in->fluid_share >= VL_PLAN_ROUGH_FLUID_SHARE;
     double back = L->planned ? ROUGH_BACKGROUND_PLANNED : ROUGH_BACKGROUND;
     L->back = r * fmax(L->a / back, L->lh / 80.0);
     L->fine = isfinite(L->s) ? fmin(L->back, r * L->s / ROUGH_EDGE_CELLS) : L->back;

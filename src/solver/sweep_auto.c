@@ -257,7 +257,7 @@ static bool needs_plan(const auto_state *a, double v, const vl_point *prev) {
   if (!a->layout || !prev) return false;
   double h = expected_film(a, v, prev);
   if (a->base.roughness && !a->plan.spans) /* the standard cells: until the film carries load */
-    return prev->fluid_load_fraction >= 0.01 && a->resolution == a->standard &&
+    return prev->fluid_load_fraction >= VL_PLAN_ROUGH_FLUID_SHARE && a->resolution == a->standard &&
            !held_by_asperities(a, prev);
   double r = h / a->plan_film;
   return r > REPLAN_FILM_RATIO || r < 1.0 / REPLAN_FILM_RATIO;
@@ -525,7 +525,7 @@ static vl_status auto_point(auto_state *a, const vl_auto_options *o, double v, c
   if (s == VL_OK && a->base.roughness && !a->plan.spans && held_by_asperities(a, pt))
     a->unplanned = true;
   else if (s == VL_OK && a->layout && a->base.roughness && !a->plan.spans &&
-           pt->fluid_load_fraction >= 0.01)
+           pt->fluid_load_fraction >= VL_PLAN_ROUGH_FLUID_SHARE)
     fresh = replan(a, v, pt, st);
   /* a collapsed rough film (U <= 0 somewhere: outside Persson's contact law,
    * a solution of coarse cells) while the fluid carries load: a fresh start
@@ -631,6 +631,11 @@ vl_status vl_sweep_run_auto(const vl_contact_config *base, const vl_auto_options
   a.max_cells = VL_AUTO_MAX_CELLS;
   const char *cap = getenv("VISCOLUBE_AUTO_MAX_CELLS");
   if (cap && atol(cap) >= VL_AUTO_MAX_CELLS) a.max_cells = (size_t)atol(cap);
+  /* and the most refinements per point (reference runs: up to the cap) */
+  const char *nref = getenv("VISCOLUBE_AUTO_MAX_REFINEMENTS");
+  if (nref && !o.keep_numerics && atoi(nref) >= 0)
+    o.max_refinements =
+        atoi(nref) < VL_AUTO_MAX_REFINEMENTS_CAP ? atoi(nref) : VL_AUTO_MAX_REFINEMENTS_CAP;
   a.layout = !o.keep_numerics && base->eta_pa_s > 0.0;
   vl_sweep_stats st;
   memset(&st, 0, sizeof st);
