@@ -60,7 +60,8 @@ typedef struct {
   double inlet_scale;  /* 1 (or 0) = the standard inlet; 2 = twice as long, ... */
   double outlet_scale; /* 1 (or 0) = the standard outlet; 2 = twice as far, ... */
   double fluid_share;  /* a rough film: the fluid's share of the load expected (the
-                        * last point's); below 1 % the standard cells are kept */
+                        * last point's); below VL_PLAN_ROUGH_FLUID_SHARE the standard cells
+                        * are kept */
   bool planned;        /* a rough film on planned cells now (kept planned longer) */
   size_t max_cells;    /* most cells of the layout; 0: VL_AUTO_MAX_CELLS (a reference run
                         * takes more) */
