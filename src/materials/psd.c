@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bracket.h"
 #include "roughness_internal.h"
 #include "viscolube/roughness.h"
 
@@ -97,17 +98,7 @@ void vl_psd_free(vl_psd *psd) {
 }
 
 /* Index k of the segment [q_k, q_{k+1}] holding q (tabulated). */
-static size_t segment(const vl_psd *psd, double q) {
-  size_t lo = 0, hi = psd->n - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (psd->q[mid] <= q)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
-}
+static size_t segment(const vl_psd *psd, double q) { return vl_bracket(psd->q, psd->n, q); }
 
 static double segment_slope(const vl_psd *psd, size_t k) {
   return log(psd->C[k + 1] / psd->C[k]) / log(psd->q[k + 1] / psd->q[k]);

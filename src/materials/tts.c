@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bracket.h"
+
 #define COARSE_STEP 0.05 /* decades: the global scan */
 #define SCAN_STEP 0.005  /* decades: the fine scan around the coarse minimum */
 #define MIN_OVERLAP_FRAC 0.25
@@ -78,14 +80,7 @@ static double curve_slope(const curve *c, const double *y, size_t k) {
  * mismatch had spurious minima at shifts of whole point spacings (on
  * pyvisco's isotherms three neighbouring pairs locked at 5/3 decades). */
 static void curve_at(const curve *c, double x, double *y1, double *y2) {
-  size_t lo = 0, hi = c->n - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (c->x[mid] <= x)
-      lo = mid;
-    else
-      hi = mid;
-  }
+  size_t lo = vl_bracket(c->x, c->n, x), hi = lo + 1;
   double h = c->x[hi] - c->x[lo], t = (x - c->x[lo]) / h;
   if (t < 0.0) t = 0.0;
   if (t > 1.0) t = 1.0;

@@ -84,6 +84,7 @@
 #include <gsl/gsl_sf_expint.h>
 
 #include "blob.h"
+#include "bracket.h"
 #include "flow_factors_emt.h"
 #include "roughness_internal.h"
 
@@ -233,14 +234,7 @@ static double m_of_q(const pieces *pc, double q) {
 /* q with M(q) = e^y (y <= ln M(q1)). */
 static double q_of_y(const pieces *pc, double y) {
   double m = exp(y);
-  size_t lo = 0, hi = pc->n; /* the piece k with m[k] <= m < m[k+1] */
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (pc->m[mid] <= m)
-      lo = mid;
-    else
-      hi = mid;
-  }
+  size_t lo = vl_bracket(pc->m, pc->n + 1, m); /* the piece k with m[k] <= m < m[k+1] */
   double r = (m - pc->m[lo]) / (pc->c[lo] * pow(pc->q[lo], 4.0)), beta = 4.0 + pc->alpha[lo];
   double l = fabs(beta * r) < 1e-300 ? r : log1p(beta * r) / beta;
   return fmin(pc->q[lo] * exp(l), pc->q[pc->n]);
@@ -999,14 +993,7 @@ typedef struct {
 } table_spot;
 
 static table_spot locate(const vl_emt_table *t, double l) {
-  size_t lo = 0, hi = t->n - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (t->lx[mid] <= l)
-      lo = mid;
-    else
-      hi = mid;
-  }
+  size_t lo = vl_bracket(t->lx, t->n, l);
   table_spot p = {lo, t->lx[lo + 1] - t->lx[lo], 0.0, 0.0, 0.0};
   p.h = (l - t->lx[lo]) / p.dx, p.h2 = p.h * p.h, p.h3 = p.h2 * p.h;
   return p;

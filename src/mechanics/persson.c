@@ -44,6 +44,7 @@
 #include <gsl/gsl_math.h> /* M_PI, which strict C17 <math.h> lacks */
 #include <gsl/gsl_sf_expint.h>
 
+#include "bracket.h"
 #include "gsl_errors.h"
 #include "persson_internal.h"
 #include "roughness_internal.h"
@@ -352,17 +353,7 @@ static double u_of_x(const vl_persson *t, double x) {
 }
 
 /* Segment k with x[k] <= x <= x[k+1] (x inside the table). */
-static size_t find_x(const vl_persson *t, double x) {
-  size_t lo = 0, hi = t->n - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (t->x[mid] <= x)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  return lo;
-}
+static size_t find_x(const vl_persson *t, double x) { return vl_bracket(t->x, t->n, x); }
 
 /* Cubic Hermite on segment k at local h in [0,1]: value and dy/dx. */
 static double hermite(const vl_persson *t, size_t k, double h, double *dydx) {

@@ -9,6 +9,7 @@
  * smooth film at the same speed; a state interpolated from the same
  * contact on other cells; and the predictor of a continuation step in
  * speed. */
+#include "bracket.h"
 #include "contact_internal.h"
 #include "contact_private.h"
 #include "persson_internal.h"
@@ -21,14 +22,7 @@
 static double interpolate(const double *f, const double *xs, size_t m, double x) {
   if (x <= xs[0]) return f[0];
   if (x >= xs[m - 1]) return f[m - 1];
-  size_t lo = 0, hi = m - 1; /* xs[lo] < x < xs[hi] */
-  while (hi - lo > 1) {
-    size_t mid = lo + (hi - lo) / 2;
-    if (xs[mid] <= x)
-      lo = mid;
-    else
-      hi = mid;
-  }
+  size_t lo = vl_bracket(xs, m, x), hi = lo + 1; /* xs[lo] <= x < xs[hi] */
   double w = (x - xs[lo]) / (xs[hi] - xs[lo]);
   return (1.0 - w) * f[lo] + w * f[hi];
 }

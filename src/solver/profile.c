@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bracket.h"
+
 /* Sorts the points (x, z) by x (insertion: tables are small). */
 static void sort_points(double *x, double *z, size_t m) {
   for (size_t i = 1; i < m; i++) {
@@ -35,14 +37,7 @@ static double table_at(const double *x, const double *z, const double *d, size_t
                        double *slope) {
   if (t <= x[0]) return *slope = d[0], z[0] + d[0] * (t - x[0]);
   if (t >= x[m - 1]) return *slope = d[m - 1], z[m - 1] + d[m - 1] * (t - x[m - 1]);
-  size_t lo = 0, hi = m - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (x[mid] <= t)
-      lo = mid;
-    else
-      hi = mid;
-  }
+  size_t lo = vl_bracket(x, m, t), hi = lo + 1;
   double h = x[hi] - x[lo], s = (t - x[lo]) / h, s2 = s * s, s3 = s2 * s;
   double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
   *slope = (6 * s2 - 6 * s) / h * z[lo] + (3 * s2 - 4 * s + 1) * d[lo] +
@@ -294,14 +289,7 @@ void vl_static_pressure_free(vl_static_pressure *t) {
 
 double vl_static_pressure_at(const vl_static_pressure *t, double x) {
   if (!(x > t->x[0] && x < t->x[t->m - 1])) return 0.0;
-  size_t lo = 0, hi = t->m - 1;
-  while (hi - lo > 1) {
-    size_t mid = (lo + hi) / 2;
-    if (t->x[mid] <= x)
-      lo = mid;
-    else
-      hi = mid;
-  }
+  size_t lo = vl_bracket(t->x, t->m, x), hi = lo + 1;
   double s = (x - t->x[lo]) / (t->x[hi] - t->x[lo]);
   return (1.0 - s) * t->p[lo] + s * t->p[hi];
 }
