@@ -110,17 +110,17 @@ static void test_list_fresh_database(void **state) {
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_int_equal(count_of(out, "\"name\""), 9);
   free(out);
-  /* 7 and the seal cases' oil */
+  /* 7, the seal cases' oil and glycerol-water-85 (materials/0007_glycerol_water.sql) */
   out = run_ok("fluid list --json%s", "");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
-  assert_int_equal(count_of(out, "\"name\""), 8);
+  assert_int_equal(count_of(out, "\"name\""), 9);
   free(out);
 
   /* text: one line per item, starting with the name */
   const char *nouns[] = {"compound", "surface", "fluid"};
   /* compounds: + the shipped sbr-filled, sbr-unfilled; surfaces and fluids: + the seal
-   * cases' (materials/seed_seals.sql) */
-  const size_t lines[] = {3, 9, 8};
+   * cases' (materials/seed_seals.sql); fluids: + glycerol-water-85 */
+  const size_t lines[] = {3, 9, 9};
   for (int n = 0; n < 3; n++) {
     out = run_ok("%s list", nouns[n]);
     assert_int_equal(count_of(out, "\n"), lines[n]);
@@ -439,7 +439,7 @@ static void test_readonly_database(void **state) {
   assert_int_equal(chmod(vl_test_db, 0444), 0);
   vl_test_snapshot before = vl_test_take(vl_test_db);
   char *out = run_ok("fluid list%s", "");
-  assert_int_equal(count_of(out, "\n"), 8);
+  assert_int_equal(count_of(out, "\n"), 9);
   free(out);
   vl_test_expect_fail(5, "read-only", NULL, "fluid add oil --viscosity 0.1");
   vl_test_expect_fail(5, "read-only", NULL, "compound remove model-rubber");

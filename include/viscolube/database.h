@@ -8,6 +8,9 @@
  * into a new database, as are the compounds of the shipped measured-style
  * data files materials/NAME.csv, which go through the import of
  * vl_measured_read_text and vl_db_compound_add_measured like user data.
+ * A shipped material added later comes with a migration of its own
+ * (0007_glycerol_water.sql), which gives it to new and older databases
+ * alike and keeps a user's material of the same name.
  *
  * Guarantees:
  *   - Foreign keys are ON; every write runs in one BEGIN IMMEDIATE ... COMMIT
