@@ -1,0 +1,730 @@
+/* The lubricated smooth ball, isoviscous and elastic (point_ehl.h;
+ * docs/POINT_CONTACT.md section 9).
+ *
+ * Dimensionless: X = x/a, P = p/p0, H = u R/a^2 (Hertz's a and p0 at the
+ * same load), so that H = H0 + (X^2 + Y^2)/2 + sum_l M_kl P_l with
+ * M_kl = (2/pi^2) [Kel(cell l) + Kel(its mirror image)] (Love's rectangle
+ * in units of a, docs/POINT_CONTACT.md section 2), the load
+ * sum_half P dA = pi/3, and Reynolds
+ *   div(H^3 grad P) = lambda dH/dX,  lambda = 6 eta v0 R^2/(a^3 p0).
+ * Finite volumes: the flux out of a cell through its faces,
+ *   r_k = sum_faces [lambda H_face n_x - H^3_face dP/dn] * face length,
+ * is zero where the fluid is pressurised and >= 0 (the fluid would need a
+ * tension) where it has cavitated: min(P_k, r_k/(lambda dx dy)) = 0 is the
+ * row of cell k (Reynolds' condition as a complementarity, the line
+ * contact's route). The face film carried by the entrainment is the line
+ * contact's limited second-order upwind (contact_equations.c:
+ * couette_face), the conductance the harmonic mean of the two cells' H^3
+ * (the two half cells in series). Every row depends on the films of its
+ * stencil cells, each of which depends on every pressure through M: the
+ * Jacobian is dense (sum over the stencil of dr/dH_m times M's row m),
+ * solved by LAPACK's LU (linsol_lapack.h) under KINSOL. */
+#include "point_ehl.h"
+
+#include <kinsol/kinsol.h>
+#include <math.h>
+#include <nvector/nvector_serial.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <time.h>
+
+#include "blas_threads.h"
+#include "kernel2d.h"
+#include "linsol_lapack.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* Zones of finest cells (units of a): the inlet's edge, the outlet's edge
+ * with the side lobes of the horseshoe (the rim from x = 0.2 a round to
+ * x = a), and across, the rim from y = 0.3 a to beyond a. */
+static const double ZONE_X[2][2] = {{-1.1, -0.8}, {0.2, 1.1}};
+static const double ZONE_Y[1][2] = {{0.3, 1.1}};
+
+/* Stencil of a row: at most 6 cells whose film enters it. */
+#define STENCIL 8
+
+typedef struct {
+  size_t nx, ny, n;
+  double *xf, *yf;      /* faces: nx + 1, ny + 1 */
+  double *xc, *yc;      /* centres */
+  double *dx, *dy;      /* widths */
+  double *M;            /* influence, row-major n x n: H_k per P_l */
+  double *f;            /* undeformed gap (X^2 + Y^2)/2 */
+  double *H, *g;        /* film and conductance H^3 of the last evaluation */
+  double lambda;
+  double *row;          /* a Jacobian row (n + 1) */
+} ehl;
+
+static double now_s(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void vl_point_ehl_config_defaults(vl_point_ehl_config *cfg) {
+  memset(cfg, 0, sizeof *cfg);
+  cfg->nu = 0.5;
+  cfg->x_in = -3.0, cfg->x_out = 1.6, cfg->y_max = 1.8;
+  cfg->h_fine = 0.02, cfg->h_coarse = 0.2, cfg->growth = 1.0;
+  cfg->tolerance = 1e-9;
+  cfg->max_iterations = 60;
+}
+
+/* Distance from t to the nearest zone (0 inside one). */
+static double zone_distance(double t, const double (*z)[2], size_t nz) {
+  double d = INFINITY;
+  for (size_t i = 0; i < nz; i++) {
+    double di = t < z[i][0] ? z[i][0] - t : t > z[i][1] ? t - z[i][1] : 0.0;
+    d = fmin(d, di);
+  }
+  return d;
+}
+
+/* Faces of a graded 1-D grid on [lo, hi]: the cell size s(t) = min(coarse,
+ * fine + growth * distance to a zone); the faces sit at equal steps of
+ * N(t) = \int dt/s (trapezoid on 20000 samples, inverted linearly), their
+ * number the ceiling of N(hi). Returns the cells, or 0 on allocation
+ * failure; *faces malloc'd. */
+static size_t graded_faces(double lo, double hi, const double (*z)[2], size_t nz,
+                           const vl_point_ehl_config *cfg, double **faces) {
+  const size_t ns = 20000;
+  double *N = malloc((ns + 1) * sizeof *N);
+  if (!N) return 0;
+  double dt = (hi - lo) / (double)ns, prev = 0.0;
+  N[0] = 0.0;
+  for (size_t i = 0; i <= ns; i++) {
+    double t = lo + dt * (double)i;
+    double s = fmin(cfg->h_coarse, cfg->h_fine + cfg->growth * zone_distance(t, z, nz));
+    if (i > 0) N[i] = N[i - 1] + 0.5 * dt * (1.0 / prev + 1.0 / s);
+    prev = s;
+  }
+  size_t n = (size_t)ceil(N[ns] - 1e-9);
+  double *fc = malloc((n + 1) * sizeof *fc);
+  if (!fc) {
+    free(N);
+    return 0;
+  }
+  size_t j = 0;
+  for (size_t k = 0; k <= n; k++) {
+    double target = N[ns] * (double)k / (double)n;
+    while (j + 1 < ns && N[j + 1] < target)
+      j++;
+    double w = (target - N[j]) / (N[j + 1] - N[j]);
+    fc[k] = lo + dt * ((double)j + w);
+  }
+  fc[0] = lo, fc[n] = hi;
+  free(N);
+  *faces = fc;
+  return n;
+}
+
+static void ehl_free(ehl *e) {
+  free(e->xf), free(e->yf), free(e->xc), free(e->yc), free(e->dx), free(e->dy);
+  free(e->M), free(e->f), free(e->H), free(e->g), free(e->row);
+}
+
+/* The grid, the undeformed gap and the dense influence matrix. */
+static vl_status ehl_build(ehl *e, const vl_point_ehl_config *cfg, vl_error *err) {
+  memset(e, 0, sizeof *e);
+  e->nx = graded_faces(cfg->x_in, cfg->x_out, ZONE_X, 2, cfg, &e->xf);
+  e->ny = graded_faces(0.0, cfg->y_max, ZONE_Y, 1, cfg, &e->yf);
+  if (!e->nx || !e->ny) goto nomem;
+  size_t nx = e->nx, ny = e->ny, n = nx * ny;
+  e->n = n;
+  e->xc = malloc(nx * sizeof(double)), e->dx = malloc(nx * sizeof(double));
+  e->yc = malloc(ny * sizeof(double)), e->dy = malloc(ny * sizeof(double));
+  e->M = malloc(n * n * sizeof(double));
+  e->f = malloc(n * sizeof(double)), e->H = malloc(n * sizeof(double));
+  e->g = malloc(n * sizeof(double)), e->row = malloc((n + 1) * sizeof(double));
+  if (!e->xc || !e->dx || !e->yc || !e->dy || !e->M || !e->f || !e->H || !e->g || !e->row)
+    goto nomem;
+  for (size_t i = 0; i < nx; i++)
+    e->xc[i] = 0.5 * (e->xf[i] + e->xf[i + 1]), e->dx[i] = e->xf[i + 1] - e->xf[i];
+  for (size_t j = 0; j < ny; j++)
+    e->yc[j] = 0.5 * (e->yf[j] + e->yf[j + 1]), e->dy[j] = e->yf[j + 1] - e->yf[j];
+  for (size_t k = 0; k < n; k++) {
+    double X = e->xc[k / ny], Y = e->yc[k % ny];
+    e->f[k] = 0.5 * (X * X + Y * Y);
+  }
+  const double c = 2.0 / (M_PI * M_PI);
+  for (size_t k = 0; k < n; k++) {
+    double X = e->xc[k / ny], Y = e->yc[k % ny];
+    double *Mk = e->M + k * n;
+    for (size_t l = 0; l < n; l++) {
+      size_t il = l / ny, jl = l % ny;
+      double ax = 0.5 * e->dx[il], ay = 0.5 * e->dy[jl];
+      double dxk = X - e->xc[il];
+      Mk[l] = c * (vl_kernel2d_rect(dxk, Y - e->yc[jl], ax, ay) +
+                   vl_kernel2d_rect(dxk, Y + e->yc[jl], ax, ay));
+    }
+  }
+  return VL_OK;
+nomem:
+  ehl_free(e);
+  vl_error_set(err, "out of memory for the lubricated ball's grid and influence matrix");
+  return VL_ENOMEM;
+}
+
+/* H = H0 + f + M P and g = H^3 (H floored at 1e-12 in g: a closing film
+ * during the iterations). */
+static void ehl_eval(ehl *e, const double *y) {
+  size_t n = e->n;
+  double H0 = y[n];
+  for (size_t k = 0; k < n; k++) {
+    const double *Mk = e->M + k * n;
+    double s = 0.0;
+    for (size_t l = 0; l < n; l++)
+      s += Mk[l] * y[l];
+    e->H[k] = H0 + e->f[k] + s;
+    double h = fmax(e->H[k], 1e-12);
+    e->g[k] = h * h * h;
+  }
+}
+
+/* Derivative of g = max(H, 1e-12)^3 with respect to H. */
+static double dg_dH(const ehl *e, size_t k) {
+  double h = e->H[k];
+  return h > 1e-12 ? 3.0 * h * h : 0.0;
+}
+
+/* Film carried across the x face between cells i - 1 and i of row j
+ * (i = 0 .. nx): the line contact's couette_face on this grid (the
+ * van Albada limited extrapolation from the upwind cell; the inlet faces 0
+ * and 1 unlimited, the outlet face the upwind cell). Writes the cells and
+ * the derivatives of the value. */
+static double couette_face(const ehl *e, size_t i, size_t j, size_t kk[3], double w[3], int *m) {
+  size_t nx = e->nx, ny = e->ny;
+  const double *H = e->H;
+  if (i == nx) {
+    kk[0] = (nx - 1) * ny + j, w[0] = 1.0, *m = 1;
+    return H[kk[0]];
+  }
+  if (i <= 1) {
+    double t = e->dx[0] / (e->dx[0] + e->dx[1]);
+    kk[0] = j, kk[1] = ny + j, w[0] = i ? 1.0 - t : 1.0 + t, w[1] = i ? t : -t, *m = 2;
+    return w[0] * H[kk[0]] + w[1] * H[kk[1]];
+  }
+  size_t C = (i - 1) * ny + j, U = (i - 2) * ny + j, D = i * ny + j;
+  double a = H[D] - H[C], b = H[C] - H[U];
+  kk[0] = C, kk[1] = U, kk[2] = D, *m = 3;
+  if (!(a * b > 0.0)) {
+    w[0] = 1.0, w[1] = 0.0, w[2] = 0.0;
+    return H[C];
+  }
+  double s = a * a + b * b, inc = 0.5 * a * b * (a + b) / s;
+  double da = 0.5 * b * b * (2.0 * a * b - a * a + b * b) / (s * s);
+  double db = 0.5 * a * a * (2.0 * a * b - b * b + a * a) / (s * s);
+  w[0] = 1.0 - da + db, w[1] = -db, w[2] = da;
+  return H[C] + inc;
+}
+
+/* Conductance of the face between cells k and l (harmonic mean of H^3)
+ * and its derivatives with respect to g_k and g_l. */
+static double face_g(const ehl *e, size_t k, size_t l, double *dk, double *dl) {
+  double gk = e->g[k], gl = e->g[l], s = gk + gl;
+  if (!(s > 0.0)) {
+    *dk = *dl = 0.0;
+    return 0.0;
+  }
+  *dk = 2.0 * gl * gl / (s * s), *dl = 2.0 * gk * gk / (s * s);
+  return 2.0 * gk * gl / s;
+}
+
+/* A row's dependences: direct on pressures (P, up to 5) and on films. */
+typedef struct {
+  size_t pk[5];
+  double pw[5];
+  int np;
+  size_t hk[3 * STENCIL];
+  double hw[3 * STENCIL];
+  int nh;
+} row_deps;
+
+static void add_h(row_deps *d, size_t k, double w) {
+  for (int q = 0; q < d->nh; q++)
+    if (d->hk[q] == k) {
+      d->hw[q] += w;
+      return;
+    }
+  d->hk[d->nh] = k, d->hw[d->nh] = w, d->nh++;
+}
+
+static void add_p(row_deps *d, size_t k, double w) {
+  for (int q = 0; q < d->np; q++)
+    if (d->pk[q] == k) {
+      d->pw[q] += w;
+      return;
+    }
+  d->pk[d->np] = k, d->pw[d->np] = w, d->np++;
+}
+
+/* Poiseuille flux out of cell k towards neighbour l (or the boundary,
+ * l = SIZE_MAX, P = 0 at the face), over distance dist and face length
+ * len: -g (P_l - P_k)/dist len, with its dependences. */
+static double poiseuille_out(const ehl *e, const double *P, size_t k, size_t l, double dist,
+                             double len, row_deps *d) {
+  if (l == SIZE_MAX) { /* to the boundary: the cell's own conductance */
+    double c = len / dist;
+    if (d) add_p(d, k, e->g[k] * c), add_h(d, k, dg_dH(e, k) * P[k] * c);
+    return e->g[k] * P[k] * c;
+  }
+  double dk, dl, gf = face_g(e, k, l, &dk, &dl), c = len / dist, dP = P[l] - P[k];
+  if (d) {
+    add_p(d, k, gf * c), add_p(d, l, -gf * c);
+    add_h(d, k, -dk * dg_dH(e, k) * dP * c), add_h(d, l, -dl * dg_dH(e, l) * dP * c);
+  }
+  return -gf * dP * c;
+}
+
+/* The flux out of cell (i, j), r/(lambda dx dy) (scaled to about dH/dX),
+ * with its dependences when d is not NULL. */
+static double flow_row(const ehl *e, const double *P, size_t i, size_t j, row_deps *d) {
+  size_t nx = e->nx, ny = e->ny, k = i * ny + j;
+  double dx = e->dx[i], dy = e->dy[j], lam = e->lambda, scale = 1.0 / (lam * dx * dy);
+  if (d) d->np = 0, d->nh = 0;
+  size_t kk[3];
+  double w[3];
+  int m;
+  /* Couette: out through the east face, in through the west */
+  double r = 0.0;
+  double he = couette_face(e, i + 1, j, kk, w, &m);
+  r += lam * he * dy;
+  if (d)
+    for (int q = 0; q < m; q++)
+      add_h(d, kk[q], lam * dy * w[q]);
+  double hw = couette_face(e, i, j, kk, w, &m);
+  r -= lam * hw * dy;
+  if (d)
+    for (int q = 0; q < m; q++)
+      add_h(d, kk[q], -lam * dy * w[q]);
+  /* Poiseuille through the four faces (none through y = 0) */
+  if (i + 1 < nx)
+    r += poiseuille_out(e, P, k, k + ny, e->xc[i + 1] - e->xc[i], dy, d);
+  else
+    r += poiseuille_out(e, P, k, SIZE_MAX, 0.5 * dx, dy, d);
+  if (i > 0)
+    r += poiseuille_out(e, P, k, k - ny, e->xc[i] - e->xc[i - 1], dy, d);
+  else
+    r += poiseuille_out(e, P, k, SIZE_MAX, 0.5 * dx, dy, d);
+  if (j + 1 < ny)
+    r += poiseuille_out(e, P, k, k + 1, e->yc[j + 1] - e->yc[j], dx, d);
+  else
+    r += poiseuille_out(e, P, k, SIZE_MAX, 0.5 * dy, dx, d);
+  if (j > 0) r += poiseuille_out(e, P, k, k - 1, e->yc[j] - e->yc[j - 1], dx, d);
+  if (d) {
+    for (int q = 0; q < d->np; q++)
+      d->pw[q] *= scale;
+    for (int q = 0; q < d->nh; q++)
+      d->hw[q] *= scale;
+  }
+  return r * scale;
+}
+
+static double load_row(const ehl *e, const double *P) {
+  double s = 0.0;
+  for (size_t k = 0; k < e->n; k++)
+    s += P[k] * e->dx[k / e->ny] * e->dy[k % e->ny];
+  return s * 3.0 / M_PI - 1.0;
+}
+
+/* Fischer-Burmeister: a + b - sqrt(a^2 + b^2) = 0 iff a, b >= 0 and
+ * a b = 0; smooth but at the origin (there the min's derivative), so a
+ * line search on its norm works where one on min(a, b) stalls at the
+ * switches of the cavitation boundary. */
+static double fb(double a, double b, double *da, double *db) {
+  double rho = hypot(a, b);
+  if (da) {
+    if (rho > 0.0)
+      *da = 1.0 - a / rho, *db = 1.0 - b / rho;
+    else
+      *da = a <= b ? 1.0 : 0.0, *db = a <= b ? 0.0 : 1.0;
+  }
+  return a + b - rho;
+}
+
+static int residual_fn(N_Vector yv, N_Vector fv, void *user) {
+  ehl *e = user;
+  const double *y = N_VGetArrayPointer(yv);
+  double *f = N_VGetArrayPointer(fv);
+  ehl_eval(e, y);
+  /* a closed film is no state of a lubricated contact: a recoverable
+   * failure, on which KINSOL's line search shortens the step */
+  for (size_t k = 0; k < e->n; k++)
+    if (!(e->H[k] > 0.0)) return 1;
+  for (size_t i = 0; i < e->nx; i++)
+    for (size_t j = 0; j < e->ny; j++) {
+      size_t k = i * e->ny + j;
+      double r = flow_row(e, y, i, j, NULL);
+      f[k] = fb(y[k], r, NULL, NULL);
+      if (!isfinite(f[k])) return 1;
+    }
+  f[e->n] = load_row(e, y);
+  return 0;
+}
+
+static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vector t1,
+                       N_Vector t2) {
+  (void)fv, (void)t1, (void)t2;
+  ehl *e = user;
+  const double *y = N_VGetArrayPointer(yv);
+  size_t n = e->n, ld = n + 1;
+  double *Jd = SUNDenseMatrix_Data(J);
+  ehl_eval(e, y);
+  row_deps d;
+  for (size_t i = 0; i < e->nx; i++)
+    for (size_t j = 0; j < e->ny; j++) {
+      size_t k = i * e->ny + j;
+      double r = flow_row(e, y, i, j, &d);
+      double *row = e->row, dp, dr;
+      memset(row, 0, (n + 1) * sizeof *row);
+      fb(y[k], r, &dp, &dr);
+      row[k] = dp;
+      if (dr != 0.0) {
+        for (int q = 0; q < d.nh; q++) {
+          const double *Mm = e->M + d.hk[q] * n;
+          double w = dr * d.hw[q];
+          for (size_t l = 0; l < n; l++)
+            row[l] += w * Mm[l];
+          row[n] += w;
+        }
+        for (int q = 0; q < d.np; q++)
+          row[d.pk[q]] += dr * d.pw[q];
+      }
+      for (size_t l = 0; l <= n; l++)
+        Jd[l * ld + k] = row[l];
+    }
+  for (size_t l = 0; l < n; l++)
+    Jd[l * ld + n] = e->dx[l / e->ny] * e->dy[l % e->ny] * 3.0 / M_PI;
+  Jd[n * ld + n] = 0.0;
+  return 0;
+}
+
+static void silent(int code, const char *module, const char *function, char *msg, void *user) {
+  (void)code, (void)module, (void)function, (void)msg, (void)user;
+}
+
+static vl_status check_config(const vl_point_ehl_config *c, vl_error *err) {
+  struct {
+    const char *name;
+    double v;
+  } pos[] = {{"radius_m", c->radius_m}, {"load_n", c->load_n},     {"e_pa", c->e_pa},
+             {"eta_pa_s", c->eta_pa_s}, {"v0_m_s", c->v0_m_s},     {"h_fine", c->h_fine},
+             {"h_coarse", c->h_coarse}, {"growth", c->growth},     {"x_out", c->x_out},
+             {"y_max", c->y_max},       {"tolerance", c->tolerance}};
+  for (size_t i = 0; i < sizeof pos / sizeof pos[0]; i++)
+    if (!(pos[i].v > 0.0) || !isfinite(pos[i].v)) {
+      vl_error_set(err, "point EHL: %s must be positive and finite (got %g)", pos[i].name,
+                   pos[i].v);
+      return VL_EINPUT;
+    }
+  if (!(c->x_in < -1.2) || !(c->x_out > 1.2) || !(c->y_max > 1.2)) {
+    vl_error_set(err, "point EHL: the domain x_in %g, x_out %g, y_max %g must reach beyond "
+                      "1.2 Hertz radii",
+                 c->x_in, c->x_out, c->y_max);
+    return VL_EINPUT;
+  }
+  if (!(c->nu >= 0.0 && c->nu <= 0.5)) {
+    vl_error_set(err, "point EHL: nu must be in [0, 0.5] (got %g)", c->nu);
+    return VL_EINPUT;
+  }
+  if (!(c->h_fine <= c->h_coarse) || c->max_iterations < 1) {
+    vl_error_set(err, "point EHL: h_fine %g must not exceed h_coarse %g, max_iterations >= 1",
+                 c->h_fine, c->h_coarse);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
+void vl_point_ehl_hamrock_dowson(const vl_point_ehl_config *cfg, double *h_min_m, double *h_c_m) {
+  double Ep = 2.0 * cfg->e_pa / (1.0 - cfg->nu * cfg->nu), R = cfg->radius_m;
+  double U = cfg->eta_pa_s * 0.5 * cfg->v0_m_s / (Ep * R), W = cfg->load_n / (Ep * R * R);
+  *h_min_m = R * 7.43 * pow(U, 0.65) * pow(W, -0.21) * (1.0 - 0.85 * exp(-0.31));
+  *h_c_m = R * 7.32 * pow(U, 0.64) * pow(W, -0.22) * (1.0 - 0.72 * exp(-0.28));
+}
+
+/* H at the centre: linear in x between the cells that bracket 0, even in y
+ * (a + b y^2 through the first two rows). */
+static double centre_film(const ehl *e) {
+  size_t ny = e->ny, i = 0;
+  while (i + 2 < e->nx && e->xc[i + 1] < 0.0)
+    i++;
+  double t = (0.0 - e->xc[i]) / (e->xc[i + 1] - e->xc[i]), y0 = e->yc[0], y1 = e->yc[1];
+  double h0 = (1.0 - t) * e->H[i * ny] + t * e->H[(i + 1) * ny];
+  double h1 = (1.0 - t) * e->H[i * ny + 1] + t * e->H[(i + 1) * ny + 1];
+  double b = (h1 - h0) / (y1 * y1 - y0 * y0);
+  return h0 - b * y0 * y0;
+}
+
+/* Vertex of the parabola through (t0, v0), (t1, v1), (t2, v2) (t1 the
+ * smallest value): the value and position; the middle point when flat. */
+static double parabola_min(double t0, double t1, double t2, double v0, double v1, double v2,
+                           double *tmin) {
+  double d0 = (v1 - v0) / (t1 - t0), d1 = (v2 - v1) / (t2 - t1), c = (d1 - d0) / (t2 - t0);
+  *tmin = t1;
+  if (!(c > 0.0)) return v1;
+  double b = d0 - c * (t1 - t0); /* slope at t1 of the parabola */
+  double s = -b / (2.0 * c);
+  if (fabs(s) > 0.5 * (t2 - t0)) return v1;
+  *tmin = t1 + s;
+  return v1 + b * s + c * s * s;
+}
+
+/* The minimum film: the smallest cell film refined by a parabola along x
+ * and across (each through the cell and its two neighbours). */
+static double min_film(const ehl *e, double *xm, double *ym, bool axis_only) {
+  size_t nx = e->nx, ny = e->ny, best = 0;
+  for (size_t k = 0; k < e->n; k++)
+    if ((!axis_only || k % ny == 0) && e->H[k] < e->H[best]) best = k;
+  size_t i = best / ny, j = best % ny;
+  *xm = e->xc[i], *ym = e->yc[j];
+  double hmin = e->H[best], corr = 0.0;
+  if (i > 0 && i + 1 < nx) {
+    double v = parabola_min(e->xc[i - 1], e->xc[i], e->xc[i + 1], e->H[best - ny], hmin,
+                            e->H[best + ny], xm);
+    corr += v - hmin;
+  }
+  if (!axis_only && j > 0 && j + 1 < ny) {
+    double v = parabola_min(e->yc[j - 1], e->yc[j], e->yc[j + 1], e->H[best - 1], hmin,
+                            e->H[best + 1], ym);
+    corr += v - hmin;
+  }
+  return hmin + corr;
+}
+
+/* Figures of the converged (or last) state y into res. */
+static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, double a, double p0,
+                   vl_point_ehl_result *res) {
+  size_t n = e->n, ny = e->ny;
+  double R = cfg->radius_m, us = a * a / R, W = cfg->load_n;
+  ehl_eval(e, y);
+  res->h_c_m = centre_film(e) * us;
+  double xm, ym;
+  res->h_min_m = min_film(e, &xm, &ym, false) * us;
+  res->x_min_m = xm * a, res->y_min_m = ym * a;
+  res->h_min_axis_m = min_film(e, &xm, &ym, true) * us;
+  res->h0_m = y[n] * us;
+  res->load_error = load_row(e, y);
+  /* friction (docs/POINT_CONTACT.md section 9): both halves, per W */
+  double spx = 0.0, couette = 0.0, pois = 0.0;
+  for (size_t j = 0; j < ny; j++) {
+    double hrupture = NAN;
+    for (size_t i = 0; i < e->nx; i++) {
+      size_t k = i * ny + j;
+      double dA = e->dx[i] * e->dy[j] * a * a, p = y[k] * p0, u = e->H[k] * us;
+      spx += p * e->xc[i] * a * dA;
+      /* film fraction: 1 upstream of the pressure's end; beyond it (the
+       * cavitated outlet) the flow is Couette only and the film fills
+       * theta = u_rupture/u of the gap */
+      if (y[k] > 0.0) hrupture = u;
+      double theta = 1.0;
+      if (!(y[k] > 0.0) && isfinite(hrupture) && e->xc[i] > 0.0) theta = fmin(1.0, hrupture / u);
+      if (u > 0.0) couette += theta * cfg->eta_pa_s * cfg->v0_m_s / u * dA;
+      /* dp/dx at the cell: the mean of its two face gradients */
+      double pw = i > 0 ? y[k - ny] : 0.0, pe = i + 1 < e->nx ? y[k + ny] : 0.0;
+      double xw = i > 0 ? e->xc[i - 1] : e->xf[0], xe = i + 1 < e->nx ? e->xc[i + 1] : e->xf[e->nx];
+      double dpdx = 0.5 * ((y[k] - pw) / (e->xc[i] - xw) + (pe - y[k]) / (xe - e->xc[i])) * p0 / a;
+      pois += -0.5 * u * dpdx * dA;
+    }
+  }
+  res->x_centroid_m = 2.0 * spx / W;
+  res->mu_Rf = -2.0 * spx / (W * R);
+  res->mu_Sf_couette = 2.0 * couette / W;
+  res->mu_Sf_poiseuille = 2.0 * pois / W;
+  res->mu_Sf = res->mu_Sf_couette + res->mu_Sf_poiseuille;
+}
+
+/* The dry Hertz pressure lifted so that the centre's film is lift (a^2/R). */
+static void hertz_start(ehl *e, double *yd, double lift) {
+  size_t n = e->n;
+  for (size_t k = 0; k < n; k++) {
+    double X = e->xc[k / e->ny], Y = e->yc[k % e->ny], r2 = X * X + Y * Y;
+    yd[k] = r2 < 1.0 ? sqrt(1.0 - r2) : 0.0;
+  }
+  yd[n] = 0.0;
+  ehl_eval(e, yd);
+  yd[n] = lift - centre_film(e);
+}
+
+/* One KINSol from y with the given strategy; true when the max norm of the
+ * residual ends below the tolerance. */
+static bool kinsol_run(void *kmem, N_Vector y, N_Vector ones, N_Vector fw, ehl *e, int strategy,
+                       double tol, long *nni, double *fnorm) {
+  int flag = KINSol(kmem, y, strategy, ones, ones);
+  long it = 0;
+  KINGetNumNonlinSolvIters(kmem, &it);
+  *nni += it;
+  *fnorm = INFINITY;
+  if (residual_fn(y, fw, e) == 0) *fnorm = N_VMaxNorm(fw);
+  if (getenv("VL_EHL_DEBUG")) fprintf(stderr, "lambda %g flag %d it %ld fnorm %g\n", e->lambda, flag, it, *fnorm);
+  return flag >= 0 && *fnorm <= tol;
+}
+
+vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const double *guess_p,
+                             const double *guess_h0, vl_point_ehl_result *res, double **p_out,
+                             double *h0_out, vl_error *err) {
+  memset(res, 0, sizeof *res);
+  vl_status st = check_config(cfg, err);
+  if (st != VL_OK) return st;
+  double Er = cfg->e_pa / (1.0 - cfg->nu * cfg->nu), R = cfg->radius_m, W = cfg->load_n;
+  double a = cbrt(3.0 * W * R / (4.0 * Er)), p0 = 3.0 * W / (2.0 * M_PI * a * a);
+  res->a_m = a, res->p0_pa = p0;
+  double t0 = now_s();
+  ehl e;
+  st = ehl_build(&e, cfg, err);
+  if (st != VL_OK) return st;
+  int blas_threads = vl_blas_pin_one_thread();
+  e.lambda = 6.0 * cfg->eta_pa_s * cfg->v0_m_s * R * R / (a * a * a * p0);
+  res->nx = e.nx, res->ny = e.ny;
+  res->t_influence_s = now_s() - t0;
+  t0 = now_s();
+  size_t n = e.n;
+  SUNContext ctx = NULL;
+  N_Vector y = NULL, ones = NULL, fw = NULL, y0 = NULL;
+  SUNMatrix J = NULL;
+  SUNLinearSolver LS = NULL;
+  void *kmem = NULL;
+  if (SUNContext_Create(NULL, &ctx) != 0) goto nomem;
+  y = N_VNew_Serial((sunindextype)(n + 1), ctx), ones = N_VNew_Serial((sunindextype)(n + 1), ctx);
+  fw = N_VNew_Serial((sunindextype)(n + 1), ctx), y0 = N_VNew_Serial((sunindextype)(n + 1), ctx);
+  J = SUNDenseMatrix((sunindextype)(n + 1), (sunindextype)(n + 1), ctx);
+  if (!y || !ones || !fw || !y0 || !J) goto nomem;
+  LS = vl_linsol_lapack_create((long)(n + 1), ctx);
+  kmem = KINCreate(ctx);
+  if (!LS || !kmem) goto nomem;
+  N_VConst(1.0, ones);
+  if (KINInit(kmem, residual_fn, y) != KIN_SUCCESS || KINSetUserData(kmem, &e) != KIN_SUCCESS ||
+      KINSetLinearSolver(kmem, LS, J) != KIN_SUCCESS ||
+      KINSetJacFn(kmem, jacobian_fn) != KIN_SUCCESS ||
+      KINSetFuncNormTol(kmem, cfg->tolerance) != KIN_SUCCESS ||
+      KINSetScaledStepTol(kmem, 1e-14) != KIN_SUCCESS ||
+      KINSetMaxSetupCalls(kmem, 1) != KIN_SUCCESS ||
+      KINSetNumMaxIters(kmem, cfg->max_iterations) != KIN_SUCCESS ||
+      KINSetErrHandlerFn(kmem, silent, NULL) != KIN_SUCCESS) {
+    vl_error_set(err, "KINSOL set-up failed for the lubricated ball");
+    st = VL_EINTERNAL;
+    goto cleanup;
+  }
+  double *yd = N_VGetArrayPointer(y);
+  double hmin_fit, hc_fit, lambda = e.lambda;
+  vl_point_ehl_hamrock_dowson(cfg, &hmin_fit, &hc_fit);
+  double fnorm = INFINITY;
+  bool ok = false;
+  if (guess_p) {
+    memcpy(yd, guess_p, n * sizeof *yd);
+    yd[n] = *guess_h0;
+    ok = kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations,
+                    &fnorm);
+  }
+  /* from Hertz at the target, else at a thicker film (lambda x 4^k: the
+   * film's elastic share falls), then continued back down in lambda
+   * (the speed) by shrinking factors */
+  double lam = lambda;
+  for (int k = 0; !ok && k <= 10; k++, lam *= 4.0) {
+    e.lambda = lam;
+    hertz_start(&e, yd, hc_fit * pow(lam / lambda, 0.64) / (a * a / R));
+    /* an attempt from Hertz that is going to fail stalls early */
+    KINSetNumMaxIters(kmem, k == 0 ? cfg->max_iterations : 25);
+    ok = kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations,
+                    &fnorm);
+  }
+  KINSetNumMaxIters(kmem, cfg->max_iterations);
+  if (ok && e.lambda > lambda) {
+    double ratio = 4.0;
+    N_VScale(1.0, y, y0);
+    while (ok && e.lambda > lambda) {
+      double next = fmax(lambda, e.lambda / ratio), from = e.lambda;
+      e.lambda = next;
+      /* with a line search: full steps close the film (measured) */
+      bool step_ok = kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance,
+                                &res->iterations, &fnorm);
+      res->continuation_steps++;
+      if (step_ok) {
+        N_VScale(1.0, y, y0);
+        ratio = fmin(4.0, ratio * 1.5);
+      } else {
+        N_VScale(1.0, y0, y);
+        e.lambda = from;
+        ratio = sqrt(ratio);
+        if (ratio < 1.02) ok = false;
+      }
+    }
+  }
+  e.lambda = lambda;
+  res->converged = ok;
+  res->residual = fnorm;
+  report(&e, cfg, yd, a, p0, res);
+  res->t_solve_s = now_s() - t0;
+  if (p_out) {
+    *p_out = malloc(n * sizeof **p_out);
+    if (!*p_out) goto nomem;
+    memcpy(*p_out, yd, n * sizeof **p_out);
+    *h0_out = yd[n];
+  }
+  st = VL_OK;
+  if (!ok) {
+    vl_error_set(err, "the lubricated ball did not converge at v0 = %g m/s (residual %.3g)",
+                 cfg->v0_m_s, fnorm);
+    st = VL_ENOCONV;
+  }
+  goto cleanup;
+nomem:
+  vl_error_set(err, "out of memory for the lubricated ball's solver (%zu cells)", n);
+  st = VL_ENOMEM;
+cleanup:
+  if (kmem) KINFree(&kmem);
+  if (LS) SUNLinSolFree(LS);
+  if (J) SUNMatDestroy(J);
+  N_Vector vs[] = {y, ones, fw, y0};
+  for (size_t i = 0; i < 4; i++)
+    if (vs[i]) N_VDestroy(vs[i]);
+  if (ctx) SUNContext_Free(&ctx);
+  ehl_free(&e);
+  vl_blas_restore_threads(blas_threads);
+  return st;
+}
+
+double vl_point_ehl_jacobian_check(const vl_point_ehl_config *cfg, double lift) {
+  double Er = cfg->e_pa / (1.0 - cfg->nu * cfg->nu), R = cfg->radius_m, W = cfg->load_n;
+  double a = cbrt(3.0 * W * R / (4.0 * Er)), p0 = 3.0 * W / (2.0 * M_PI * a * a);
+  ehl e;
+  vl_error err;
+  if (ehl_build(&e, cfg, &err) != VL_OK) return NAN;
+  e.lambda = 6.0 * cfg->eta_pa_s * cfg->v0_m_s * R * R / (a * a * a * p0);
+  size_t n = e.n, m = n + 1;
+  SUNContext ctx;
+  SUNContext_Create(NULL, &ctx);
+  N_Vector y = N_VNew_Serial((sunindextype)m, ctx), f0 = N_VNew_Serial((sunindextype)m, ctx),
+           f1 = N_VNew_Serial((sunindextype)m, ctx);
+  SUNMatrix J = SUNDenseMatrix((sunindextype)m, (sunindextype)m, ctx);
+  double *yd = N_VGetArrayPointer(y);
+  for (size_t k = 0; k < n; k++) {
+    double X = e.xc[k / e.ny], Y = e.yc[k % e.ny], r2 = X * X + Y * Y;
+    yd[k] = r2 < 1.0 ? sqrt(1.0 - r2) : 0.01 * exp(-r2);
+  }
+  yd[n] = 0.0;
+  ehl_eval(&e, yd);
+  yd[n] = lift - centre_film(&e);
+  jacobian_fn(y, f0, J, &e, NULL, NULL);
+  residual_fn(y, f0, &e);
+  double *Jd = SUNDenseMatrix_Data(J), worst = 0.0, *F0 = N_VGetArrayPointer(f0),
+         *F1 = N_VGetArrayPointer(f1);
+  for (size_t l = 0; l < m; l++) {
+    double h = 1e-7 * fmax(1.0, fabs(yd[l])), keep = yd[l];
+    yd[l] += h;
+    residual_fn(y, f1, &e);
+    yd[l] = keep;
+    for (size_t k = 0; k < m; k++) {
+      double fd = (F1[k] - F0[k]) / h, an = Jd[l * m + k];
+      double d = fabs(fd - an) / fmax(1.0, fabs(an));
+      if (d > worst) worst = d, fprintf(stderr, "row %zu col %zu fd %g an %g\n", k, l, fd, an);
+    }
+  }
+  N_VDestroy(y), N_VDestroy(f0), N_VDestroy(f1), SUNMatDestroy(J), SUNContext_Free(&ctx);
+  ehl_free(&e);
+  return worst;
+}
