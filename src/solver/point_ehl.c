@@ -474,26 +474,43 @@ static double parabola_min(double t0, double t1, double t2, double v0, double v1
   return v1 + b * s + c * s * s;
 }
 
-/* The minimum film: the smallest cell film refined by a parabola along x
- * and across (each through the cell and its two neighbours). */
+/* The minimum film along row j (fixed y): the smallest cell film refined
+ * by the parabola through it and its two neighbours along x. */
+static double row_min(const ehl *e, size_t j, double *xm) {
+  size_t nx = e->nx, ny = e->ny, ib = 0;
+  for (size_t i = 1; i < nx; i++)
+    if (e->H[i * ny + j] < e->H[ib * ny + j]) ib = i;
+  *xm = e->xc[ib];
+  if (ib == 0 || ib + 1 == nx) return e->H[ib * ny + j];
+  return parabola_min(e->xc[ib - 1], e->xc[ib], e->xc[ib + 1], e->H[(ib - 1) * ny + j],
+                      e->H[ib * ny + j], e->H[(ib + 1) * ny + j], xm);
+}
+
+/* The minimum film, following the valley of the film: each row's minimum
+ * along x (row_min), then the parabola across through the smallest row
+ * minimum and its neighbours' (on the centre line: the row's own). The
+ * cells' own minimum jumps between cells as the grid changes where the
+ * valley crosses the cells obliquely (the side lobes). */
 static double min_film(const ehl *e, double *xm, double *ym, bool axis_only) {
-  size_t nx = e->nx, ny = e->ny, best = 0;
-  for (size_t k = 0; k < e->n; k++)
-    if ((!axis_only || k % ny == 0) && e->H[k] < e->H[best]) best = k;
-  size_t i = best / ny, j = best % ny;
-  *xm = e->xc[i], *ym = e->yc[j];
-  double hmin = e->H[best], corr = 0.0;
-  if (i > 0 && i + 1 < nx) {
-    double v = parabola_min(e->xc[i - 1], e->xc[i], e->xc[i + 1], e->H[best - ny], hmin,
-                            e->H[best + ny], xm);
-    corr += v - hmin;
+  size_t ny = e->ny, jb = 0;
+  double best = row_min(e, 0, xm);
+  *ym = 0.0;
+  if (axis_only) return best;
+  for (size_t j = 1; j < ny; j++) {
+    double x, v = row_min(e, j, &x);
+    if (v < best) best = v, jb = j, *xm = x;
   }
-  if (!axis_only && j > 0 && j + 1 < ny) {
-    double v = parabola_min(e->yc[j - 1], e->yc[j], e->yc[j + 1], e->H[best - 1], hmin,
-                            e->H[best + 1], ym);
-    corr += v - hmin;
-  }
-  return hmin + corr;
+  *ym = e->yc[jb];
+  if (jb == 0 || jb + 1 == ny) return best;
+  double x0, x2, v0 = row_min(e, jb - 1, &x0), v2 = row_min(e, jb + 1, &x2), y;
+  double v = parabola_min(e->yc[jb - 1], e->yc[jb], e->yc[jb + 1], v0, best, v2, &y);
+  /* the x of the valley at y: linear between the rows' minima */
+  if (y < e->yc[jb])
+    *xm += (x0 - *xm) * (e->yc[jb] - y) / (e->yc[jb] - e->yc[jb - 1]);
+  else
+    *xm += (x2 - *xm) * (y - e->yc[jb]) / (e->yc[jb + 1] - e->yc[jb]);
+  *ym = y;
+  return v;
 }
 
 /* Figures of the converged (or last) state y into res. */
@@ -560,7 +577,6 @@ static bool kinsol_run(void *kmem, N_Vector y, N_Vector ones, N_Vector fw, ehl *
   *nni += it;
   *fnorm = INFINITY;
   if (residual_fn(y, fw, e) == 0) *fnorm = N_VMaxNorm(fw);
-  if (getenv("VL_EHL_DEBUG")) fprintf(stderr, "lambda %g flag %d it %ld fnorm %g\n", e->lambda, flag, it, *fnorm);
   return flag >= 0 && *fnorm <= tol;
 }
 
