@@ -63,11 +63,11 @@ vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
 vl_status vl_write_fields_csv(const char *path, const vl_fields *f, double a0_m, vl_error *err);
 
 /* A point contact's fields, the cells of the solved half y >= 0 (the
- * contact is symmetric in y): x_m, y_m, x_over_a0, y_over_a0, p_c_pa, u_m,
- * n rows. */
+ * contact is symmetric in y): x_m, y_m, x_over_a0, y_over_a0, p_c_pa, u_m
+ * and, when p_f_pa is not NULL (a lubricated contact), p_f_pa; n rows. */
 vl_status vl_write_fields2d_csv(const char *path, size_t n, const double *x_m, const double *y_m,
-                                const double *p_c_pa, const double *u_m, double a0_m,
-                                vl_error *err);
+                                const double *p_c_pa, const double *u_m, const double *p_f_pa,
+                                double a0_m, vl_error *err);
 
 /* JSON (json.h), numbers with 10 significant digits as in the CSV: a
  * point is one object with the keys of the CSV columns (on one line); a

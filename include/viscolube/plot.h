@@ -135,12 +135,14 @@ vl_status vl_plot_fields(const char *stem, vl_plot_field field, size_t k, const 
                          const vl_plot_options *opt, vl_plot_report *report, vl_error *err);
 
 /* A point contact's field on its cells (the solved half y >= 0, cell
- * k = ix ny + iy: y runs fastest; uniform cells). */
+ * k = ix ny + iy: y runs fastest; a tensor grid, each cell reaching half
+ * way to its neighbours' centres). */
 typedef struct {
   size_t nx, ny;
   const double *x_m, *y_m; /* cell centres */
   const double *p_c_pa;    /* for VL_PLOT_FIELD_PC */
   const double *u_m;       /* for VL_PLOT_FIELD_U */
+  const double *p_f_pa;    /* for VL_PLOT_FIELD_PF */
 } vl_plot_map_data;
 
 /* A point contact's field over the contact plane as a colour map of its
@@ -148,7 +150,8 @@ typedef struct {
  * (the solved half mirrored to y < 0), with a colour bar and, when both
  * semi-axes are positive, the Hertz ellipse hertz_ax_m x hertz_by_m
  * dashed over it. field: VL_PLOT_FIELD_PC (p_c/p0, the cells out of
- * contact left white) or VL_PLOT_FIELD_U (u in um). VL_EINPUT: another
+ * contact left white), VL_PLOT_FIELD_PF (p_f/p0, the cavitated cells left
+ * white) or VL_PLOT_FIELD_U (u in um). VL_EINPUT: another
  * field, no cells, bad scales. */
 vl_status vl_plot_map(const char *stem, vl_plot_field field, const vl_plot_map_data *d,
                       const vl_plot_scales *scales, double hertz_ax_m, double hertz_by_m,

@@ -1,6 +1,7 @@
 /* viscolube: one operating point of a rigid smooth ball (or ellipsoid)
- * sliding on a viscoelastic half-space, dry: the point contact
- * (docs/POINT_CONTACT.md).
+ * sliding on a viscoelastic half-space, dry, or a ball lubricated by a
+ * Newtonian fluid (eta_pa_s > 0: soft EHL, docs/POINT_CONTACT.md section
+ * 9): the point contact (docs/POINT_CONTACT.md).
  *
  * Frame and signs as the line contact's (docs/MODEL.md section 1): the
  * ball at rest, the rubber moving at +v0 along x, the inlet at x < 0;
@@ -52,6 +53,11 @@ typedef struct {
   double radius_x_m;   /* radius of curvature along the sliding direction */
   double radius_y_m;   /* across it (a ball: radius_y_m = radius_x_m) */
   double load_n;       /* normal load W */
+  double eta_pa_s;     /* the fluid's viscosity; 0: dry. A lubricated ball (not an
+                        * ellipsoid) is solved on its own graded cells: cells_per_a0
+                        * sets their finest size 1/cells_per_a0 a0 and y_max_a0 their
+                        * zones and domain (units of y_max_a0/VL_BALL_DOMAIN_A0 a0;
+                        * docs/POINT_CONTACT.md section 9); x_half_a0 is not used */
   double sigma_s_pa;   /* shear stress in the (smooth) contact area; 0 = off */
   double cells_per_a0; /* resolution r: square cells of a0/r */
   double x_half_a0;    /* domain [-x_half, x_half] along x, in a0 */
@@ -82,10 +88,12 @@ void vl_point_contact_free(vl_point_contact *c);
 vl_status vl_point_contact_solve(vl_point_contact *c, double v0_m_s, vl_point *pt, vl_error *err);
 
 /* The fields of the solved half y >= 0, SI, cell by cell (cell
- * k = ix ny + iy: y runs fastest), arrays of vl_point_contact_cells(c)
- * values owned by the caller (any may be NULL). */
+ * k = ix ny + iy: y runs fastest; a lubricated ball's cells are not
+ * evenly spaced), arrays of vl_point_contact_cells(c) values owned by the
+ * caller (any may be NULL). p_f_pa: the fluid pressure (0 when dry), p_c_pa
+ * the contact pressure (0 when lubricated: the smooth solids do not touch). */
 typedef struct {
-  double *x_m, *y_m, *p_c_pa, *u_m;
+  double *x_m, *y_m, *p_c_pa, *u_m, *p_f_pa;
 } vl_fields2d;
 void vl_point_contact_fields(const vl_point_contact *c, vl_fields2d *f);
 

@@ -78,6 +78,7 @@ typedef struct {
   double *map_buf;
   vl_plot_map_data *kept_map;
   size_t *kept_cells;
+  bool lubricated; /* a point contact with the fluid effect: p_f fields and maps */
 } run_ctx;
 
 /* The progress line of point i (on a terminal, unless quiet). */
@@ -135,19 +136,25 @@ static void on_ball_point(void *user, size_t i, size_t total, const vl_point *pt
   size_t n = vl_point_contact_cells(c), cap = VL_BALL_MAX_CELLS, slot = ctx->n_kept;
   for (size_t k = 0; k < ctx->n_kept; k++)
     if (ctx->kept_index[k] == i) slot = k;
-  double *b = ctx->map_buf + 4 * cap * (slot < ctx->n_kept ? slot + 1 : 0);
-  vl_fields2d f = {b, b + cap, b + 2 * cap, b + 3 * cap};
+  double *b = ctx->map_buf + 5 * cap * (slot < ctx->n_kept ? slot + 1 : 0);
+  vl_fields2d f = {b, b + cap, b + 2 * cap, b + 3 * cap, b + 4 * cap};
   vl_point_contact_fields(c, &f);
+  bool wet = ctx->lubricated;
   if (slot < ctx->n_kept) {
     ctx->kept_cells[slot] = n;
-    ctx->kept_map[slot] = (vl_plot_map_data){
-        n / cells_across(f.x_m, n), cells_across(f.x_m, n), f.x_m, f.y_m, f.p_c_pa, f.u_m};
+    ctx->kept_map[slot] = (vl_plot_map_data){n / cells_across(f.x_m, n),
+                                             cells_across(f.x_m, n),
+                                             f.x_m,
+                                             f.y_m,
+                                             f.p_c_pa,
+                                             f.u_m,
+                                             f.p_f_pa};
   }
   char path[4200];
   snprintf(path, sizeof path, "%s/fields/%03zu.csv", ctx->out_dir, i);
   vl_error err = {{0}};
   vl_status st = vl_write_fields2d_csv(path, n, f.x_m, f.y_m, f.p_c_pa, f.u_m,
-                                       vl_simulation_a0(ctx->sim), &err);
+                                       wet ? f.p_f_pa : NULL, vl_simulation_a0(ctx->sim), &err);
   vl_cli_manifest_file(ctx->man, path, st, &err);
 }
 
@@ -157,7 +164,7 @@ static vl_status ball_buffers(run_ctx *ctx, size_t n, bool plot, vl_error *err) 
   size_t cap = VL_BALL_MAX_CELLS;
   for (size_t i = 0; plot && i < n; i++)
     ctx->n_kept += vl_simulation_wants_fields(ctx->sim, i);
-  ctx->map_buf = calloc(4 * cap * (ctx->n_kept + 1), sizeof *ctx->map_buf);
+  ctx->map_buf = calloc(5 * cap * (ctx->n_kept + 1), sizeof *ctx->map_buf);
   ctx->kept_index = calloc(ctx->n_kept + 1, sizeof *ctx->kept_index);
   ctx->kept_map = calloc(ctx->n_kept + 1, sizeof *ctx->kept_map);
   ctx->kept_cells = calloc(ctx->n_kept + 1, sizeof *ctx->kept_cells);
@@ -315,6 +322,10 @@ static vl_status plot_maps(const char *out_dir, vl_simulation *sim, const run_ct
   vl_plot_scales sc = {vl_simulation_a0(sim), vl_simulation_p0(sim), 0.0};
   double ax = 0.0, by = 0.0;
   vl_simulation_hertz_ellipse(sim, &ax, &by);
+  /* a lubricated smooth ball: the fluid's pressure (the solids do not touch) */
+  bool wet = ctx->lubricated;
+  const vl_plot_field fields[2] = {wet ? VL_PLOT_FIELD_PF : VL_PLOT_FIELD_PC, VL_PLOT_FIELD_U};
+  const char *names[2] = {wet ? "pf" : "pc", "u"};
   for (size_t k = 0; k < ctx->n_kept; k++) {
     if (!ctx->kept_cells[k]) continue; /* did not converge: no map */
     for (int u = 0; u < 2; u++) {
@@ -322,14 +333,12 @@ static vl_status plot_maps(const char *out_dir, vl_simulation *sim, const run_ct
       vl_plot_options opt = *opt_in;
       snprintf(sub, sizeof sub, "%s | %s", opt_in->subtitle ? opt_in->subtitle : "", label_ptrs[k]);
       opt.subtitle = sub;
-      snprintf(stem, sizeof stem, "%s/map-%s-%zu", out_dir, u ? "u" : "pc", k + 1);
-      vl_status st = vl_plot_map(stem, u ? VL_PLOT_FIELD_U : VL_PLOT_FIELD_PC, &ctx->kept_map[k],
-                                 &sc, ax, by, &opt, NULL, err);
+      snprintf(stem, sizeof stem, "%s/map-%s-%zu", out_dir, names[u], k + 1);
+      vl_status st = vl_plot_map(stem, fields[u], &ctx->kept_map[k], &sc, ax, by, &opt, NULL, err);
       vl_cli_manifest_figure(ctx->man, stem, st, err);
       if (st != VL_OK && st != VL_EIO) return st;
       if (*len < list_size)
-        *len +=
-            (size_t)snprintf(list + *len, list_size - *len, ", map-%s-%zu", u ? "u" : "pc", k + 1);
+        *len += (size_t)snprintf(list + *len, list_size - *len, ", map-%s-%zu", names[u], k + 1);
     }
   }
   return VL_OK;
@@ -487,6 +496,7 @@ static vl_status curve_prepare(const run_job *job, const vl_scene *scene, vl_sim
   ctx->man = job->man;
   ctx->tty = isatty(STDERR_FILENO);
   ctx->quiet = job->quiet;
+  ctx->lubricated = scene->effects.fluid;
   if (scene->geometry != VL_GEOMETRY_CYLINDER) return ball_buffers(ctx, n, job->plot, err);
   if (job->plot) return keep_fields(ctx, n, grid, err);
   return VL_OK;

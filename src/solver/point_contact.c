@@ -48,6 +48,28 @@ static void cell_counts(const vl_point_contact_config *cfg, size_t *nx, size_t *
   if (*ny < 1) *ny = 1;
 }
 
+/* A lubricated ball: a ball (its solver's symmetry of revolution about
+ * z is assumed by the Hertz scales and the zones), its cells within the
+ * bound. */
+static vl_status check_wet(const vl_point_contact_config *cfg, vl_error *err) {
+  if (cfg->radius_x_m != cfg->radius_y_m) {
+    vl_error_set(err,
+                 "point contact: a lubricated ellipsoid is not available yet (radius_x_m "
+                 "%g differs from radius_y_m %g; a ball only)",
+                 cfg->radius_x_m, cfg->radius_y_m);
+    return VL_EINPUT;
+  }
+  size_t n = vl_point_contact_wet_cells(cfg);
+  if (n > VL_BALL_MAX_CELLS) {
+    vl_error_set(err,
+                 "point contact: %zu cells on the lubricated ball's grid, more than %d "
+                 "(fewer cells per a0)",
+                 n, VL_BALL_MAX_CELLS);
+    return VL_EINPUT;
+  }
+  return VL_OK;
+}
+
 /* VL_OK when cfg describes a contact the solver can build; else VL_EINPUT
  * naming the field. */
 static vl_status check_config(const vl_point_contact_config *cfg, vl_error *err) {
@@ -78,6 +100,11 @@ static vl_status check_config(const vl_point_contact_config *cfg, vl_error *err)
     vl_error_set(err, "point contact: max_iterations must not be negative");
     return VL_EINPUT;
   }
+  if (!(cfg->eta_pa_s >= 0.0 && isfinite(cfg->eta_pa_s))) {
+    vl_error_set(err, "point contact: eta_pa_s must be finite and >= 0 (got %g)", cfg->eta_pa_s);
+    return VL_EINPUT;
+  }
+  if (cfg->eta_pa_s > 0.0) return check_wet(cfg, err);
   size_t nx, ny;
   if (cfg->x_half_a0 * cfg->cells_per_a0 > 1e5 || cfg->y_max_a0 * cfg->cells_per_a0 > 1e5) {
     vl_error_set(err, "point contact: domain too large for its cells");
@@ -155,6 +182,11 @@ vl_status vl_point_contact_build(const vl_point_contact_config *cfg, vl_point_co
   if (c->cfg.max_iterations == 0) c->cfg.max_iterations = VL_NEWTON_MAX_ITERATIONS;
   c->v0 = NAN, c->v_state = NAN;
   set_scales(c);
+  c->wet = cfg->eta_pa_s > 0.0;
+  if (c->wet) { /* its own solver and cells: point_contact_wet.c */
+    *out = c;
+    return VL_OK;
+  }
   st = allocate(c, err);
   if (st != VL_OK) {
     vl_point_contact_release(c);
@@ -169,6 +201,7 @@ void vl_point_contact_release(vl_point_contact *c) {
   if (!c) return;
   vl_kernel2d_free(&c->kern);
   free(c->X), free(c->B), free(c->A);
+  vl_point_ehl_map_free(&c->map);
   free(c);
 }
 
@@ -210,6 +243,7 @@ double vl_point_contact_influence(const vl_point_contact *c, size_t i, size_t j)
 }
 
 void vl_point_contact_reset(vl_point_contact *c) {
+  if (c->wet) return; /* each lubricated solve starts afresh */
   double *y = N_VGetArrayPointer(c->y), sum = 0.0;
   for (size_t k = 0; k < c->n; k++) {
     double rho2 = 2.0 * c->f[k]; /* (gx X^2 + gy Y^2): 1 at the Hertz edge of a ball */

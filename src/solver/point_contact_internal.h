@@ -16,6 +16,7 @@
 #include "viscolube/point_contact.h"
 
 #include "kernel2d.h"
+#include "point_ehl.h"
 
 /* Where a point's time goes (seconds and counts, since creation). */
 typedef struct {
@@ -53,6 +54,8 @@ struct vl_point_contact {
   double v0;      /* speed the influence is built for (NAN: none yet) */
   double v_state; /* speed of the converged state (NAN: the state is a guess) */
   vl_point_contact_timing timing;
+  bool wet;             /* a lubricated ball (cfg.eta_pa_s > 0): point_contact_wet.c */
+  vl_point_ehl_map map; /* its fields after a solve (nx 0: none yet) */
   SUNContext ctx;
   N_Vector y, y_saved, y_start, ones, fwork;
   SUNMatrix J;
@@ -95,6 +98,17 @@ int vl_point_contact_residual(vl_point_contact *c, const double *y, double *f);
 
 /* The dense Jacobian at y into the column-major nunk x nunk Jd. */
 void vl_point_contact_jacobian(vl_point_contact *c, const double *y, double *Jd);
+
+/* point_contact_wet.c */
+
+/* The lubricated ball's solver configuration for c's numerics. */
+void vl_point_contact_wet_config(const vl_point_contact *c, double v0, vl_point_ehl_config *e);
+
+/* Solves the lubricated ball at v0 into pt (and c->map). */
+vl_status vl_point_contact_wet_solve(vl_point_contact *c, double v0, vl_point *pt, vl_error *err);
+
+/* Cells of a lubricated ball's grid for cfg (without solving). */
+size_t vl_point_contact_wet_cells(const vl_point_contact_config *cfg);
 
 /* point_contact_solve.c */
 

@@ -99,6 +99,7 @@ static void plan_point(const vl_point_contact_config *base, double v0, double sc
 
 /* Cells of cfg (as point_contact.c counts them). */
 static size_t cells_of(const vl_point_contact_config *cfg) {
+  if (cfg->eta_pa_s > 0.0) return vl_point_contact_wet_cells(cfg);
   double r = cfg->cells_per_a0;
   return (2 * (size_t)ceil(cfg->x_half_a0 * r - 0.5) + 1) *
          (size_t)fmax(1.0, ceil(cfg->y_max_a0 * r - 1e-9));
@@ -114,7 +115,8 @@ static vl_status solve_on(const vl_point_contact_config *cfg, double v0, double 
   if (s != VL_OK) return s;
   s = vl_point_contact_solve(*c, v0, pt, err);
   st->newton_iterations += pt->iterations;
-  if (s != VL_ENOCONV || !(v_prev > 0.0 && v_prev < v0)) return s;
+  /* (a lubricated ball continues in speed within its own solve) */
+  if (s != VL_ENOCONV || !(v_prev > 0.0 && v_prev < v0) || cfg->eta_pa_s > 0.0) return s;
   st->substeps++;
   vl_point_contact_reset(*c);
   long nni = pt->iterations;
@@ -150,6 +152,8 @@ static double estimate(const vl_point_contact_config *cfg, double v0, vl_sweep_s
   vl_point_contact_free(c);
   if (s != VL_OK) return NAN;
   double d = fabs(pt->mu_Rc - cp.mu_Rc) / (M_SQRT2 - 1.0) + fabs(pt->mu_Sc - cp.mu_Sc);
+  if (cfg->eta_pa_s > 0.0) /* lubricated: the change itself (order 1, see above) */
+    d = fabs(pt->mu_Rf - cp.mu_Rf) + fabs(pt->mu_Sf - cp.mu_Sf);
   return d / fmax(fabs(pt->mu), 1e-9);
 }
 

@@ -31,6 +31,8 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <time.h>
 
+#include <gsl/gsl_sf_expint.h>
+
 #include "blas_threads.h"
 #include "kernel2d.h"
 #include "linsol_lapack.h"
@@ -39,25 +41,29 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-/* Zones of finest cells (units of a): the inlet's edge, the outlet's edge
+/* Zones of finest cells (units of a times cfg->unit): the inlet's edge, the outlet's edge
  * with the side lobes of the horseshoe (the rim from x = 0.2 a round to
  * x = a), and across, the rim from y = 0.3 a to beyond a. */
 static const double ZONE_X[2][2] = {{-1.1, -0.8}, {0.2, 1.1}};
 static const double ZONE_Y[1][2] = {{0.3, 1.1}};
+
+/* A parabola's vertex (the film's minimum between cells) below this
+ * fraction of the cells' smallest value is not trusted. */
+#define TRUST_VERTEX 0.5
 
 /* Stencil of a row: at most 6 cells whose film enters it. */
 #define STENCIL 8
 
 typedef struct {
   size_t nx, ny, n;
-  double *xf, *yf;      /* faces: nx + 1, ny + 1 */
-  double *xc, *yc;      /* centres */
-  double *dx, *dy;      /* widths */
-  double *M;            /* influence, row-major n x n: H_k per P_l */
-  double *f;            /* undeformed gap (X^2 + Y^2)/2 */
-  double *H, *g;        /* film and conductance H^3 of the last evaluation */
+  double *xf, *yf; /* faces: nx + 1, ny + 1 */
+  double *xc, *yc; /* centres */
+  double *dx, *dy; /* widths */
+  double *M;       /* influence, row-major n x n: H_k per P_l */
+  double *f;       /* undeformed gap (X^2 + Y^2)/2 */
+  double *H, *g;   /* film and conductance H^3 of the last evaluation */
   double lambda;
-  double *row;          /* a Jacobian row (n + 1) */
+  double *row; /* a Jacobian row (n + 1) */
 } ehl;
 
 static double now_s(void) {
@@ -68,7 +74,8 @@ static double now_s(void) {
 
 void vl_point_ehl_config_defaults(vl_point_ehl_config *cfg) {
   memset(cfg, 0, sizeof *cfg);
-  cfg->nu = 0.5;
+  cfg->rubber.nu = 0.5;
+  cfg->unit = 1.0;
   cfg->x_in = -3.0, cfg->x_out = 1.6, cfg->y_max = 1.8;
   cfg->h_fine = 0.02, cfg->h_coarse = 0.2, cfg->growth = 1.0;
   cfg->tolerance = 1e-9;
@@ -76,10 +83,11 @@ void vl_point_ehl_config_defaults(vl_point_ehl_config *cfg) {
 }
 
 /* Distance from t to the nearest zone (0 inside one). */
-static double zone_distance(double t, const double (*z)[2], size_t nz) {
+static double zone_distance(double t, const double (*z)[2], size_t nz, double unit) {
   double d = INFINITY;
   for (size_t i = 0; i < nz; i++) {
-    double di = t < z[i][0] ? z[i][0] - t : t > z[i][1] ? t - z[i][1] : 0.0;
+    double lo = unit * z[i][0], hi = unit * z[i][1];
+    double di = t < lo ? lo - t : t > hi ? t - hi : 0.0;
     d = fmin(d, di);
   }
   return d;
@@ -99,7 +107,7 @@ static size_t graded_faces(double lo, double hi, const double (*z)[2], size_t nz
   N[0] = 0.0;
   for (size_t i = 0; i <= ns; i++) {
     double t = lo + dt * (double)i;
-    double s = fmin(cfg->h_coarse, cfg->h_fine + cfg->growth * zone_distance(t, z, nz));
+    double s = fmin(cfg->h_coarse, cfg->h_fine + cfg->growth * zone_distance(t, z, nz, cfg->unit));
     if (i > 0) N[i] = N[i - 1] + 0.5 * dt * (1.0 / prev + 1.0 / s);
     prev = s;
   }
@@ -128,6 +136,102 @@ static void ehl_free(ehl *e) {
   free(e->M), free(e->f), free(e->H), free(e->g), free(e->row);
 }
 
+/* Hertz's scales of the relaxed rubber: the reduced moduli, a and p0. */
+typedef struct {
+  double er0, er_inf, a, p0;
+} ehl_scales;
+
+static ehl_scales scales_of(const vl_point_ehl_config *cfg) {
+  ehl_scales sc;
+  double red = 1.0 / (1.0 - cfg->rubber.nu * cfg->rubber.nu);
+  sc.er_inf = cfg->rubber.e_inf_pa * red;
+  sc.er0 = vl_prony_e0(&cfg->rubber) * red;
+  sc.a = cbrt(3.0 * cfg->load_n * cfg->radius_m / (4.0 * sc.er0));
+  sc.p0 = 3.0 * cfg->load_n / (2.0 * M_PI * sc.a * sc.a);
+  return sc;
+}
+
+/* Love's rectangle of source cell l seen from (X, Y), plus its mirror
+ * image in y = 0. */
+static double love_pair(const ehl *e, double X, double Y, size_t l) {
+  size_t il = l / e->ny, jl = l % e->ny;
+  double ax = 0.5 * e->dx[il], ay = 0.5 * e->dy[jl], d = X - e->xc[il];
+  return vl_kernel2d_rect(d, Y - e->yc[jl], ax, ay) + vl_kernel2d_rect(d, Y + e->yc[jl], ax, ay);
+}
+
+/* Upstream of the domain the memory filter starts at X_FAR (units of a)
+ * and runs over nodes spaced by at most EXT_RATIO times their distance
+ * from the domain's first centre. */
+#define X_FAR 200.0
+#define EXT_RATIO 0.2
+
+/* One step of the memory filter F' = (K - F)/b along x over a step t =
+ * dx/b, K linear between the nodes: F_i = r F_{i-1} + (1 - r - q) K_i +
+ * q K_{i-1}, r = e^{-t}, q = (1 - r)/t - r. */
+static void filter_step(double t, double *r, double *q) {
+  *r = exp(-t);
+  *q = t < 1e-3 ? t * (0.5 - t * (1.0 / 3.0 - t / 8.0)) : -expm1(-t) / t - *r;
+}
+
+/* The memory: M_kl += sum_m A_m F_m, F_m the displacement of source cell
+ * l along the row of its target k filtered by e^{-s/b_m}/b_m over the
+ * upstream distance s (docs/POINT_CONTACT.md section 3). The filter runs
+ * along each row of targets (K copied before M is added to) from X_FAR upstream, where the source
+ * is a point load (the start: its filtered 1/rho, area e^{D/b} E1(D/b)/b), over a geometric
+ * extension into the domain's cell centres. Linear interpolation of the displacement between nodes:
+ * second order in the cells, checked against the uniform grid's exact cell integrals (kernel2d.c)
+ * in tests/test_ball_ehl.c. */
+static vl_status add_memory(ehl *e, const double *A, const double *b, size_t nk) {
+  size_t nx = e->nx, ny = e->ny, n = e->n, next = 0;
+  double x0 = e->xc[0];
+  /* extension nodes: upstream of x0, coarsening geometrically */
+  double xe[256];
+  for (double d = e->dx[0]; next < 255; d *= 1.0 + EXT_RATIO) {
+    xe[next++] = x0 - d;
+    if (d > X_FAR) break;
+  }
+  size_t nn = next + nx; /* nodes along a row: extension (far to near), then the domain */
+  double *xn = malloc(nn * sizeof *xn), *K = malloc(nn * sizeof *K);
+  double *rq = malloc(2 * nk * nn * sizeof *rq);
+  if (!xn || !K || !rq) {
+    free(xn), free(K), free(rq);
+    return VL_ENOMEM;
+  }
+  for (size_t i = 0; i < next; i++)
+    xn[i] = xe[next - 1 - i];
+  for (size_t i = 0; i < nx; i++)
+    xn[next + i] = e->xc[i];
+  for (size_t m = 0; m < nk; m++)
+    for (size_t i = 1; i < nn; i++)
+      filter_step((xn[i] - xn[i - 1]) / b[m], &rq[2 * (m * nn + i)], &rq[2 * (m * nn + i) + 1]);
+  for (size_t j = 0; j < ny; j++)
+    for (size_t l = 0; l < n; l++) {
+      double Y = e->yc[j], xl = e->xc[l / ny], yl = e->yc[l % ny];
+      double area = e->dx[l / ny] * e->dy[l % ny];
+      for (size_t i = 0; i < nn; i++)
+        K[i] = i < next ? love_pair(e, xn[i], Y, l) : e->M[((i - next) * ny + j) * n + l];
+      double D1 = hypot(xl - xn[0], Y - yl), D2 = hypot(xl - xn[0], Y + yl);
+      for (size_t m = 0; m < nk; m++) {
+        if (!(A[m] > 0.0) || !isfinite(b[m])) continue;
+        double F = K[0];
+        if (b[m] > 0.0)
+          F = area / b[m] *
+              (gsl_sf_expint_E1_scaled(D1 / b[m]) + gsl_sf_expint_E1_scaled(D2 / b[m]));
+        const double *c = rq + 2 * m * nn;
+        for (size_t i = 1; i < nn; i++) {
+          if (b[m] > 0.0) {
+            double r = c[2 * i], q = c[2 * i + 1];
+            F = r * F + (1.0 - r - q) * K[i] + q * K[i - 1];
+          } else
+            F = K[i];
+          if (i >= next) e->M[((i - next) * ny + j) * n + l] += A[m] * F;
+        }
+      }
+    }
+  free(xn), free(K), free(rq);
+  return VL_OK;
+}
+
 /* The grid, the undeformed gap and the dense influence matrix. */
 static vl_status ehl_build(ehl *e, const vl_point_ehl_config *cfg, vl_error *err) {
   memset(e, 0, sizeof *e);
@@ -151,18 +255,20 @@ static vl_status ehl_build(ehl *e, const vl_point_ehl_config *cfg, vl_error *err
     double X = e->xc[k / ny], Y = e->yc[k % ny];
     e->f[k] = 0.5 * (X * X + Y * Y);
   }
-  const double c = 2.0 / (M_PI * M_PI);
-  for (size_t k = 0; k < n; k++) {
-    double X = e->xc[k / ny], Y = e->yc[k % ny];
-    double *Mk = e->M + k * n;
-    for (size_t l = 0; l < n; l++) {
-      size_t il = l / ny, jl = l % ny;
-      double ax = 0.5 * e->dx[il], ay = 0.5 * e->dy[jl];
-      double dxk = X - e->xc[il];
-      Mk[l] = c * (vl_kernel2d_rect(dxk, Y - e->yc[jl], ax, ay) +
-                   vl_kernel2d_rect(dxk, Y + e->yc[jl], ax, ay));
-    }
-  }
+  for (size_t k = 0; k < n; k++)
+    for (size_t l = 0; l < n; l++)
+      e->M[k * n + l] = love_pair(e, e->xc[k / ny], e->yc[k % ny], l);
+  /* the Prony terms' strengths and memory lengths v0 tau/a */
+  const vl_prony *rb = &cfg->rubber;
+  double b[VL_PRONY_MAX_TERMS];
+  ehl_scales sc = scales_of(cfg);
+  for (size_t m = 0; m < rb->n_terms; m++)
+    b[m] = cfg->v0_m_s * rb->tau_s[m] / sc.a;
+  if (rb->n_terms && add_memory(e, rb->A, b, rb->n_terms) != VL_OK) goto nomem;
+  /* H per P: 2/pi^2 Er0/Er_inf (Hertz's scales are the relaxed rubber's) */
+  double c = 2.0 / (M_PI * M_PI) * sc.er0 / sc.er_inf;
+  for (size_t k = 0; k < n * n; k++)
+    e->M[k] *= c;
   return VL_OK;
 nomem:
   ehl_free(e);
@@ -409,27 +515,31 @@ static void silent(int code, const char *module, const char *function, char *msg
 }
 
 static vl_status check_config(const vl_point_ehl_config *c, vl_error *err) {
+  vl_status st = vl_prony_validate(&c->rubber, err);
+  if (st != VL_OK) return st;
   struct {
     const char *name;
     double v;
-  } pos[] = {{"radius_m", c->radius_m}, {"load_n", c->load_n},     {"e_pa", c->e_pa},
-             {"eta_pa_s", c->eta_pa_s}, {"v0_m_s", c->v0_m_s},     {"h_fine", c->h_fine},
-             {"h_coarse", c->h_coarse}, {"growth", c->growth},     {"x_out", c->x_out},
-             {"y_max", c->y_max},       {"tolerance", c->tolerance}};
+  } pos[] = {
+      {"radius_m", c->radius_m}, {"load_n", c->load_n},       {"e_inf_pa", c->rubber.e_inf_pa},
+      {"eta_pa_s", c->eta_pa_s}, {"v0_m_s", c->v0_m_s},       {"h_fine", c->h_fine},
+      {"h_coarse", c->h_coarse}, {"growth", c->growth},       {"x_out", c->x_out},
+      {"y_max", c->y_max},       {"tolerance", c->tolerance}, {"unit", c->unit}};
   for (size_t i = 0; i < sizeof pos / sizeof pos[0]; i++)
     if (!(pos[i].v > 0.0) || !isfinite(pos[i].v)) {
       vl_error_set(err, "point EHL: %s must be positive and finite (got %g)", pos[i].name,
                    pos[i].v);
       return VL_EINPUT;
     }
-  if (!(c->x_in < -1.2) || !(c->x_out > 1.2) || !(c->y_max > 1.2)) {
-    vl_error_set(err, "point EHL: the domain x_in %g, x_out %g, y_max %g must reach beyond "
-                      "1.2 Hertz radii",
-                 c->x_in, c->x_out, c->y_max);
+  if (!(c->x_in < -1.2 * c->unit) || !(c->x_out > 1.2 * c->unit) || !(c->y_max > 1.2 * c->unit)) {
+    vl_error_set(err,
+                 "point EHL: the domain x_in %g, x_out %g, y_max %g must reach beyond "
+                 "1.2 units (%g Hertz radii)",
+                 c->x_in, c->x_out, c->y_max, c->unit);
     return VL_EINPUT;
   }
-  if (!(c->nu >= 0.0 && c->nu <= 0.5)) {
-    vl_error_set(err, "point EHL: nu must be in [0, 0.5] (got %g)", c->nu);
+  if (!(c->rubber.nu >= 0.0 && c->rubber.nu <= 0.5)) {
+    vl_error_set(err, "point EHL: nu must be in [0, 0.5] (got %g)", c->rubber.nu);
     return VL_EINPUT;
   }
   if (!(c->h_fine <= c->h_coarse) || c->max_iterations < 1) {
@@ -441,7 +551,7 @@ static vl_status check_config(const vl_point_ehl_config *c, vl_error *err) {
 }
 
 void vl_point_ehl_hamrock_dowson(const vl_point_ehl_config *cfg, double *h_min_m, double *h_c_m) {
-  double Ep = 2.0 * cfg->e_pa / (1.0 - cfg->nu * cfg->nu), R = cfg->radius_m;
+  double Ep = 2.0 * scales_of(cfg).er0, R = cfg->radius_m;
   double U = cfg->eta_pa_s * 0.5 * cfg->v0_m_s / (Ep * R), W = cfg->load_n / (Ep * R * R);
   *h_min_m = R * 7.43 * pow(U, 0.65) * pow(W, -0.21) * (1.0 - 0.85 * exp(-0.31));
   *h_c_m = R * 7.32 * pow(U, 0.64) * pow(W, -0.22) * (1.0 - 0.72 * exp(-0.28));
@@ -456,8 +566,18 @@ static double centre_film(const ehl *e) {
   double t = (0.0 - e->xc[i]) / (e->xc[i + 1] - e->xc[i]), y0 = e->yc[0], y1 = e->yc[1];
   double h0 = (1.0 - t) * e->H[i * ny] + t * e->H[(i + 1) * ny];
   double h1 = (1.0 - t) * e->H[i * ny + 1] + t * e->H[(i + 1) * ny + 1];
-  double b = (h1 - h0) / (y1 * y1 - y0 * y0);
-  return h0 - b * y0 * y0;
+  double b = (h1 - h0) / (y1 * y1 - y0 * y0), h = h0 - b * y0 * y0;
+  return h >= TRUST_VERTEX * h0 ? h : h0; /* (as a parabola's vertex, min_film) */
+}
+
+/* The film on the centre line at X (units of a): linear between the
+ * first row's cells. */
+static double axis_film_at(const ehl *e, double X) {
+  size_t ny = e->ny, i = 0;
+  while (i + 2 < e->nx && e->xc[i + 1] < X)
+    i++;
+  double t = fmin(1.0, fmax(0.0, (X - e->xc[i]) / (e->xc[i + 1] - e->xc[i])));
+  return (1.0 - t) * e->H[i * ny] + t * e->H[(i + 1) * ny];
 }
 
 /* Vertex of the parabola through (t0, v0), (t1, v1), (t2, v2) (t1 the
@@ -481,9 +601,18 @@ static double row_min(const ehl *e, size_t j, double *xm) {
   for (size_t i = 1; i < nx; i++)
     if (e->H[i * ny + j] < e->H[ib * ny + j]) ib = i;
   *xm = e->xc[ib];
-  if (ib == 0 || ib + 1 == nx) return e->H[ib * ny + j];
-  return parabola_min(e->xc[ib - 1], e->xc[ib], e->xc[ib + 1], e->H[(ib - 1) * ny + j],
-                      e->H[ib * ny + j], e->H[(ib + 1) * ny + j], xm);
+  double cell = e->H[ib * ny + j];
+  if (ib == 0 || ib + 1 == nx) return cell;
+  double v = parabola_min(e->xc[ib - 1], e->xc[ib], e->xc[ib + 1], e->H[(ib - 1) * ny + j], cell,
+                          e->H[(ib + 1) * ny + j], xm);
+  /* a vertex far below the cells is a valley the cells do not resolve (a
+   * kink, not a parabola): the cell's own value, which the error estimate
+   * then sees change with the cells */
+  if (!(v >= TRUST_VERTEX * cell)) {
+    *xm = e->xc[ib];
+    return cell;
+  }
+  return v;
 }
 
 /* The minimum film, following the valley of the film: each row's minimum
@@ -504,6 +633,7 @@ static double min_film(const ehl *e, double *xm, double *ym, bool axis_only) {
   if (jb == 0 || jb + 1 == ny) return best;
   double x0, x2, v0 = row_min(e, jb - 1, &x0), v2 = row_min(e, jb + 1, &x2), y;
   double v = parabola_min(e->yc[jb - 1], e->yc[jb], e->yc[jb + 1], v0, best, v2, &y);
+  if (!(v >= TRUST_VERTEX * best)) return best; /* see row_min */
   /* the x of the valley at y: linear between the rows' minima */
   if (y < e->yc[jb])
     *xm += (x0 - *xm) * (e->yc[jb] - y) / (e->yc[jb] - e->yc[jb - 1]);
@@ -549,22 +679,60 @@ static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, doub
     }
   }
   res->x_centroid_m = 2.0 * spx / W;
+  res->h_centroid_m = axis_film_at(e, res->x_centroid_m / a) * us;
+  size_t kmax = 0;
+  for (size_t k = 1; k < n; k++)
+    if (y[k] > y[kmax]) kmax = k;
+  res->p_max_pa = y[kmax] * p0;
+  res->x_pmax_m = e->xc[kmax / ny] * a, res->y_pmax_m = e->yc[kmax % ny] * a;
   res->mu_Rf = -2.0 * spx / (W * R);
   res->mu_Sf_couette = 2.0 * couette / W;
   res->mu_Sf_poiseuille = 2.0 * pois / W;
   res->mu_Sf = res->mu_Sf_couette + res->mu_Sf_poiseuille;
 }
 
-/* The dry Hertz pressure lifted so that the centre's film is lift (a^2/R). */
-static void hertz_start(ehl *e, double *yd, double lift) {
+/* The fields of state y (SI units) into map. */
+static vl_status map_of(ehl *e, const double *y, double a, double p0, double us,
+                        vl_point_ehl_map *map, vl_error *err) {
+  size_t n = e->n;
+  memset(map, 0, sizeof *map);
+  map->x_m = malloc(4 * n * sizeof *map->x_m);
+  if (!map->x_m) {
+    vl_error_set(err, "out of memory for the lubricated ball's fields (%zu cells)", n);
+    return VL_ENOMEM;
+  }
+  map->y_m = map->x_m + n, map->p_pa = map->x_m + 2 * n, map->u_m = map->x_m + 3 * n;
+  map->nx = e->nx, map->ny = e->ny;
+  ehl_eval(e, y);
+  for (size_t k = 0; k < n; k++) {
+    map->x_m[k] = e->xc[k / e->ny] * a, map->y_m[k] = e->yc[k % e->ny] * a;
+    map->p_pa[k] = y[k] * p0, map->u_m[k] = e->H[k] * us;
+  }
+  return VL_OK;
+}
+
+void vl_point_ehl_map_free(vl_point_ehl_map *map) {
+  if (map) free(map->x_m), memset(map, 0, sizeof *map);
+}
+
+/* The dry Hertz pressure of a circle of radius unit (the load's), plus a
+ * tail e^{-r^2} outside it, lifted
+ * so that the centre's film is lift (a^2/R), and the film nowhere below
+ * half of it (a sliding rubber's lag can close it at the outlet). */
+static void hertz_start(ehl *e, double *yd, double unit, double lift, double tail) {
   size_t n = e->n;
   for (size_t k = 0; k < n; k++) {
-    double X = e->xc[k / e->ny], Y = e->yc[k % e->ny], r2 = X * X + Y * Y;
-    yd[k] = r2 < 1.0 ? sqrt(1.0 - r2) : 0.0;
+    double X = e->xc[k / e->ny] / unit, Y = e->yc[k % e->ny] / unit, r2 = X * X + Y * Y;
+    yd[k] = (r2 < 1.0 ? sqrt(1.0 - r2) : tail * exp(-r2)) / (unit * unit);
   }
   yd[n] = 0.0;
   ehl_eval(e, yd);
   yd[n] = lift - centre_film(e);
+  ehl_eval(e, yd);
+  double hmin = INFINITY;
+  for (size_t k = 0; k < n; k++)
+    hmin = fmin(hmin, e->H[k]);
+  yd[n] += fmax(0.0, 0.5 * lift - hmin);
 }
 
 /* One KINSol from y with the given strategy; true when the max norm of the
@@ -580,14 +748,13 @@ static bool kinsol_run(void *kmem, N_Vector y, N_Vector ones, N_Vector fw, ehl *
   return flag >= 0 && *fnorm <= tol;
 }
 
-vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const double *guess_p,
-                             const double *guess_h0, vl_point_ehl_result *res, double **p_out,
-                             double *h0_out, vl_error *err) {
+vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, vl_point_ehl_result *res,
+                             vl_point_ehl_map *map, vl_error *err) {
   memset(res, 0, sizeof *res);
   vl_status st = check_config(cfg, err);
   if (st != VL_OK) return st;
-  double Er = cfg->e_pa / (1.0 - cfg->nu * cfg->nu), R = cfg->radius_m, W = cfg->load_n;
-  double a = cbrt(3.0 * W * R / (4.0 * Er)), p0 = 3.0 * W / (2.0 * M_PI * a * a);
+  ehl_scales sc = scales_of(cfg);
+  double R = cfg->radius_m, a = sc.a, p0 = sc.p0;
   res->a_m = a, res->p0_pa = p0;
   double t0 = now_s();
   ehl e;
@@ -628,25 +795,22 @@ vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const double *guess
   double *yd = N_VGetArrayPointer(y);
   double hmin_fit, hc_fit, lambda = e.lambda;
   vl_point_ehl_hamrock_dowson(cfg, &hmin_fit, &hc_fit);
+  /* a contact shrunk to `unit` by a stiffer rubber: the modulus Er0/unit^3,
+   * the fit's film ~ E'^-0.42 */
+  hc_fit *= pow(cfg->unit, 1.26);
   double fnorm = INFINITY;
   bool ok = false;
-  if (guess_p) {
-    memcpy(yd, guess_p, n * sizeof *yd);
-    yd[n] = *guess_h0;
-    ok = kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations,
-                    &fnorm);
-  }
   /* from Hertz at the target, else at a thicker film (lambda x 4^k: the
    * film's elastic share falls), then continued back down in lambda
    * (the speed) by shrinking factors */
   double lam = lambda;
   for (int k = 0; !ok && k <= 10; k++, lam *= 4.0) {
     e.lambda = lam;
-    hertz_start(&e, yd, hc_fit * pow(lam / lambda, 0.64) / (a * a / R));
+    hertz_start(&e, yd, cfg->unit, hc_fit * pow(lam / lambda, 0.64) / (a * a / R), 0.0);
     /* an attempt from Hertz that is going to fail stalls early */
     KINSetNumMaxIters(kmem, k == 0 ? cfg->max_iterations : 25);
-    ok = kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations,
-                    &fnorm);
+    ok =
+        kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations, &fnorm);
   }
   KINSetNumMaxIters(kmem, cfg->max_iterations);
   if (ok && e.lambda > lambda) {
@@ -675,12 +839,7 @@ vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const double *guess
   res->residual = fnorm;
   report(&e, cfg, yd, a, p0, res);
   res->t_solve_s = now_s() - t0;
-  if (p_out) {
-    *p_out = malloc(n * sizeof **p_out);
-    if (!*p_out) goto nomem;
-    memcpy(*p_out, yd, n * sizeof **p_out);
-    *h0_out = yd[n];
-  }
+  if (map && (st = map_of(&e, yd, a, p0, a * a / R, map, err)) != VL_OK) goto cleanup;
   st = VL_OK;
   if (!ok) {
     vl_error_set(err, "the lubricated ball did not converge at v0 = %g m/s (residual %.3g)",
@@ -704,9 +863,29 @@ cleanup:
   return st;
 }
 
+size_t vl_point_ehl_cells(const vl_point_ehl_config *cfg) {
+  double *xf = NULL, *yf = NULL;
+  size_t nx = graded_faces(cfg->x_in, cfg->x_out, ZONE_X, 2, cfg, &xf);
+  size_t ny = graded_faces(0.0, cfg->y_max, ZONE_Y, 1, cfg, &yf);
+  free(xf), free(yf);
+  return nx * ny;
+}
+
+double *vl_point_ehl_influence(const vl_point_ehl_config *cfg, size_t *nx, size_t *ny, double **xc,
+                               double **yc) {
+  vl_error err;
+  ehl e;
+  if (check_config(cfg, &err) != VL_OK || ehl_build(&e, cfg, &err) != VL_OK) return NULL;
+  double *M = e.M;
+  *nx = e.nx, *ny = e.ny, *xc = e.xc, *yc = e.yc;
+  e.M = NULL, e.xc = NULL, e.yc = NULL;
+  ehl_free(&e);
+  return M;
+}
+
 double vl_point_ehl_jacobian_check(const vl_point_ehl_config *cfg, double lift) {
-  double Er = cfg->e_pa / (1.0 - cfg->nu * cfg->nu), R = cfg->radius_m, W = cfg->load_n;
-  double a = cbrt(3.0 * W * R / (4.0 * Er)), p0 = 3.0 * W / (2.0 * M_PI * a * a);
+  ehl_scales sc = scales_of(cfg);
+  double R = cfg->radius_m, a = sc.a, p0 = sc.p0;
   ehl e;
   vl_error err;
   if (ehl_build(&e, cfg, &err) != VL_OK) return NAN;
@@ -718,29 +897,23 @@ double vl_point_ehl_jacobian_check(const vl_point_ehl_config *cfg, double lift) 
            f1 = N_VNew_Serial((sunindextype)m, ctx);
   SUNMatrix J = SUNDenseMatrix((sunindextype)m, (sunindextype)m, ctx);
   double *yd = N_VGetArrayPointer(y);
-  for (size_t k = 0; k < n; k++) {
-    double X = e.xc[k / e.ny], Y = e.yc[k % e.ny], r2 = X * X + Y * Y;
-    yd[k] = r2 < 1.0 ? sqrt(1.0 - r2) : 0.01 * exp(-r2);
-  }
-  yd[n] = 0.0;
-  ehl_eval(&e, yd);
-  yd[n] = lift - centre_film(&e);
+  hertz_start(&e, yd, cfg->unit, lift, 0.01);
   jacobian_fn(y, f0, J, &e, NULL, NULL);
-  residual_fn(y, f0, &e);
+  bool closed = residual_fn(y, f0, &e) != 0; /* a closed film: no check at this state */
   double *Jd = SUNDenseMatrix_Data(J), worst = 0.0, *F0 = N_VGetArrayPointer(f0),
          *F1 = N_VGetArrayPointer(f1);
   for (size_t l = 0; l < m; l++) {
     double h = 1e-7 * fmax(1.0, fabs(yd[l])), keep = yd[l];
     yd[l] += h;
-    residual_fn(y, f1, &e);
+    closed = closed || residual_fn(y, f1, &e) != 0;
     yd[l] = keep;
     for (size_t k = 0; k < m; k++) {
       double fd = (F1[k] - F0[k]) / h, an = Jd[l * m + k];
       double d = fabs(fd - an) / fmax(1.0, fabs(an));
-      if (d > worst) worst = d, fprintf(stderr, "row %zu col %zu fd %g an %g\n", k, l, fd, an);
+      if (d > worst) worst = d;
     }
   }
   N_VDestroy(y), N_VDestroy(f0), N_VDestroy(f1), SUNMatDestroy(J), SUNContext_Free(&ctx);
   ehl_free(&e);
-  return worst;
+  return closed ? NAN : worst;
 }

@@ -747,8 +747,8 @@ static vl_status geometry_check(parse_state *ps) {
 }
 
 /* What a point contact (a ball, an ellipsoid) does not take yet: it is
- * dry and smooth (docs/POINT_CONTACT.md). The first key that asks for more
- * is named. */
+ * smooth, and dry unless a ball (docs/POINT_CONTACT.md). The first key
+ * that asks for more is named. */
 static vl_status point_contact_check(parse_state *ps) {
   vl_scene *sc = ps->scene;
   struct {
@@ -756,7 +756,8 @@ static vl_status point_contact_check(parse_state *ps) {
     bool on;
     const char *why;
   } no[] = {
-      {K_FLUID, sc->effects.fluid, "a lubricated ball is not available yet (dry only)"},
+      {K_FLUID, sc->effects.fluid && sc->geometry != VL_GEOMETRY_BALL,
+       "a lubricated ellipsoid is not available yet (a ball only)"},
       {K_ROUGHNESS, sc->effects.roughness, "a rough ball is not available yet (smooth only)"},
       {K_VISCOUS_FLATTENING, sc->effects.viscous_flattening, "needs a rough lubricated contact"},
       {K_MOVING, sc->moving != VL_MOVING_RUBBER, "a ball rolls or slides on a moving rubber only"},

@@ -252,16 +252,21 @@ vl_status vl_write_curve_csv(const char *path, size_t n, const vl_point *pts,
 }
 
 vl_status vl_write_fields2d_csv(const char *path, size_t n, const double *x_m, const double *y_m,
-                                const double *p_c_pa, const double *u_m, double a0_m,
-                                vl_error *err) {
+                                const double *p_c_pa, const double *u_m, const double *p_f_pa,
+                                double a0_m, vl_error *err) {
   vl_atomic_file af;
   if (vl_atomic_file_open(&af, path, err) != VL_OK) return VL_EIO;
   FILE *f = af.f;
-  fputs("x_m,y_m,x_over_a0,y_over_a0,p_c_pa,u_m\n", f);
-  for (size_t i = 0; i < n; i++)
-    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", plain_zero(x_m[i]), plain_zero(y_m[i]),
+  fputs(p_f_pa ? "x_m,y_m,x_over_a0,y_over_a0,p_c_pa,u_m,p_f_pa\n"
+               : "x_m,y_m,x_over_a0,y_over_a0,p_c_pa,u_m\n",
+        f);
+  for (size_t i = 0; i < n; i++) {
+    fprintf(f, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g", plain_zero(x_m[i]), plain_zero(y_m[i]),
             plain_zero(x_m[i] / a0_m), plain_zero(y_m[i] / a0_m), plain_zero(p_c_pa[i]),
             plain_zero(u_m[i]));
+    if (p_f_pa) fprintf(f, ",%.10g", plain_zero(p_f_pa[i]));
+    fputc('\n', f);
+  }
   return vl_atomic_file_commit(&af, err);
 }
 

@@ -2076,13 +2076,30 @@ typedef struct {
   const vl_plot_map_data *d;
   vl_plot_scales sc;
   double hertz_ax, hertz_by; /* the Hertz ellipse, in a0 (0: not drawn) */
+  double *scratch;           /* 2 nx ny values: the centres in a0 */
 } map_ctx;
 
 /* The value of cell k shown (NAN: the cell is left white: out of contact). */
 static double map_value(const map_ctx *c, size_t k) {
   if (c->field == VL_PLOT_FIELD_PC)
     return c->d->p_c_pa[k] > 0.0 ? c->d->p_c_pa[k] / c->sc.p0_pa : NAN;
+  if (c->field == VL_PLOT_FIELD_PF)
+    return c->d->p_f_pa[k] > 0.0 ? c->d->p_f_pa[k] / c->sc.p0_pa : NAN;
   return c->d->u_m[k] * 1e6;
+}
+
+/* The extent of cell i of a row of n centres t[i * stride] (units a0):
+ * half way to each neighbour, the end cells as wide as the gap to theirs. */
+static void cell_extent(const double *t, size_t stride, size_t n, size_t i, double *lo,
+                        double *hi) {
+  double c = t[i * stride];
+  if (n < 2) {
+    *lo = c - 0.5, *hi = c + 0.5;
+    return;
+  }
+  double left = i > 0 ? t[(i - 1) * stride] : 2 * c - t[stride * (i + 1)];
+  double right = i + 1 < n ? t[(i + 1) * stride] : 2 * c - t[stride * (i - 1)];
+  *lo = 0.5 * (left + c), *hi = 0.5 * (c + right);
 }
 
 /* Viridis from dark (t = 0) to yellow (t = 1), as `sequential` but to its end. */
@@ -2107,7 +2124,8 @@ static void fill_rect(fig *f, double x0, double y0, double x1, double y1, rgb co
 
 /* The cells (and their mirror images across y = 0), coloured by value over
  * [0, hi]. */
-static void draw_map_cells(fig *f, const map_ctx *c, double hx, double hy, double hi) {
+static void draw_map_cells(fig *f, const map_ctx *c, const double *xs, const double *ys,
+                           double hi) {
   const vl_plot_map_data *d = c->d;
   pllsty(1);
   plwidth(0.0); /* the driver strokes a fill's edge with the current pen */
@@ -2115,9 +2133,11 @@ static void draw_map_cells(fig *f, const map_ctx *c, double hx, double hy, doubl
     double v = map_value(c, k);
     if (!isfinite(v)) continue;
     rgb col = viridis(hi > 0 ? v / hi : 0);
-    double x = d->x_m[k] / c->sc.a0_m, y = d->y_m[k] / c->sc.a0_m;
-    for (int s = -1; s <= 1; s += 2)
-      fill_rect(f, x - 0.5 * hx, s * y - 0.5 * hy, x + 0.5 * hx, s * y + 0.5 * hy, col);
+    double x0, x1, y0, y1;
+    cell_extent(xs, d->ny, d->nx, k / d->ny, &x0, &x1);
+    cell_extent(ys, 1, d->ny, k % d->ny, &y0, &y1);
+    fill_rect(f, x0, y0, x1, y1, col);
+    fill_rect(f, x0, -y1, x1, -y0, col);
   }
 }
 
@@ -2174,10 +2194,17 @@ static void draw_map(fig *f, const void *vctx) {
     xlo = fmin(xlo, x), xhi = fmax(xhi, x), ymax = fmax(ymax, y);
     if (isfinite(v)) hi = fmax(hi, v);
   }
-  /* cell sizes from the centres (uniform cells) */
-  double hx = d->nx > 1 ? (d->x_m[d->ny] - d->x_m[0]) / c->sc.a0_m : 2 * fmax(fabs(xlo), 1e-3);
-  double hy = d->ny > 1 ? (d->y_m[1] - d->y_m[0]) / c->sc.a0_m : 2 * fmax(ymax, 1e-3);
-  double X0 = xlo - 0.5 * hx, X1 = xhi + 0.5 * hx, Y1 = ymax + 0.5 * hy;
+  /* the centres in a0, and the cells' outer edges */
+  double *xs = c->scratch, *ys = c->scratch + n, lo, hi_edge;
+  for (size_t k = 0; k < n; k++)
+    xs[k] = d->x_m[k] / c->sc.a0_m, ys[k] = d->y_m[k] / c->sc.a0_m;
+  cell_extent(xs, d->ny, d->nx, 0, &lo, &hi_edge);
+  double X0 = lo;
+  cell_extent(xs, d->ny, d->nx, d->nx - 1, &lo, &hi_edge);
+  double X1 = hi_edge;
+  cell_extent(ys, 1, d->ny, d->ny - 1, &lo, &hi_edge);
+  double Y1 = hi_edge;
+  (void)xlo, (void)xhi, (void)ymax;
   /* equal scales: the data area fitted into the room left of the colour bar */
   double room_x = 0.70 - 0.105, room_y = TOP - 0.115;
   double sx = room_x * f->pw / (X1 - X0), sy = room_y * f->ph / (2 * Y1), s = fmin(sx, sy);
@@ -2190,14 +2217,15 @@ static void draw_map(fig *f, const void *vctx) {
   draw_axes(f, "#<0x11>x#<0x01>/#<0x11>a#<0x01>#d0#u (sliding direction)",
             "#<0x11>y#<0x01>/#<0x11>a#<0x01>#d0#u", true);
   use_data_area(f);
-  draw_map_cells(f, c, hx, hy, hi);
+  draw_map_cells(f, c, xs, ys, hi);
   if (c->hertz_ax > 0 && c->hertz_by > 0) draw_ellipse(f, c->hertz_ax, c->hertz_by);
   set_color(f, BLACK);
   pllsty(1);
   plwidth(1.2);
   plbox("bc", 0, 0, "bc", 0, 0);
-  const char *title = c->field == VL_PLOT_FIELD_PC ? "#<0x11>p#<0x01>#dc#u/#<0x11>p#<0x01>#d0#u"
-                                                   : "#<0x11>u#<0x01> (µm)";
+  const char *title = c->field == VL_PLOT_FIELD_PC   ? "#<0x11>p#<0x01>#dc#u/#<0x11>p#<0x01>#d0#u"
+                      : c->field == VL_PLOT_FIELD_PF ? "#<0x11>p#<0x01>#df#u/#<0x11>p#<0x01>#d0#u"
+                                                     : "#<0x11>u#<0x01> (µm)";
   draw_colour_bar(f, hi, title);
   if (c->hertz_ax > 0 && c->hertz_by > 0) { /* the key of the dashed line, bottom right */
     plvpor(0, 1, 0, 1);
@@ -2215,12 +2243,13 @@ vl_status vl_plot_map(const char *stem, vl_plot_field field, const vl_plot_map_d
                       const vl_plot_scales *scales, double hertz_ax_m, double hertz_by_m,
                       const vl_plot_options *opt, vl_plot_report *report, vl_error *err) {
   if (!d || !scales || d->nx == 0 || d->ny == 0 || !d->x_m || !d->y_m ||
-      (field == VL_PLOT_FIELD_PC && !d->p_c_pa) || (field == VL_PLOT_FIELD_U && !d->u_m)) {
+      (field == VL_PLOT_FIELD_PC && !d->p_c_pa) || (field == VL_PLOT_FIELD_U && !d->u_m) ||
+      (field == VL_PLOT_FIELD_PF && !d->p_f_pa)) {
     vl_error_set(err, "plot: no map");
     return VL_EINPUT;
   }
-  if (field != VL_PLOT_FIELD_PC && field != VL_PLOT_FIELD_U) {
-    vl_error_set(err, "plot: a map of p_c or u only (got field %d)", (int)field);
+  if (field != VL_PLOT_FIELD_PC && field != VL_PLOT_FIELD_U && field != VL_PLOT_FIELD_PF) {
+    vl_error_set(err, "plot: a map of p_c, p_f or u only (got field %d)", (int)field);
     return VL_EINPUT;
   }
   if (!(scales->a0_m > 0) || !(scales->p0_pa > 0) || !isfinite(scales->a0_m) ||
@@ -2228,7 +2257,16 @@ vl_status vl_plot_map(const char *stem, vl_plot_field field, const vl_plot_map_d
     vl_error_set(err, "plot: scales need a0 > 0, p0 > 0");
     return VL_EINPUT;
   }
-  map_ctx c = {field, d, *scales, hertz_ax_m / scales->a0_m, hertz_by_m / scales->a0_m};
-  return render(stem, opt, field == VL_PLOT_FIELD_PC ? "Contact pressure map" : "Separation map",
-                draw_map, &c, report, err);
+  double *scratch = malloc(2 * d->nx * d->ny * sizeof *scratch);
+  if (!scratch) {
+    vl_error_set(err, "plot: out of memory for a map of %zu cells", d->nx * d->ny);
+    return VL_ENOMEM;
+  }
+  map_ctx c = {field, d, *scales, hertz_ax_m / scales->a0_m, hertz_by_m / scales->a0_m, scratch};
+  static const char *const names[] = {[VL_PLOT_FIELD_PC] = "Contact pressure map",
+                                      [VL_PLOT_FIELD_PF] = "Fluid pressure map",
+                                      [VL_PLOT_FIELD_U] = "Separation map"};
+  vl_status st = render(stem, opt, names[field], draw_map, &c, report, err);
+  free(scratch);
+  return st;
 }
