@@ -14,7 +14,7 @@ int main(int argc, char **argv) {
   if (argc > 5) c.growth = atof(argv[5]);
   vl_point_ehl_result r;
   vl_error err = {0};
-  vl_status st = vl_point_ehl_solve(&c, &r, NULL, &err);
+  vl_status st = vl_point_ehl_solve(&c, NULL, &r, NULL, &err);
   double hm, hc;
   vl_point_ehl_hamrock_dowson(&c, &hm, &hc);
   printf("st %d conv %d it %ld cont %ld cells %zux%zu res %.2e hc %.4g (HD %.4g) hmin %.4g (HD "

@@ -92,8 +92,9 @@ static void test_wrong_combinations(void **state) {
 /* What a ball does not take yet (dry and smooth), each naming its key. */
 static void test_not_yet(void **state) {
   (void)state;
-  expect_refused(BALL, "fluid = on\n[materials]\nfluid = water\n", "[effects] fluid",
-                 "not with [contact] geometry = ball");
+  expect_refused("geometry = ellipsoid\nradii_m = 0.01, 0.04\nload_n = 5",
+                 "fluid = on\n[materials]\nfluid = water\n", "[effects] fluid",
+                 "a lubricated ellipsoid is not available yet");
   expect_refused(BALL, "roughness = on\n[materials]\nsurface = paper-3um\n", "[effects] roughness",
                  "smooth only");
   expect_refused(BALL, "[numerics]\ngrid = 256\n", "[numerics] grid", "planned per point");
@@ -176,12 +177,53 @@ static void test_run_ball(void **state) {
   free(out), free(err);
 }
 
+/* `run` of a lubricated smooth ball (soft EHL, docs/POINT_CONTACT.md
+ * section 9) in glycerol at 0.3 and 1 m/s: the fluid carries the load (no
+ * contact pressure, area 0, fluid share 1), the film opens with speed, the
+ * friction is the fluid's (mu_Rc = mu_Sc = 0), the fields carry p_f on
+ * graded cells and the maps show p_f and u. */
+static void test_run_wet_ball(void **state) {
+  (void)state;
+  const char *scene = vl_test_scratch(
+      "wet.ini", "[scene]\ntitle = wet ball test\n[materials]\ncompound = model-rubber\n"
+                 "fluid = glycerol\n[contact]\n" BALL "\n"
+                 "[sweep]\nquantity = v0\nfrom = 0.3\nto = 1\npoints = 2\nfields_at = 1\n"
+                 "[numerics]\ntarget_error = 0.5\n" /* no refinement: for the time */
+                 "[effects]\nviscoelastic = on\nfluid = on\nsolid_shear = off\n");
+  char dir[1200], *out = NULL, *err = NULL;
+  snprintf(dir, sizeof dir, "%s/w", vl_test_dir);
+  int rc = vl_test_run(&out, &err, "--quiet run %s --out %s --plot --json", scene, dir);
+  if (rc != 0) fail_msg("run: exit %d: %s", rc, err);
+  assert_true(vl_test_json_valid(out));
+  double film[2];
+  for (int i = 0; i < 2; i++) {
+    assert_true(vl_test_json_number(out, "mu_Rc", i) == 0.0);
+    assert_true(vl_test_json_number(out, "mu_Sc", i) == 0.0);
+    assert_true(vl_test_json_number(out, "contact_area_m2", i) == 0.0);
+    assert_true(vl_test_json_number(out, "fluid_load_fraction", i) == 1.0);
+    assert_true(vl_test_json_number(out, "mu_Rf", i) > 0.0);
+    assert_true(vl_test_json_number(out, "mu_Sf", i) > 0.0);
+    film[i] = vl_test_json_number(out, "u_min_m", i);
+    assert_true(film[i] > 0.0);
+  }
+  assert_true(film[1] > film[0]);
+  char *fields = read_in(dir, "fields/001.csv");
+  assert_non_null(fields);
+  assert_true(!strncmp(fields, "x_m,y_m,x_over_a0,y_over_a0,p_c_pa,u_m,p_f_pa\n", 45));
+  const char *figures[] = {"stribeck.png", "map-pf-1.svg", "map-u-1.png"};
+  for (size_t k = 0; k < 3; k++)
+    assert_true(exists(dir, figures[k]));
+  assert_false(exists(dir, "map-pc-1.svg"));
+  free(fields), free(out), free(err);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup(test_geometry_keys, vl_test_setup_db),
       cmocka_unit_test_setup(test_wrong_combinations, vl_test_setup_db),
       cmocka_unit_test_setup(test_not_yet, vl_test_setup_db),
       cmocka_unit_test_setup(test_run_ball, vl_test_setup_db),
+      cmocka_unit_test_setup(test_run_wet_ball, vl_test_setup_db),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -56,6 +56,7 @@ struct vl_point_contact {
   vl_point_contact_timing timing;
   bool wet;             /* a lubricated ball (cfg.eta_pa_s > 0): point_contact_wet.c */
   vl_point_ehl_map map; /* its fields after a solve (nx 0: none yet) */
+  const vl_point_ehl_map *start; /* the next solve's start (another contact's map), or NULL */
   SUNContext ctx;
   N_Vector y, y_saved, y_start, ones, fwork;
   SUNMatrix J;
@@ -106,6 +107,10 @@ void vl_point_contact_wet_config(const vl_point_contact *c, double v0, vl_point_
 
 /* Solves the lubricated ball at v0 into pt (and c->map). */
 vl_status vl_point_contact_wet_solve(vl_point_contact *c, double v0, vl_point *pt, vl_error *err);
+
+/* The next lubricated solve of c starts from from's solution (the same
+ * contact on other cells; from must outlive that solve; NULL: none). */
+void vl_point_contact_wet_start_from(vl_point_contact *c, const vl_point_contact *from);
 
 /* Cells of a lubricated ball's grid for cfg (without solving). */
 size_t vl_point_contact_wet_cells(const vl_point_contact_config *cfg);

@@ -110,9 +110,11 @@ static size_t cells_of(const vl_point_contact_config *cfg) {
  * same cells, in up to 16 steps of log v0. *c gets the contact (the
  * caller frees it), also when the point failed. */
 static vl_status solve_on(const vl_point_contact_config *cfg, double v0, double v_prev,
-                          vl_point_contact **c, vl_point *pt, vl_sweep_stats *st, vl_error *err) {
+                          const vl_point_contact *from, vl_point_contact **c, vl_point *pt,
+                          vl_sweep_stats *st, vl_error *err) {
   vl_status s = vl_point_contact_create(cfg, c, err);
   if (s != VL_OK) return s;
+  if ((*c)->wet) vl_point_contact_wet_start_from(*c, from);
   s = vl_point_contact_solve(*c, v0, pt, err);
   st->newton_iterations += pt->iterations;
   /* (a lubricated ball continues in speed within its own solve) */
@@ -141,14 +143,14 @@ static vl_status solve_on(const vl_point_contact_config *cfg, double v0, double 
  * limit), the contact area's (mu_Sc) at first order or better. NAN when the
  * coarse solve fails. */
 static double estimate(const vl_point_contact_config *cfg, double v0, vl_sweep_stats *st,
-                       const vl_point *pt) {
+                       const vl_point *pt, const vl_point_contact *fine) {
   vl_point_contact_config coarse = *cfg;
   coarse.cells_per_a0 = cfg->cells_per_a0 / 2.0;
   if (coarse.cells_per_a0 < VL_BALL_MIN_CELLS_PER_A0) return NAN;
   vl_point_contact *c = NULL;
   vl_point cp;
   vl_error e;
-  vl_status s = solve_on(&coarse, v0, 0.0, &c, &cp, st, &e);
+  vl_status s = solve_on(&coarse, v0, 0.0, fine, &c, &cp, st, &e);
   vl_point_contact_free(c);
   if (s != VL_OK) return NAN;
   double d = fabs(pt->mu_Rc - cp.mu_Rc) / (M_SQRT2 - 1.0) + fabs(pt->mu_Sc - cp.mu_Sc);
@@ -171,8 +173,8 @@ typedef struct {
 } point_job;
 
 static vl_status solve_planned(const point_job *j, double v0, double scale, double refine,
-                               vl_point_contact **c, vl_point *pt, vl_point_contact_config *cfg,
-                               vl_error *err) {
+                               const vl_point_contact *from, vl_point_contact **c, vl_point *pt,
+                               vl_point_contact_config *cfg, vl_error *err) {
   if (j->opt->keep_numerics)
     *cfg = *j->base;
   else
@@ -180,23 +182,23 @@ static vl_status solve_planned(const point_job *j, double v0, double scale, doub
   cfg->cells_per_a0 *= refine;
   while (cells_of(cfg) > BALL_AUTO_MAX_CELLS && !j->opt->keep_numerics)
     cfg->cells_per_a0 /= 1.05; /* the bound: fewer cells, said by the estimate */
-  return solve_on(cfg, v0, j->v_prev, c, pt, j->st, err);
+  return solve_on(cfg, v0, j->v_prev, from, c, pt, j->st, err);
 }
 
 static vl_status ball_point(const point_job *j, double v0, vl_point_contact **c, vl_point *pt,
                             vl_error *err) {
   vl_point_contact_config cfg;
   double scale = 1.0, refine = 1.0;
-  vl_status s = solve_planned(j, v0, scale, refine, c, pt, &cfg, err);
+  vl_status s = solve_planned(j, v0, scale, refine, NULL, c, pt, &cfg, err);
   for (int k = 0; k < BALL_EDGE_RETRIES && s == VL_OK && !j->opt->keep_numerics &&
                   strstr(pt->warnings, "domain edge");
        k++) {
     vl_point_contact_free(*c);
     scale *= BALL_EDGE_GROWTH;
-    s = solve_planned(j, v0, scale, refine, c, pt, &cfg, err);
+    s = solve_planned(j, v0, scale, refine, NULL, c, pt, &cfg, err);
   }
   if (s != VL_OK) return s;
-  pt->error_estimate = estimate(&cfg, v0, j->st, pt);
+  pt->error_estimate = estimate(&cfg, v0, j->st, pt, *c);
   const char *stop = NULL;
   for (int k = 0; k < j->opt->max_refinements && !j->opt->keep_numerics; k++) {
     if (!(pt->error_estimate > j->opt->target_error)) break;
@@ -206,14 +208,15 @@ static vl_status ball_point(const point_job *j, double v0, vl_point_contact **c,
     vl_point_contact *fine = NULL;
     vl_point fp;
     vl_error e;
-    if (solve_planned(j, v0, scale, refine * BALL_REFINE_FACTOR, &fine, &fp, &next, &e) != VL_OK) {
+    if (solve_planned(j, v0, scale, refine * BALL_REFINE_FACTOR, *c, &fine, &fp, &next, &e) !=
+        VL_OK) {
       vl_point_contact_free(fine);
       stop = "refinement did not converge (coarser cells kept)";
       break;
     }
     refine *= BALL_REFINE_FACTOR;
     double old = pt->error_estimate;
-    fp.error_estimate = estimate(&next, v0, j->st, &fp);
+    fp.error_estimate = estimate(&next, v0, j->st, &fp, fine);
     vl_point_contact_free(*c);
     *c = fine, *pt = fp, cfg = next;
     if (!(pt->error_estimate < BALL_REFINE_MIN_GAIN * old)) {

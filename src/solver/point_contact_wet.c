@@ -90,9 +90,15 @@ vl_status vl_point_contact_wet_solve(vl_point_contact *c, double v0, vl_point *p
   vl_point_ehl_config e;
   wet_config(&c->cfg, v0, &e);
   vl_point_ehl_result r;
+  vl_point_ehl_map solved = {0};
+  vl_status st = vl_point_ehl_solve(&e, c->start, &r, &solved, err);
   vl_point_ehl_map_free(&c->map);
-  vl_status st = vl_point_ehl_solve(&e, &r, &c->map, err);
+  c->map = solved;
   if (st != VL_OK && st != VL_ENOCONV) return st;
   wet_report(c, &r, pt);
   return st;
+}
+
+void vl_point_contact_wet_start_from(vl_point_contact *c, const vl_point_contact *from) {
+  c->start = from && from->wet && from->map.nx ? &from->map : NULL;
 }

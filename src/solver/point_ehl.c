@@ -34,6 +34,7 @@
 #include <gsl/gsl_sf_expint.h>
 
 #include "blas_threads.h"
+#include "bracket.h"
 #include "kernel2d.h"
 #include "linsol_lapack.h"
 
@@ -703,6 +704,7 @@ static vl_status map_of(ehl *e, const double *y, double a, double p0, double us,
   }
   map->y_m = map->x_m + n, map->p_pa = map->x_m + 2 * n, map->u_m = map->x_m + 3 * n;
   map->nx = e->nx, map->ny = e->ny;
+  map->h0_m = y[n] * us;
   ehl_eval(e, y);
   for (size_t k = 0; k < n; k++) {
     map->x_m[k] = e->xc[k / e->ny] * a, map->y_m[k] = e->yc[k % e->ny] * a;
@@ -713,6 +715,45 @@ static vl_status map_of(ehl *e, const double *y, double a, double p0, double us,
 
 void vl_point_ehl_map_free(vl_point_ehl_map *map) {
   if (map) free(map->x_m), memset(map, 0, sizeof *map);
+}
+
+/* The state of another grid's solution `from` (the same contact) on e's
+ * cells: its pressure bilinear between its cell centres (0 beyond them),
+ * its rigid approach raised where needed to keep half its smallest film
+ * open. False when from has too few cells (or memory ran out). */
+static bool start_from_map(ehl *e, double *yd, const vl_point_ehl_map *from, double a, double p0,
+                           double us) {
+  size_t fx = from->nx, fy = from->ny, n = e->n;
+  if (fx < 2 || fy < 2) return false;
+  double *xs = malloc((fx + fy) * sizeof *xs), *ys = xs + fx; /* its centres, units of a */
+  if (!xs) return false;
+  for (size_t i = 0; i < fx; i++)
+    xs[i] = from->x_m[i * fy] / a;
+  for (size_t j = 0; j < fy; j++)
+    ys[j] = from->y_m[j] / a;
+  for (size_t k = 0; k < n; k++) {
+    double X = e->xc[k / e->ny], Y = e->yc[k % e->ny];
+    if (X < xs[0] || X > xs[fx - 1] || Y > ys[fy - 1]) {
+      yd[k] = 0.0;
+      continue;
+    }
+    size_t i = vl_bracket(xs, fx, X), j = Y < ys[0] ? 0 : vl_bracket(ys, fy, Y);
+    double t = (X - xs[i]) / (xs[i + 1] - xs[i]), u = fmax(0.0, (Y - ys[j]) / (ys[j + 1] - ys[j]));
+    const double *p = from->p_pa;
+    yd[k] = ((1 - t) * ((1 - u) * p[i * fy + j] + u * p[i * fy + j + 1]) +
+             t * ((1 - u) * p[(i + 1) * fy + j] + u * p[(i + 1) * fy + j + 1])) /
+            p0;
+  }
+  free(xs);
+  yd[n] = from->h0_m / us;
+  ehl_eval(e, yd);
+  double hmin = INFINITY, hfrom = INFINITY;
+  for (size_t k = 0; k < n; k++)
+    hmin = fmin(hmin, e->H[k]);
+  for (size_t k = 0; k < fx * fy; k++)
+    hfrom = fmin(hfrom, from->u_m[k] / us);
+  yd[n] += fmax(0.0, 0.5 * hfrom - hmin);
+  return true;
 }
 
 /* The dry Hertz pressure of a circle of radius unit (the load's), plus a
@@ -748,8 +789,8 @@ static bool kinsol_run(void *kmem, N_Vector y, N_Vector ones, N_Vector fw, ehl *
   return flag >= 0 && *fnorm <= tol;
 }
 
-vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, vl_point_ehl_result *res,
-                             vl_point_ehl_map *map, vl_error *err) {
+vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const vl_point_ehl_map *start,
+                             vl_point_ehl_result *res, vl_point_ehl_map *map, vl_error *err) {
   memset(res, 0, sizeof *res);
   vl_status st = check_config(cfg, err);
   if (st != VL_OK) return st;
@@ -800,6 +841,11 @@ vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, vl_point_ehl_result
   hc_fit *= pow(cfg->unit, 1.26);
   double fnorm = INFINITY;
   bool ok = false;
+  if (start && start_from_map(&e, yd, start, a, p0, a * a / R)) {
+    ok = kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations,
+                    &fnorm);
+    res->from_start = ok;
+  }
   /* from Hertz at the target, else at a thicker film (lambda x 4^k: the
    * film's elastic share falls), then continued back down in lambda
    * (the speed) by shrinking factors */

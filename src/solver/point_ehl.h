@@ -47,6 +47,7 @@ typedef struct {
   int converged;
   long iterations;         /* Newton steps (all attempts) */
   long continuation_steps; /* steps down in speed from a thicker film */
+  int from_start;        /* converged from the given start */
   size_t nx, ny;           /* cells */
   double a_m, p0_pa;       /* Hertz radius and peak pressure (dry, same load) */
   double h_c_m;            /* film at the centre (x = y = 0) */
@@ -68,6 +69,7 @@ typedef struct {
 typedef struct {
   size_t nx, ny;
   double *x_m, *y_m, *p_pa, *u_m; /* one allocation, at x_m */
+  double h0_m;                    /* the rigid approach */
 } vl_point_ehl_map;
 void vl_point_ehl_map_free(vl_point_ehl_map *map);
 
@@ -75,14 +77,16 @@ void vl_point_ehl_map_free(vl_point_ehl_map *map);
  * growth 1, tolerance 1e-9, 60 iterations (the physical inputs zero). */
 void vl_point_ehl_config_defaults(vl_point_ehl_config *cfg);
 
-/* Solves one point from the dry Hertz pressure lifted to Hamrock and
+/* Solves one point from `start` when not NULL (the same contact's
+ * solution on other cells: a refinement's or a coarser estimate's start),
+ * else (or when that fails) from the dry Hertz pressure lifted to Hamrock and
  * Dowson's central film, else from thicker films (a faster entrainment)
  * continued down to v0. On return res holds the figures and, when map is
  * not NULL, map the fields (the caller frees them with
  * vl_point_ehl_map_free). VL_EINPUT naming the field, VL_ENOMEM,
  * VL_ENOCONV (res and map filled, converged = 0). */
-vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, vl_point_ehl_result *res,
-                             vl_point_ehl_map *map, vl_error *err);
+vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const vl_point_ehl_map *start,
+                             vl_point_ehl_result *res, vl_point_ehl_map *map, vl_error *err);
 
 /* Cells of cfg's grid (0 on allocation failure; cfg not checked). */
 size_t vl_point_ehl_cells(const vl_point_ehl_config *cfg);
