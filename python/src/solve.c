@@ -303,7 +303,7 @@ typedef struct {
   size_t n, cap;
   size_t *index;
   vl_fields *fields;
-  double **maps; /* a point contact: x, y, p_c, u of maps_n[k] cells each, in one block */
+  double **maps; /* a point contact: x, y, p_c, u, p_f of maps_n[k] cells each, in one block */
   size_t *maps_n;
   int failed;
 } fields_store;
@@ -315,7 +315,7 @@ static void keep_maps(void *user, size_t i, size_t total, const vl_point *pt,
   (void)total;
   if (!vl_simulation_wants_fields(s->sim, i) || !pt->converged || s->failed || !c) return;
   size_t g = vl_point_contact_cells(c);
-  double *b = calloc(4 * g, sizeof *b);
+  double *b = calloc(5 * g, sizeof *b);
   if (!b || s->n == s->cap) {
     free(b);
     s->failed = 1;
@@ -324,7 +324,7 @@ static void keep_maps(void *user, size_t i, size_t total, const vl_point *pt,
   s->index[s->n] = i;
   s->maps[s->n] = b;
   s->maps_n[s->n++] = g;
-  vl_fields2d f = {b, b + g, b + 2 * g, b + 3 * g};
+  vl_fields2d f = {b, b + g, b + 2 * g, b + 3 * g, b + 4 * g};
   vl_point_contact_fields(c, &f);
 }
 
@@ -352,7 +352,9 @@ static PyObject *maps_list(const fields_store *s, const vl_point *pts, double a0
   PyObject *l = PyList_New(0);
   for (size_t k = 0; l && k < s->n; k++) {
     size_t g = s->maps_n[k];
-    const double *x = s->maps[k], *y = x + g, *p = x + 2 * g, *u = x + 3 * g;
+    const double *x = s->maps[k], *y = x + g, *p = x + 2 * g, *u = x + 3 * g, *pf = x + 4 * g;
+    /* a lubricated ball's fields carry p_f (as its fields/NNN.csv) */
+    bool wet = pts[s->index[k]].fluid_load_fraction > 0.0;
     PyObject *d = PyDict_New(), *xa = vlpy_array(x, g), *ya = vlpy_array(y, g);
     for (size_t i = 0; xa && ya && i < g; i++) {
       ((double *)PyArray_DATA((PyArrayObject *)xa))[i] /= a0_m;
@@ -363,7 +365,7 @@ static PyObject *maps_list(const fields_store *s, const vl_point *pts, double a0
         vlpy_set(d, "x_m", vlpy_array(x, g)) || vlpy_set(d, "y_m", vlpy_array(y, g)) ||
         vlpy_set(d, "x_over_a0", xa) || vlpy_set(d, "y_over_a0", ya) ||
         vlpy_set(d, "p_c_pa", vlpy_array(p, g)) || vlpy_set(d, "u_m", vlpy_array(u, g)) ||
-        PyList_Append(l, d) < 0)
+        (wet && vlpy_set(d, "p_f_pa", vlpy_array(pf, g))) || PyList_Append(l, d) < 0)
       Py_CLEAR(l);
     Py_XDECREF(d);
   }

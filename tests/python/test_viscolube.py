@@ -265,6 +265,26 @@ class TestScenes(Scratch):
         for j, name in enumerate(header):
             self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
 
+    def test_wet_ball_scene_equals_cli(self):
+        # a lubricated ball (docs/POINT_CONTACT.md section 9): the curve and
+        # its 2-D fields with p_f, every cell as the CLI writes it
+        scene = os.path.join(self.dir, "wet-ball.ini")
+        with open(scene, "w") as f:
+            f.write("[materials]\ncompound = model-rubber\nfluid = glycerol\n"
+                    "[contact]\ngeometry = ball\nradius_m = 0.0095\nload_n = 3\n"
+                    "[sweep]\nquantity = v0\nfrom = 0.3\nto = 1\npoints = 2\n"
+                    "fields_at = 1\n[effects]\nviscoelastic = on\nfluid = on\n"
+                    "[numerics]\ntarget_error = 0.5\n")  # no refinement, for the time
+        curve, out, header, rows = self.run_both(scene)
+        self.assert_extra_columns(curve, header, rows, words=("geometry",))
+        f = curve.fields[0]
+        self.assertIn("p_f_pa", f)
+        self.assertGreater(f["p_f_pa"].max(), 0.0)
+        header, rows = read_csv(os.path.join(out, "fields", "%03d.csv" % f["index"]))
+        self.assertEqual(header[-1], "p_f_pa")
+        for j, name in enumerate(header):
+            self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
+
     def test_seal_equals_cli(self):
         # db.seal is `viscolube seal`: seal.csv cell for cell, both strokes
         # whatever [seal] says (here nothing), a scene of a moving rubber
