@@ -54,8 +54,8 @@ struct vl_point_contact {
   double v0;      /* speed the influence is built for (NAN: none yet) */
   double v_state; /* speed of the converged state (NAN: the state is a guess) */
   vl_point_contact_timing timing;
-  bool wet;             /* a lubricated ball (cfg.eta_pa_s > 0): point_contact_wet.c */
-  vl_point_ehl_map map; /* its fields after a solve (nx 0: none yet) */
+  bool wet;                      /* a lubricated ball (cfg.eta_pa_s > 0): point_contact_wet.c */
+  vl_point_ehl_map map;          /* its fields after a solve (nx 0: none yet) */
   const vl_point_ehl_map *start; /* the next solve's start (another contact's map), or NULL */
   SUNContext ctx;
   N_Vector y, y_saved, y_start, ones, fwork;

@@ -842,8 +842,8 @@ vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const vl_point_ehl_
   double fnorm = INFINITY;
   bool ok = false;
   if (start && start_from_map(&e, yd, start, a, p0, a * a / R)) {
-    ok = kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations,
-                    &fnorm);
+    ok =
+        kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations, &fnorm);
     res->from_start = ok;
   }
   /* from Hertz at the target, else at a thicker film (lambda x 4^k: the

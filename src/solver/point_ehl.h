@@ -47,7 +47,7 @@ typedef struct {
   int converged;
   long iterations;         /* Newton steps (all attempts) */
   long continuation_steps; /* steps down in speed from a thicker film */
-  int from_start;        /* converged from the given start */
+  int from_start;          /* converged from the given start */
   size_t nx, ny;           /* cells */
   double a_m, p0_pa;       /* Hertz radius and peak pressure (dry, same load) */
   double h_c_m;            /* film at the centre (x = y = 0) */
