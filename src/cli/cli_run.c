@@ -317,8 +317,9 @@ static vl_status plot_field_figures(const char *out_dir, const vl_scene *scene, 
  * DIR/map-u-K, K as the marks on the Stribeck figure), the relaxed Hertz
  * ellipse over them; appended to list. */
 static vl_status plot_maps(const char *out_dir, vl_simulation *sim, const run_ctx *ctx,
-                           const char **label_ptrs, const vl_plot_options *opt_in, char *list,
-                           size_t list_size, size_t *len, vl_error *err) {
+                           const char **label_ptrs, const vl_plot_options *opt_in,
+                           const char *subject, char *list, size_t list_size, size_t *len,
+                           vl_error *err) {
   vl_plot_scales sc = {vl_simulation_a0(sim), vl_simulation_p0(sim), 0.0};
   double ax = 0.0, by = 0.0;
   vl_simulation_hertz_ellipse(sim, &ax, &by);
@@ -326,13 +327,16 @@ static vl_status plot_maps(const char *out_dir, vl_simulation *sim, const run_ct
   bool wet = ctx->lubricated;
   const vl_plot_field fields[2] = {wet ? VL_PLOT_FIELD_PF : VL_PLOT_FIELD_PC, VL_PLOT_FIELD_U};
   const char *names[2] = {wet ? "pf" : "pc", "u"};
+  const char *kinds[2] = {wet ? "Fluid pressure" : "Contact pressure", "Separation"};
   for (size_t k = 0; k < ctx->n_kept; k++) {
     if (!ctx->kept_cells[k]) continue; /* did not converge: no map */
     for (int u = 0; u < 2; u++) {
-      char stem[4200], sub[1200];
+      char stem[4200], kind[160], title[1800];
       vl_plot_options opt = *opt_in;
-      snprintf(sub, sizeof sub, "%s | %s", opt_in->subtitle ? opt_in->subtitle : "", label_ptrs[k]);
-      opt.subtitle = sub;
+      /* the speed first: a long subject is cut at the figure's edge */
+      snprintf(kind, sizeof kind, "%s at %s", kinds[u], label_ptrs[k]);
+      figure_title(title, sizeof title, kind, subject);
+      opt.title = title;
       snprintf(stem, sizeof stem, "%s/map-%s-%zu", out_dir, names[u], k + 1);
       vl_status st = vl_plot_map(stem, fields[u], &ctx->kept_map[k], &sc, ax, by, &opt, NULL, err);
       vl_cli_manifest_figure(ctx->man, stem, st, err);
@@ -381,9 +385,9 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
   st = vl_plot_stribeck(stem, n, pts, meta, scene->quantity, ctx->n_kept, marks, &opt, NULL, err);
   vl_cli_manifest_figure(ctx->man, stem, st, err);
   if (st != VL_OK && st != VL_EIO) goto done;
-  if (scene->geometry != VL_GEOMETRY_CYLINDER) { /* dry: no film; the maps instead */
+  if (scene->geometry != VL_GEOMETRY_CYLINDER && !scene->effects.fluid) { /* no film */
     size_t len = (size_t)snprintf(list, list_size, "stribeck");
-    st = plot_maps(out_dir, sim, ctx, label_ptrs, &opt, list, list_size, &len, err);
+    st = plot_maps(out_dir, sim, ctx, label_ptrs, &opt, subject, list, list_size, &len, err);
     goto done;
   }
   snprintf(stem, sizeof stem, "%s/separation", out_dir);
@@ -393,6 +397,10 @@ static vl_status write_plots(const char *out_dir, const vl_scene *scene, const c
   vl_cli_manifest_figure(ctx->man, stem, st, err);
   if (st != VL_OK && st != VL_EIO) goto done;
   size_t len = (size_t)snprintf(list, list_size, "stribeck, separation");
+  if (scene->geometry != VL_GEOMETRY_CYLINDER) { /* a lubricated ball: its maps */
+    st = plot_maps(out_dir, sim, ctx, label_ptrs, &opt, subject, list, list_size, &len, err);
+    goto done;
+  }
   st = VL_OK; /* the files that did not fit are in the manifest */
   if (ctx->n_kept)
     st = plot_field_figures(out_dir, scene, sim, h_rms, ctx, label_ptrs, subject, &opt, list,

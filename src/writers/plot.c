@@ -2083,8 +2083,8 @@ typedef struct {
 static double map_value(const map_ctx *c, size_t k) {
   if (c->field == VL_PLOT_FIELD_PC)
     return c->d->p_c_pa[k] > 0.0 ? c->d->p_c_pa[k] / c->sc.p0_pa : NAN;
-  if (c->field == VL_PLOT_FIELD_PF)
-    return c->d->p_f_pa[k] > 0.0 ? c->d->p_f_pa[k] / c->sc.p0_pa : NAN;
+  if (c->field == VL_PLOT_FIELD_PF) /* the cavitated film's residue (1e-12 p0) left white */
+    return c->d->p_f_pa[k] > 1e-9 * c->sc.p0_pa ? c->d->p_f_pa[k] / c->sc.p0_pa : NAN;
   return c->d->u_m[k] * 1e6;
 }
 
