@@ -352,23 +352,18 @@ typedef struct {
   int nh;
 } row_deps;
 
-static void add_h(row_deps *d, size_t k, double w) {
-  for (int q = 0; q < d->nh; q++)
-    if (d->hk[q] == k) {
-      d->hw[q] += w;
+/* Adds w to the weight of cell k in the sparse list (keys, weights, *n). */
+static void add_dep(size_t *keys, double *weights, int *n, size_t k, double w) {
+  for (int q = 0; q < *n; q++)
+    if (keys[q] == k) {
+      weights[q] += w;
       return;
     }
-  d->hk[d->nh] = k, d->hw[d->nh] = w, d->nh++;
+  keys[*n] = k, weights[*n] = w, (*n)++;
 }
 
-static void add_p(row_deps *d, size_t k, double w) {
-  for (int q = 0; q < d->np; q++)
-    if (d->pk[q] == k) {
-      d->pw[q] += w;
-      return;
-    }
-  d->pk[d->np] = k, d->pw[d->np] = w, d->np++;
-}
+static void add_h(row_deps *d, size_t k, double w) { add_dep(d->hk, d->hw, &d->nh, k, w); }
+static void add_p(row_deps *d, size_t k, double w) { add_dep(d->pk, d->pw, &d->np, k, w); }
 
 /* Poiseuille flux out of cell k towards neighbour l (or the boundary,
  * l = SIZE_MAX, P = 0 at the face), over distance dist and face length
@@ -776,17 +771,128 @@ static void hertz_start(ehl *e, double *yd, double unit, double lift, double tai
   yd[n] += fmax(0.0, 0.5 * lift - hmin);
 }
 
-/* One KINSol from y with the given strategy; true when the max norm of the
- * residual ends below the tolerance. */
-static bool kinsol_run(void *kmem, N_Vector y, N_Vector ones, N_Vector fw, ehl *e, int strategy,
-                       double tol, long *nni, double *fnorm) {
-  int flag = KINSol(kmem, y, strategy, ones, ones);
+/* KINSOL's objects for one solve. */
+typedef struct {
+  SUNContext ctx;
+  N_Vector y, ones, fw, y0; /* the unknowns, unit scaling, a residual, a saved state */
+  SUNMatrix J;
+  SUNLinearSolver LS;
+  void *kmem;
+} ehl_kin;
+
+static void kin_free(ehl_kin *k) {
+  if (k->kmem) KINFree(&k->kmem);
+  if (k->LS) SUNLinSolFree(k->LS);
+  if (k->J) SUNMatDestroy(k->J);
+  N_Vector vs[] = {k->y, k->ones, k->fw, k->y0};
+  for (size_t i = 0; i < 4; i++)
+    if (vs[i]) N_VDestroy(vs[i]);
+  if (k->ctx) SUNContext_Free(&k->ctx);
+}
+
+/* KINSOL on e's n + 1 unknowns: the dense Jacobian (LAPACK's LU, set up
+ * at every step), a line search's scaled step tolerance. */
+static vl_status kin_create(ehl *e, const vl_point_ehl_config *cfg, ehl_kin *k, vl_error *err) {
+  memset(k, 0, sizeof *k);
+  sunindextype m = (sunindextype)(e->n + 1);
+  if (SUNContext_Create(NULL, &k->ctx) != 0) goto nomem;
+  k->y = N_VNew_Serial(m, k->ctx), k->ones = N_VNew_Serial(m, k->ctx);
+  k->fw = N_VNew_Serial(m, k->ctx), k->y0 = N_VNew_Serial(m, k->ctx);
+  k->J = SUNDenseMatrix(m, m, k->ctx);
+  if (!k->y || !k->ones || !k->fw || !k->y0 || !k->J) goto nomem;
+  k->LS = vl_linsol_lapack_create((long)m, k->ctx);
+  k->kmem = KINCreate(k->ctx);
+  if (!k->LS || !k->kmem) goto nomem;
+  N_VConst(1.0, k->ones);
+  void *km = k->kmem;
+  if (KINInit(km, residual_fn, k->y) != KIN_SUCCESS || KINSetUserData(km, e) != KIN_SUCCESS ||
+      KINSetLinearSolver(km, k->LS, k->J) != KIN_SUCCESS ||
+      KINSetJacFn(km, jacobian_fn) != KIN_SUCCESS ||
+      KINSetFuncNormTol(km, cfg->tolerance) != KIN_SUCCESS ||
+      KINSetScaledStepTol(km, 1e-14) != KIN_SUCCESS || KINSetMaxSetupCalls(km, 1) != KIN_SUCCESS ||
+      KINSetNumMaxIters(km, cfg->max_iterations) != KIN_SUCCESS ||
+      KINSetErrHandlerFn(km, silent, NULL) != KIN_SUCCESS) {
+    kin_free(k);
+    vl_error_set(err, "KINSOL set-up failed for the lubricated ball");
+    return VL_EINTERNAL;
+  }
+  return VL_OK;
+nomem:
+  kin_free(k);
+  vl_error_set(err, "out of memory for the lubricated ball's solver (%zu cells)", e->n);
+  return VL_ENOMEM;
+}
+
+/* One KINSol (line search) from the state in k->y; true when the max norm
+ * of the residual ends below the tolerance. */
+static bool kin_run(ehl_kin *k, ehl *e, double tol, long *nni, double *fnorm) {
+  int flag = KINSol(k->kmem, k->y, KIN_LINESEARCH, k->ones, k->ones);
   long it = 0;
-  KINGetNumNonlinSolvIters(kmem, &it);
+  KINGetNumNonlinSolvIters(k->kmem, &it);
   *nni += it;
   *fnorm = INFINITY;
-  if (residual_fn(y, fw, e) == 0) *fnorm = N_VMaxNorm(fw);
+  if (residual_fn(k->y, k->fw, e) == 0) *fnorm = N_VMaxNorm(k->fw);
   return flag >= 0 && *fnorm <= tol;
+}
+
+/* From the state at e->lambda (converged) down to lambda by shrinking
+ * steps (a factor up to 4, grown 1.5x after a success, its square root
+ * after a failure, given up below 1.02). */
+static bool continue_down(ehl_kin *k, ehl *e, double lambda, double tol, vl_point_ehl_result *res,
+                          double *fnorm) {
+  double ratio = 4.0;
+  N_VScale(1.0, k->y, k->y0);
+  while (e->lambda > lambda) {
+    double from = e->lambda;
+    e->lambda = fmax(lambda, e->lambda / ratio);
+    /* with a line search: full steps close the film (measured) */
+    bool step_ok = kin_run(k, e, tol, &res->iterations, fnorm);
+    res->continuation_steps++;
+    if (step_ok) {
+      N_VScale(1.0, k->y, k->y0);
+      ratio = fmin(4.0, ratio * 1.5);
+    } else {
+      N_VScale(1.0, k->y0, k->y);
+      e->lambda = from;
+      ratio = sqrt(ratio);
+      if (ratio < 1.02) return false;
+    }
+  }
+  return true;
+}
+
+/* The solve's paths: from `start` (another grid's solution), else from
+ * Hertz lifted to Hamrock and Dowson's central film at the target, else
+ * at a thicker film (lambda x 4^k: the film's elastic share falls)
+ * continued back down in speed. */
+static bool solve_paths(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
+                        const vl_point_ehl_map *start, const ehl_scales *sc,
+                        vl_point_ehl_result *res, double *fnorm) {
+  double *yd = N_VGetArrayPointer(k->y), R = cfg->radius_m, us = sc->a * sc->a / R;
+  double lambda = e->lambda, tol = cfg->tolerance, hmin_fit, hc_fit;
+  *fnorm = INFINITY;
+  if (start && start_from_map(e, yd, start, sc->a, sc->p0, us) &&
+      kin_run(k, e, tol, &res->iterations, fnorm)) {
+    res->from_start = 1;
+    return true;
+  }
+  vl_point_ehl_hamrock_dowson(cfg, &hmin_fit, &hc_fit);
+  /* a contact shrunk to `unit` by a stiffer rubber: the modulus Er0/unit^3,
+   * the fit's film ~ E'^-0.42 */
+  hc_fit *= pow(cfg->unit, 1.26);
+  bool ok = false;
+  double lam = lambda;
+  for (int j = 0; !ok && j <= 10; j++, lam *= 4.0) {
+    e->lambda = lam;
+    hertz_start(e, yd, cfg->unit, hc_fit * pow(lam / lambda, 0.64) / us, 0.0);
+    /* an attempt from Hertz that is going to fail stalls early */
+    KINSetNumMaxIters(k->kmem, j == 0 ? cfg->max_iterations : 25);
+    ok = kin_run(k, e, tol, &res->iterations, fnorm);
+  }
+  KINSetNumMaxIters(k->kmem, cfg->max_iterations);
+  if (ok && e->lambda > lambda) ok = continue_down(k, e, lambda, tol, res, fnorm);
+  e->lambda = lambda;
+  return ok;
 }
 
 vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const vl_point_ehl_map *start,
@@ -801,111 +907,33 @@ vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const vl_point_ehl_
   ehl e;
   st = ehl_build(&e, cfg, err);
   if (st != VL_OK) return st;
-  int blas_threads = vl_blas_pin_one_thread();
   e.lambda = 6.0 * cfg->eta_pa_s * cfg->v0_m_s * R * R / (a * a * a * p0);
   res->nx = e.nx, res->ny = e.ny;
   res->t_influence_s = now_s() - t0;
   t0 = now_s();
-  size_t n = e.n;
-  SUNContext ctx = NULL;
-  N_Vector y = NULL, ones = NULL, fw = NULL, y0 = NULL;
-  SUNMatrix J = NULL;
-  SUNLinearSolver LS = NULL;
-  void *kmem = NULL;
-  if (SUNContext_Create(NULL, &ctx) != 0) goto nomem;
-  y = N_VNew_Serial((sunindextype)(n + 1), ctx), ones = N_VNew_Serial((sunindextype)(n + 1), ctx);
-  fw = N_VNew_Serial((sunindextype)(n + 1), ctx), y0 = N_VNew_Serial((sunindextype)(n + 1), ctx);
-  J = SUNDenseMatrix((sunindextype)(n + 1), (sunindextype)(n + 1), ctx);
-  if (!y || !ones || !fw || !y0 || !J) goto nomem;
-  LS = vl_linsol_lapack_create((long)(n + 1), ctx);
-  kmem = KINCreate(ctx);
-  if (!LS || !kmem) goto nomem;
-  N_VConst(1.0, ones);
-  if (KINInit(kmem, residual_fn, y) != KIN_SUCCESS || KINSetUserData(kmem, &e) != KIN_SUCCESS ||
-      KINSetLinearSolver(kmem, LS, J) != KIN_SUCCESS ||
-      KINSetJacFn(kmem, jacobian_fn) != KIN_SUCCESS ||
-      KINSetFuncNormTol(kmem, cfg->tolerance) != KIN_SUCCESS ||
-      KINSetScaledStepTol(kmem, 1e-14) != KIN_SUCCESS ||
-      KINSetMaxSetupCalls(kmem, 1) != KIN_SUCCESS ||
-      KINSetNumMaxIters(kmem, cfg->max_iterations) != KIN_SUCCESS ||
-      KINSetErrHandlerFn(kmem, silent, NULL) != KIN_SUCCESS) {
-    vl_error_set(err, "KINSOL set-up failed for the lubricated ball");
-    st = VL_EINTERNAL;
-    goto cleanup;
+  ehl_kin k;
+  st = kin_create(&e, cfg, &k, err);
+  if (st != VL_OK) {
+    ehl_free(&e);
+    return st;
   }
-  double *yd = N_VGetArrayPointer(y);
-  double hmin_fit, hc_fit, lambda = e.lambda;
-  vl_point_ehl_hamrock_dowson(cfg, &hmin_fit, &hc_fit);
-  /* a contact shrunk to `unit` by a stiffer rubber: the modulus Er0/unit^3,
-   * the fit's film ~ E'^-0.42 */
-  hc_fit *= pow(cfg->unit, 1.26);
-  double fnorm = INFINITY;
-  bool ok = false;
-  if (start && start_from_map(&e, yd, start, a, p0, a * a / R)) {
-    ok =
-        kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations, &fnorm);
-    res->from_start = ok;
-  }
-  /* from Hertz at the target, else at a thicker film (lambda x 4^k: the
-   * film's elastic share falls), then continued back down in lambda
-   * (the speed) by shrinking factors */
-  double lam = lambda;
-  for (int k = 0; !ok && k <= 10; k++, lam *= 4.0) {
-    e.lambda = lam;
-    hertz_start(&e, yd, cfg->unit, hc_fit * pow(lam / lambda, 0.64) / (a * a / R), 0.0);
-    /* an attempt from Hertz that is going to fail stalls early */
-    KINSetNumMaxIters(kmem, k == 0 ? cfg->max_iterations : 25);
-    ok =
-        kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance, &res->iterations, &fnorm);
-  }
-  KINSetNumMaxIters(kmem, cfg->max_iterations);
-  if (ok && e.lambda > lambda) {
-    double ratio = 4.0;
-    N_VScale(1.0, y, y0);
-    while (ok && e.lambda > lambda) {
-      double next = fmax(lambda, e.lambda / ratio), from = e.lambda;
-      e.lambda = next;
-      /* with a line search: full steps close the film (measured) */
-      bool step_ok = kinsol_run(kmem, y, ones, fw, &e, KIN_LINESEARCH, cfg->tolerance,
-                                &res->iterations, &fnorm);
-      res->continuation_steps++;
-      if (step_ok) {
-        N_VScale(1.0, y, y0);
-        ratio = fmin(4.0, ratio * 1.5);
-      } else {
-        N_VScale(1.0, y0, y);
-        e.lambda = from;
-        ratio = sqrt(ratio);
-        if (ratio < 1.02) ok = false;
-      }
-    }
-  }
-  e.lambda = lambda;
+  int blas_threads = vl_blas_pin_one_thread();
+  double fnorm;
+  bool ok = solve_paths(&k, &e, cfg, start, &sc, res, &fnorm);
+  vl_blas_restore_threads(blas_threads);
+  double *yd = N_VGetArrayPointer(k.y);
   res->converged = ok;
   res->residual = fnorm;
   report(&e, cfg, yd, a, p0, res);
   res->t_solve_s = now_s() - t0;
-  if (map && (st = map_of(&e, yd, a, p0, a * a / R, map, err)) != VL_OK) goto cleanup;
-  st = VL_OK;
-  if (!ok) {
+  if (map) st = map_of(&e, yd, a, p0, a * a / R, map, err);
+  if (st == VL_OK && !ok) {
     vl_error_set(err, "the lubricated ball did not converge at v0 = %g m/s (residual %.3g)",
                  cfg->v0_m_s, fnorm);
     st = VL_ENOCONV;
   }
-  goto cleanup;
-nomem:
-  vl_error_set(err, "out of memory for the lubricated ball's solver (%zu cells)", n);
-  st = VL_ENOMEM;
-cleanup:
-  if (kmem) KINFree(&kmem);
-  if (LS) SUNLinSolFree(LS);
-  if (J) SUNMatDestroy(J);
-  N_Vector vs[] = {y, ones, fw, y0};
-  for (size_t i = 0; i < 4; i++)
-    if (vs[i]) N_VDestroy(vs[i]);
-  if (ctx) SUNContext_Free(&ctx);
+  kin_free(&k);
   ehl_free(&e);
-  vl_blas_restore_threads(blas_threads);
   return st;
 }
 

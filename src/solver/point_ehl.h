@@ -1,7 +1,8 @@
 /* viscolube: a lubricated smooth ball, isoviscous, on an elastic or
  * viscoelastic half-space (soft EHL;
- * docs/POINT_CONTACT.md section 9). Private to the library: the tests and
- * the benchmark call it; the users' view (scenes) does not yet.
+ * docs/POINT_CONTACT.md section 9). Private to the library: the point
+ * contact calls it for a ball with a fluid (point_contact_wet.c), the tests
+ * and the benchmark directly.
  *
  * A rigid ball of radius R at rest on a viscoelastic half-space (the
  * steady-sliding Prony memory of docs/POINT_CONTACT.md section 3; Hertz's

@@ -194,6 +194,15 @@ class TestScenes(Scratch):
                     self.assertTrue(math.isnan(v), (name, i, v))
                 else:
                     self.assertEqual(cell, text10(v), (name, i))
+
+    def assert_fields_equal_csv(self, out, f):
+        """A kept field f as its out/fields/NNN.csv, every column cell for
+        cell; returns the CSV's header."""
+        header, rows = read_csv(os.path.join(out, "fields", "%03d.csv" % f["index"]))
+        for j, name in enumerate(header):
+            self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
+        return header
+
     def test_run_equals_cli_curve_and_fields(self):
         scene = os.path.join(SRC, "cases", "fig05.ini")
         out = os.path.join(self.dir, "out")
@@ -206,9 +215,7 @@ class TestScenes(Scratch):
         files = sorted(os.listdir(os.path.join(out, "fields")))
         self.assertEqual(files, ["%03d.csv" % f["index"] for f in curve.fields])
         for f in curve.fields:
-            header, rows = read_csv(os.path.join(out, "fields", "%03d.csv" % f["index"]))
-            for j, name in enumerate(header):
-                self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
+            self.assert_fields_equal_csv(out, f)
         rec = curve.structured()
         self.assertEqual(rec.dtype.names, vl.CURVE_COLUMNS)
         self.assertEqual(rec["mu"][3], curve["mu"][3])
@@ -260,10 +267,7 @@ class TestScenes(Scratch):
         self.assertEqual(header[len(vl.CURVE_COLUMNS)], "geometry")
         self.assert_extra_columns(curve, header, rows, words=("geometry",))
         self.assertEqual(len(curve.fields), 1)
-        f = curve.fields[0]
-        header, rows = read_csv(os.path.join(out, "fields", "%03d.csv" % f["index"]))
-        for j, name in enumerate(header):
-            self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
+        self.assert_fields_equal_csv(out, curve.fields[0])
 
     def test_wet_ball_scene_equals_cli(self):
         # a lubricated ball (docs/POINT_CONTACT.md section 9): the curve and
@@ -280,10 +284,7 @@ class TestScenes(Scratch):
         f = curve.fields[0]
         self.assertIn("p_f_pa", f)
         self.assertGreater(f["p_f_pa"].max(), 0.0)
-        header, rows = read_csv(os.path.join(out, "fields", "%03d.csv" % f["index"]))
-        self.assertEqual(header[-1], "p_f_pa")
-        for j, name in enumerate(header):
-            self.assertEqual([r[j] for r in rows], [text10(v) for v in f[name]], name)
+        self.assertEqual(self.assert_fields_equal_csv(out, f)[-1], "p_f_pa")
 
     def test_seal_equals_cli(self):
         # db.seal is `viscolube seal`: seal.csv cell for cell, both strokes
