@@ -52,6 +52,10 @@ static const double ZONE_Y[1][2] = {{0.3, 1.1}};
  * fraction of the cells' smallest value is not trusted. */
 #define TRUST_VERTEX 0.5
 
+/* A cell is pressurised above this pressure (p0): the cavitated cells keep
+ * a residue of the complementarity's tolerance (measured 1e-19). */
+#define PRESSURISED 1e-7
+
 /* Stencil of a row: at most 6 cells whose film enters it. */
 #define STENCIL 8
 
@@ -663,9 +667,10 @@ static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, doub
       /* film fraction: 1 upstream of the pressure's end; beyond it (the
        * cavitated outlet) the flow is Couette only and the film fills
        * theta = u_rupture/u of the gap */
-      if (y[k] > 0.0) hrupture = u;
+      bool wet = y[k] > PRESSURISED;
+      if (wet) hrupture = u;
       double theta = 1.0;
-      if (!(y[k] > 0.0) && isfinite(hrupture) && e->xc[i] > 0.0) theta = fmin(1.0, hrupture / u);
+      if (!wet && isfinite(hrupture) && e->xc[i] > 0.0) theta = fmin(1.0, hrupture / u);
       if (u > 0.0) couette += theta * cfg->eta_pa_s * cfg->v0_m_s / u * dA;
       /* dp/dx at the cell: the mean of its two face gradients */
       double pw = i > 0 ? y[k - ny] : 0.0, pe = i + 1 < e->nx ? y[k + ny] : 0.0;
