@@ -643,6 +643,57 @@ static double min_film(const ehl *e, double *xm, double *ym, bool axis_only) {
   return v;
 }
 
+/* The derivative of v (cell values, stride `stride`, n cells along a
+ * line, centres t) at cell i: the mean of its two face differences, the
+ * boundary value 0 beyond the ends (at the domain's faces lo, hi). */
+static double cell_slope(const double *v, size_t stride, const double *t, size_t n, size_t i,
+                         double lo, double hi, bool zero_beyond) {
+  double c = v[i * stride];
+  double vw = i > 0 ? v[(i - 1) * stride] : (zero_beyond ? 0.0 : c);
+  double ve = i + 1 < n ? v[(i + 1) * stride] : (zero_beyond ? 0.0 : c);
+  double tw = i > 0 ? t[i - 1] : lo, te = i + 1 < n ? t[i + 1] : hi;
+  return 0.5 * ((c - vw) / (t[i] - tw) + (ve - c) / (te - t[i]));
+}
+
+/* The energy balance's terms (both halves, W): the viscous dissipation in
+ * the film, eta v0^2/u (in the cavitated outlet theta of it, as the shear)
+ * plus u^3/(12 eta) |grad p|^2, and the power the pressure puts into the
+ * rubber, v0 \int p dw/dx dA (0 for an elastic rubber in steady sliding,
+ * the hysteresis for a viscoelastic one). Their sum is (mu_Rf + mu_Sf) W v0
+ * up to the discretisation (tests/test_ball_ehl.c). */
+static void energy(const ehl *e, const vl_point_ehl_config *cfg, const double *y, double a,
+                   double p0, vl_point_ehl_result *res) {
+  size_t nx = e->nx, ny = e->ny, n = e->n;
+  double R = cfg->radius_m, us = a * a / R, eta = cfg->eta_pa_s, v0 = cfg->v0_m_s;
+  double *w = malloc(n * sizeof *w);
+  if (!w) {
+    res->dissipation_w = res->hysteresis_w = NAN;
+    return;
+  }
+  for (size_t k = 0; k < n; k++)
+    w[k] = e->H[k] - y[n] - e->f[k];
+  double visc = 0.0, hyst = 0.0;
+  for (size_t j = 0; j < ny; j++) {
+    double hrupture = NAN;
+    for (size_t i = 0; i < nx; i++) {
+      size_t k = i * ny + j;
+      double dA = e->dx[i] * e->dy[j] * a * a, u = e->H[k] * us;
+      bool wet = y[k] > PRESSURISED;
+      if (wet) hrupture = u;
+      double theta = 1.0;
+      if (!wet && isfinite(hrupture) && e->xc[i] > 0.0) theta = fmin(1.0, hrupture / u);
+      double gx = cell_slope(y + j, ny, e->xc, nx, i, e->xf[0], e->xf[nx], true) * p0 / a;
+      double gy = cell_slope(y + i * ny, 1, e->yc, ny, j, -e->yc[0], e->yf[ny], true) * p0 / a;
+      if (j == 0) gy = 0.5 * (y[k + 1] - y[k]) / (e->yc[1] - e->yc[0]) * p0 / a; /* symmetric */
+      visc += (theta * eta * v0 * v0 / u + u * u * u / (12.0 * eta) * (gx * gx + gy * gy)) * dA;
+      double dw = cell_slope(w + j, ny, e->xc, nx, i, e->xf[0], e->xf[nx], false) * us / a;
+      hyst += v0 * y[k] * p0 * dw * dA;
+    }
+  }
+  free(w);
+  res->dissipation_w = 2.0 * visc, res->hysteresis_w = 2.0 * hyst;
+}
+
 /* Figures of the converged (or last) state y into res. */
 static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, double a, double p0,
                    vl_point_ehl_result *res) {
@@ -690,6 +741,7 @@ static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, doub
   res->mu_Sf_couette = 2.0 * couette / W;
   res->mu_Sf_poiseuille = 2.0 * pois / W;
   res->mu_Sf = res->mu_Sf_couette + res->mu_Sf_poiseuille;
+  energy(e, cfg, y, a, p0, res);
 }
 
 /* The fields of state y (SI units) into map. */

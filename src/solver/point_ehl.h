@@ -62,6 +62,8 @@ typedef struct {
   double x_centroid_m;                 /* pressure centroid */
   double h_centroid_m;                 /* film there (on y = 0) */
   double p_max_pa, x_pmax_m, y_pmax_m; /* the largest pressure and where */
+  double dissipation_w;                /* viscous dissipation in the film (both halves) */
+  double hysteresis_w; /* the power the pressure puts into the rubber, v0 \int p dw/dx */
   double t_influence_s, t_solve_s;
 } vl_point_ehl_result;
 
