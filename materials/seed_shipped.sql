@@ -1,5 +1,8 @@
--- Materials shipped with viscolube, inserted into every new database (see
--- 0001_schema.sql for how seeds differ from migrations). Only inputs are
+-- Materials shipped with viscolube since its first program, inserted into
+-- every new database (see 0001_schema.sql for how seeds differ from
+-- migrations). A material shipped later is not added here but comes as a
+-- migration (0007, 0008), which gives it to the databases an older program
+-- created as well: seeds never reach those. Only inputs are
 -- written here; the derived surface columns are left NULL and computed by
 -- src/database.c with the same code as for user-added surfaces.
 -- "Seed paper": M. Scaraggi and B.N.J. Persson, "Theory of viscoelastic
@@ -42,12 +45,8 @@ VALUES
    'Water at 20 C, 1.0e-3 Pa s as used by Scaraggi & Persson (Figs. 14-18); CRC Handbook of Chemistry and Physics gives 1.0016 mPa s'),
   ('model-1e-4', 1.0e-4, 20.0,
    'Model fluid of Scaraggi & Persson, Fig. 5 (eta = 1e-4 Pa s)'),
-  ('model-1e-3', 1.0e-3, 20.0,
-   'Model fluid for the viscosity series of Scaraggi & Persson, Fig. 12 (eta = 1e-3 Pa s)'),
   ('model-1e-2', 1.0e-2, 20.0,
    'Model fluid of Scaraggi & Persson, Figs. 19-20 (eta = 0.01 Pa s)'),
-  ('model-1e-1', 1.0e-1, 20.0,
-   'Model fluid for the viscosity series of Scaraggi & Persson, Fig. 12 (eta = 0.1 Pa s)'),
   ('model-1', 1.0, 20.0,
    'Model fluid of Scaraggi & Persson, Fig. 10 (eta = 1 Pa s)'),
   ('glycerol', 1.41, 20.0,

@@ -105,7 +105,7 @@ static void test_list_fresh_database(void **state) {
   assert_int_equal(count_of(out, "\"name\""), 3); /* + the shipped sbr-filled, sbr-unfilled */
   assert_non_null(strstr(out, "\"model-rubber\""));
   free(out);
-  /* the paper's 7 surfaces and the seal cases' 2 (materials/seed_seals.sql) */
+  /* the paper's 7 surfaces and the seal cases' 2 (materials/0008_later_shipped_materials.sql) */
   out = run_ok("surface list --json%s", "");
   if (!vl_test_json_valid(out)) fail_msg("invalid JSON: %s", out);
   assert_int_equal(count_of(out, "\"name\""), 9);
@@ -119,7 +119,7 @@ static void test_list_fresh_database(void **state) {
   /* text: one line per item, starting with the name */
   const char *nouns[] = {"compound", "surface", "fluid"};
   /* compounds: + the shipped sbr-filled, sbr-unfilled; surfaces and fluids: + the seal
-   * cases' (materials/seed_seals.sql); fluids: + glycerol-water-85 */
+   * cases' (materials/0008_later_shipped_materials.sql); fluids: + glycerol-water-85 */
   const size_t lines[] = {3, 9, 9};
   for (int n = 0; n < 3; n++) {
     out = run_ok("%s list", nouns[n]);

@@ -23,6 +23,8 @@
 
 #include "database_internal.h"
 #include "viscolube/database.h"
+#include "viscolube/scene.h"
+#include "viscolube/simulation.h"
 
 #define PI 3.14159265358979323846
 
@@ -246,8 +248,8 @@ static void test_seeded_fluids(void **state) {
   vl_db_fluid *items;
   size_t n;
   assert_int_equal(vl_db_fluid_list(db, &items, &n, &err), VL_OK);
-  /* water, glycerol, model-1e-4 ... model-1 (five decades), oil-0.046 (seed_seals.sql),
-   * glycerol-water-85 (0007_glycerol_water.sql) */
+  /* water, glycerol, model-1e-4 ... model-1 (five decades), glycerol-water-85
+   * (0007_glycerol_water.sql), oil-0.046 (0008_later_shipped_materials.sql) */
   assert_int_equal(n, 9);
   for (size_t i = 1; i < n; i++)
     assert_true(strcmp(items[i - 1].name, items[i].name) < 0);
@@ -308,8 +310,14 @@ static void test_seeded_glycerol_water(void **state) {
   vl_db_close(db);
 }
 
-/* Writes a database of schema 6 as the program of that version created
- * it: its migrations and seeds, from the files themselves. */
+/* Writes a database of schema 6 as a program of that version created it
+ * before the seal cases were merged: its migrations and seeds, from the
+ * files themselves. The seeds are those of the first program
+ * (seed_shipped.sql has kept only those rows; the laws of
+ * seed_shipped_fluid_laws.sql came with schema 3): later programs of
+ * schema 1-6 also had model-1e-3 and model-1e-1, which 0008 adds where
+ * they are missing, and the shipped measured compounds, which SQL cannot
+ * write. */
 static void build_schema_6(const char *path) {
   const char *files[] = {"materials/0001_schema.sql",
                          "materials/0002_measured.sql",
@@ -317,7 +325,6 @@ static void build_schema_6(const char *path) {
                          "materials/0004_persson_cache.sql",
                          "materials/0005_flow_factor_cache.sql",
                          "materials/0006_pairs.sql",
-                         "materials/seed_seals.sql",
                          "materials/seed_shipped.sql",
                          "materials/seed_shipped_fluid_laws.sql"};
   unlink(path);
@@ -357,6 +364,111 @@ static void test_glycerol_water_migration(void **state) {
   assert_int_equal(f.law.kind, VL_VISCOSITY_LAW_NONE);
   vl_db_close(db);
   assert_true(sql_num(path, "PRAGMA user_version") == (double)vl_db_schema_version());
+  assert_true(sql_num(path, "SELECT count(*) FROM fluid") == 9.0);
+}
+
+/* Rows of `table` (the columns cols) that one database has and the other
+ * has not, both ways: 0 when the two hold the same rows, ids aside. */
+static double rows_differ(const char *path, const char *other, const char *table,
+                          const char *cols) {
+  char sql[2048];
+  snprintf(sql, sizeof sql,
+           "SELECT (SELECT count(*) FROM (SELECT %s FROM main.%s EXCEPT SELECT %s FROM o.%s)) + "
+           "(SELECT count(*) FROM (SELECT %s FROM o.%s EXCEPT SELECT %s FROM main.%s))",
+           cols, table, cols, table, cols, table, cols, table);
+  sqlite3 *h = NULL;
+  sqlite3_stmt *st = NULL;
+  assert_int_equal(sqlite3_open_v2(path, &h, SQLITE_OPEN_READONLY, NULL), SQLITE_OK);
+  char *attach = sqlite3_mprintf("ATTACH DATABASE %Q AS o", other);
+  if (sqlite3_exec(h, attach, NULL, NULL, NULL) != SQLITE_OK) fail_msg("%s", sqlite3_errmsg(h));
+  sqlite3_free(attach);
+  if (sqlite3_prepare_v2(h, sql, -1, &st, NULL) != SQLITE_OK) fail_msg("%s", sqlite3_errmsg(h));
+  assert_int_equal(sqlite3_step(st), SQLITE_ROW);
+  double n = sqlite3_column_double(st, 0);
+  sqlite3_finalize(st);
+  sqlite3_close(h);
+  return n;
+}
+
+#define SURFACE_COLUMNS                                                                            \
+  "name, kind, hurst, q0_per_m, q1_per_m, hrms_m, description, c0_m4, derived_hrms_m, "            \
+  "derived_rms_slope"
+#define FLUID_COLUMNS                                                                              \
+  "name, viscosity_pa_s, tref_c, description, viscosity_law, vogel_b_k, vogel_c_k, law_tmin_c, "   \
+  "law_tmax_c"
+
+/* The materials a shipped seal case names load from the database: the
+ * scene's compound, surface and fluid, as a run starts. */
+static void assert_seal_cases_load(vl_db *db) {
+  const char *cases[] = {"cases/seals/lip.ini", "cases/seals/oring.ini", "cases/seals/wiper.ini"};
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+    vl_scene scene;
+    vl_error err;
+    vl_simulation *sim = NULL;
+    if (vl_scene_load(vl_test_source_path(cases[k]), &scene, &err) != VL_OK)
+      fail_msg("%s: %s", cases[k], err.msg);
+    if (vl_simulation_create(&scene, db, &sim, &err) != VL_OK)
+      fail_msg("%s: %s", cases[k], err.msg);
+    assert_true(vl_simulation_eta(sim) > 0.0 && vl_simulation_psd(sim) != NULL);
+    vl_simulation_free(sim);
+  }
+}
+
+/* A database an older program created without the materials shipped after
+ * it (the seal cases' surfaces and oil, two of the model fluids) gets them
+ * on open (0008), with the numbers and derived columns a new database has;
+ * the seal cases then find their materials. */
+static void test_later_shipped_migration(void **state) {
+  (void)state;
+  const char *path = db_path();
+  char fresh[4200];
+  snprintf(fresh, sizeof fresh, "%s/fresh.db", vl_test_tmpdir());
+  unlink(fresh);
+  vl_db_close(open_new(fresh));
+  assert_true(vl_db_schema_version() >= 8);
+
+  build_schema_6(path);
+  assert_true(sql_num(path, "SELECT count(*) FROM surface WHERE name IN ('steel-rod-0.2um', "
+                            "'glass-10nm')") == 0.0);
+  assert_true(sql_num(path, "SELECT count(*) FROM fluid WHERE name IN ('oil-0.046', "
+                            "'model-1e-3', 'model-1e-1')") == 0.0);
+  /* all the old file lacks: the two seal surfaces, and the three fluids
+   * and glycerol-water-85 (0007) */
+  assert_true(rows_differ(path, fresh, "surface", "name") == 2.0);
+  assert_true(rows_differ(path, fresh, "fluid", "name") == 4.0);
+  vl_db *db = open_new(path);
+  assert_seal_cases_load(db);
+  vl_db_close(db);
+  assert_true(sql_num(path, "PRAGMA user_version") == (double)vl_db_schema_version());
+  assert_true(rows_differ(path, fresh, "surface", SURFACE_COLUMNS) == 0.0);
+  assert_true(rows_differ(path, fresh, "fluid", FLUID_COLUMNS) == 0.0);
+}
+
+/* A user's own surface and fluid of a later-shipped name are kept as they
+ * were; the shipped rows whose names are free are added. */
+static void test_later_shipped_keeps_users_rows(void **state) {
+  (void)state;
+  const char *path = db_path();
+  build_schema_6(path);
+  vl_test_sql(path, "INSERT INTO surface (name, kind, hurst, q0_per_m, q1_per_m, hrms_m, "
+                    "description) VALUES ('steel-rod-0.2um', 'self-affine', 0.7, 1e5, 1e9, "
+                    "0.4e-6, 'my rod');"
+                    "INSERT INTO fluid (name, viscosity_pa_s, tref_c, description) "
+                    "VALUES ('oil-0.046', 0.032, 25.0, 'my oil')");
+  vl_db *db = open_new(path);
+  vl_error err;
+  vl_db_surface s;
+  assert_int_equal(vl_db_surface_info(db, "steel-rod-0.2um", &s, &err), VL_OK);
+  assert_true(s.hurst == 0.7 && s.q0_per_m == 1e5 && s.q1_per_m == 1e9 && s.hrms_m == 0.4e-6);
+  assert_string_equal(s.description, "my rod");
+  vl_db_fluid f;
+  assert_int_equal(vl_db_fluid_info(db, "oil-0.046", &f, &err), VL_OK);
+  assert_true(f.viscosity_pa_s == 0.032 && f.tref_c == 25.0);
+  assert_string_equal(f.description, "my oil");
+  assert_int_equal(vl_db_surface_info(db, "glass-10nm", &s, &err), VL_OK);
+  assert_int_equal(vl_db_fluid_info(db, "model-1e-3", &f, &err), VL_OK);
+  vl_db_close(db);
+  assert_true(sql_num(path, "SELECT count(*) FROM surface") == 9.0);
   assert_true(sql_num(path, "SELECT count(*) FROM fluid") == 9.0);
 }
 
@@ -972,6 +1084,8 @@ int main(void) {
       cmocka_unit_test(test_seeded_fluids),
       cmocka_unit_test(test_seeded_glycerol_water),
       cmocka_unit_test(test_glycerol_water_migration),
+      cmocka_unit_test(test_later_shipped_migration),
+      cmocka_unit_test(test_later_shipped_keeps_users_rows),
       cmocka_unit_test(test_compound_roundtrip),
       cmocka_unit_test(test_surface_tabulated_roundtrip),
       cmocka_unit_test(test_fluid_roundtrip),
