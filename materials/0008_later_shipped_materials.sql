@@ -8,7 +8,11 @@
 -- come as a migration instead (a new database runs every migration before
 -- the seeds, in one transaction): this file is their only copy, and a
 -- user's own row of the same name is kept as it is (each row is inserted
--- only where none of its kind has that name).
+-- only where none of its kind has that name). The shipped measured
+-- compounds sbr-unfilled and sbr-filled, seeded from schema 2 on, reach
+-- the databases of schema 1 with this migration too, imported by the
+-- program's C code (src/db/db_seed.c, shipped_measured: SQL cannot fit
+-- their data).
 --
 -- The seal and wiper cases' materials (cases/seals/): nominal values for the
 -- cases' statements (issue 33), not measurements of a particular product.

@@ -310,14 +310,15 @@ static void test_seeded_glycerol_water(void **state) {
   vl_db_close(db);
 }
 
-/* Writes a database of schema 6 as a program of that version created it
- * before the seal cases were merged: its migrations and seeds, from the
- * files themselves. The seeds are those of the first program
- * (seed_shipped.sql has kept only those rows; the laws of
- * seed_shipped_fluid_laws.sql came with schema 3): later programs of
- * schema 1-6 also had model-1e-3 and model-1e-1, which 0008 adds where
- * they are missing, and the shipped measured compounds, which SQL cannot
- * write. */
+/* Writes a database of schema 6 as the first program created it (its
+ * seeds: seed_shipped.sql has kept only those rows) and programs up to
+ * schema 6 migrated it (0003 gave the shipped water and glycerol the laws
+ * seed_shipped_fluid_laws.sql gives), from the files themselves. It lacks
+ * what came later as seeds: the seal cases' materials (seeded only from
+ * the seals' merge at schema 6 on), model-1e-3 and model-1e-1 (seeded from
+ * the first program's successors on) and the shipped measured compounds
+ * (seeded from schema 2 on), as a file created by such a program lacks
+ * them. */
 static void build_schema_6(const char *path) {
   const char *files[] = {"materials/0001_schema.sql",
                          "materials/0002_measured.sql",
@@ -367,15 +368,29 @@ static void test_glycerol_water_migration(void **state) {
   assert_true(sql_num(path, "SELECT count(*) FROM fluid") == 9.0);
 }
 
-/* Rows of `table` (the columns cols) that one database has and the other
- * has not, both ways: 0 when the two hold the same rows, ids aside. */
-static double rows_differ(const char *path, const char *other, const char *table,
-                          const char *cols) {
-  char sql[2048];
+/* tmpl with every "S." (a table's schema) replaced by schema and a dot. */
+static void with_schema(const char *tmpl, const char *schema, char *out, size_t size) {
+  size_t n = 0;
+  for (const char *c = tmpl; *c && n + 8 < size; c++) {
+    if (c[0] == 'S' && c[1] == '.') {
+      n += (size_t)snprintf(out + n, size - n, "%s.", schema);
+      c++;
+    } else {
+      out[n++] = *c;
+    }
+  }
+  out[n] = '\0';
+}
+
+/* Rows of the query `select` (its tables written S.name) that one database
+ * gives and the other not, both ways: 0 when the two give the same rows. */
+static double rows_differ(const char *path, const char *other, const char *select) {
+  char a[1024], b[1024], sql[4200];
+  with_schema(select, "main", a, sizeof a);
+  with_schema(select, "o", b, sizeof b);
   snprintf(sql, sizeof sql,
-           "SELECT (SELECT count(*) FROM (SELECT %s FROM main.%s EXCEPT SELECT %s FROM o.%s)) + "
-           "(SELECT count(*) FROM (SELECT %s FROM o.%s EXCEPT SELECT %s FROM main.%s))",
-           cols, table, cols, table, cols, table, cols, table);
+           "SELECT (SELECT count(*) FROM (%s EXCEPT %s)) + (SELECT count(*) FROM (%s EXCEPT %s))",
+           a, b, b, a);
   sqlite3 *h = NULL;
   sqlite3_stmt *st = NULL;
   assert_int_equal(sqlite3_open_v2(path, &h, SQLITE_OPEN_READONLY, NULL), SQLITE_OK);
@@ -390,12 +405,20 @@ static double rows_differ(const char *path, const char *other, const char *table
   return n;
 }
 
-#define SURFACE_COLUMNS                                                                            \
-  "name, kind, hurst, q0_per_m, q1_per_m, hrms_m, description, c0_m4, derived_hrms_m, "            \
-  "derived_rms_slope"
-#define FLUID_COLUMNS                                                                              \
-  "name, viscosity_pa_s, tref_c, description, viscosity_law, vogel_b_k, vogel_c_k, law_tmin_c, "   \
-  "law_tmax_c"
+/* Every stored column of the shipped materials but ids and dates; the
+ * compounds' Prony terms and fit reports by the compound's name. */
+static const char *const shipped_rows[] = {
+    "SELECT name, kind, hurst, q0_per_m, q1_per_m, hrms_m, description, c0_m4, derived_hrms_m, "
+    "derived_rms_slope FROM S.surface",
+    "SELECT name, viscosity_pa_s, tref_c, description, viscosity_law, vogel_b_k, vogel_c_k, "
+    "law_tmin_c, law_tmax_c FROM S.fluid",
+    "SELECT name, class, description, nu, e_inf_pa, tref_c, wlf_c1, wlf_c2_k, source_file, method, "
+    "fit_rms_error FROM S.compound",
+    "SELECT c.name, p.idx, p.A, p.tau_s FROM S.compound_prony p JOIN S.compound c "
+    "ON c.id = p.compound_id",
+    "SELECT c.name, f.n_points, f.n_isotherms, f.rms_rel_storage, f.max_rel_storage, "
+    "f.rms_rel_loss, f.max_rel_loss, f.wlf_rms_log10_a_t FROM S.compound_fit f JOIN S.compound c "
+    "ON c.id = f.compound_id"};
 
 /* The materials a shipped seal case names load from the database: the
  * scene's compound, surface and fluid, as a run starts. */
@@ -432,20 +455,22 @@ static void test_later_shipped_migration(void **state) {
                             "'glass-10nm')") == 0.0);
   assert_true(sql_num(path, "SELECT count(*) FROM fluid WHERE name IN ('oil-0.046', "
                             "'model-1e-3', 'model-1e-1')") == 0.0);
-  /* all the old file lacks: the two seal surfaces, and the three fluids
-   * and glycerol-water-85 (0007) */
-  assert_true(rows_differ(path, fresh, "surface", "name") == 2.0);
-  assert_true(rows_differ(path, fresh, "fluid", "name") == 4.0);
+  /* all the old file lacks: the two seal surfaces, the three fluids and
+   * glycerol-water-85 (0007), the two measured compounds */
+  assert_true(rows_differ(path, fresh, "SELECT name FROM S.surface") == 2.0);
+  assert_true(rows_differ(path, fresh, "SELECT name FROM S.fluid") == 4.0);
+  assert_true(rows_differ(path, fresh, "SELECT name FROM S.compound") == 2.0);
   vl_db *db = open_new(path);
   assert_seal_cases_load(db);
   vl_db_close(db);
   assert_true(sql_num(path, "PRAGMA user_version") == (double)vl_db_schema_version());
-  assert_true(rows_differ(path, fresh, "surface", SURFACE_COLUMNS) == 0.0);
-  assert_true(rows_differ(path, fresh, "fluid", FLUID_COLUMNS) == 0.0);
+  for (size_t k = 0; k < sizeof shipped_rows / sizeof *shipped_rows; k++)
+    if (rows_differ(path, fresh, shipped_rows[k]) != 0.0)
+      fail_msg("the migrated file differs from a new one in: %s", shipped_rows[k]);
 }
 
-/* A user's own surface and fluid of a later-shipped name are kept as they
- * were; the shipped rows whose names are free are added. */
+/* A user's own surface, fluid and compound of a later-shipped name are
+ * kept as they were; the shipped rows whose names are free are added. */
 static void test_later_shipped_keeps_users_rows(void **state) {
   (void)state;
   const char *path = db_path();
@@ -454,7 +479,11 @@ static void test_later_shipped_keeps_users_rows(void **state) {
                     "description) VALUES ('steel-rod-0.2um', 'self-affine', 0.7, 1e5, 1e9, "
                     "0.4e-6, 'my rod');"
                     "INSERT INTO fluid (name, viscosity_pa_s, tref_c, description) "
-                    "VALUES ('oil-0.046', 0.032, 25.0, 'my oil')");
+                    "VALUES ('oil-0.046', 0.032, 25.0, 'my oil');"
+                    "INSERT INTO compound (name, class, description, nu, e_inf_pa, method) "
+                    "VALUES ('sbr-filled', 'filled', 'my sbr', 0.49, 5e6, 'model');"
+                    "INSERT INTO compound_prony (compound_id, idx, A, tau_s) VALUES "
+                    "((SELECT id FROM compound WHERE name = 'sbr-filled'), 1, 4.0, 0.01)");
   vl_db *db = open_new(path);
   vl_error err;
   vl_db_surface s;
@@ -467,9 +496,16 @@ static void test_later_shipped_keeps_users_rows(void **state) {
   assert_string_equal(f.description, "my oil");
   assert_int_equal(vl_db_surface_info(db, "glass-10nm", &s, &err), VL_OK);
   assert_int_equal(vl_db_fluid_info(db, "model-1e-3", &f, &err), VL_OK);
+  vl_db_compound c;
+  assert_int_equal(vl_db_compound_info(db, "sbr-filled", &c, &err), VL_OK);
+  assert_string_equal(c.description, "my sbr");
+  assert_true(c.prony.n_terms == 1 && c.prony.A[0] == 4.0 && c.prony.tau_s[0] == 0.01);
+  assert_int_equal(vl_db_compound_info(db, "sbr-unfilled", &c, &err), VL_OK);
+  assert_non_null(strstr(c.description, "SYNTHETIC"));
   vl_db_close(db);
   assert_true(sql_num(path, "SELECT count(*) FROM surface") == 9.0);
   assert_true(sql_num(path, "SELECT count(*) FROM fluid") == 9.0);
+  assert_true(sql_num(path, "SELECT count(*) FROM compound") == 3.0);
 }
 
 /* ---- CRUD ------------------------------------------------------------- */

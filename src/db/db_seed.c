@@ -1,13 +1,16 @@
 /* The material database's schema: a new file is created from the embedded
  * materials (every migration materials/NNNN_*.sql, the seeds seed_*.sql and
  * the shipped measured compounds *.csv, in one transaction), an older one
- * is brought up to date one migration at a time. Both are the same loop
+ * is brought up to date one migration at a time (with the shipped measured
+ * compounds it lacks, see shipped_measured). Both are the same loop
  * (vl_dbi_migrate), which db_open.c runs on every open; the rows are
- * written through db_compound.c and db_surface.c, the statements and
- * transactions through db_sql.c, none of which calls back here. */
+ * written through db_compound.c and db_surface.c, names looked up through
+ * db_names.c, the statements and transactions through db_sql.c, none of
+ * which calls back here. */
 #include "db_internal.h"
 #include "dma_private.h"
 
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,26 +65,55 @@ int vl_db_schema_version(void) {
  * transaction. Both are SYNTHETIC: no public, licensed measurement of an
  * unfilled and a filled rubber exists; scripts/gen_synthetic_dma.py made
  * them from the documented model in their header comments. Relative
- * weights: the data obey Kramers-Kronig, so E'' is fitted to its noise. */
+ * weights: the data obey Kramers-Kronig, so E'' is fitted to its noise.
+ *
+ * SQL cannot import them, so a migration cannot insert them as it inserts
+ * the shipped rows a database created before them lacks (0007, 0008):
+ * `migration` names the one that gives them to such a database here, each
+ * unless a compound of its name exists, in the transaction of the last
+ * migration the file gets. Both came with schema 2; the databases of
+ * schema 1 lack them (and keep lacking them when a program of schema 2-7
+ * migrated them) and get them with 0008. */
 static const struct {
   const char *file, *name, *class_name, *description;
+  int migration;
 } shipped_measured[] = {
     {"sbr-unfilled-synthetic.csv", "sbr-unfilled", "unfilled",
      "SYNTHETIC stand-in for an unfilled SBR, not a measurement: Havriliak-Negami modulus "
      "(E0 2 MPa, Einf 2 GPa, alpha 0.60, beta 0.35, tau 2.5 ms) with WLF (C1 12.57, C2 71.6 K at "
      "20 C), DMA-like sampling 0-100 C, 0.1-100 Hz, 1 % noise (scripts/gen_synthetic_dma.py), "
      "imported and fitted like user data; rolling number near Scaraggi & Persson's "
-     "Q_unfilled = 3e-4 (Fig. 15)"},
+     "Q_unfilled = 3e-4 (Fig. 15)",
+     8},
     {"sbr-filled-synthetic.csv", "sbr-filled", "filled",
      "SYNTHETIC stand-in for a carbon-black filled SBR, not a measurement: Havriliak-Negami "
      "modulus (E0 8 MPa, Einf 3 GPa, alpha 0.50, beta 0.35, tau 2.8 ms) with WLF (C1 12.57, "
      "C2 71.6 K at 20 C), DMA-like sampling 0-100 C, 0.1-100 Hz, 1 % noise "
      "(scripts/gen_synthetic_dma.py), imported and fitted like user data; rolling number near "
-     "Scaraggi & Persson's Q_filled = 3e-5 (Fig. 16)"},
+     "Scaraggi & Persson's Q_filled = 3e-5 (Fig. 16)",
+     8},
 };
 
-static vl_status seed_measured(vl_db *db, vl_error *err) {
+/* Whether the shipped compound i goes into a file that had schema version
+ * `from` (0: a new one): every one into a new file; into an older one when
+ * it crosses the compound's migration and the name is free (a user's own
+ * compound of that name is kept). */
+static vl_status measured_wanted(vl_db *db, size_t i, int from, bool *wanted, vl_error *err) {
+  *wanted = from == 0;
+  if (from == 0 || from >= shipped_measured[i].migration) return VL_OK;
+  vl_status s;
+  sqlite3_int64 id = vl_dbi_find_id(db, "compound", shipped_measured[i].name, &s, err);
+  *wanted = id == 0;
+  return s;
+}
+
+/* Registers the shipped measured compounds that measured_wanted picks. */
+static vl_status seed_measured(vl_db *db, int from, vl_error *err) {
   for (size_t i = 0; i < sizeof shipped_measured / sizeof *shipped_measured; i++) {
+    bool wanted = false;
+    vl_status w = measured_wanted(db, i, from, &wanted, err);
+    if (w != VL_OK) return w;
+    if (!wanted) continue;
     const struct vl_embedded_file *f = vl_embedded_materials;
     while (f->name && strcmp(f->name, shipped_measured[i].file))
       f++;
@@ -210,7 +242,9 @@ vl_status vl_dbi_migrate(vl_db *db, vl_error *err) {
     if (fresh) {
       for (const struct vl_embedded_file *f = vl_embedded_materials; f->name; f++)
         if (is_seed(f->name) && (s = apply_sql(db, f, err)) != VL_OK) goto fail;
-      if ((s = seed_measured(db, err)) != VL_OK) goto fail;
+      if ((s = seed_measured(db, 0, err)) != VL_OK) goto fail;
+    } else if (target == latest && (s = seed_measured(db, version, err)) != VL_OK) {
+      goto fail; /* at the latest schema, which the import code writes, as in a new file */
     }
     if ((s = vl_dbi_surface_fill_derived(db, err)) != VL_OK) goto fail;
     if ((s = set_version(db, fresh ? latest : target, err)) != VL_OK) goto fail;
