@@ -102,9 +102,6 @@ void vl_point_contact_jacobian(vl_point_contact *c, const double *y, double *Jd)
 
 /* point_contact_wet.c */
 
-/* The lubricated ball's solver configuration for c's numerics. */
-void vl_point_contact_wet_config(const vl_point_contact *c, double v0, vl_point_ehl_config *e);
-
 /* Solves the lubricated ball at v0 into pt (and c->map). */
 vl_status vl_point_contact_wet_solve(vl_point_contact *c, double v0, vl_point *pt, vl_error *err);
 

@@ -37,10 +37,6 @@ static void wet_config(const vl_point_contact_config *cfg, double v0, vl_point_e
       cfg->max_iterations > WET_MIN_ITERATIONS ? cfg->max_iterations : WET_MIN_ITERATIONS;
 }
 
-void vl_point_contact_wet_config(const vl_point_contact *c, double v0, vl_point_ehl_config *e) {
-  wet_config(&c->cfg, v0, e);
-}
-
 size_t vl_point_contact_wet_cells(const vl_point_contact_config *cfg) {
   vl_point_ehl_config e;
   wet_config(cfg, 1.0, &e);

@@ -643,6 +643,19 @@ static double min_film(const ehl *e, double *xm, double *ym, bool axis_only) {
   return v;
 }
 
+/* The film fraction of a cell along a row run upstream to downstream
+ * (P its pressure in p0, u its gap, X its centre; *hrupture the gap at the
+ * last pressurised cell, NAN before one): 1 up to the pressure's end;
+ * beyond it, in the cavitated outlet, the flow is Couette only and the film
+ * fills theta = u_rupture/u of the gap. */
+static double film_fraction(double P, double u, double X, double *hrupture) {
+  if (P > PRESSURISED) {
+    *hrupture = u;
+    return 1.0;
+  }
+  return isfinite(*hrupture) && X > 0.0 ? fmin(1.0, *hrupture / u) : 1.0;
+}
+
 /* The derivative of v (cell values, stride `stride`, n cells along a
  * line, centres t) at cell i: the mean of its two face differences, the
  * boundary value 0 beyond the ends (at the domain's faces lo, hi). */
@@ -678,10 +691,7 @@ static void energy(const ehl *e, const vl_point_ehl_config *cfg, const double *y
     for (size_t i = 0; i < nx; i++) {
       size_t k = i * ny + j;
       double dA = e->dx[i] * e->dy[j] * a * a, u = e->H[k] * us;
-      bool wet = y[k] > PRESSURISED;
-      if (wet) hrupture = u;
-      double theta = 1.0;
-      if (!wet && isfinite(hrupture) && e->xc[i] > 0.0) theta = fmin(1.0, hrupture / u);
+      double theta = film_fraction(y[k], u, e->xc[i], &hrupture);
       double gx = cell_slope(y + j, ny, e->xc, nx, i, e->xf[0], e->xf[nx], true) * p0 / a;
       double gy = cell_slope(y + i * ny, 1, e->yc, ny, j, -e->yc[0], e->yf[ny], true) * p0 / a;
       if (j == 0) gy = 0.5 * (y[k + 1] - y[k]) / (e->yc[1] - e->yc[0]) * p0 / a; /* symmetric */
@@ -715,18 +725,9 @@ static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, doub
       size_t k = i * ny + j;
       double dA = e->dx[i] * e->dy[j] * a * a, p = y[k] * p0, u = e->H[k] * us;
       spx += p * e->xc[i] * a * dA;
-      /* film fraction: 1 upstream of the pressure's end; beyond it (the
-       * cavitated outlet) the flow is Couette only and the film fills
-       * theta = u_rupture/u of the gap */
-      bool wet = y[k] > PRESSURISED;
-      if (wet) hrupture = u;
-      double theta = 1.0;
-      if (!wet && isfinite(hrupture) && e->xc[i] > 0.0) theta = fmin(1.0, hrupture / u);
+      double theta = film_fraction(y[k], u, e->xc[i], &hrupture);
       if (u > 0.0) couette += theta * cfg->eta_pa_s * cfg->v0_m_s / u * dA;
-      /* dp/dx at the cell: the mean of its two face gradients */
-      double pw = i > 0 ? y[k - ny] : 0.0, pe = i + 1 < e->nx ? y[k + ny] : 0.0;
-      double xw = i > 0 ? e->xc[i - 1] : e->xf[0], xe = i + 1 < e->nx ? e->xc[i + 1] : e->xf[e->nx];
-      double dpdx = 0.5 * ((y[k] - pw) / (e->xc[i] - xw) + (pe - y[k]) / (xe - e->xc[i])) * p0 / a;
+      double dpdx = cell_slope(y + j, ny, e->xc, e->nx, i, e->xf[0], e->xf[e->nx], true) * p0 / a;
       pois += -0.5 * u * dpdx * dA;
     }
   }
@@ -769,6 +770,16 @@ void vl_point_ehl_map_free(vl_point_ehl_map *map) {
   if (map) free(map->x_m), memset(map, 0, sizeof *map);
 }
 
+/* Raises the rigid approach yd[n] so that the film of state yd is nowhere
+ * below `floor` (units of a^2/R). */
+static void raise_min_film(ehl *e, double *yd, double floor) {
+  ehl_eval(e, yd);
+  double hmin = INFINITY;
+  for (size_t k = 0; k < e->n; k++)
+    hmin = fmin(hmin, e->H[k]);
+  yd[e->n] += fmax(0.0, floor - hmin);
+}
+
 /* The state of another grid's solution `from` (the same contact) on e's
  * cells: its pressure bilinear between its cell centres (0 beyond them),
  * its rigid approach raised where needed to keep half its smallest film
@@ -798,13 +809,10 @@ static bool start_from_map(ehl *e, double *yd, const vl_point_ehl_map *from, dou
   }
   free(xs);
   yd[n] = from->h0_m / us;
-  ehl_eval(e, yd);
-  double hmin = INFINITY, hfrom = INFINITY;
-  for (size_t k = 0; k < n; k++)
-    hmin = fmin(hmin, e->H[k]);
+  double hfrom = INFINITY;
   for (size_t k = 0; k < fx * fy; k++)
     hfrom = fmin(hfrom, from->u_m[k] / us);
-  yd[n] += fmax(0.0, 0.5 * hfrom - hmin);
+  raise_min_film(e, yd, 0.5 * hfrom);
   return true;
 }
 
@@ -821,11 +829,7 @@ static void hertz_start(ehl *e, double *yd, double unit, double lift, double tai
   yd[n] = 0.0;
   ehl_eval(e, yd);
   yd[n] = lift - centre_film(e);
-  ehl_eval(e, yd);
-  double hmin = INFINITY;
-  for (size_t k = 0; k < n; k++)
-    hmin = fmin(hmin, e->H[k]);
-  yd[n] += fmax(0.0, 0.5 * lift - hmin);
+  raise_min_film(e, yd, 0.5 * lift);
 }
 
 /* KINSOL's objects for one solve. */

@@ -2188,23 +2188,19 @@ static void draw_map(fig *f, const void *vctx) {
   const map_ctx *c = vctx;
   const vl_plot_map_data *d = c->d;
   size_t n = d->nx * d->ny;
-  double xlo = INFINITY, xhi = -INFINITY, ymax = 0.0, hi = 0.0;
+  /* the colour scale's top, the centres in a0, and the cells' outer edges */
+  double hi = 0.0, *xs = c->scratch, *ys = c->scratch + n, lo, hi_edge;
   for (size_t k = 0; k < n; k++) {
-    double x = d->x_m[k] / c->sc.a0_m, y = d->y_m[k] / c->sc.a0_m, v = map_value(c, k);
-    xlo = fmin(xlo, x), xhi = fmax(xhi, x), ymax = fmax(ymax, y);
+    double v = map_value(c, k);
     if (isfinite(v)) hi = fmax(hi, v);
-  }
-  /* the centres in a0, and the cells' outer edges */
-  double *xs = c->scratch, *ys = c->scratch + n, lo, hi_edge;
-  for (size_t k = 0; k < n; k++)
     xs[k] = d->x_m[k] / c->sc.a0_m, ys[k] = d->y_m[k] / c->sc.a0_m;
+  }
   cell_extent(xs, d->ny, d->nx, 0, &lo, &hi_edge);
   double X0 = lo;
   cell_extent(xs, d->ny, d->nx, d->nx - 1, &lo, &hi_edge);
   double X1 = hi_edge;
   cell_extent(ys, 1, d->ny, d->ny - 1, &lo, &hi_edge);
   double Y1 = hi_edge;
-  (void)xlo, (void)xhi, (void)ymax;
   /* equal scales: the data area fitted into the room left of the colour bar */
   double room_x = 0.70 - 0.105, room_y = TOP - 0.115;
   double sx = room_x * f->pw / (X1 - X0), sy = room_y * f->ph / (2 * Y1), s = fmin(sx, sy);
