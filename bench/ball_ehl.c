@@ -11,10 +11,12 @@
  *     the same ball at 0.4 m/s on cells 0.08 .. 0.028: cells, the influence
  *     matrix's assembly (Love's rectangles; with a 28-term memory), the
  *     Newton steps and their mean cost (the dense LU's n^3).
- *   ball_ehl estimate [--compound NAME] [--eta PA_S] [--target E] [--db PATH]
+ *   ball_ehl estimate [--compound NAME] [--eta PA_S] [--target E] [--radius M] [--load N]
+ *                     [--db PATH]
  *     the automatic sweep (vl_point_contact_sweep) of the compound
  *     (default model-rubber) in a fluid of viscosity eta (default 1.41, pure
- *     glycerol) at 0.01 .. 1 m/s to the target (default 0.05), then each
+ *     glycerol), a ball of radius R (default 9.525 mm) under W (default 3 N),
+ *     at 0.01 .. 1 m/s to the target (default 0.05), then each
  *     point on cells 2 and 4 times as wide (the sweep's own cells are at
  *     the dense solver's bound: no finer reference fits); the reference is
  *     the Richardson extrapolation of the two finest at the order the three
@@ -130,7 +132,8 @@ static double mu_on(const vl_point_contact_config *base, const vl_point *pt, dou
   return st == VL_OK ? p.mu : NAN;
 }
 
-static int run_estimate(const char *compound, double eta, double target, const char *db_path) {
+static int run_estimate(const char *compound, double eta, double target, double radius, double load,
+                        const char *db_path) {
   char tmp[] = "/tmp/ball_ehl_XXXXXX";
   vl_db *db = NULL;
   vl_error err;
@@ -148,7 +151,7 @@ static int run_estimate(const char *compound, double eta, double target, const c
     return 1;
   }
   vl_db_close(db);
-  base.radius_x_m = base.radius_y_m = 0.009525, base.load_n = 3.0, base.eta_pa_s = eta;
+  base.radius_x_m = base.radius_y_m = radius, base.load_n = load, base.eta_pa_s = eta;
   const double v[] = {0.01, 0.03, 0.1, 0.3, 1.0};
   size_t n = sizeof v / sizeof v[0];
   vl_point pts[5];
@@ -159,8 +162,8 @@ static int run_estimate(const char *compound, double eta, double target, const c
     fprintf(stderr, "%s\n", err.msg);
     return 1;
   }
-  printf("# %s in a fluid of %g Pa s, R 9.525 mm, W 3 N, target %g: the sweep in %.1f s\n",
-         compound, eta, target, cpu_s() - t0);
+  printf("# %s in a fluid of %g Pa s, R %g m, W %g N, target %g: the sweep in %.1f s\n", compound,
+         eta, radius, load, target, cpu_s() - t0);
   printf("# the point on its cells r and on r/2 and r/4; the reference: Richardson from r/2 and\n"
          "# r at the order the three give (clipped to [1, 3]); 'r/2' is the point one level\n"
          "# coarser, its estimate as the sweep makes it (|mu(r/2) - mu(r/4)|/mu(r/2))\n");
@@ -189,11 +192,11 @@ static int run_estimate(const char *compound, double eta, double target, const c
 int main(int argc, char **argv) {
   if (argc < 2) {
     fprintf(stderr, "usage: ball_ehl hd [--fine] | cost | estimate [--compound NAME] [--eta "
-                    "PA_S] [--target E] [--db PATH]\n");
+                    "PA_S] [--target E] [--radius M] [--load N] [--db PATH]\n");
     return 2;
   }
   const char *compound = "model-rubber", *db = NULL;
-  double eta = 1.41, target = 0.05;
+  double eta = 1.41, target = 0.05, radius = 0.009525, load = 3.0;
   int fine = 0;
   for (int i = 2; i < argc; i++) {
     const char *v = i + 1 < argc ? argv[i + 1] : "";
@@ -205,12 +208,16 @@ int main(int argc, char **argv) {
       eta = atof(v), i++;
     else if (!strcmp(argv[i], "--target"))
       target = atof(v), i++;
+    else if (!strcmp(argv[i], "--radius"))
+      radius = atof(v), i++;
+    else if (!strcmp(argv[i], "--load"))
+      load = atof(v), i++;
     else if (!strcmp(argv[i], "--db"))
       db = v, i++;
   }
   if (!strcmp(argv[1], "hd")) return run_hd(fine);
   if (!strcmp(argv[1], "cost")) return run_cost();
-  if (!strcmp(argv[1], "estimate")) return run_estimate(compound, eta, target, db);
+  if (!strcmp(argv[1], "estimate")) return run_estimate(compound, eta, target, radius, load, db);
   fprintf(stderr, "ball_ehl: unknown mode %s\n", argv[1]);
   return 2;
 }
