@@ -89,14 +89,20 @@ static void test_wrong_combinations(void **state) {
                  "two positive radii");
 }
 
-/* What a ball does not take yet (dry and smooth), each naming its key. */
+/* What a point contact does not take yet (an ellipsoid: dry and smooth;
+ * a ball: no viscous flattening), each naming its key. */
 static void test_not_yet(void **state) {
   (void)state;
   expect_refused("geometry = ellipsoid\nradii_m = 0.01, 0.04\nload_n = 5",
                  "fluid = on\n[materials]\nfluid = water\n", "[effects] fluid",
                  "a lubricated ellipsoid is not available yet");
-  expect_refused(BALL, "roughness = on\n[materials]\nsurface = paper-3um\n", "[effects] roughness",
-                 "smooth only");
+  expect_refused("geometry = ellipsoid\nradii_m = 0.01, 0.04\nload_n = 5",
+                 "roughness = on\n[materials]\nsurface = paper-3um\n", "[effects] roughness",
+                 "a rough ellipsoid is not available yet");
+  expect_refused(BALL,
+                 "roughness = on\nfluid = on\nviscous_flattening = on\n[materials]\n"
+                 "surface = paper-3um\nfluid = water\n",
+                 "[effects] viscous_flattening", "the line contact's only");
   expect_refused(BALL, "[numerics]\ngrid = 256\n", "[numerics] grid", "planned per point");
   expect_refused(BALL, "[numerics]\ndomain_a0 = -2, 2\n", "[numerics] domain_a0", NULL);
   expect_refused(BALL "\nmoving = counterface", "", "[contact] moving", NULL);
@@ -217,6 +223,44 @@ static void test_run_wet_ball(void **state) {
   free(fields), free(out), free(err);
 }
 
+/* `run` of a rough lubricated ball: the four friction terms, the fluid's
+ * share between 0 and 1, the real contact area, the fields of both
+ * pressures and their maps. */
+static void test_run_rough_ball(void **state) {
+  (void)state;
+  const char *scene = vl_test_scratch(
+      "rough.ini", "[scene]\ntitle = rough ball test\n[materials]\ncompound = model-rubber\n"
+                   "surface = paper-1um\nfluid = glycerol\n[contact]\n" BALL "\nsigma_s_pa = 1e6\n"
+                   "[sweep]\nquantity = v0\nfrom = 1e-3\nto = 1e-2\npoints = 2\nfields_at = 1e-2\n"
+                   "[numerics]\ntarget_error = 0.5\n" /* no refinement: for the time */
+                   "[effects]\nviscoelastic = on\nroughness = on\nfluid = on\n"
+                   "solid_shear = on\nflow_factors = patir-cheng\n");
+  char dir[1200], *out = NULL, *err = NULL;
+  snprintf(dir, sizeof dir, "%s/r", vl_test_dir);
+  int rc = vl_test_run(&out, &err, "--quiet run %s --out %s --plot --json", scene, dir);
+  if (rc != 0) fail_msg("run: exit %d: %s", rc, err);
+  assert_true(vl_test_json_valid(out));
+  for (int i = 0; i < 2; i++) {
+    double parts = 0.0;
+    const char *terms[4] = {"mu_Rc", "mu_Rf", "mu_Sc", "mu_Sf"};
+    for (int t = 0; t < 4; t++)
+      parts += vl_test_json_number(out, terms[t], i);
+    assert_true(fabs(vl_test_json_number(out, "mu", i) - parts) < 1e-9);
+    assert_true(vl_test_json_number(out, "mu_Sc", i) > 0.0);
+    assert_true(vl_test_json_number(out, "contact_area_m2", i) > 0.0);
+    double share = vl_test_json_number(out, "fluid_load_fraction", i);
+    assert_true(share > 0.0 && share < 1.0);
+    assert_true(vl_test_json_number(out, "u_min_over_h_rms", i) > 0.0);
+  }
+  char *fields = read_in(dir, "fields/001.csv");
+  assert_non_null(fields);
+  assert_true(!strncmp(fields, "x_m,y_m,x_over_a0,y_over_a0,p_c_pa,u_m,p_f_pa\n", 45));
+  const char *figures[] = {"stribeck.png", "map-pc-1.svg", "map-pf-1.svg", "map-u-1.png"};
+  for (size_t k = 0; k < 4; k++)
+    assert_true(exists(dir, figures[k]));
+  free(fields), free(out), free(err);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test_setup(test_geometry_keys, vl_test_setup_db),
@@ -224,6 +268,7 @@ int main(void) {
       cmocka_unit_test_setup(test_not_yet, vl_test_setup_db),
       cmocka_unit_test_setup(test_run_ball, vl_test_setup_db),
       cmocka_unit_test_setup(test_run_wet_ball, vl_test_setup_db),
+      cmocka_unit_test_setup(test_run_rough_ball, vl_test_setup_db),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -27,6 +27,8 @@
 
 #include <stddef.h>
 
+#include "viscolube/flow_factors.h"
+#include "viscolube/persson.h"
 #include "viscolube/results.h"
 #include "viscolube/rheology.h"
 #include "viscolube/status.h"
@@ -49,16 +51,23 @@
 #define VL_BALL_MAX_CELLS 6144
 
 typedef struct {
-  vl_prony rubber;     /* n_terms = 0: elastic with E = e_inf_pa */
-  double radius_x_m;   /* radius of curvature along the sliding direction */
-  double radius_y_m;   /* across it (a ball: radius_y_m = radius_x_m) */
-  double load_n;       /* normal load W */
-  double eta_pa_s;     /* the fluid's viscosity; 0: dry. A lubricated ball (not an
-                        * ellipsoid) is solved on its own graded cells: cells_per_a0
-                        * sets their finest size 1/cells_per_a0 a0 and y_max_a0 their
-                        * zones and domain (units of y_max_a0/VL_BALL_DOMAIN_A0 a0;
-                        * docs/POINT_CONTACT.md section 9); x_half_a0 is not used */
-  double sigma_s_pa;   /* shear stress in the (smooth) contact area; 0 = off */
+  vl_prony rubber;   /* n_terms = 0: elastic with E = e_inf_pa */
+  double radius_x_m; /* radius of curvature along the sliding direction */
+  double radius_y_m; /* across it (a ball: radius_y_m = radius_x_m) */
+  double load_n;     /* normal load W */
+  double eta_pa_s;   /* the fluid's viscosity; 0: dry. A lubricated ball (not an
+                      * ellipsoid) is solved on its own graded cells: cells_per_a0
+                      * sets their finest size 1/cells_per_a0 a0 and y_max_a0 their
+                      * zones and domain (units of y_max_a0/VL_BALL_DOMAIN_A0 a0;
+                      * docs/POINT_CONTACT.md section 9); x_half_a0 is not used */
+  /* A rough surface (NULL: smooth): Persson's contact pressure in every
+   * cell at its mean separation, the averaged Reynolds equation with the
+   * flow factors (docs/POINT_CONTACT.md section 10); dry when eta_pa_s is
+   * 0. A ball only, solved on the lubricated ball's graded cells. Not owned. */
+  const vl_persson *roughness;
+  vl_flow_factor_kind flow_factors; /* with roughness and a fluid */
+  const vl_emt_table *flow_table;   /* persson-emt: the surface's table */
+  double sigma_s_pa;   /* shear stress on the contact area (rough: the real area); 0 = off */
   double cells_per_a0; /* resolution r: square cells of a0/r */
   double x_half_a0;    /* domain [-x_half, x_half] along x, in a0 */
   double y_max_a0;     /* domain [0, y_max] across, in a0 */

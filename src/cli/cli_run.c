@@ -79,6 +79,7 @@ typedef struct {
   vl_plot_map_data *kept_map;
   size_t *kept_cells;
   bool lubricated; /* a point contact with the fluid effect: p_f fields and maps */
+  bool rough;      /* and with roughness: p_c maps too */
 } run_ctx;
 
 /* The progress line of point i (on a terminal, unless quiet). */
@@ -323,14 +324,18 @@ static vl_status plot_maps(const char *out_dir, vl_simulation *sim, const run_ct
   vl_plot_scales sc = {vl_simulation_a0(sim), vl_simulation_p0(sim), 0.0};
   double ax = 0.0, by = 0.0;
   vl_simulation_hertz_ellipse(sim, &ax, &by);
-  /* a lubricated smooth ball: the fluid's pressure (the solids do not touch) */
-  bool wet = ctx->lubricated;
-  const vl_plot_field fields[2] = {wet ? VL_PLOT_FIELD_PF : VL_PLOT_FIELD_PC, VL_PLOT_FIELD_U};
-  const char *names[2] = {wet ? "pf" : "pc", "u"};
-  const char *kinds[2] = {wet ? "Fluid pressure" : "Contact pressure", "Separation"};
+  /* dry: the contact pressure; a lubricated smooth ball: the fluid's (the
+   * solids do not touch); a rough lubricated one: both */
+  bool wet = ctx->lubricated, rough = ctx->rough;
+  vl_plot_field fields[3] = {VL_PLOT_FIELD_PC, VL_PLOT_FIELD_PF, VL_PLOT_FIELD_U};
+  const char *names[3] = {"pc", "pf", "u"};
+  const char *kinds[3] = {"Contact pressure", "Fluid pressure", "Separation"};
+  int first = wet && !rough ? 1 : 0; /* the first map drawn */
+  if (!wet) fields[1] = fields[2], names[1] = names[2], kinds[1] = kinds[2];
+  int last = wet ? 3 : 2;
   for (size_t k = 0; k < ctx->n_kept; k++) {
     if (!ctx->kept_cells[k]) continue; /* did not converge: no map */
-    for (int u = 0; u < 2; u++) {
+    for (int u = first; u < last; u++) {
       char stem[4200], kind[160], title[1800];
       vl_plot_options opt = *opt_in;
       /* the speed first: a long subject is cut at the figure's edge */
@@ -505,6 +510,7 @@ static vl_status curve_prepare(const run_job *job, const vl_scene *scene, vl_sim
   ctx->tty = isatty(STDERR_FILENO);
   ctx->quiet = job->quiet;
   ctx->lubricated = scene->effects.fluid;
+  ctx->rough = scene->effects.roughness;
   if (scene->geometry != VL_GEOMETRY_CYLINDER) return ball_buffers(ctx, n, job->plot, err);
   if (job->plot) return keep_fields(ctx, n, grid, err);
   return VL_OK;

@@ -3,6 +3,7 @@
 
 #include <complex.h>
 #include <math.h>
+#include <stdbool.h>
 
 vl_status vl_prony_validate(const vl_prony *prony, vl_error *err) {
   if (!(isfinite(prony->e_inf_pa) && prony->e_inf_pa > 0.0)) {
@@ -155,17 +156,26 @@ double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c) {
   return -c1 * (t_c - tref_c) / den;
 }
 
-void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m, double v0_m_s,
-                       double *E_abs_pa, double *a_H_m, double *omega_H) {
+/* The contact's half-width (line, W per length) or radius (ball, W a
+ * force) of Hertz at the reduced modulus e. */
+static double hertz_size(double load, double radius_m, bool ball, double e) {
+  return ball ? cbrt(0.75 * load * radius_m / e) : sqrt(4.0 * load * radius_m / (M_PI * e));
+}
+
+/* The fixed point wH = pi v0 / a_H(|Er(wH)|) (docs/MODEL.md section 4) of
+ * a line or a ball. */
+static void asperity_fixed_point(const vl_prony *rubber, double load, double radius_m, bool ball,
+                                 double v0_m_s, double *E_abs_pa, double *a_H_m, double *omega_H) {
   double red = vl_prony_reduced_factor(rubber);
   double lo = log(vl_prony_e0(rubber) * red), hi = log(rubber->e_inf_pa * red);
   double x = lo;
   if (rubber->n_terms > 0 && v0_m_s > 0.0 && hi > lo) {
     /* f(x) = ln|Er(w(e^x))| - x is decreasing: |Er| grows slower than w, and
-     * w ~ sqrt(|Er|); bisection in ln|Er| is robust over all speeds. */
+     * w ~ e^(x/2) (line) or e^(x/3) (ball); bisection in ln|Er| is robust
+     * over all speeds. */
     for (int it = 0; it < 200 && hi - lo > 1e-15 * fabs(hi); it++) {
       double mid = 0.5 * (lo + hi);
-      double w = M_PI * v0_m_s / sqrt(4.0 * load_n_per_m * radius_m / (M_PI * exp(mid)));
+      double w = M_PI * v0_m_s / hertz_size(load, radius_m, ball, exp(mid));
       double f = log(cabs(vl_prony_modulus(rubber, w)) * red) - mid;
       if (f > 0.0)
         lo = mid;
@@ -175,8 +185,18 @@ void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radiu
     x = 0.5 * (lo + hi);
   }
   double e = exp(x);
-  double a = sqrt(4.0 * load_n_per_m * radius_m / (M_PI * e));
+  double a = hertz_size(load, radius_m, ball, e);
   if (E_abs_pa) *E_abs_pa = e;
   if (a_H_m) *a_H_m = a;
   if (omega_H) *omega_H = M_PI * v0_m_s / a;
+}
+
+void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m, double v0_m_s,
+                       double *E_abs_pa, double *a_H_m, double *omega_H) {
+  asperity_fixed_point(rubber, load_n_per_m, radius_m, false, v0_m_s, E_abs_pa, a_H_m, omega_H);
+}
+
+void vl_asperity_state_ball(const vl_prony *rubber, double load_n, double radius_m, double v0_m_s,
+                            double *E_abs_pa, double *a_H_m, double *omega_H) {
+  asperity_fixed_point(rubber, load_n, radius_m, true, v0_m_s, E_abs_pa, a_H_m, omega_H);
 }

@@ -30,5 +30,9 @@ double vl_wlf_log10_shift(double c1, double c2_k, double t_c, double tref_c);
  * a_H^2 = 4 fN R/(pi |Er(wH)|) (docs/MODEL.md section 4). Reduced moduli. */
 void vl_asperity_state(const vl_prony *rubber, double load_n_per_m, double radius_m, double v0_m_s,
                        double *E_abs_pa, double *a_H_m, double *omega_H);
+/* The same for a ball of radius R under the force W: a_H the Hertz radius
+ * (3 W R/(4 |Er|))^(1/3) (docs/POINT_CONTACT.md section 10). */
+void vl_asperity_state_ball(const vl_prony *rubber, double load_n, double radius_m, double v0_m_s,
+                            double *E_abs_pa, double *a_H_m, double *omega_H);
 
 #endif

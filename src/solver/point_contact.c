@@ -48,15 +48,20 @@ static void cell_counts(const vl_point_contact_config *cfg, size_t *nx, size_t *
   if (*ny < 1) *ny = 1;
 }
 
-/* A lubricated ball: a ball (its solver's symmetry of revolution about
- * z is assumed by the Hertz scales and the zones), its cells within the
- * bound. */
+/* A lubricated or rough ball: a ball (its solver's symmetry of
+ * revolution about z is assumed by the Hertz scales and the zones), its
+ * cells within the bound. */
 static vl_status check_wet(const vl_point_contact_config *cfg, vl_error *err) {
   if (cfg->radius_x_m != cfg->radius_y_m) {
     vl_error_set(err,
-                 "point contact: a lubricated ellipsoid is not available yet (radius_x_m "
+                 "point contact: a %s ellipsoid is not available yet (radius_x_m "
                  "%g differs from radius_y_m %g; a ball only)",
-                 cfg->radius_x_m, cfg->radius_y_m);
+                 cfg->roughness ? "rough" : "lubricated", cfg->radius_x_m, cfg->radius_y_m);
+    return VL_EINPUT;
+  }
+  if (cfg->roughness && cfg->eta_pa_s > 0.0 && cfg->flow_factors == VL_FLOW_FACTORS_PERSSON_EMT &&
+      !cfg->flow_table) {
+    vl_error_set(err, "point contact: flow_factors persson-emt needs the surface's flow_table");
     return VL_EINPUT;
   }
   size_t n = vl_point_contact_wet_cells(cfg);
@@ -104,7 +109,7 @@ static vl_status check_config(const vl_point_contact_config *cfg, vl_error *err)
     vl_error_set(err, "point contact: eta_pa_s must be finite and >= 0 (got %g)", cfg->eta_pa_s);
     return VL_EINPUT;
   }
-  if (cfg->eta_pa_s > 0.0) return check_wet(cfg, err);
+  if (vl_point_contact_is_graded(cfg)) return check_wet(cfg, err);
   size_t nx, ny;
   if (cfg->x_half_a0 * cfg->cells_per_a0 > 1e5 || cfg->y_max_a0 * cfg->cells_per_a0 > 1e5) {
     vl_error_set(err, "point contact: domain too large for its cells");
@@ -182,8 +187,8 @@ vl_status vl_point_contact_build(const vl_point_contact_config *cfg, vl_point_co
   if (c->cfg.max_iterations == 0) c->cfg.max_iterations = VL_NEWTON_MAX_ITERATIONS;
   c->v0 = NAN, c->v_state = NAN;
   set_scales(c);
-  c->wet = cfg->eta_pa_s > 0.0;
-  if (c->wet) { /* its own solver and cells: point_contact_wet.c */
+  c->graded = vl_point_contact_is_graded(cfg);
+  if (c->graded) { /* its own solver and cells: point_contact_wet.c */
     *out = c;
     return VL_OK;
   }
@@ -243,7 +248,7 @@ double vl_point_contact_influence(const vl_point_contact *c, size_t i, size_t j)
 }
 
 void vl_point_contact_reset(vl_point_contact *c) {
-  if (c->wet) return; /* each lubricated solve starts afresh */
+  if (c->graded) return; /* each lubricated solve starts afresh */
   double *y = N_VGetArrayPointer(c->y), sum = 0.0;
   for (size_t k = 0; k < c->n; k++) {
     double rho2 = 2.0 * c->f[k]; /* (gx X^2 + gy Y^2): 1 at the Hertz edge of a ball */

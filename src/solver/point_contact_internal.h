@@ -54,8 +54,8 @@ struct vl_point_contact {
   double v0;      /* speed the influence is built for (NAN: none yet) */
   double v_state; /* speed of the converged state (NAN: the state is a guess) */
   vl_point_contact_timing timing;
-  bool wet;                      /* a lubricated ball (cfg.eta_pa_s > 0): point_contact_wet.c */
-  vl_point_ehl_map map;          /* its fields after a solve (nx 0: none yet) */
+  bool graded;          /* a lubricated or rough ball on graded cells: point_contact_wet.c */
+  vl_point_ehl_map map; /* its fields after a solve (nx 0: none yet) */
   const vl_point_ehl_map *start; /* the next solve's start (another contact's map), or NULL */
   SUNContext ctx;
   N_Vector y, y_saved, y_start, ones, fwork;
@@ -101,6 +101,11 @@ int vl_point_contact_residual(vl_point_contact *c, const double *y, double *f);
 void vl_point_contact_jacobian(vl_point_contact *c, const double *y, double *Jd);
 
 /* point_contact_wet.c */
+
+/* A lubricated or rough ball: solved on graded cells by point_ehl.h. */
+static inline bool vl_point_contact_is_graded(const vl_point_contact_config *cfg) {
+  return cfg->eta_pa_s > 0.0 || cfg->roughness;
+}
 
 /* Solves the lubricated ball at v0 into pt (and c->map). */
 vl_status vl_point_contact_wet_solve(vl_point_contact *c, double v0, vl_point *pt, vl_error *err);

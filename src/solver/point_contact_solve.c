@@ -102,7 +102,7 @@ vl_status vl_point_contact_create(const vl_point_contact_config *cfg, vl_point_c
                                   vl_error *err) {
   vl_point_contact *c = NULL;
   vl_status st = vl_point_contact_build(cfg, &c, err);
-  if (st == VL_OK && c->wet) {
+  if (st == VL_OK && c->graded) {
     *out = c;
     return VL_OK;
   }
@@ -324,18 +324,18 @@ static vl_status solve_at(vl_point_contact *c, double v0, vl_point *pt, vl_error
 vl_status vl_point_contact_solve(vl_point_contact *c, double v0_m_s, vl_point *pt, vl_error *err) {
   int threads = vl_blas_pin_one_thread(); /* the same rounding at any OPENBLAS_NUM_THREADS */
   vl_status st =
-      c->wet ? vl_point_contact_wet_solve(c, v0_m_s, pt, err) : solve_at(c, v0_m_s, pt, err);
+      c->graded ? vl_point_contact_wet_solve(c, v0_m_s, pt, err) : solve_at(c, v0_m_s, pt, err);
   vl_blas_restore_threads(threads);
   return st;
 }
 
 void vl_point_contact_fields(const vl_point_contact *c, vl_fields2d *f) {
-  if (c->wet) {
+  if (c->graded) {
     const vl_point_ehl_map *m = &c->map;
     for (size_t k = 0; k < m->nx * m->ny; k++) {
       if (f->x_m) f->x_m[k] = m->x_m[k];
       if (f->y_m) f->y_m[k] = m->y_m[k];
-      if (f->p_c_pa) f->p_c_pa[k] = 0.0;
+      if (f->p_c_pa) f->p_c_pa[k] = m->pc_pa[k];
       if (f->u_m) f->u_m[k] = m->u_m[k];
       if (f->p_f_pa) f->p_f_pa[k] = m->p_pa[k];
     }
@@ -353,7 +353,7 @@ void vl_point_contact_fields(const vl_point_contact *c, vl_fields2d *f) {
 }
 
 size_t vl_point_contact_cells(const vl_point_contact *c) {
-  return c->wet ? c->map.nx * c->map.ny : c->n;
+  return c->graded ? c->map.nx * c->map.ny : c->n;
 }
 
 const char *vl_geometry_name(int geometry) {

@@ -99,7 +99,7 @@ static void plan_point(const vl_point_contact_config *base, double v0, double sc
 
 /* Cells of cfg (as point_contact.c counts them). */
 static size_t cells_of(const vl_point_contact_config *cfg) {
-  if (cfg->eta_pa_s > 0.0) return vl_point_contact_wet_cells(cfg);
+  if (vl_point_contact_is_graded(cfg)) return vl_point_contact_wet_cells(cfg);
   double r = cfg->cells_per_a0;
   return (2 * (size_t)ceil(cfg->x_half_a0 * r - 0.5) + 1) *
          (size_t)fmax(1.0, ceil(cfg->y_max_a0 * r - 1e-9));
@@ -114,11 +114,12 @@ static vl_status solve_on(const vl_point_contact_config *cfg, double v0, double 
                           vl_sweep_stats *st, vl_error *err) {
   vl_status s = vl_point_contact_create(cfg, c, err);
   if (s != VL_OK) return s;
-  if ((*c)->wet) vl_point_contact_wet_start_from(*c, from);
+  if ((*c)->graded) vl_point_contact_wet_start_from(*c, from);
   s = vl_point_contact_solve(*c, v0, pt, err);
   st->newton_iterations += pt->iterations;
   /* (a lubricated ball continues in speed within its own solve) */
-  if (s != VL_ENOCONV || !(v_prev > 0.0 && v_prev < v0) || cfg->eta_pa_s > 0.0) return s;
+  if (s != VL_ENOCONV || !(v_prev > 0.0 && v_prev < v0) || vl_point_contact_is_graded(cfg))
+    return s;
   st->substeps++;
   vl_point_contact_reset(*c);
   long nni = pt->iterations;
@@ -154,7 +155,10 @@ static double estimate(const vl_point_contact_config *cfg, double v0, vl_sweep_s
   vl_point_contact_free(c);
   if (s != VL_OK) return NAN;
   double d = fabs(pt->mu_Rc - cp.mu_Rc) / (M_SQRT2 - 1.0) + fabs(pt->mu_Sc - cp.mu_Sc);
-  if (cfg->eta_pa_s > 0.0) /* lubricated: the change itself (order 1, see above) */
+  if (cfg->roughness) /* rough: the change itself (order 1), the rolling terms together */
+    d = fabs(pt->mu_Rc + pt->mu_Rf - cp.mu_Rc - cp.mu_Rf) + fabs(pt->mu_Sc - cp.mu_Sc) +
+        fabs(pt->mu_Sf - cp.mu_Sf);
+  else if (cfg->eta_pa_s > 0.0) /* lubricated: the change itself (order 1, see above) */
     d = fabs(pt->mu_Rf - cp.mu_Rf) + fabs(pt->mu_Sf - cp.mu_Sf);
   return d / fmax(fabs(pt->mu), 1e-9);
 }
@@ -169,6 +173,9 @@ typedef struct {
   const vl_point_contact_config *base;
   const vl_auto_options *opt;
   double v_prev;
+  /* the previous converged point's contact: a graded contact's first start
+   * (the curve continued; its own paths when that fails) */
+  const vl_point_contact *prev;
   vl_sweep_stats *st;
 } point_job;
 
@@ -189,13 +196,13 @@ static vl_status ball_point(const point_job *j, double v0, vl_point_contact **c,
                             vl_error *err) {
   vl_point_contact_config cfg;
   double scale = 1.0, refine = 1.0;
-  vl_status s = solve_planned(j, v0, scale, refine, NULL, c, pt, &cfg, err);
+  vl_status s = solve_planned(j, v0, scale, refine, j->prev, c, pt, &cfg, err);
   for (int k = 0; k < BALL_EDGE_RETRIES && s == VL_OK && !j->opt->keep_numerics &&
                   strstr(pt->warnings, "domain edge");
        k++) {
     vl_point_contact_free(*c);
     scale *= BALL_EDGE_GROWTH;
-    s = solve_planned(j, v0, scale, refine, NULL, c, pt, &cfg, err);
+    s = solve_planned(j, v0, scale, refine, j->prev, c, pt, &cfg, err);
   }
   if (s != VL_OK) return s;
   pt->error_estimate = estimate(&cfg, v0, j->st, pt, *c);
@@ -254,13 +261,15 @@ vl_status vl_point_contact_sweep(const vl_point_contact_config *base, const vl_a
   vl_status s = vl_point_contact_build(base, &probe, err);
   vl_point_contact_release(probe);
   if (s != VL_OK) return s;
-  point_job j = {base, &o, 0.0, &st};
+  point_job j = {base, &o, 0.0, NULL, &st};
+  vl_point_contact *prev = NULL;
   for (size_t i = 0; i < n; i++) {
     vl_point_contact *c = NULL;
     vl_error e;
     s = ball_point(&j, v0_m_s[i], &c, &out[i], &e);
     if (s != VL_OK && s != VL_ENOCONV) {
       vl_point_contact_free(c);
+      vl_point_contact_free(prev);
       if (err) *err = e;
       return s;
     }
@@ -271,8 +280,14 @@ vl_status vl_point_contact_sweep(const vl_point_contact_config *base, const vl_a
       st.failed++;
     }
     if (cb) cb(user, i, n, &out[i], out[i].converged ? c : NULL);
-    vl_point_contact_free(c);
+    if (out[i].converged && c->graded) { /* kept as the next point's start */
+      vl_point_contact_free(prev);
+      prev = c, j.prev = c;
+    } else {
+      vl_point_contact_free(c);
+    }
   }
+  vl_point_contact_free(prev);
   st.seconds = vl_point_contact_now_s() - t0;
   if (stats) *stats = st;
   return VL_OK;

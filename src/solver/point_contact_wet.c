@@ -10,6 +10,9 @@
  * the contact's planned size. */
 #include "point_contact_internal.h"
 
+#include "contact_private.h"
+#include "persson_internal.h"
+
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -28,6 +31,9 @@ static void wet_config(const vl_point_contact_config *cfg, double v0, vl_point_e
   e->radius_m = cfg->radius_x_m, e->load_n = cfg->load_n;
   e->rubber = cfg->rubber;
   e->eta_pa_s = cfg->eta_pa_s, e->v0_m_s = v0;
+  e->roughness = cfg->roughness;
+  e->flow_factors = cfg->flow_factors, e->flow_table = cfg->flow_table;
+  e->sigma_s_pa = cfg->sigma_s_pa;
   double unit = cfg->y_max_a0 / VL_BALL_DOMAIN_A0, h = 1.0 / cfg->cells_per_a0;
   e->unit = unit;
   e->x_in = -WET_INLET * unit, e->x_out = WET_OUTLET * unit, e->y_max = WET_SIDE * unit;
@@ -43,28 +49,35 @@ size_t vl_point_contact_wet_cells(const vl_point_contact_config *cfg) {
   return vl_point_ehl_cells(&e);
 }
 
-/* The soft-EHL figures as a point of the curve (both halves). */
+/* The soft-EHL (and rough) figures as a point of the curve (both halves). */
 static void wet_report(const vl_point_contact *c, const vl_point_ehl_result *r, vl_point *pt) {
   pt->converged = r->converged;
   pt->iterations = r->iterations;
   pt->residual = isfinite(r->residual) ? r->residual : DBL_MAX;
   if (!r->converged) return;
-  pt->mu_Rc = 0.0, pt->mu_Sc = 0.0; /* smooth solids apart: no contact pressure */
+  /* smooth: the solids apart, no contact pressure (both terms 0) */
+  pt->mu_Rc = r->mu_Rc, pt->mu_Sc = r->mu_Sc;
   pt->mu_Rf = r->mu_Rf, pt->mu_Sf = r->mu_Sf;
   pt->mu_Sf_couette = r->mu_Sf_couette, pt->mu_Sf_poiseuille = r->mu_Sf_poiseuille;
-  pt->mu = pt->mu_Rf + pt->mu_Sf;
+  pt->mu = c->cfg.roughness ? pt->mu_Rc + pt->mu_Rf + pt->mu_Sc + pt->mu_Sf : pt->mu_Rf + pt->mu_Sf;
   pt->u_min_m = r->h_min_m, pt->x_min_film_m = r->x_min_m;
   pt->u_central_m = r->h_centroid_m;
   pt->x_centroid_m = r->x_centroid_m;
   pt->contact_width_m = 0.0;
-  pt->fluid_load_fraction = 1.0;
+  pt->fluid_load_fraction = c->cfg.roughness ? r->fluid_load_fraction : 1.0;
   pt->load_error = fabs(r->load_error);
-  pt->E_wH_pa = c->er0, pt->a_H_m = c->a0;
+  pt->E_wH_pa = c->cfg.roughness ? r->e_abs_pa : c->er0, pt->a_H_m = c->a0;
   pt->peak_pressure_pa = r->p_max_pa, pt->x_peak_m = r->x_pmax_m;
-  pt->regime = VL_REGIME_HYDRODYNAMIC; /* smooth: the fluid carries the whole load */
+  /* smooth and lubricated: the fluid carries the whole load */
   pt->eps_f_min = 1.0;
+  if (c->cfg.roughness) { /* the line contact's regimes (results.h) */
+    pt->u_min_over_h_rms = r->h_min_m / vl_persson_hrms(c->cfg.roughness);
+    pt->regime = vl_regime_of(c->cfg.eta_pa_s > 0.0, pt->fluid_load_fraction, pt->u_min_over_h_rms);
+  }
   vl_ball_result *ball = &pt->ball;
-  ball->contact_area_m2 = 0.0, ball->contact_length_m = 0.0, ball->contact_breadth_m = 0.0;
+  /* rough: the real contact area (where the asperities touch) */
+  ball->contact_area_m2 = r->real_area_m2;
+  ball->contact_length_m = 0.0, ball->contact_breadth_m = 0.0;
   ball->y_min_film_m = r->y_min_m, ball->y_peak_m = r->y_pmax_m;
   ball->cells_in_contact = 0;
   ball->cells_per_a0 = c->cfg.cells_per_a0;
@@ -80,7 +93,8 @@ vl_status vl_point_contact_wet_solve(vl_point_contact *c, double v0, vl_point *p
   pt->v0_m_s = v0;
   pt->regime = VL_REGIME_HYDRODYNAMIC;
   if (!(v0 > 0.0 && isfinite(v0))) {
-    vl_error_set(err, "lubricated ball: speed must be finite and > 0 (got %g m/s)", v0);
+    vl_error_set(err, "%s ball: speed must be finite and > 0 (got %g m/s)",
+                 c->cfg.roughness ? "rough" : "lubricated", v0);
     return VL_EINPUT;
   }
   vl_point_ehl_config e;
@@ -96,5 +110,5 @@ vl_status vl_point_contact_wet_solve(vl_point_contact *c, double v0, vl_point *p
 }
 
 void vl_point_contact_wet_start_from(vl_point_contact *c, const vl_point_contact *from) {
-  c->start = from && from->wet && from->map.nx ? &from->map : NULL;
+  c->start = from && from->graded && from->map.nx ? &from->map : NULL;
 }

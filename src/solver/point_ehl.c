@@ -35,8 +35,11 @@
 
 #include "blas_threads.h"
 #include "bracket.h"
+#include "flow_factors_internal.h"
 #include "kernel2d.h"
 #include "linsol_lapack.h"
+#include "persson_internal.h"
+#include "rheology_internal.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -56,6 +59,13 @@ static const double ZONE_Y[1][2] = {{0.3, 1.1}};
  * a residue of the complementarity's tolerance (measured 1e-19). */
 #define PRESSURISED 1e-7
 
+/* Newton steps allowed from another grid's solution (measured: 6-23
+ * when it converges). */
+#define MAP_ITERATIONS 40
+/* ... and from the dry rough contact at a slower entrainment (measured:
+ * 9-44 when it converges) */
+#define DRY_START_ITERATIONS 50
+
 /* Stencil of a row: at most 6 cells whose film enters it. */
 #define STENCIL 8
 
@@ -68,7 +78,23 @@ typedef struct {
   double *f;       /* undeformed gap (X^2 + Y^2)/2 */
   double *H, *g;   /* film and conductance H^3 of the last evaluation */
   double lambda;
-  double *row; /* a Jacobian row (n + 1) */
+  double v0_m_s; /* the speed */
+  double *row;   /* a Jacobian row (n + 1) */
+  /* per cell, of the last evaluation: the film carried by the entrainment
+   * (H; rough: the mean film u + h_rms phi_s) and the derivatives of it and
+   * of g with respect to H; the fluid pressure (y itself when smooth) */
+  double *cf, *dcf, *dg;
+  const double *Pf;
+  /* a rough surface (point_ehl.h; NULL: smooth) and, dry, no fluid */
+  const vl_persson *roughness;
+  bool dry;
+  vl_flow_factor_kind flow_factors;
+  const vl_emt_table *flow_table;
+  double sfac;           /* Pc per Persson's s = pc/|Er|: |Er|/p0 */
+  double us_m;           /* the film's unit a^2/R (m) */
+  double hrms_m;         /* of the surface */
+  double g_floor;        /* conductance floor: a closed cell still fixes its pressure */
+  double *Pc, *dPc, *pf; /* contact pressure (p0), dPc/dH, the fluid's */
 } ehl;
 
 static double now_s(void) {
@@ -139,6 +165,7 @@ static size_t graded_faces(double lo, double hi, const double (*z)[2], size_t nz
 static void ehl_free(ehl *e) {
   free(e->xf), free(e->yf), free(e->xc), free(e->yc), free(e->dx), free(e->dy);
   free(e->M), free(e->f), free(e->H), free(e->g), free(e->row);
+  free(e->cf), free(e->dcf), free(e->dg), free(e->Pc), free(e->dPc), free(e->pf);
 }
 
 /* Hertz's scales of the relaxed rubber: the reduced moduli, a and p0. */
@@ -237,6 +264,25 @@ static vl_status add_memory(ehl *e, const double *A, const double *b, size_t nk)
   return VL_OK;
 }
 
+/* A rough surface's constants and per-cell arrays: the asperity modulus
+ * |Er| at the frequency pi v0/a_H of the contact (the line contact's fixed
+ * point, docs/MODEL.md section 4, with a ball's Hertz radius). */
+static vl_status rough_build(ehl *e, const vl_point_ehl_config *cfg) {
+  size_t n = e->n;
+  ehl_scales sc = scales_of(cfg);
+  double e_abs;
+  vl_asperity_state_ball(&cfg->rubber, cfg->load_n, cfg->radius_m, cfg->v0_m_s, &e_abs, NULL, NULL);
+  e->roughness = cfg->roughness, e->dry = !(cfg->eta_pa_s > 0.0);
+  e->flow_factors = cfg->flow_factors, e->flow_table = cfg->flow_table;
+  e->sfac = e_abs / sc.p0;
+  e->us_m = sc.a * sc.a / cfg->radius_m;
+  e->hrms_m = vl_persson_hrms(cfg->roughness);
+  e->g_floor = 1e-12 * pow(e->hrms_m / e->us_m, 3.0);
+  e->Pc = malloc(n * sizeof(double)), e->dPc = malloc(n * sizeof(double));
+  e->pf = malloc(n * sizeof(double));
+  return e->Pc && e->dPc && e->pf ? VL_OK : VL_ENOMEM;
+}
+
 /* The grid, the undeformed gap and the dense influence matrix. */
 static vl_status ehl_build(ehl *e, const vl_point_ehl_config *cfg, vl_error *err) {
   memset(e, 0, sizeof *e);
@@ -250,8 +296,12 @@ static vl_status ehl_build(ehl *e, const vl_point_ehl_config *cfg, vl_error *err
   e->M = malloc(n * n * sizeof(double));
   e->f = malloc(n * sizeof(double)), e->H = malloc(n * sizeof(double));
   e->g = malloc(n * sizeof(double)), e->row = malloc((n + 1) * sizeof(double));
-  if (!e->xc || !e->dx || !e->yc || !e->dy || !e->M || !e->f || !e->H || !e->g || !e->row)
+  e->cf = malloc(n * sizeof(double)), e->dcf = malloc(n * sizeof(double));
+  e->dg = malloc(n * sizeof(double));
+  if (!e->xc || !e->dx || !e->yc || !e->dy || !e->M || !e->f || !e->H || !e->g || !e->row ||
+      !e->cf || !e->dcf || !e->dg)
     goto nomem;
+  if (cfg->roughness && rough_build(e, cfg) != VL_OK) goto nomem;
   for (size_t i = 0; i < nx; i++)
     e->xc[i] = 0.5 * (e->xf[i] + e->xf[i + 1]), e->dx[i] = e->xf[i + 1] - e->xf[i];
   for (size_t j = 0; j < ny; j++)
@@ -281,8 +331,31 @@ nomem:
   return VL_ENOMEM;
 }
 
-/* H = H0 + f + M P and g = H^3 (H floored at 1e-12 in g: a closing film
- * during the iterations). */
+/* A rough cell k at film H_k and total pressure q: Persson's contact
+ * pressure at the mean separation u (docs/MODEL.md section 4), the fluid's
+ * q - Pc, and with a fluid the flow quantities of the averaged Reynolds
+ * equation: the conductance u^3 phi_p and the film u + h_rms phi_s carried
+ * by the entrainment (docs/FLOW_FACTORS.md; the line contact's
+ * contact_equations.c: eval_flow). A Newton iterate that crosses u < 0 gets
+ * no flow there (the contact pressure is then enormous but finite). */
+static void rough_cell(ehl *e, size_t k, double q) {
+  double us = e->us_m, u = e->H[k] * us, dsdu;
+  double s = vl_persson_pressure(e->roughness, u, &dsdu);
+  e->Pc[k] = e->sfac * s, e->dPc[k] = e->sfac * dsdu * us;
+  e->pf[k] = q - e->Pc[k];
+  if (e->dry) return;
+  vl_flow_factor_values v, d;
+  double up = fmax(u, 0.0), on = u > 0.0 ? 1.0 : 0.0, u3 = up * up * up;
+  vl_flow_factors_eval_table(e->flow_factors, e->flow_table, up, e->hrms_m, &v, &d);
+  e->g[k] = u3 * v.phi_p / (us * us * us) + e->g_floor;
+  e->dg[k] = on * (3.0 * up * up * v.phi_p + u3 * d.phi_p) / (us * us);
+  e->cf[k] = (up + e->hrms_m * v.phi_s) / us;
+  e->dcf[k] = on * (1.0 + e->hrms_m * d.phi_s);
+}
+
+/* H = H0 + f + M y; smooth: g = H^3 (H floored at 1e-12 in g: a closing
+ * film during the iterations), the entrained film H and the fluid pressure
+ * y; rough: rough_cell. */
 static void ehl_eval(ehl *e, const double *y) {
   size_t n = e->n;
   double H0 = y[n];
@@ -292,25 +365,26 @@ static void ehl_eval(ehl *e, const double *y) {
     for (size_t l = 0; l < n; l++)
       s += Mk[l] * y[l];
     e->H[k] = H0 + e->f[k] + s;
+    if (e->roughness) {
+      rough_cell(e, k, y[k]);
+      continue;
+    }
     double h = fmax(e->H[k], 1e-12);
     e->g[k] = h * h * h;
+    e->dg[k] = e->H[k] > 1e-12 ? 3.0 * h * h : 0.0;
+    e->cf[k] = e->H[k], e->dcf[k] = 1.0;
   }
-}
-
-/* Derivative of g = max(H, 1e-12)^3 with respect to H. */
-static double dg_dH(const ehl *e, size_t k) {
-  double h = e->H[k];
-  return h > 1e-12 ? 3.0 * h * h : 0.0;
+  e->Pf = e->roughness ? e->pf : y;
 }
 
 /* Film carried across the x face between cells i - 1 and i of row j
  * (i = 0 .. nx): the line contact's couette_face on this grid (the
  * van Albada limited extrapolation from the upwind cell; the inlet faces 0
- * and 1 unlimited, the outlet face the upwind cell). Writes the cells and
- * the derivatives of the value. */
-static double couette_face(const ehl *e, size_t i, size_t j, size_t kk[3], double w[3], int *m) {
+ * and 1 unlimited, the outlet face the upwind cell) of the cells' films
+ * cf. Writes the cells and the derivatives of the value per film. */
+static double couette_value(const ehl *e, size_t i, size_t j, size_t kk[3], double w[3], int *m) {
   size_t nx = e->nx, ny = e->ny;
-  const double *H = e->H;
+  const double *H = e->cf;
   if (i == nx) {
     kk[0] = (nx - 1) * ny + j, w[0] = 1.0, *m = 1;
     return H[kk[0]];
@@ -334,7 +408,15 @@ static double couette_face(const ehl *e, size_t i, size_t j, size_t kk[3], doubl
   return H[C] + inc;
 }
 
-/* Conductance of the face between cells k and l (harmonic mean of H^3)
+/* The same with the derivatives per H (the film's own). */
+static double couette_face(const ehl *e, size_t i, size_t j, size_t kk[3], double w[3], int *m) {
+  double v = couette_value(e, i, j, kk, w, m);
+  for (int q = 0; q < *m; q++)
+    w[q] *= e->dcf[kk[q]]; /* per H: the entrained film's own derivative */
+  return v;
+}
+
+/* Conductance of the face between cells k and l (harmonic mean of g)
  * and its derivatives with respect to g_k and g_l. */
 static double face_g(const ehl *e, size_t k, size_t l, double *dk, double *dl) {
   double gk = e->g[k], gl = e->g[l], s = gk + gl;
@@ -376,13 +458,13 @@ static double poiseuille_out(const ehl *e, const double *P, size_t k, size_t l, 
                              double len, row_deps *d) {
   if (l == SIZE_MAX) { /* to the boundary: the cell's own conductance */
     double c = len / dist;
-    if (d) add_p(d, k, e->g[k] * c), add_h(d, k, dg_dH(e, k) * P[k] * c);
+    if (d) add_p(d, k, e->g[k] * c), add_h(d, k, e->dg[k] * P[k] * c);
     return e->g[k] * P[k] * c;
   }
   double dk, dl, gf = face_g(e, k, l, &dk, &dl), c = len / dist, dP = P[l] - P[k];
   if (d) {
     add_p(d, k, gf * c), add_p(d, l, -gf * c);
-    add_h(d, k, -dk * dg_dH(e, k) * dP * c), add_h(d, l, -dl * dg_dH(e, l) * dP * c);
+    add_h(d, k, -dk * e->dg[k] * dP * c), add_h(d, l, -dl * e->dg[l] * dP * c);
   }
   return -gf * dP * c;
 }
@@ -453,24 +535,77 @@ static double fb(double a, double b, double *da, double *db) {
   return a + b - rho;
 }
 
+/* Row k's residual: dry rough, the contact law y_k = Pc(H_k); else the
+ * cavitation complementarity of the fluid pressure and the flux out. */
+static double row_residual(ehl *e, const double *y, size_t i, size_t j, row_deps *d, double *dp,
+                           double *dr) {
+  size_t k = i * e->ny + j;
+  if (e->dry) {
+    if (d) d->np = 0, d->nh = 0;
+    return y[k] - e->Pc[k];
+  }
+  double r = flow_row(e, e->Pf, i, j, d);
+  return fb(e->Pf[k], r, d ? dp : NULL, dr);
+}
+
 static int residual_fn(N_Vector yv, N_Vector fv, void *user) {
   ehl *e = user;
   const double *y = N_VGetArrayPointer(yv);
   double *f = N_VGetArrayPointer(fv);
   ehl_eval(e, y);
-  /* a closed film is no state of a lubricated contact: a recoverable
-   * failure, on which KINSOL's line search shortens the step */
-  for (size_t k = 0; k < e->n; k++)
+  /* a closed film is no state of a smooth lubricated contact: a
+   * recoverable failure, on which KINSOL's line search shortens the step
+   * (a rough one is held open by the asperities' pressure) */
+  for (size_t k = 0; k < e->n && !e->roughness; k++)
     if (!(e->H[k] > 0.0)) return 1;
   for (size_t i = 0; i < e->nx; i++)
     for (size_t j = 0; j < e->ny; j++) {
       size_t k = i * e->ny + j;
-      double r = flow_row(e, y, i, j, NULL);
-      f[k] = fb(y[k], r, NULL, NULL);
+      f[k] = row_residual(e, y, i, j, NULL, NULL, NULL);
       if (!isfinite(f[k])) return 1;
     }
   f[e->n] = load_row(e, y);
   return 0;
+}
+
+/* row += sum_q w[q] (row m[q] of M, and 1 in the column of H0): the
+ * derivative of the films H_m. */
+static void add_film_rows(const ehl *e, double *row, const size_t *m, const double *w, int nw) {
+  size_t n = e->n;
+  for (int q = 0; q < nw; q++) {
+    if (w[q] == 0.0) continue;
+    const double *Mm = e->M + m[q] * n;
+    for (size_t l = 0; l < n; l++)
+      row[l] += w[q] * Mm[l];
+    row[n] += w[q];
+  }
+}
+
+/* Row k of the Jacobian per the unknowns y (the total pressure; smooth:
+ * the fluid's) and H0, into e->row: the direct dependence on the fluid
+ * pressures dPf/dy = 1, and the films' through M, to which a rough cell's
+ * fluid pressure y - Pc(H) adds -dPc/dH. */
+static void jacobian_row(ehl *e, const double *y, size_t i, size_t j) {
+  size_t n = e->n, k = i * e->ny + j, cells[4 * STENCIL];
+  double *row = e->row, dp = 0.0, dr = 0.0, w[4 * STENCIL];
+  int nw = 0;
+  row_deps d;
+  memset(row, 0, (n + 1) * sizeof *row);
+  row_residual(e, y, i, j, &d, &dp, &dr);
+  if (e->dry) dp = 1.0; /* y_k - Pc(H_k) */
+  row[k] += dp;
+  if (e->roughness) cells[nw] = k, w[nw++] = -dp * e->dPc[k];
+  if (dr == 0.0) {
+    add_film_rows(e, row, cells, w, nw);
+    return;
+  }
+  for (int q = 0; q < d.nh; q++)
+    cells[nw] = d.hk[q], w[nw++] = dr * d.hw[q];
+  for (int q = 0; q < d.np && e->roughness; q++)
+    cells[nw] = d.pk[q], w[nw++] = -dr * d.pw[q] * e->dPc[d.pk[q]];
+  add_film_rows(e, row, cells, w, nw);
+  for (int q = 0; q < d.np; q++)
+    row[d.pk[q]] += dr * d.pw[q];
 }
 
 static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vector t1,
@@ -481,28 +616,12 @@ static int jacobian_fn(N_Vector yv, N_Vector fv, SUNMatrix J, void *user, N_Vect
   size_t n = e->n, ld = n + 1;
   double *Jd = SUNDenseMatrix_Data(J);
   ehl_eval(e, y);
-  row_deps d;
   for (size_t i = 0; i < e->nx; i++)
     for (size_t j = 0; j < e->ny; j++) {
       size_t k = i * e->ny + j;
-      double r = flow_row(e, y, i, j, &d);
-      double *row = e->row, dp, dr;
-      memset(row, 0, (n + 1) * sizeof *row);
-      fb(y[k], r, &dp, &dr);
-      row[k] = dp;
-      if (dr != 0.0) {
-        for (int q = 0; q < d.nh; q++) {
-          const double *Mm = e->M + d.hk[q] * n;
-          double w = dr * d.hw[q];
-          for (size_t l = 0; l < n; l++)
-            row[l] += w * Mm[l];
-          row[n] += w;
-        }
-        for (int q = 0; q < d.np; q++)
-          row[d.pk[q]] += dr * d.pw[q];
-      }
+      jacobian_row(e, y, i, j);
       for (size_t l = 0; l <= n; l++)
-        Jd[l * ld + k] = row[l];
+        Jd[l * ld + k] = e->row[l];
     }
   for (size_t l = 0; l < n; l++)
     Jd[l * ld + n] = e->dx[l / e->ny] * e->dy[l % e->ny] * 3.0 / M_PI;
@@ -520,11 +639,19 @@ static vl_status check_config(const vl_point_ehl_config *c, vl_error *err) {
   struct {
     const char *name;
     double v;
-  } pos[] = {
-      {"radius_m", c->radius_m}, {"load_n", c->load_n},       {"e_inf_pa", c->rubber.e_inf_pa},
-      {"eta_pa_s", c->eta_pa_s}, {"v0_m_s", c->v0_m_s},       {"h_fine", c->h_fine},
-      {"h_coarse", c->h_coarse}, {"growth", c->growth},       {"x_out", c->x_out},
-      {"y_max", c->y_max},       {"tolerance", c->tolerance}, {"unit", c->unit}};
+  } pos[] = {{"radius_m", c->radius_m},
+             {"load_n", c->load_n},
+             {"e_inf_pa", c->rubber.e_inf_pa},
+             /* a smooth ball needs a fluid; a rough one may be dry */
+             {"eta_pa_s", c->roughness && c->eta_pa_s == 0.0 ? 1.0 : c->eta_pa_s},
+             {"v0_m_s", c->v0_m_s},
+             {"h_fine", c->h_fine},
+             {"h_coarse", c->h_coarse},
+             {"growth", c->growth},
+             {"x_out", c->x_out},
+             {"y_max", c->y_max},
+             {"tolerance", c->tolerance},
+             {"unit", c->unit}};
   for (size_t i = 0; i < sizeof pos / sizeof pos[0]; i++)
     if (!(pos[i].v > 0.0) || !isfinite(pos[i].v)) {
       vl_error_set(err, "point EHL: %s must be positive and finite (got %g)", pos[i].name,
@@ -540,6 +667,10 @@ static vl_status check_config(const vl_point_ehl_config *c, vl_error *err) {
   }
   if (!(c->rubber.nu >= 0.0 && c->rubber.nu <= 0.5)) {
     vl_error_set(err, "point EHL: nu must be in [0, 0.5] (got %g)", c->rubber.nu);
+    return VL_EINPUT;
+  }
+  if (c->roughness && !(c->sigma_s_pa >= 0.0 && isfinite(c->sigma_s_pa))) {
+    vl_error_set(err, "point EHL: sigma_s_pa must be finite and >= 0 (got %g)", c->sigma_s_pa);
     return VL_EINPUT;
   }
   if (!(c->h_fine <= c->h_coarse) || c->max_iterations < 1) {
@@ -672,7 +803,7 @@ static double cell_slope(const double *v, size_t stride, const double *t, size_t
  * the film, eta v0^2/u (in the cavitated outlet theta of it, as the shear)
  * plus u^3/(12 eta) |grad p|^2, and the power the pressure puts into the
  * rubber, v0 \int p dw/dx dA (0 for an elastic rubber in steady sliding,
- * the hysteresis for a viscoelastic one). Their sum is (mu_Rf + mu_Sf) W v0
+ * the hysteresis for a viscoelastic one; y the total pressure). Their sum is (mu_Rf + mu_Sf) W v0
  * up to the discretisation (tests/test_ball_ehl.c). */
 static void energy(const ehl *e, const vl_point_ehl_config *cfg, const double *y, double a,
                    double p0, vl_point_ehl_result *res) {
@@ -691,17 +822,19 @@ static void energy(const ehl *e, const vl_point_ehl_config *cfg, const double *y
     for (size_t i = 0; i < nx; i++) {
       size_t k = i * ny + j;
       double dA = e->dx[i] * e->dy[j] * a * a, u = e->H[k] * us;
-      double theta = film_fraction(y[k], u, e->xc[i], &hrupture);
-      double gx = cell_slope(y + j, ny, e->xc, nx, i, e->xf[0], e->xf[nx], true) * p0 / a;
-      double gy = cell_slope(y + i * ny, 1, e->yc, ny, j, -e->yc[0], e->yf[ny], true) * p0 / a;
-      if (j == 0) gy = 0.5 * (y[k + 1] - y[k]) / (e->yc[1] - e->yc[0]) * p0 / a; /* symmetric */
+      const double *Pf = e->Pf;
+      double theta = film_fraction(Pf[k], u, e->xc[i], &hrupture);
+      double gx = cell_slope(Pf + j, ny, e->xc, nx, i, e->xf[0], e->xf[nx], true) * p0 / a;
+      double gy = cell_slope(Pf + i * ny, 1, e->yc, ny, j, -e->yc[0], e->yf[ny], true) * p0 / a;
+      if (j == 0) gy = 0.5 * (Pf[k + 1] - Pf[k]) / (e->yc[1] - e->yc[0]) * p0 / a; /* symmetric */
       visc += (theta * eta * v0 * v0 / u + u * u * u / (12.0 * eta) * (gx * gx + gy * gy)) * dA;
       double dw = cell_slope(w + j, ny, e->xc, nx, i, e->xf[0], e->xf[nx], false) * us / a;
       hyst += v0 * y[k] * p0 * dw * dA;
     }
   }
   free(w);
-  res->dissipation_w = 2.0 * visc, res->hysteresis_w = 2.0 * hyst;
+  /* (a rough film's dissipation would need its flow factors: not reported) */
+  res->dissipation_w = e->roughness ? NAN : 2.0 * visc, res->hysteresis_w = 2.0 * hyst;
 }
 
 /* Figures of the converged (or last) state y into res. */
@@ -717,21 +850,32 @@ static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, doub
   res->h_min_axis_m = min_film(e, &xm, &ym, true) * us;
   res->h0_m = y[n] * us;
   res->load_error = load_row(e, y);
-  /* friction (docs/POINT_CONTACT.md section 9): both halves, per W */
-  double spx = 0.0, couette = 0.0, pois = 0.0;
+  /* friction (docs/POINT_CONTACT.md sections 9 and 10): both halves, per W */
+  const double *Pf = e->Pf;
+  double spx = 0.0, scx = 0.0, couette = 0.0, pois = 0.0, area = 0.0, sf = 0.0;
   for (size_t j = 0; j < ny; j++) {
     double hrupture = NAN;
     for (size_t i = 0; i < e->nx; i++) {
       size_t k = i * ny + j;
-      double dA = e->dx[i] * e->dy[j] * a * a, p = y[k] * p0, u = e->H[k] * us;
+      double dA = e->dx[i] * e->dy[j] * a * a, p = Pf[k] * p0, u = e->H[k] * us;
       spx += p * e->xc[i] * a * dA;
-      double theta = film_fraction(y[k], u, e->xc[i], &hrupture);
-      if (u > 0.0) couette += theta * cfg->eta_pa_s * cfg->v0_m_s / u * dA;
-      double dpdx = cell_slope(y + j, ny, e->xc, e->nx, i, e->xf[0], e->xf[e->nx], true) * p0 / a;
-      pois += -0.5 * u * dpdx * dA;
+      sf += Pf[k] * e->dx[i] * e->dy[j];
+      /* the wall shear's flow factors (smooth: 1, 0 and 1) */
+      vl_flow_factor_values v = {1.0, 0.0, 1.0, 0.0, 1.0};
+      if (e->roughness) {
+        scx += e->Pc[k] * p0 * e->xc[i] * a * dA;
+        area += vl_persson_area_ratio(e->roughness, e->Pc[k] / e->sfac, NULL) * dA;
+        if (e->dry) continue;
+        vl_flow_factors_eval_table(e->flow_factors, e->flow_table, fmax(u, 0.0), e->hrms_m, &v,
+                                   NULL);
+      }
+      double theta = film_fraction(Pf[k], u, e->xc[i], &hrupture);
+      if (u > 0.0) couette += theta * (v.phi_f + v.phi_fs) * cfg->eta_pa_s * cfg->v0_m_s / u * dA;
+      double dpdx = cell_slope(Pf + j, ny, e->xc, e->nx, i, e->xf[0], e->xf[e->nx], true) * p0 / a;
+      pois += -0.5 * v.phi_fp * u * dpdx * dA;
     }
   }
-  res->x_centroid_m = 2.0 * spx / W;
+  res->x_centroid_m = 2.0 * (spx + scx) / W;
   res->h_centroid_m = axis_film_at(e, res->x_centroid_m / a) * us;
   size_t kmax = 0;
   for (size_t k = 1; k < n; k++)
@@ -739,6 +883,11 @@ static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, doub
   res->p_max_pa = y[kmax] * p0;
   res->x_pmax_m = e->xc[kmax / ny] * a, res->y_pmax_m = e->yc[kmax % ny] * a;
   res->mu_Rf = -2.0 * spx / (W * R);
+  res->mu_Rc = -2.0 * scx / (W * R);
+  res->real_area_m2 = 2.0 * area;
+  res->mu_Sc = cfg->sigma_s_pa * res->real_area_m2 / W;
+  res->fluid_load_fraction = sf * 3.0 / M_PI;
+  res->e_abs_pa = e->roughness ? e->sfac * p0 : 0.0;
   res->mu_Sf_couette = 2.0 * couette / W;
   res->mu_Sf_poiseuille = 2.0 * pois / W;
   res->mu_Sf = res->mu_Sf_couette + res->mu_Sf_poiseuille;
@@ -750,18 +899,21 @@ static vl_status map_of(ehl *e, const double *y, double a, double p0, double us,
                         vl_point_ehl_map *map, vl_error *err) {
   size_t n = e->n;
   memset(map, 0, sizeof *map);
-  map->x_m = malloc(4 * n * sizeof *map->x_m);
+  map->x_m = malloc(5 * n * sizeof *map->x_m);
   if (!map->x_m) {
     vl_error_set(err, "out of memory for the lubricated ball's fields (%zu cells)", n);
     return VL_ENOMEM;
   }
   map->y_m = map->x_m + n, map->p_pa = map->x_m + 2 * n, map->u_m = map->x_m + 3 * n;
+  map->pc_pa = map->x_m + 4 * n;
   map->nx = e->nx, map->ny = e->ny;
   map->h0_m = y[n] * us;
+  map->v0_m_s = e->v0_m_s;
   ehl_eval(e, y);
   for (size_t k = 0; k < n; k++) {
     map->x_m[k] = e->xc[k / e->ny] * a, map->y_m[k] = e->yc[k % e->ny] * a;
-    map->p_pa[k] = y[k] * p0, map->u_m[k] = e->H[k] * us;
+    map->p_pa[k] = e->Pf[k] * p0, map->u_m[k] = e->H[k] * us;
+    map->pc_pa[k] = e->roughness ? e->Pc[k] * p0 : 0.0;
   }
   return VL_OK;
 }
@@ -802,9 +954,10 @@ static bool start_from_map(ehl *e, double *yd, const vl_point_ehl_map *from, dou
     }
     size_t i = vl_bracket(xs, fx, X), j = Y < ys[0] ? 0 : vl_bracket(ys, fy, Y);
     double t = (X - xs[i]) / (xs[i + 1] - xs[i]), u = fmax(0.0, (Y - ys[j]) / (ys[j + 1] - ys[j]));
-    const double *p = from->p_pa;
-    yd[k] = ((1 - t) * ((1 - u) * p[i * fy + j] + u * p[i * fy + j + 1]) +
-             t * ((1 - u) * p[(i + 1) * fy + j] + u * p[(i + 1) * fy + j + 1])) /
+    const double *p = from->p_pa, *pc = from->pc_pa;
+    size_t c00 = i * fy + j, c01 = c00 + 1, c10 = c00 + fy, c11 = c10 + 1;
+    yd[k] = ((1 - t) * ((1 - u) * (p[c00] + pc[c00]) + u * (p[c01] + pc[c01])) +
+             t * ((1 - u) * (p[c10] + pc[c10]) + u * (p[c11] + pc[c11]))) /
             p0;
   }
   free(xs);
@@ -830,6 +983,14 @@ static void hertz_start(ehl *e, double *yd, double unit, double lift, double tai
   ehl_eval(e, yd);
   yd[n] = lift - centre_film(e);
   raise_min_film(e, yd, 0.5 * lift);
+}
+
+/* A rough contact's mean separation (a^2/R) where the asperities alone
+ * carry the Hertz peak of a contact of radius unit: the start's film at
+ * the centre when the fluid carries little (0 when smooth). */
+static double asperity_lift(const ehl *e, double unit) {
+  if (!e->roughness) return 0.0;
+  return vl_persson_separation(e->roughness, 1.0 / (unit * unit * e->sfac)) / e->us_m;
 }
 
 /* KINSOL's objects for one solve. */
@@ -896,16 +1057,17 @@ static bool kin_run(ehl_kin *k, ehl *e, double tol, long *nni, double *fnorm) {
   return flag >= 0 && *fnorm <= tol;
 }
 
-/* From the state at e->lambda (converged) down to lambda by shrinking
- * steps (a factor up to 4, grown 1.5x after a success, its square root
+/* From the state at e->lambda (converged) to lambda, down or up, by
+ * steps of a factor up to 4 (grown 1.5x after a success, its square root
  * after a failure, given up below 1.02). */
-static bool continue_down(ehl_kin *k, ehl *e, double lambda, double tol, vl_point_ehl_result *res,
-                          double *fnorm) {
+static bool continue_to(ehl_kin *k, ehl *e, double lambda, double tol, vl_point_ehl_result *res,
+                        double *fnorm) {
   double ratio = 4.0;
+  bool down = e->lambda > lambda;
   N_VScale(1.0, k->y, k->y0);
-  while (e->lambda > lambda) {
+  while (down ? e->lambda > lambda : e->lambda < lambda) {
     double from = e->lambda;
-    e->lambda = fmax(lambda, e->lambda / ratio);
+    e->lambda = down ? fmax(lambda, e->lambda / ratio) : fmin(lambda, e->lambda * ratio);
     /* with a line search: full steps close the film (measured) */
     bool step_ok = kin_run(k, e, tol, &res->iterations, fnorm);
     res->continuation_steps++;
@@ -922,6 +1084,48 @@ static bool continue_down(ehl_kin *k, ehl *e, double lambda, double tol, vl_poin
   return true;
 }
 
+/* A rough lubricated contact from the dry one (its state in k->y): the
+ * film at once, else at a slower entrainment (lambda / 8^j: the fluid's
+ * share falls towards the dry limit) continued up to lambda. */
+static bool rough_from_dry(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
+                           vl_point_ehl_result *res, double *fnorm) {
+  double lambda = e->lambda, tol = cfg->tolerance;
+  e->dry = true;
+  bool ok = kin_run(k, e, tol, &res->iterations, fnorm);
+  e->dry = false;
+  if (!ok) return false;
+  N_Vector dry = N_VClone(k->y);
+  if (!dry) return false;
+  N_VScale(1.0, k->y, dry);
+  KINSetNumMaxIters(k->kmem, DRY_START_ITERATIONS);
+  ok = false;
+  for (int j = 0; j <= 8 && !ok; j++) {
+    e->lambda = lambda / pow(8.0, j);
+    N_VScale(1.0, dry, k->y);
+    ok = kin_run(k, e, tol, &res->iterations, fnorm);
+  }
+  KINSetNumMaxIters(k->kmem, cfg->max_iterations);
+  N_VDestroy(dry);
+  if (ok && e->lambda < lambda) ok = continue_to(k, e, lambda, tol, res, fnorm);
+  e->lambda = lambda;
+  return ok;
+}
+
+/* A run from `start` (another grid's solution), its steps bounded: a
+ * start that is going to fail stalls early. */
+static bool map_run(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
+                    const vl_point_ehl_map *start, const ehl_scales *sc, vl_point_ehl_result *res,
+                    double *fnorm) {
+  double *yd = N_VGetArrayPointer(k->y), us = sc->a * sc->a / cfg->radius_m;
+  if (!start_from_map(e, yd, start, sc->a, sc->p0, us)) return false;
+  KINSetNumMaxIters(k->kmem,
+                    cfg->max_iterations < MAP_ITERATIONS ? cfg->max_iterations : MAP_ITERATIONS);
+  bool ok = kin_run(k, e, cfg->tolerance, &res->iterations, fnorm);
+  KINSetNumMaxIters(k->kmem, cfg->max_iterations);
+  res->from_start = ok;
+  return ok;
+}
+
 /* The solve's paths: from `start` (another grid's solution), else from
  * Hertz lifted to Hamrock and Dowson's central film at the target, else
  * at a thicker film (lambda x 4^k: the film's elastic share falls)
@@ -932,10 +1136,21 @@ static bool solve_paths(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
   double *yd = N_VGetArrayPointer(k->y), R = cfg->radius_m, us = sc->a * sc->a / R;
   double lambda = e->lambda, tol = cfg->tolerance, hmin_fit, hc_fit;
   *fnorm = INFINITY;
-  if (start && start_from_map(e, yd, start, sc->a, sc->p0, us) &&
-      kin_run(k, e, tol, &res->iterations, fnorm)) {
-    res->from_start = 1;
-    return true;
+  /* a rough viscoelastic contact's start from another speed is a poor
+   * one: its films, through a memory of another length, miss Persson's
+   * steep law (measured: no convergence in 200 steps); the dry start first.
+   * An elastic one's is good (6-9 steps a point along a curve), and the
+   * dry start then a poor one */
+  bool near = start && (start->v0_m_s == cfg->v0_m_s || !e->roughness || cfg->rubber.n_terms == 0);
+  if (near && map_run(k, e, cfg, start, sc, res, fnorm)) return true;
+  double lift = asperity_lift(e, cfg->unit);
+  hertz_start(e, yd, cfg->unit, lift, 0.0);
+  if (e->dry) return kin_run(k, e, tol, &res->iterations, fnorm); /* the asperities alone */
+  if (e->roughness) {
+    /* the dry rough contact (the fluid's share 0, the limit of slow
+     * sliding), then the film from it */
+    if (rough_from_dry(k, e, cfg, res, fnorm)) return true;
+    if (start && !near && map_run(k, e, cfg, start, sc, res, fnorm)) return true;
   }
   vl_point_ehl_hamrock_dowson(cfg, &hmin_fit, &hc_fit);
   /* a contact shrunk to `unit` by a stiffer rubber: the modulus Er0/unit^3,
@@ -945,13 +1160,14 @@ static bool solve_paths(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
   double lam = lambda;
   for (int j = 0; !ok && j <= 10; j++, lam *= 4.0) {
     e->lambda = lam;
-    hertz_start(e, yd, cfg->unit, hc_fit * pow(lam / lambda, 0.64) / us, 0.0);
+    /* the smooth film's fit, or the asperities' separation where thicker */
+    hertz_start(e, yd, cfg->unit, fmax(lift, hc_fit * pow(lam / lambda, 0.64) / us), 0.0);
     /* an attempt from Hertz that is going to fail stalls early */
     KINSetNumMaxIters(k->kmem, j == 0 ? cfg->max_iterations : 25);
     ok = kin_run(k, e, tol, &res->iterations, fnorm);
   }
   KINSetNumMaxIters(k->kmem, cfg->max_iterations);
-  if (ok && e->lambda > lambda) ok = continue_down(k, e, lambda, tol, res, fnorm);
+  if (ok && e->lambda > lambda) ok = continue_to(k, e, lambda, tol, res, fnorm);
   e->lambda = lambda;
   return ok;
 }
@@ -969,6 +1185,7 @@ vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const vl_point_ehl_
   st = ehl_build(&e, cfg, err);
   if (st != VL_OK) return st;
   e.lambda = 6.0 * cfg->eta_pa_s * cfg->v0_m_s * R * R / (a * a * a * p0);
+  e.v0_m_s = cfg->v0_m_s;
   res->nx = e.nx, res->ny = e.ny;
   res->t_influence_s = now_s() - t0;
   t0 = now_s();

@@ -22,14 +22,25 @@
 
 #include <stddef.h>
 
+#include "viscolube/flow_factors.h"
+#include "viscolube/persson.h"
 #include "viscolube/rheology.h"
 #include "viscolube/status.h"
 
 typedef struct {
   double radius_m, load_n; /* ball radius, total load */
   vl_prony rubber;         /* n_terms 0: elastic with E = e_inf_pa */
-  double eta_pa_s;         /* viscosity */
-  double v0_m_s;           /* sliding speed (entrainment v0/2) */
+  double eta_pa_s;         /* viscosity (0: dry, with roughness only) */
+  /* A rough surface (NULL: smooth): in every cell Persson's contact
+   * pressure at the mean separation u (the asperity modulus |Er| at the
+   * contact's frequency), the averaged Reynolds equation with the flow
+   * factors of the surface; the unknowns are then the total pressure
+   * (docs/POINT_CONTACT.md section 10) */
+  const vl_persson *roughness;
+  vl_flow_factor_kind flow_factors;
+  const vl_emt_table *flow_table;
+  double sigma_s_pa; /* shear stress on the real contact area (rough) */
+  double v0_m_s;     /* sliding speed (entrainment v0/2) */
   /* the domain in units of the Hertz radius a: x in [x_in, x_out], y in [0, y_max];
    * the zones of finest cells are placed in units of `unit` Hertz radii (1;
    * less for a viscoelastic rubber's contact shrunk by its speed) */
@@ -59,6 +70,10 @@ typedef struct {
   double load_error;       /* (\int p dA - W)/W */
   double residual;         /* max norm of the scaled residual at the end */
   double mu_Rf, mu_Sf_couette, mu_Sf_poiseuille, mu_Sf;
+  double mu_Rc, mu_Sc;                 /* the asperities' (rough; 0 when smooth) */
+  double real_area_m2;                 /* the real contact area, both halves (rough) */
+  double fluid_load_fraction;          /* \int p_f / W (1 when smooth) */
+  double e_abs_pa;                     /* the asperity modulus |Er(v0/a)| (rough) */
   double x_centroid_m;                 /* pressure centroid */
   double h_centroid_m;                 /* film there (on y = 0) */
   double p_max_pa, x_pmax_m, y_pmax_m; /* the largest pressure and where */
@@ -71,8 +86,10 @@ typedef struct {
  * y >= 0 only). */
 typedef struct {
   size_t nx, ny;
-  double *x_m, *y_m, *p_pa, *u_m; /* one allocation, at x_m */
+  double *x_m, *y_m, *p_pa, *u_m; /* one allocation, at x_m; p_pa the fluid's */
+  double *pc_pa;                  /* the asperities' (0 when smooth) */
   double h0_m;                    /* the rigid approach */
+  double v0_m_s;                  /* the speed it was solved at */
 } vl_point_ehl_map;
 void vl_point_ehl_map_free(vl_point_ehl_map *map);
 

@@ -746,9 +746,10 @@ static vl_status geometry_check(parse_state *ps) {
   return VL_OK;
 }
 
-/* What a point contact (a ball, an ellipsoid) does not take yet: it is
- * smooth, and dry unless a ball (docs/POINT_CONTACT.md). The first key
- * that asks for more is named. */
+/* What a point contact (a ball, an ellipsoid) does not take yet: an
+ * ellipsoid is dry and smooth, a ball may be rough and lubricated, without
+ * viscous flattening (docs/POINT_CONTACT.md). The first key that asks for
+ * more is named. */
 static vl_status point_contact_check(parse_state *ps) {
   vl_scene *sc = ps->scene;
   struct {
@@ -758,8 +759,10 @@ static vl_status point_contact_check(parse_state *ps) {
   } no[] = {
       {K_FLUID, sc->effects.fluid && sc->geometry != VL_GEOMETRY_BALL,
        "a lubricated ellipsoid is not available yet (a ball only)"},
-      {K_ROUGHNESS, sc->effects.roughness, "a rough ball is not available yet (smooth only)"},
-      {K_VISCOUS_FLATTENING, sc->effects.viscous_flattening, "needs a rough lubricated contact"},
+      {K_ROUGHNESS, sc->effects.roughness && sc->geometry != VL_GEOMETRY_BALL,
+       "a rough ellipsoid is not available yet (a ball only)"},
+      {K_VISCOUS_FLATTENING, sc->effects.viscous_flattening,
+       "viscous flattening is the line contact's only (docs/POINT_CONTACT.md section 10)"},
       {K_MOVING, sc->moving != VL_MOVING_RUBBER, "a ball rolls or slides on a moving rubber only"},
       {K_SEALED_PRESSURE, ps->key_line[K_SEALED_PRESSURE] != 0, "applies to a cylinder only"},
       {K_PROFILE_FILE, ps->key_line[K_PROFILE_FILE] != 0, "applies to a cylinder only"},
@@ -775,7 +778,8 @@ static vl_status point_contact_check(parse_state *ps) {
       {K_DOMAIN, ps->key_line[K_DOMAIN] != 0,
        "a line contact's domain: a ball's is planned per point (docs/POINT_CONTACT.md)"},
       {K_LINEAR_SOLVER, ps->key_line[K_LINEAR_SOLVER] != 0, "applies to a cylinder only"},
-      {K_PERSSON_TABLE, ps->key_line[K_PERSSON_TABLE] != 0, "applies to a rough contact only"},
+      {K_PERSSON_TABLE, ps->key_line[K_PERSSON_TABLE] != 0 && !sc->effects.roughness,
+       "applies to a rough contact only"},
   };
   for (size_t k = 0; k < sizeof no / sizeof no[0]; k++)
     if (no[k].on)

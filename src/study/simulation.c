@@ -452,10 +452,10 @@ static vl_prony scene_rubber(const vl_simulation *sim) {
   return r;
 }
 
-/* A ball or an ellipsoid (docs/POINT_CONTACT.md): smooth, so only the
- * rubber, the geometry, the load, sigma_s and (a lubricated ball) the
- * viscosity; checked here (a bad radius or load is named now, not at the
- * first point). */
+/* A ball or an ellipsoid (docs/POINT_CONTACT.md): the rubber, the
+ * geometry, the load, sigma_s, (a lubricated ball) the viscosity and (a
+ * rough ball) the surface's tables; checked here (a bad radius or load is
+ * named now, not at the first point). */
 static vl_status point_contact_setup(vl_simulation *sim, vl_error *err) {
   const vl_scene *scene = &sim->scene;
   vl_point_contact_config *pc = &sim->point_cfg;
@@ -464,6 +464,11 @@ static vl_status point_contact_setup(vl_simulation *sim, vl_error *err) {
   pc->radius_x_m = scene->radius_m, pc->radius_y_m = scene->radius_y_m;
   pc->load_n = scene->load_n;
   pc->eta_pa_s = scene->effects.fluid ? sim->eta_pa_s : 0.0;
+  if (scene->effects.roughness) {
+    pc->roughness = sim->table;
+    pc->flow_factors = scene->effects.flow_factors;
+    pc->flow_table = sim->flow_table;
+  }
   pc->sigma_s_pa = scene->effects.solid_shear && !sim->has_pair ? scene->sigma_s_pa : 0.0;
   pc->tolerance = scene->tolerance;
   vl_point_contact *probe = NULL;
