@@ -823,7 +823,9 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
   if (a->c.q.at_temperature)
     printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.q.temperature_c,
            cv->eta);
-  if (cv->n) /* the range in both units, whichever was given */
+  if (cv->n && !(cv->eta > 0.0)) /* dry: no v0 eta */
+    printf("speeds: %.4g .. %.4g m/s (dry)\n", cv->pts[0].v0_m_s, cv->pts[cv->n - 1].v0_m_s);
+  else if (cv->n) /* the range in both units, whichever was given */
     printf("speeds: %.4g .. %.4g m/s (v0 eta %.4g .. %.4g Pa m at eta %.4g Pa s)\n",
            cv->pts[0].v0_m_s, cv->pts[cv->n - 1].v0_m_s, cv->pts[0].v0_m_s * cv->eta,
            cv->pts[cv->n - 1].v0_m_s * cv->eta, cv->eta);
