@@ -35,14 +35,25 @@
 /* The conditions of a query. The names are borrowed (the caller keeps them
  * alive while the query is used). */
 typedef struct {
+  /* a cylinder needs all three; a ball or an ellipsoid (geometry) may go
+   * without a surface (smooth) and without a fluid (dry) */
   const char *compound, *surface, *fluid;
+  /* the rigid body (vl_geometry of results.h): VL_GEOMETRY_CYLINDER (0, the
+   * default) takes radius_m and load_n_per_m; VL_GEOMETRY_BALL radius_m and
+   * load_n (the total load, N; load_n_per_m is not used); an
+   * VL_GEOMETRY_ELLIPSOID radius_m along the sliding direction, radius_y_m
+   * across it, and load_n. A point contact's scene is the one `run` parses
+   * from `[contact] geometry = ball` and the same keys
+   * (docs/POINT_CONTACT.md). */
+  int geometry;
   double load_n_per_m, radius_m;
+  double load_n, radius_y_m; /* a point contact's; 0 by default (no default load) */
   double sigma_s_pa; /* solid shear stress; 0 switches the effect off */
   /* sigma_s_pa was chosen by the caller; false (the default): the stored
    * pair's law of compound, surface and fluid when one exists, else
    * sigma_s_pa */
   bool sigma_s_given;
-  size_t grid;                      /* uniform cells of the wet rough numerics; 0: default */
+  size_t grid; /* uniform cells of the wet rough numerics; 0: default (a cylinder's only) */
   vl_flow_factor_kind flow_factors; /* default VL_SCENE_ROUGH_FLOW_FACTORS */
   double film_cutoff_m;             /* persson-emt only; 0: VL_FILM_CUTOFF_DEFAULT_M */
   bool at_temperature;              /* compound (WLF) and fluid (its law) at temperature_c */
@@ -76,13 +87,19 @@ void vl_query_defaults(vl_query *q);
  * in *film_cutoff_m (persson-emt: q's or the default; else 0). */
 const char *vl_query_flow_factors(const vl_query *q, double *film_cutoff_m);
 
-/* The wet rough scene of q for q->compound (sweep quantity v0*eta; the
- * caller sets from, to and points). VL_EINPUT naming the field
- * (load_n_per_m, radius_m, sigma_s_pa, grid, film_cutoff_m, temperature_c,
- * a material name) when q is out of range. label (may be NULL) is the
- * scene's title. The scene has no path: the simulation's messages about it
- * name no scene file or key ("no surface named 'x' in DB"), so that the
- * caller adds its own context (a command, an option) once. */
+/* The scene of q for q->compound: a cylinder's wet rough scene (sweep
+ * quantity v0*eta); a ball's or an ellipsoid's scene as `run` parses it
+ * from the same keys (roughness with a surface, the fluid effect with a
+ * fluid; sweep quantity v0*eta with a fluid, else v0), checked as a scene
+ * file's point contact is (what a point contact does not
+ * take yet: its message "surface 'S': [effects] roughness: not with
+ * [contact] geometry = ball: ..."). The caller sets from, to and points.
+ * VL_EINPUT naming the field (geometry, load_n_per_m, load_n, radius_m,
+ * radius_y_m, sigma_s_pa, grid, film_cutoff_m, temperature_c, a material
+ * name) when q is out of range. label (may be NULL) is the scene's title.
+ * The scene has no path: the simulation's messages about it name no scene
+ * file or key ("no surface named 'x' in DB"), so that the caller adds its
+ * own context (a command, an option) once. */
 vl_status vl_query_scene(const vl_query *q, const char *label, vl_scene *scene, vl_error *err);
 
 /* With q->at_temperature: VL_OK if compound can be taken there (WLF
@@ -100,7 +117,9 @@ vl_status vl_query_fluid_eta(vl_db *db, const vl_query *q, double *eta_pa_s, vl_
 
 /* The point at v0 = speed_m_s: first a direct solve from the Hertz guess;
  * if it does not converge, continuation from the boundary regime (v0 eta =
- * 1e-12 Pa m), 4 points a decade. A point that still does not converge is
+ * 1e-12 Pa m), 4 points a decade (a point contact: one sweep of one point,
+ * vl_point_contact_sweep, whose own starts are tried instead, as `run` of
+ * the scene from = to = speed_m_s does). A point that still does not converge is
  * VL_OK with out->point.converged false (iterations and residual set);
  * a status other than VL_OK means nothing was solved (bad conditions,
  * unknown material, database). The checks of vl_query_check_compound and

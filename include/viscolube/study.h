@@ -8,15 +8,21 @@
  *   compounds = a, b                 (required without cases)
  *   surfaces = s1, s2                (optional: smooth contacts without)
  *   fluids = water                   (optional: dry contacts without)
- *   loads_n_per_m = 117, 234         (required without cases)
- *   radii_m = 0.001                  (required without cases)
+ *   loads_n_per_m = 117, 234         (required without cases; a cylinder's)
+ *   loads_n = 1, 3                   (instead: total loads, N, of a ball or an
+ *                                     ellipsoid, [contact] geometry)
+ *   radii_m = 0.001                  (required without cases; a cylinder's or a
+ *                                     ball's radii; an ellipsoid's radii are
+ *                                     [contact] radii_m = Rx, Ry, and it takes
+ *                                     no [study] radii_m)
  *   temperatures_c = 20, 40          (optional: [effects] temperature = on
  *                                     at each; without, the materials are
  *                                     taken at their reference temperatures)
  *   cases = COMPOUND SURFACE FLUID LOAD RADIUS [TEMPERATURE]
  *           ...                      (instead of the lists: one task per row,
  *                                     a row per indented line; '-' for no
- *                                     surface or fluid)
+ *                                     surface or fluid; a ball's LOAD in N, an
+ *                                     ellipsoid's row without RADIUS)
  *
  * The other sections ([contact] sigma_s_pa, [sweep], [effects], [numerics])
  * are the defaults of every curve, with the keys and checks of a scene.
@@ -44,7 +50,11 @@ typedef struct {
   char compound[VL_NAME_MAX];
   char surface[VL_NAME_MAX]; /* "" = smooth */
   char fluid[VL_NAME_MAX];   /* "" = dry */
-  double load_n_per_m, radius_m;
+  int geometry;           /* vl_geometry: the study's [contact] geometry (all tasks alike) */
+  double load_n_per_m;    /* a cylinder's (0 for a point contact) */
+  double load_n;          /* a ball's or an ellipsoid's total load, N (0 for a cylinder) */
+  double radius_m;        /* a cylinder's or a ball's; an ellipsoid's Rx ([contact] radii_m) */
+  double radius_y_m;      /* an ellipsoid's Ry (a ball: radius_m; a cylinder: 0) */
   double temperature_c; /* NAN: materials at their reference temperatures */
   int line;             /* the row of cases (0 for a grid) */
 } vl_study_task;

@@ -18,6 +18,11 @@ typedef struct {
   vl_query q;               /* surface, fluid, load, radius, sigma_s, grid, film
                              * cut-off, temperature; flow_factors from the text below */
   const char *flow_factors; /* --flow-factors as given (NULL: the default) */
+  int geometry;             /* --geometry: the index of vl_geometry (cylinder, ball, ellipsoid) */
+  double radii[2];          /* --radii RX,RY (an ellipsoid's) */
+  size_t n_radii;
+  /* which of the rigid body's options were given (geometry_options) */
+  int load_given, load_n_given, radius_given, grid_given, cutoff_given;
   int json;
   int plot;
   int quiet; /* --quiet (or the global one): no warnings, no progress */
@@ -33,7 +38,7 @@ static const vl_cli_number_rule temperature = {
 
 /* The options both commands take, into opts (room for N_COMMON); the
  * numbers that need a second look go to grid and the given counts. */
-#define N_COMMON 13
+#define N_COMMON 16
 #define UNKNOWN_OR_INCOMPLETE "unknown or incomplete option '%s' (see --help)"
 
 typedef struct {
@@ -59,6 +64,7 @@ static size_t common_options(conditions *c, common_rules *r, vl_cli_option *opts
   r->target.range_lo = 1e-6, r->target.hi = 0.5;
   r->target.range = "option %s needs a relative error in [1e-6, 0.5] (got '%s')";
   const char *value = "option %s needs a value";
+  static const char *const geometries[] = {"cylinder", "ball", "ellipsoid", NULL};
   vl_cli_option common[N_COMMON] = {
       {.name = "--help", .alias = "-h", .kind = VL_CLI_HELP},
       {.name = "--json", .kind = VL_CLI_FLAG, .dest = &c->json},
@@ -68,6 +74,17 @@ static size_t common_options(conditions *c, common_rules *r, vl_cli_option *opts
       {.name = "--flow-factors", .kind = VL_CLI_TEXT, .dest = &c->flow_factors, .missing = value},
       {.name = "--load", .kind = VL_CLI_NUMBER, .dest = &c->q.load_n_per_m, .rule = &positive},
       {.name = "--radius", .kind = VL_CLI_NUMBER, .dest = &c->q.radius_m, .rule = &positive},
+      {.name = "--geometry",
+       .kind = VL_CLI_CHOICE,
+       .dest = &c->geometry,
+       .choices = geometries,
+       .choice_bad = "option %s needs cylinder, ball or ellipsoid (got '%s')"},
+      {.name = "--load-n", .kind = VL_CLI_NUMBER, .dest = &c->q.load_n, .rule = &positive},
+      {.name = "--radii",
+       .kind = VL_CLI_LIST,
+       .dest = c->radii,
+       .max_values = 2,
+       .n_values = &c->n_radii},
       {.name = "--sigma-s", .kind = VL_CLI_NUMBER, .dest = &c->q.sigma_s_pa, .rule = &non_negative},
       {.name = "--grid", .kind = VL_CLI_NUMBER, .dest = &r->grid_value, .rule = &r->grid},
       {.name = "--film-cutoff",
@@ -92,7 +109,13 @@ static void common_given(vl_cli_parser *p, conditions *c, const common_rules *r)
   if (vl_cli_find(p, "--grid")->given) c->q.grid = (size_t)r->grid_value;
   if (vl_cli_find(p, "--temperature")->given) c->q.at_temperature = true;
   if (vl_cli_find(p, "--sigma-s")->given) c->q.sigma_s_given = true; /* over a stored pair */
+  c->load_given = vl_cli_find(p, "--load")->given;
+  c->load_n_given = vl_cli_find(p, "--load-n")->given;
+  c->radius_given = vl_cli_find(p, "--radius")->given;
+  c->grid_given = vl_cli_find(p, "--grid")->given;
+  c->cutoff_given = vl_cli_find(p, "--film-cutoff")->given;
 }
+
 
 /* Parses argv by p (its table: the common options and the command's);
  * -1 to go on, else the exit status (0 after the usage on --help). */
@@ -133,9 +156,13 @@ static vl_query query_for(const conditions *c, const char *compound) {
 }
 
 /* The flow-factor model of these conditions (the user's, else the default)
- * and its film cut-off (persson-emt; else 0), as the scenes get them. */
+ * and its film cut-off (persson-emt; else 0), as the scenes get them; NULL
+ * (cut-off 0) for a point contact without a rough film (no surface or no
+ * fluid: no flow factors). */
 static const char *model_of(const conditions *c, double *film_cutoff_m) {
   vl_query q = query_for(c, NULL);
+  *film_cutoff_m = 0.0;
+  if (c->geometry != VL_GEOMETRY_CYLINDER && !(q.surface && q.fluid)) return NULL;
   return vl_query_flow_factors(&q, film_cutoff_m);
 }
 
@@ -176,12 +203,80 @@ static int need(const char *cmd, const char *what, const void *value) {
   return 0;
 }
 
+/* Why the rigid body's options do not go together (the rules of a scene's
+ * [contact] keys, FORMATS.md, in options), into buf; NULL when they do. */
+static const char *geometry_trouble(const conditions *c, char *buf, size_t size) {
+  int g = c->geometry;
+  const char *name = vl_geometry_name(g);
+  if (g == VL_GEOMETRY_CYLINDER && c->load_n_given)
+    return "--load-n (a total load, N) is a ball's or an ellipsoid's (--geometry): a cylinder "
+           "takes --load N_PER_M";
+  if (g != VL_GEOMETRY_ELLIPSOID && c->n_radii)
+    snprintf(buf, size, "--radii is an ellipsoid's: a %s takes --radius M", name);
+  else if (g == VL_GEOMETRY_CYLINDER)
+    return NULL;
+  else if (c->load_given)
+    snprintf(buf, size,
+             "--load (N per metre of a cylinder's length) is not a %s's: it takes --load-n N, "
+             "its total load",
+             name);
+  else if (!c->load_n_given)
+    snprintf(buf, size, "missing --load-n N (the %s's total load)", name);
+  else if (g == VL_GEOMETRY_BALL && !c->radius_given)
+    return "missing --radius M (the ball's radius)";
+  else if (g == VL_GEOMETRY_ELLIPSOID && c->radius_given)
+    return "--radius is not an ellipsoid's: it takes --radii RX,RY (along the sliding direction "
+           "and across it)";
+  else if (g == VL_GEOMETRY_ELLIPSOID && c->n_radii != 2)
+    return "--geometry ellipsoid needs --radii RX,RY (two radii, m: along the sliding direction "
+           "and across it)";
+  else if (c->grid_given)
+    snprintf(buf, size,
+             "--grid sets a line contact's cells: a %s's are planned per point "
+             "(docs/POINT_CONTACT.md)",
+             name);
+  else if (!c->q.surface && (c->flow_factors || c->cutoff_given))
+    snprintf(buf, size, "%s applies to a rough contact (--surface) only",
+             c->flow_factors ? "--flow-factors" : "--film-cutoff");
+  else
+    return NULL;
+  return buf;
+}
+
+/* The rigid body's options into the query: 1 when they go together, else
+ * 0 after the message naming the option. */
+static int geometry_options(const char *cmd, conditions *c) {
+  char buf[256];
+  const char *bad = geometry_trouble(c, buf, sizeof buf);
+  if (bad) {
+    fprintf(stderr, "viscolube %s: %s\n", cmd, bad);
+    return 0;
+  }
+  c->q.geometry = c->geometry;
+  if (c->geometry == VL_GEOMETRY_ELLIPSOID) c->q.radius_m = c->radii[0], c->q.radius_y_m = c->radii[1];
+  return 1;
+}
+
+/* The material options of both commands: a cylinder needs --surface and
+ * --fluid, a ball or an ellipsoid may go without (smooth, dry). 1 when
+ * they are fine, else 0 after the message. */
+static int material_options(const char *cmd, const conditions *c) {
+  bool line = c->geometry == VL_GEOMETRY_CYLINDER;
+  if (line && (!need(cmd, "--surface", c->q.surface) || !need(cmd, "--fluid", c->q.fluid)))
+    return 0;
+  return (!c->q.surface || valid_name(cmd, "--surface", c->q.surface)) &&
+         (!c->q.fluid || valid_name(cmd, "--fluid", c->q.fluid));
+}
+
 static void friction_usage(FILE *out) {
   fputs("usage: viscolube friction --compound C --surface S --fluid F --speed V_M_S\n"
         "                          [--load N_PER_M] [--radius M] [--sigma-s PA]\n"
         "                          [--flow-factors persson-emt|patir-cheng|smooth]\n"
         "                          [--film-cutoff M] [--grid N] [--temperature C]\n"
         "                          [--target-error E] [--json] [--quiet]\n"
+        "       viscolube friction --geometry ball|ellipsoid --compound C [--surface S]\n"
+        "                          [--fluid F] --speed V_M_S --load-n N\n"
+        "                          (--radius M | --radii RX,RY) [--sigma-s PA] ...\n"
         "\n"
         "Friction of one operating point: a smooth rigid cylinder (radius, load per unit\n"
         "length) sliding at V on the stored compound with the stored rough surface in the\n"
@@ -205,6 +300,13 @@ static void friction_usage(FILE *out) {
         "--target-error E: the relative error of mu the point should meet (default\n"
         "0.01); the numerics are refined towards it, and a point still above it (or\n"
         "without an error estimate) is marked.\n"
+        "--geometry ball (--radius M, --load-n N: the total load) or ellipsoid (--radii\n"
+        "RX,RY along and across the sliding direction, --load-n N): the point contact of\n"
+        "`run` (docs/POINT_CONTACT.md), the scene of the same [contact] keys solved on its\n"
+        "own cells (no --grid, no --load); --surface and --fluid are optional (smooth, dry;\n"
+        "a rough ball and a lubricated ellipsoid are refused as in a scene). The answer\n"
+        "adds the film's minimum and its position, the contact area and extents, and the\n"
+        "peak pressure, as run's curve.csv.\n"
         "Exit status: 0 converged, 7 did not converge (iterations and residual on\n"
         "stderr), 8 converged but above its error target or without an estimate,\n"
         "2 bad option or name, 3 unknown material, 5 database error.\n",
@@ -228,13 +330,10 @@ static int friction_args(int argc, char **argv, conditions *c, const char **comp
   int rc = parse_command(&p, argc, argv, c, &r, friction_usage);
   if (rc >= 0) return rc;
   int have_speed = vl_cli_find(&p, "--speed")->given > 0;
-  if (!need("friction", "--compound", *compound) || !need("friction", "--surface", c->q.surface) ||
-      !need("friction", "--fluid", c->q.fluid) ||
+  if (!need("friction", "--compound", *compound) || !material_options("friction", c) ||
       !need("friction", "--speed", have_speed ? "" : NULL))
     return 2;
-  if (!valid_name("friction", "--compound", *compound) ||
-      !valid_name("friction", "--surface", c->q.surface) ||
-      !valid_name("friction", "--fluid", c->q.fluid))
+  if (!valid_name("friction", "--compound", *compound) || !geometry_options("friction", c))
     return 2;
   return -1;
 }
@@ -279,12 +378,49 @@ static void regime_meaning(char *buf, size_t size, int regime, bool rough) {
     snprintf(buf, size, "no fluid");
 }
 
+/* The first line of a point contact's answer: its materials (a smooth
+ * ball names no surface, a dry one no fluid), speed and body. */
+static void point_heading(const conditions *c, const char *compound, double speed, double eta) {
+  const vl_query *q = &c->q;
+  printf("%s", compound);
+  if (q->surface) printf(" on %s", q->surface);
+  if (q->fluid) printf(" in %s", q->fluid);
+  printf(" at v0 = %g m/s", speed);
+  if (q->fluid) printf(" (v0 eta = %g Pa m)", speed * eta);
+  if (q->geometry == VL_GEOMETRY_BALL)
+    printf(", ball R = %g m, W = %g N\n", q->radius_m, q->load_n);
+  else
+    printf(", ellipsoid Rx = %g m, Ry = %g m, W = %g N\n", q->radius_m, q->radius_y_m, q->load_n);
+}
+
+/* A point contact's own lines (what run's curve reports for it: the film's
+ * minimum and where, the contact's area and extents, the peak pressure). */
+static void point_lines(const vl_query_result *r) {
+  const vl_point *pt = &r->point;
+  const vl_ball_result *b = &pt->ball;
+  if (r->eta_pa_s > 0.0)
+    printf("  u_min   = %.4g m at x = %.4g m, y = %.4g m; u_central = %.4g m\n", pt->u_min_m,
+           pt->x_min_film_m, b->y_min_film_m, pt->u_central_m);
+  printf("  contact area = %.4g m2 (length %.4g m, breadth %.4g m); the fluid carries %.1f %% of "
+         "the load\n",
+         b->contact_area_m2, b->contact_length_m, b->contact_breadth_m,
+         100.0 * pt->fluid_load_fraction);
+  printf("  peak pressure %.4g Pa at x = %.4g m, y = %.4g m; a0 = %.4g m (relaxed Hertz)\n",
+         pt->peak_pressure_pa, pt->x_peak_m, b->y_peak_m, r->a0_m);
+  printf("  %ld Newton iteration%s, residual %.2g; cells planned per point (%.3g per a0)\n",
+         pt->iterations, vl_cli_plural((size_t)pt->iterations), pt->residual, b->cells_per_a0);
+}
+
 static void friction_text(const conditions *c, const char *compound, double speed,
                           const vl_query_result *r) {
   const vl_point *pt = &r->point;
   double eta = r->eta_pa_s, hrms = r->hrms_m;
-  printf("%s on %s in %s at v0 = %g m/s (v0 eta = %g Pa m), R = %g m, fN = %g N/m\n", compound,
-         c->q.surface, c->q.fluid, speed, speed * eta, c->q.radius_m, c->q.load_n_per_m);
+  bool line = c->q.geometry == VL_GEOMETRY_CYLINDER;
+  if (line)
+    printf("%s on %s in %s at v0 = %g m/s (v0 eta = %g Pa m), R = %g m, fN = %g N/m\n", compound,
+           c->q.surface, c->q.fluid, speed, speed * eta, c->q.radius_m, c->q.load_n_per_m);
+  else
+    point_heading(c, compound, speed, eta);
   if (r->flow_factors) {
     printf("  flow factors: %s", r->flow_factors);
     if (r->film_cutoff_m > 0.0) printf(" (film cut-off %g m)", r->film_cutoff_m);
@@ -299,20 +435,22 @@ static void friction_text(const conditions *c, const char *compound, double spee
          "  mu_Sc   = %.5g   (shear in the real contact area)\n"
          "  mu_Sf   = %.5g   (fluid shear)\n",
          pt->mu, pt->mu_Rc + 0.0, pt->mu_Rf + 0.0, pt->mu_Sc + 0.0, pt->mu_Sf + 0.0);
+  if (!line) point_lines(r);
   char how[96] = "a direct solve";
   if (r->points_solved > 1)
     snprintf(how, sizeof how, "continuation from the boundary regime over %zu points",
              r->points_solved);
   char meaning[128];
   regime_meaning(meaning, sizeof meaning, pt->regime, hrms > 0);
-  printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
-         "regime: %s (%s)\n  Q = %.3g; %ld Newton iteration%s, residual %.2g (%s)\n",
-         pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0, 100.0 * (1.0 - pt->fluid_load_fraction),
-         vl_regime_name(pt->regime), meaning, pt->Q, pt->iterations,
-         vl_cli_plural((size_t)pt->iterations), pt->residual, how);
+  if (line)
+    printf("  u_min   = %.4g m (%.3g h_rms)\n  solid contact carries %.1f %% of the load; "
+           "regime: %s (%s)\n  Q = %.3g; %ld Newton iteration%s, residual %.2g (%s)\n",
+           pt->u_min_m, hrms > 0 ? pt->u_min_m / hrms : 0.0,
+           100.0 * (1.0 - pt->fluid_load_fraction), vl_regime_name(pt->regime), meaning, pt->Q,
+           pt->iterations, vl_cli_plural((size_t)pt->iterations), pt->residual, how);
   if (isfinite(pt->error_estimate))
-    printf("  error estimate of mu: %.2g %% (against the point on cells 3x as wide)%s\n",
-           100.0 * pt->error_estimate,
+    printf("  error estimate of mu: %.2g %% (against the point on %s)%s\n",
+           100.0 * pt->error_estimate, line ? "cells 3x as wide" : "coarser cells",
            pt->accuracy == VL_ACCURACY_ABOVE_TARGET ? ": ABOVE the target, not to be trusted to it"
                                                     : "");
   else
@@ -378,6 +516,7 @@ static void compare_usage(FILE *out) {
         "                         [--sigma-s PA] [--flow-factors persson-emt|patir-cheng|smooth]\n"
         "                         [--film-cutoff M] [--grid N] [--json] [--plot]\n"
         "                         [--temperature C] [--target-error E] [--quiet]\n"
+        "                         [--geometry ball|ellipsoid --load-n N --radius M|--radii RX,RY]\n"
         "\n"
         "Stribeck curves of several compounds on one surface in one fluid, side by side:\n"
         "mu and u_min/h_rms per compound. The sweep runs over v0*eta from --from to --to\n"
@@ -413,6 +552,11 @@ static void compare_usage(FILE *out) {
         "8 all converged but some are above their error target or have no estimate,\n"
         "2 bad option or name, 3 unknown material, 5 database error, 6 file error (a file\n"
         "that did not fit is named; the others are kept) or standard output lost.\n"
+        "--geometry ball or ellipsoid (as for `viscolube friction`): a point contact's\n"
+        "curves; the range must be given (--from-speed/--to-speed, or --from/--to with a\n"
+        "fluid); compare.csv then has per compound u_min_m, x_min_film_m, y_min_film_m and\n"
+        "contact_area_m2 (u_min_over_hrms only with a surface), the table u_min_m and\n"
+        "area_m2, curve.csv the columns of run's.\n"
         "Defaults: --from 1e-12 --to 0.1 --points 45 --axis speed, and those of\n"
         "`viscolube friction`.\n",
         out);
@@ -491,14 +635,11 @@ static int compare_check(compare_args *a) {
     }
     a->names[a->nc++] = t;
   }
-  if (!need("compare", "--compounds", a->nc ? "" : NULL) ||
-      !need("compare", "--surface", a->c.q.surface) || !need("compare", "--fluid", a->c.q.fluid))
+  if (!need("compare", "--compounds", a->nc ? "" : NULL) || !material_options("compare", &a->c))
     return 2;
   for (size_t k = 0; k < a->nc; k++)
     if (!valid_name("compare", "--compounds", a->names[k])) return 2;
-  if (!valid_name("compare", "--surface", a->c.q.surface) ||
-      !valid_name("compare", "--fluid", a->c.q.fluid))
-    return 2;
+  if (!geometry_options("compare", &a->c)) return 2;
   bool speeds = !isnan(a->from_speed) || !isnan(a->to_speed);
   if (speeds && (isnan(a->from_speed) || isnan(a->to_speed))) {
     fprintf(stderr, "viscolube compare: --from-speed and --to-speed go together\n");
@@ -507,6 +648,20 @@ static int compare_check(compare_args *a) {
   if (speeds && a->from_given) {
     fprintf(stderr, "viscolube compare: give the range in m/s (--from-speed, --to-speed) or in "
                     "v0 eta (--from, --to), not both\n");
+    return 2;
+  }
+  if (!a->c.q.fluid && (a->from_given || a->axis_v0eta)) {
+    fprintf(stderr, "viscolube compare: %s: a dry contact (no --fluid) has no v0 eta: give the "
+                    "range in m/s (--from-speed, --to-speed) on the speed axis\n",
+            a->from_given ? "--from/--to" : "--axis v0eta");
+    return 2;
+  }
+  if (a->c.geometry != VL_GEOMETRY_CYLINDER && !speeds && !a->from_given) {
+    fprintf(stderr,
+            "viscolube compare: --geometry %s needs its range: --from-speed and --to-speed (m/s), "
+            "or --from and --to (v0 eta, Pa m); the default 1e-12 .. 0.1 Pa m is a line "
+            "contact's (a point contact's point costs seconds)\n",
+            vl_geometry_name(a->c.geometry));
     return 2;
   }
   if (speeds) a->from = a->from_speed, a->to = a->to_speed; /* in m/s from here on */
@@ -544,6 +699,27 @@ static vl_status compare_prepare(vl_db *db, const compare_args *a, compare_curve
   return st;
 }
 
+/* The numerics of compound's sweep into the manifest: a line contact's
+ * cells, or (a point contact: planned per point) the words `run` records. */
+static void compare_numerics(vl_manifest *man, const char *compound, const vl_scene *sc,
+                             vl_simulation *sim) {
+  if (sc->geometry == VL_GEOMETRY_CYLINDER) {
+    const vl_contact *contact = vl_simulation_contact(sim);
+    vl_contact_numerics_used nu;
+    vl_contact_numerics_of(contact, &nu);
+    vl_manifest_add_numerics(man, compound, &nu, vl_contact_a0(contact), vl_contact_p0(contact));
+    return;
+  }
+  char key[160], numerics[200];
+  snprintf(key, sizeof key, "numerics_%s", compound);
+  snprintf(numerics, sizeof numerics,
+           "point contact: cells planned per point (%d across the contact's shorter semi-axis), "
+           "target error %g, tolerance %g, a0 %.6g m, p0 %.6g Pa",
+           VL_BALL_CELLS_PER_A0, sc->target_error, sc->tolerance, vl_simulation_a0(sim),
+           vl_simulation_p0(sim));
+  vl_manifest_add_option(man, key, numerics);
+}
+
 /* Runs compound k's sweep into cv and writes DIR/<compound>/curve.csv.
  * Returns 2 after the message when the scene cannot be made, else -1 with
  * *st the status. */
@@ -559,10 +735,7 @@ static int compare_one(vl_db *db, const compare_args *a, size_t k, compare_curve
   cv->eta = vl_simulation_eta(sim);
   const vl_psd *psd = vl_simulation_psd(sim);
   cv->hrms[k] = psd ? psd->hrms_m : 1.0;
-  const vl_contact *contact = vl_simulation_contact(sim);
-  vl_contact_numerics_used nu;
-  vl_contact_numerics_of(contact, &nu);
-  vl_manifest_add_numerics(man, a->names[k], &nu, vl_contact_a0(contact), vl_contact_p0(contact));
+  compare_numerics(man, a->names[k], &sc, sim);
   vl_sweep_stats stats;
   if (!a->c.json && !a->c.quiet) fprintf(stderr, "compare: %s ...\n", a->names[k]);
   vl_point *pts = cv->pts + k * cv->n;
@@ -612,14 +785,20 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
   FILE *f = af.f;
   double cut;
   const char *model = model_of(&a->c, &cut);
-  fprintf(f, "# flow_factors = %s", model);
-  if (cut > 0.0) fprintf(f, ", film_cutoff_m = %.6g", cut);
-  fputc('\n', f);
+  if (model) { /* as curve.csv: no line without flow factors */
+    fprintf(f, "# flow_factors = %s", model);
+    if (cut > 0.0) fprintf(f, ", film_cutoff_m = %.6g", cut);
+    fputc('\n', f);
+  }
   fputs(axis_column(a), f);
+  bool point = a->c.geometry != VL_GEOMETRY_CYLINDER, rough = a->c.q.surface != NULL;
   for (size_t k = 0; k < a->nc; k++) {
     const char *m = a->names[k];
-    fprintf(f, ",mu_%s,mu_Rc_%s,mu_Rf_%s,mu_Sc_%s,mu_Sf_%s,u_min_over_hrms_%s,converged_%s", m, m,
-            m, m, m, m, m);
+    fprintf(f, ",mu_%s,mu_Rc_%s,mu_Rf_%s,mu_Sc_%s,mu_Sf_%s", m, m, m, m, m);
+    if (rough) fprintf(f, ",u_min_over_hrms_%s", m);
+    if (point) /* what run's curve.csv says of a point contact's film and contact */
+      fprintf(f, ",u_min_m_%s,x_min_film_m_%s,y_min_film_m_%s,contact_area_m2_%s", m, m, m, m);
+    fprintf(f, ",converged_%s", m);
   }
   /* with --temperature the rows say at which temperature and viscosity
    * (appended: the columns of a reference-temperature run are unchanged) */
@@ -629,11 +808,20 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
     fprintf(f, "%.10g", axis_value(a, cv, i));
     for (size_t k = 0; k < a->nc; k++) {
       const vl_point *p = &cv->pts[k * cv->n + i];
-      if (p->converged)
-        fprintf(f, ",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,1", p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0,
-                p->mu_Sc + 0.0, p->mu_Sf + 0.0, p->u_min_m / cv->hrms[k]);
-      else
-        fputs(",,,,,,,0", f);
+      if (!p->converged) {
+        fputs(",,,,,", f);
+        if (rough) fputc(',', f);
+        if (point) fputs(",,,,", f);
+        fputs(",0", f);
+        continue;
+      }
+      fprintf(f, ",%.10g,%.10g,%.10g,%.10g,%.10g", p->mu, p->mu_Rc + 0.0, p->mu_Rf + 0.0,
+              p->mu_Sc + 0.0, p->mu_Sf + 0.0);
+      if (rough) fprintf(f, ",%.10g", p->u_min_m / cv->hrms[k]);
+      if (point)
+        fprintf(f, ",%.10g,%.10g,%.10g,%.10g", p->u_min_m, p->x_min_film_m + 0.0,
+                p->ball.y_min_film_m + 0.0, p->ball.contact_area_m2 + 0.0);
+      fputs(",1", f);
     }
     if (a->c.q.at_temperature) fprintf(f, ",%.10g,%.10g", a->c.q.temperature_c, cv->eta);
     fputc('\n', f);
@@ -644,19 +832,26 @@ static vl_status write_compare_csv(const char *path, const compare_args *a,
 /* The table: mu and u_min/h_rms of each compound at every v0*eta. */
 static void compare_table(const compare_args *a, const compare_curves *cv) {
   double cut;
-  printf("flow factors: %s", model_of(&a->c, &cut));
+  const char *model = model_of(&a->c, &cut);
+  if (model) printf("flow factors: %s", model);
   if (cut > 0.0) printf(" (film cut-off %g m)", cut);
-  putchar('\n');
+  if (model) putchar('\n');
   if (a->c.q.at_temperature)
     printf("at %g C: fluid viscosity %.4g Pa s, compounds shifted by WLF\n", a->c.q.temperature_c,
            cv->eta);
-  if (cv->n) /* the range in both units, whichever was given */
+  if (cv->n && !(cv->eta > 0.0)) /* dry: no v0 eta */
+    printf("speeds: %.4g .. %.4g m/s (dry)\n", cv->pts[0].v0_m_s, cv->pts[cv->n - 1].v0_m_s);
+  else if (cv->n) /* the range in both units, whichever was given */
     printf("speeds: %.4g .. %.4g m/s (v0 eta %.4g .. %.4g Pa m at eta %.4g Pa s)\n",
            cv->pts[0].v0_m_s, cv->pts[cv->n - 1].v0_m_s, cv->pts[0].v0_m_s * cv->eta,
            cv->pts[cv->n - 1].v0_m_s * cv->eta, cv->eta);
+  /* a point contact: its film in metres (smooth) and its contact area */
+  bool point = a->c.geometry != VL_GEOMETRY_CYLINDER, rough = a->c.q.surface != NULL;
   printf("%12s", axis_column(a));
-  for (size_t k = 0; k < a->nc; k++)
-    printf(" %14.14s %14s", a->names[k], "u_min/h_rms");
+  for (size_t k = 0; k < a->nc; k++) {
+    printf(" %14.14s %14s", a->names[k], rough ? "u_min/h_rms" : "u_min_m");
+    if (point) printf(" %14s", "area_m2");
+  }
   printf("\n");
   for (size_t i = 0; i < cv->n; i++) {
     printf("%12.4g", axis_value(a, cv, i));
@@ -664,9 +859,13 @@ static void compare_table(const compare_args *a, const compare_curves *cv) {
       const vl_point *p = &cv->pts[k * cv->n + i];
       if (p->converged) /* '!': not known to its error target */
         printf(" %13.5g%c %14.4g", p->mu, vl_point_unreliable(p) ? '!' : ' ',
-               p->u_min_m / cv->hrms[k]);
+               p->u_min_m / (rough ? cv->hrms[k] : 1.0));
       else
         printf(" %14s %14s", "-", "-");
+      if (point && p->converged)
+        printf(" %14.4g", p->ball.contact_area_m2);
+      else if (point)
+        printf(" %14s", "-");
     }
     printf("\n");
   }
@@ -697,19 +896,41 @@ static void compare_json(const compare_args *a, const compare_curves *cv) {
   fputc('\n', stdout);
 }
 
+/* A point contact's subtitle: its materials (those given), body and load. */
+static int point_subtitle(const compare_args *a, const char *eta, const char *radius, char *buf,
+                          size_t size) {
+  const vl_query *q = &a->c.q;
+  char load[48], ry[48], materials[600] = "";
+  vl_plot_format_value(load, sizeof load, q->load_n);
+  vl_plot_format_value(ry, sizeof ry, q->radius_y_m * 1e3);
+  int m = 0;
+  if (q->surface) m = snprintf(materials, sizeof materials, "on %s · ", q->surface);
+  if (q->fluid && m >= 0 && (size_t)m < sizeof materials)
+    snprintf(materials + m, sizeof materials - (size_t)m, "in %s (η = %s Pa s) · ", q->fluid, eta);
+  if (q->geometry == VL_GEOMETRY_BALL)
+    return snprintf(buf, size, "%sball R = %s mm · W = %s N", materials, radius, load);
+  return snprintf(buf, size, "%sellipsoid Rx = %s mm, Ry = %s mm · W = %s N", materials, radius,
+                  ry, load);
+}
+
 /* The conditions of the figures' subtitle: surface, fluid, load, radius,
  * flow-factor model (and temperature). */
 static void compare_subtitle(const compare_args *a, const compare_curves *cv, char *buf,
                              size_t size) {
   char eta[48], load[48], radius[48], cut_text[64] = "";
   vl_plot_format_value(eta, sizeof eta, cv->eta);
-  vl_plot_format_value(load, sizeof load, a->c.q.load_n_per_m);
   vl_plot_format_value(radius, sizeof radius, a->c.q.radius_m * 1e3);
   double cut;
   const char *model = model_of(&a->c, &cut);
   if (cut > 0.0) snprintf(cut_text, sizeof cut_text, " (cut-off %g nm)", cut * 1e9);
-  int n = snprintf(buf, size, "on %s in %s (η = %s Pa s) · fN = %s N/m · R = %s mm · %s%s",
-                   a->c.q.surface, a->c.q.fluid, eta, load, radius, model, cut_text);
+  int n;
+  if (a->c.geometry != VL_GEOMETRY_CYLINDER) {
+    n = point_subtitle(a, eta, radius, buf, size);
+  } else {
+    vl_plot_format_value(load, sizeof load, a->c.q.load_n_per_m);
+    n = snprintf(buf, size, "on %s in %s (η = %s Pa s) · fN = %s N/m · R = %s mm · %s%s",
+                 a->c.q.surface, a->c.q.fluid, eta, load, radius, model, cut_text);
+  }
   if (a->c.q.at_temperature && n >= 0 && (size_t)n < size)
     snprintf(buf + n, size - (size_t)n, " · %g °C", a->c.q.temperature_c);
 }
@@ -759,26 +980,31 @@ static void compare_manifest(vl_manifest *m, vl_db *db, const compare_args *a) {
     snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", k ? "," : "", a->names[k]);
     vl_cli_manifest_material(m, db, "compound", a->names[k]);
   }
-  vl_cli_manifest_material(m, db, "surface", a->c.q.surface);
-  vl_cli_manifest_material(m, db, "fluid", a->c.q.fluid);
+  if (a->c.q.surface) vl_cli_manifest_material(m, db, "surface", a->c.q.surface);
+  if (a->c.q.fluid) vl_cli_manifest_material(m, db, "fluid", a->c.q.fluid);
   vl_manifest_add_option(m, "compounds", list);
-  vl_manifest_add_option(m, "surface", a->c.q.surface);
-  vl_manifest_add_option(m, "fluid", a->c.q.fluid);
+  if (a->c.q.surface) vl_manifest_add_option(m, "surface", a->c.q.surface);
+  if (a->c.q.fluid) vl_manifest_add_option(m, "fluid", a->c.q.fluid);
+  bool point = a->c.geometry != VL_GEOMETRY_CYLINDER;
+  if (point) vl_manifest_add_option(m, "geometry", vl_geometry_name(a->c.geometry));
   const struct {
     const char *key;
     double value;
   } nums[] = {{isnan(a->from_speed) ? "from_v0_eta_pa_m" : "from_v0_m_s", a->from},
               {isnan(a->from_speed) ? "to_v0_eta_pa_m" : "to_v0_m_s", a->to},
               {"points", a->points},
-              {"load_n_per_m", a->c.q.load_n_per_m},
+              {point ? "load_n" : "load_n_per_m", point ? a->c.q.load_n : a->c.q.load_n_per_m},
               {"radius_m", a->c.q.radius_m},
-              {"sigma_s_pa", a->c.q.sigma_s_pa}};
-  for (size_t k = 0; k < sizeof nums / sizeof nums[0]; k++) {
+              {"sigma_s_pa", a->c.q.sigma_s_pa},
+              {"radius_y_m", a->c.q.radius_y_m}};
+  size_t n_nums = sizeof nums / sizeof nums[0] - (a->c.geometry != VL_GEOMETRY_ELLIPSOID);
+  for (size_t k = 0; k < n_nums; k++) {
     snprintf(v, sizeof v, "%.10g", nums[k].value);
     vl_manifest_add_option(m, nums[k].key, v);
   }
   double cut;
-  vl_manifest_add_option(m, "flow_factors", model_of(&a->c, &cut));
+  const char *model = model_of(&a->c, &cut);
+  if (model) vl_manifest_add_option(m, "flow_factors", model);
   if (cut > 0.0) snprintf(v, sizeof v, "%.6g", cut), vl_manifest_add_option(m, "film_cutoff_m", v);
   if (a->c.q.grid) snprintf(v, sizeof v, "%zu", a->c.q.grid), vl_manifest_add_option(m, "grid", v);
   if (a->c.q.at_temperature)

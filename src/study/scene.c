@@ -135,6 +135,7 @@ typedef struct {
   int err_line;          /* line of the error in status (0 if none) */
   const char *cursor;    /* reader position in the text */
   int key_line[K_COUNT]; /* where each key was set; 0 = not in the file */
+  const char *failed_key; /* the key check_fail named (NULL: none) */
 } parse_state;
 
 /* Sets key id (of section) from value, or records why it cannot: returns 1
@@ -704,11 +705,14 @@ static vl_status check_fail(parse_state *ps, key_id id, const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(why, sizeof why, fmt, ap);
   va_end(ap);
+  ps->failed_key = keys[id].key;
   if (ps->key_line[id])
     vl_error_set(ps->err, "%s:%d: [%s] %s: %s", ps->path, ps->key_line[id], keys[id].section,
                  keys[id].key, why);
-  else
+  else if (ps->path[0])
     vl_error_set(ps->err, "%s: [%s] %s: %s", ps->path, keys[id].section, keys[id].key, why);
+  else /* a scene built in code: no file to name */
+    vl_error_set(ps->err, "[%s] %s: %s", keys[id].section, keys[id].key, why);
   return VL_EINPUT;
 }
 
@@ -957,6 +961,15 @@ static vl_status scene_check(parse_state *ps) {
                       "at their reference temperatures)");
   if (sc->geometry != VL_GEOMETRY_CYLINDER) return point_contact_check(ps);
   return VL_OK;
+}
+
+vl_status vl_scene_check_point_contact(vl_scene *sc, const char **failed_key, vl_error *err) {
+  parse_state ps = {.scene = sc, .path = sc->path, .err = err, .status = VL_OK};
+  *failed_key = NULL;
+  if (sc->geometry == VL_GEOMETRY_CYLINDER) return VL_OK;
+  vl_status st = point_contact_check(&ps);
+  *failed_key = ps.failed_key;
+  return st;
 }
 
 /* Messages quote the file's text and go to a terminal: a control byte there

@@ -44,9 +44,19 @@ struct vl_study {
   int *case_lines;       /* line of each row of cases */
   size_t n_case_lines;
   bool has_temperature; /* tasks carry temperatures */
+  /* the rigid body: [contact] geometry of the file (vl_geometry) and its
+   * line; a point contact's loads are total forces, [study] loads_n (kept
+   * in the slot of F_LOADS, loads_total set) */
+  int geometry, geometry_line;
+  bool loads_total;
   const char **materials[3];
   size_t n_materials[3];
 };
+
+/* The name of field f's key as the file gave it (loads_n for total loads). */
+static const char *key_name(const vl_study *s, int f) {
+  return f == F_LOADS && s->loads_total ? "loads_n" : study_keys[f];
+}
 
 /* ---- small parsers ------------------------------------------------------ */
 
@@ -107,7 +117,7 @@ static vl_status check_number(vl_study *s, int line, const char *key, const char
 /* Splits value at commas into l (names or numbers by field), refusing
  * empty items and repeats. */
 static vl_status parse_factor(vl_study *s, int field, factor_list *l, vl_error *err) {
-  const char *key = study_keys[field];
+  const char *key = key_name(s, field);
   int line = s->key_line[field];
   bool names = field <= F_FLUIDS;
   size_t cap = 1;
@@ -157,12 +167,18 @@ static vl_status study_key(vl_study *s, int line, const char *key, const char *v
   int id = -1;
   for (int k = 0; k < F_COUNT; k++)
     if (!strcmp(key, study_keys[k])) id = k;
+  bool total = !strcmp(key, "loads_n"); /* a point contact's: in the loads' slot */
+  if (total) id = F_LOADS;
   if (id < 0)
     return fail_at(s, err, line, key,
                    "unknown key (known: title, compounds, surfaces, fluids, loads_n_per_m, "
-                   "radii_m, temperatures_c, cases)");
+                   "loads_n, radii_m, temperatures_c, cases)");
+  if (s->key_line[id] && id == F_LOADS && total != s->loads_total)
+    return fail_at(s, err, line, key, "give loads_n or loads_n_per_m, not both (line %d)",
+                   s->key_line[id]);
   if (s->key_line[id])
     return fail_at(s, err, line, key, "given twice (first on line %d)", s->key_line[id]);
+  if (id == F_LOADS) s->loads_total = total;
   s->key_line[id] = line;
   if (id != F_CASES && !*value) return fail_at(s, err, line, key, "empty value");
   if (!(s->values[id] = strdup(value))) {
@@ -198,11 +214,29 @@ static vl_status forbidden_key(vl_study *s, int line, const char *section, const
   else if (!strcmp(section, "scene"))
     why = "a study's title is [study] title";
   else if (!strcmp(section, "contact") && !strcmp(key, "radius_m"))
-    why = "set by [study] radii_m (or cases)";
+    why = "set by [study] radii_m (or cases; an ellipsoid's radii: [contact] radii_m = Rx, Ry)";
   else if (!strcmp(section, "contact") && !strcmp(key, "load_n_per_m"))
     why = "set by [study] loads_n_per_m (or cases)";
+  else if (!strcmp(section, "contact") && !strcmp(key, "load_n"))
+    why = "set by [study] loads_n (or cases)";
   if (!why) return VL_OK;
   vl_error_set(err, "%s:%d: [%s] %s: %s", s->path, line, section, key, why);
+  return VL_EINPUT;
+}
+
+/* [contact] geometry = VALUE at line (an inline comment cut): the rigid
+ * body every task shares, which decides the study's load and radius keys. */
+static vl_status geometry_key(vl_study *s, int line, char *value, vl_error *err) {
+  value[strcspn(value, ";#")] = '\0';
+  value = trim(value);
+  static const char *const names[] = {"cylinder", "ball", "ellipsoid"};
+  for (int g = 0; g < 3; g++)
+    if (!strcmp(value, names[g])) {
+      s->geometry = g, s->geometry_line = line;
+      return VL_OK;
+    }
+  vl_error_set(err, "%s:%d: [contact] geometry: expected cylinder, ball or ellipsoid, got '%s'",
+               s->path, line, value);
   return VL_EINPUT;
 }
 
@@ -247,9 +281,12 @@ static vl_status split_sections(vl_study *s, int *temp_line, vl_error *err) {
       in_cases = !strcmp(key, "cases");
       if (st == VL_OK && in_cases && *value) st = case_row(s, line, value, err);
     } else if (!blank && strchr(t, '=')) {
-      *strchr(t, '=') = '\0';
+      char *value = strchr(t, '=') + 1;
+      value[-1] = '\0';
       const char *key = trim(t);
       st = forbidden_key(s, line, section, key, err);
+      if (st == VL_OK && !strcmp(section, "contact") && !strcmp(key, "geometry"))
+        st = geometry_key(s, line, value, err);
       if (!strcmp(section, "effects") &&
           (!strcmp(key, "temperature_c") || !strcmp(key, "temperature")))
         *temp_line = *temp_line ? *temp_line : line;
@@ -265,12 +302,43 @@ static vl_status split_sections(vl_study *s, int *temp_line, vl_error *err) {
   return st;
 }
 
+/* The load and radius keys fit the study's geometry: a cylinder's loads
+ * per unit length, a point contact's total loads; an ellipsoid's radii
+ * are its [contact] radii_m, not a factor. */
+static vl_status geometry_fit(vl_study *s, vl_error *err) {
+  bool point = s->geometry != VL_GEOMETRY_CYLINDER;
+  const char *name = vl_geometry_name(s->geometry);
+  if (s->key_line[F_LOADS] && point && !s->loads_total)
+    return fail_at(s, err, s->key_line[F_LOADS], "loads_n_per_m",
+                   "[contact] geometry = %s (line %d) takes loads_n, total loads (N)", name,
+                   s->geometry_line);
+  if (s->key_line[F_LOADS] && !point && s->loads_total)
+    return fail_at(s, err, s->key_line[F_LOADS], "loads_n",
+                   "total loads are a ball's or an ellipsoid's ([contact] geometry); a cylinder "
+                   "takes loads_n_per_m (N/m)");
+  if (s->key_line[F_RADII] && s->geometry == VL_GEOMETRY_ELLIPSOID)
+    return fail_at(s, err, s->key_line[F_RADII], "radii_m",
+                   "not with [contact] geometry = ellipsoid (line %d): its radii are [contact] "
+                   "radii_m = Rx, Ry, the same for every task",
+                   s->geometry_line);
+  return VL_OK;
+}
+
 /* ---- tasks ---------------------------------------------------------------- */
 
-static void set_task(vl_study_task *t, size_t id, const char *c, const char *sf, const char *fl,
-                     double load, double radius, double temp, int line) {
-  *t = (vl_study_task){
-      .id = id, .load_n_per_m = load, .radius_m = radius, .temperature_c = temp, .line = line};
+/* Task id's factors; load is the geometry's (per unit length, or total),
+ * radius NAN for an ellipsoid (its radii: the scene's, check_scenes). */
+static void set_task(const vl_study *s, vl_study_task *t, size_t id, const char *c, const char *sf,
+                     const char *fl, double load, double radius, double temp, int line) {
+  bool point = s->geometry != VL_GEOMETRY_CYLINDER;
+  *t = (vl_study_task){.id = id,
+                       .geometry = s->geometry,
+                       .load_n_per_m = point ? 0.0 : load,
+                       .load_n = point ? load : 0.0,
+                       .radius_m = radius,
+                       .radius_y_m = s->geometry == VL_GEOMETRY_BALL ? radius : 0.0,
+                       .temperature_c = temp,
+                       .line = line};
   snprintf(t->compound, sizeof t->compound, "%s", c);
   snprintf(t->surface, sizeof t->surface, "%s", sf);
   snprintf(t->fluid, sizeof t->fluid, "%s", fl);
@@ -288,10 +356,12 @@ static vl_status alloc_tasks(vl_study *s, size_t n, vl_error *err) {
 /* The full grid of the lists, compounds outermost. */
 static vl_status grid_tasks(vl_study *s, vl_error *err) {
   static const int required[] = {F_COMPOUNDS, F_LOADS, F_RADII};
-  for (size_t k = 0; k < 3; k++)
+  bool ellipsoid = s->geometry == VL_GEOMETRY_ELLIPSOID; /* its radii: [contact] radii_m */
+  for (size_t k = 0; k < (ellipsoid ? 2u : 3u); k++)
     if (!s->key_line[required[k]]) {
+      bool total = required[k] == F_LOADS && s->geometry != VL_GEOMETRY_CYLINDER;
       vl_error_set(err, "%s: missing required key [study] %s (or give cases)", s->path,
-                   study_keys[required[k]]);
+                   total ? "loads_n" : study_keys[required[k]]);
       return VL_EINPUT;
     }
   factor_list l[F_TEMPS + 1] = {{0}};
@@ -315,10 +385,11 @@ static vl_status grid_tasks(vl_study *s, vl_error *err) {
     size_t r = id;
     for (int f = F_TEMPS; f >= 0; f--)
       i[f] = r % n[f], r /= n[f];
-    set_task(&s->tasks[id], id, l[F_COMPOUNDS].names[i[F_COMPOUNDS]],
+    set_task(s, &s->tasks[id], id, l[F_COMPOUNDS].names[i[F_COMPOUNDS]],
              l[F_SURFACES].n ? l[F_SURFACES].names[i[F_SURFACES]] : "",
              l[F_FLUIDS].n ? l[F_FLUIDS].names[i[F_FLUIDS]] : "", l[F_LOADS].values[i[F_LOADS]],
-             l[F_RADII].values[i[F_RADII]], l[F_TEMPS].n ? l[F_TEMPS].values[i[F_TEMPS]] : NAN, 0);
+             l[F_RADII].n ? l[F_RADII].values[i[F_RADII]] : NAN,
+             l[F_TEMPS].n ? l[F_TEMPS].values[i[F_TEMPS]] : NAN, 0);
   }
   for (int f = 0; f <= F_TEMPS; f++) {
     free(l[f].names);
@@ -330,13 +401,25 @@ static vl_status grid_tasks(vl_study *s, vl_error *err) {
 static bool same_factors(const vl_study_task *a, const vl_study_task *b) {
   bool same_t =
       a->temperature_c == b->temperature_c || (isnan(a->temperature_c) && isnan(b->temperature_c));
+  bool same_r = a->radius_m == b->radius_m || (isnan(a->radius_m) && isnan(b->radius_m));
   return !strcmp(a->compound, b->compound) && !strcmp(a->surface, b->surface) &&
          !strcmp(a->fluid, b->fluid) && a->load_n_per_m == b->load_n_per_m &&
-         a->radius_m == b->radius_m && same_t;
+         a->load_n == b->load_n && same_r && same_t;
 }
 
-/* One row of cases: COMPOUND SURFACE FLUID LOAD RADIUS [TEMPERATURE],
- * separated by blanks or commas. */
+/* What a row of cases holds for the study's geometry. */
+static const char *row_form(const vl_study *s) {
+  switch (s->geometry) {
+  case VL_GEOMETRY_BALL: return "COMPOUND SURFACE FLUID LOAD_N RADIUS_M [TEMPERATURE_C]";
+  case VL_GEOMETRY_ELLIPSOID:
+    return "COMPOUND SURFACE FLUID LOAD_N [TEMPERATURE_C] (an ellipsoid's radii: [contact] "
+           "radii_m)";
+  default: return "COMPOUND SURFACE FLUID LOAD_N_PER_M RADIUS_M [TEMPERATURE_C]";
+  }
+}
+
+/* One row of cases: COMPOUND SURFACE FLUID LOAD RADIUS [TEMPERATURE]
+ * (an ellipsoid's without RADIUS), separated by blanks or commas. */
 static vl_status case_task(vl_study *s, size_t id, char *row, vl_error *err) {
   int line = s->case_lines[id];
   char *item[7];
@@ -347,22 +430,24 @@ static vl_status case_task(vl_study *s, size_t id, char *row, vl_error *err) {
       item[n++] = tok;
     else
       n++;
-  if (n != 5 && n != 6)
+  size_t base = s->geometry == VL_GEOMETRY_ELLIPSOID ? 4 : 5; /* items without a temperature */
+  if (n != base && n != base + 1)
     return fail_at(s, err, line, "cases",
-                   "a row is COMPOUND SURFACE FLUID LOAD_N_PER_M RADIUS_M [TEMPERATURE_C] "
-                   "('-' for no surface or fluid), got %zu items",
-                   n);
-  if (id > 0 && (n == 6) != s->has_temperature)
+                   "a row is %s ('-' for no surface or fluid), got %zu items", row_form(s), n);
+  if (id > 0 && (n == base + 1) != s->has_temperature)
     return fail_at(s, err, line, "cases", "every row gives a temperature, or none does");
-  s->has_temperature = n == 6;
-  double v[3] = {0, 0, NAN};
+  s->has_temperature = n == base + 1;
+  double v[3] = {0, NAN, NAN}; /* load, radius, temperature */
   vl_status st = check_name(s, line, "cases", item[0], false, err);
   for (int k = 1; st == VL_OK && k < 3; k++)
     st = check_name(s, line, "cases", item[k], true, err);
-  for (size_t k = 3; st == VL_OK && k < n; k++)
-    st = check_number(s, line, "cases", item[k], k == 5 ? F_TEMPS : F_LOADS, &v[k - 3], err);
+  for (size_t k = 3; st == VL_OK && k < n; k++) {
+    bool temp = k == base;
+    size_t slot = temp ? 2 : k - 3;
+    st = check_number(s, line, "cases", item[k], temp ? F_TEMPS : F_LOADS, &v[slot], err);
+  }
   if (st != VL_OK) return st;
-  set_task(&s->tasks[id], id, item[0], strcmp(item[1], "-") ? item[1] : "",
+  set_task(s, &s->tasks[id], id, item[0], strcmp(item[1], "-") ? item[1] : "",
            strcmp(item[2], "-") ? item[2] : "", v[0], v[1], v[2], line);
   for (size_t k = 0; k < id; k++)
     if (same_factors(&s->tasks[k], &s->tasks[id]))
@@ -373,7 +458,7 @@ static vl_status case_task(vl_study *s, size_t id, char *row, vl_error *err) {
 static vl_status cases_tasks(vl_study *s, vl_error *err) {
   for (int f = F_COMPOUNDS; f <= F_TEMPS; f++)
     if (s->key_line[f])
-      return fail_at(s, err, s->key_line[f], study_keys[f],
+      return fail_at(s, err, s->key_line[f], key_name(s, f),
                      "give the factors as lists or as cases (line %d), not both",
                      s->key_line[F_CASES]);
   if (!s->n_case_lines)
@@ -414,8 +499,10 @@ static uint64_t fnv1a(const char *text) {
   return h;
 }
 
-/* Every task's scene is parsed once here: a study that loads runs. */
-static vl_status check_scenes(const vl_study *s, vl_error *err) {
+/* Every task's scene is parsed once here: a study that loads runs. An
+ * ellipsoid's radii are taken from it into the tasks (for the factor
+ * columns). */
+static vl_status check_scenes(vl_study *s, vl_error *err) {
   vl_scene *scene = malloc(sizeof *scene);
   if (!scene) {
     vl_error_set(err, "out of memory");
@@ -424,6 +511,8 @@ static vl_status check_scenes(const vl_study *s, vl_error *err) {
   vl_status st = VL_OK;
   for (size_t i = 0; st == VL_OK && i < s->n_tasks; i++) {
     st = vl_study_scene(s, i, scene, err);
+    if (st == VL_OK && s->geometry == VL_GEOMETRY_ELLIPSOID)
+      s->tasks[i].radius_m = scene->radius_m, s->tasks[i].radius_y_m = scene->radius_y_m;
     /* with the lists every task has the same defaults; a row of cases can
      * be wrong alone (no surface for a rough contact) */
     if (st != VL_OK && s->key_line[F_CASES])
@@ -436,7 +525,7 @@ static vl_status check_scenes(const vl_study *s, vl_error *err) {
 static vl_status study_parse(vl_study *s, vl_error *err) {
   int temp_line = 0;
   vl_status st = split_sections(s, &temp_line, err);
-  if (st != VL_OK) return st;
+  if (st != VL_OK || (st = geometry_fit(s, err)) != VL_OK) return st;
   if (s->key_line[F_TITLE]) snprintf(s->title, sizeof s->title, "%s", s->values[F_TITLE]);
   if (!s->key_line[F_CASES] && !s->key_line[F_COMPOUNDS] && !s->key_line[F_LOADS]) {
     vl_error_set(err,
@@ -526,9 +615,15 @@ static char *task_text(const vl_study *s, const vl_study_task *t) {
                s->title, s->title[0] ? " | " : "", t->id, t->compound);
   if (t->surface[0]) n += snprintf(tail + n, sizeof tail - (size_t)n, "surface = %s\n", t->surface);
   if (t->fluid[0]) n += snprintf(tail + n, sizeof tail - (size_t)n, "fluid = %s\n", t->fluid);
-  n +=
-      snprintf(tail + n, sizeof tail - (size_t)n,
-               "[contact]\nradius_m = %.17g\nload_n_per_m = %.17g\n", t->radius_m, t->load_n_per_m);
+  if (t->geometry == VL_GEOMETRY_CYLINDER)
+    n += snprintf(tail + n, sizeof tail - (size_t)n,
+                  "[contact]\nradius_m = %.17g\nload_n_per_m = %.17g\n", t->radius_m,
+                  t->load_n_per_m);
+  else if (t->geometry == VL_GEOMETRY_BALL)
+    n += snprintf(tail + n, sizeof tail - (size_t)n, "[contact]\nradius_m = %.17g\nload_n = %.17g\n",
+                  t->radius_m, t->load_n);
+  else /* an ellipsoid's radii are the study's [contact] radii_m */
+    n += snprintf(tail + n, sizeof tail - (size_t)n, "[contact]\nload_n = %.17g\n", t->load_n);
   if (!isnan(t->temperature_c))
     snprintf(tail + n, sizeof tail - (size_t)n,
              "[effects]\ntemperature = on\ntemperature_c = %.17g\n", t->temperature_c);

@@ -18,8 +18,26 @@
 
 #define PATH_SIZE 4400
 
-static const char *const FACTOR_COLUMNS =
-    "compound,surface,fluid,load_n_per_m,radius_m,temperature_c";
+/* The factor columns of a study's tasks: the rigid body's load and radii
+ * by its geometry (vl_geometry: all tasks alike). */
+static const char *factor_columns(int geometry) {
+  switch (geometry) {
+  case VL_GEOMETRY_BALL: return "compound,surface,fluid,load_n,radius_m,temperature_c";
+  case VL_GEOMETRY_ELLIPSOID:
+    return "compound,surface,fluid,load_n,radius_x_m,radius_y_m,temperature_c";
+  default: return "compound,surface,fluid,load_n_per_m,radius_m,temperature_c";
+  }
+}
+
+/* The load and radius cells of task t (each followed by a comma). */
+static void print_body(FILE *f, const vl_study_task *t) {
+  if (t->geometry == VL_GEOMETRY_CYLINDER)
+    fprintf(f, "%.15g,%.15g,", t->load_n_per_m, t->radius_m);
+  else if (t->geometry == VL_GEOMETRY_BALL)
+    fprintf(f, "%.15g,%.15g,", t->load_n, t->radius_m);
+  else
+    fprintf(f, "%.15g,%.15g,%.15g,", t->load_n, t->radius_m, t->radius_y_m);
+}
 
 void vl_study_task_path(const char *out_dir, size_t id, char *buf, size_t size) {
   snprintf(buf, size, "%s/tasks/%06zu.csv", out_dir, id);
@@ -28,8 +46,8 @@ void vl_study_task_path(const char *out_dir, size_t id, char *buf, size_t size) 
 /* The factor cells of a task (no trailing comma); temperature_c empty when
  * the materials are at their reference temperatures. */
 static void print_factors(FILE *f, const vl_study_task *t, const vl_scene *scene) {
-  fprintf(f, "%s,%s,%s,%.15g,%.15g,", t->compound, t->surface, t->fluid, t->load_n_per_m,
-          t->radius_m);
+  fprintf(f, "%s,%s,%s,", t->compound, t->surface, t->fluid);
+  print_body(f, t);
   if (scene->effects.temperature) fprintf(f, "%.15g", scene->effects.temperature_c);
 }
 
@@ -58,7 +76,7 @@ static vl_status print_rows(FILE *f, const vl_study_task *t, const vl_scene *sce
       continue;
     }
     if (header)
-      fputs(FACTOR_COLUMNS, f);
+      fputs(factor_columns(t->geometry), f);
     else
       print_factors(f, t, scene);
     fprintf(f, ",%.*s\n", (int)(end - line), line);
@@ -221,8 +239,8 @@ static void csv_text(FILE *f, const char *text) {
 }
 
 static void print_task_row(FILE *f, const vl_study_task *t, const vl_study_outcome *o) {
-  fprintf(f, "%zu,%s,%s,%s,%.15g,%.15g,", t->id, t->compound, t->surface, t->fluid, t->load_n_per_m,
-          t->radius_m);
+  fprintf(f, "%zu,%s,%s,%s,", t->id, t->compound, t->surface, t->fluid);
+  print_body(f, t);
   if (!isnan(t->temperature_c)) fprintf(f, "%.15g", t->temperature_c);
   fprintf(f, ",%zu,%zu,%zu,%zu,", o->points, o->converged, o->failed, o->above_target);
   if (o->state != VL_TASK_MISSING) fprintf(f, "%.3f", o->seconds);
@@ -242,8 +260,10 @@ vl_status vl_study_write_results(const vl_study *s, const char *out_dir, vl_stud
     vl_atomic_file_abort(&res);
     return VL_EIO;
   }
+  const vl_study_task *first = vl_study_task_at(s, 0);
+  const char *factors = factor_columns(first ? first->geometry : VL_GEOMETRY_CYLINDER);
   fprintf(tab.f, "task,%s,points,converged,failed,above_target,seconds,status,message\n",
-          FACTOR_COLUMNS);
+          factors);
   bool header = false;
   vl_status st = VL_OK;
   for (size_t i = 0; st == VL_OK && i < vl_study_n_tasks(s); i++) {
@@ -257,7 +277,7 @@ vl_status vl_study_write_results(const vl_study *s, const char *out_dir, vl_stud
   }
   /* no task wrote a curve: the columns all the same */
   if (!header) {
-    fputs(FACTOR_COLUMNS, res.f);
+    fputs(factors, res.f);
     for (size_t c = 0; vl_curve_columns[c]; c++)
       fprintf(res.f, ",%s", vl_curve_columns[c]);
     fputc('\n', res.f);
