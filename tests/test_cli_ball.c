@@ -264,10 +264,9 @@ static void test_run_rough_ball(void **state) {
 /* The JSON numbers of one point that say what a ball's point is: each
  * must be the same in both answers (same scene, same solver path). */
 static void same_point(const char *a, size_t ia, const char *b, size_t ib) {
-  static const char *const keys[] = {"mu",           "mu_Rc",           "mu_Rf",
-                                     "mu_Sc",        "mu_Sf",           "u_min_m",
-                                     "x_min_film_m", "y_min_film_m",    "contact_area_m2",
-                                     "y_peak_m", "error_estimate", NULL};
+  static const char *const keys[] = {
+      "mu",           "mu_Rc",        "mu_Rf",           "mu_Sc",    "mu_Sf",          "u_min_m",
+      "x_min_film_m", "y_min_film_m", "contact_area_m2", "y_peak_m", "error_estimate", NULL};
   for (size_t k = 0; keys[k]; k++) {
     double x = vl_test_json_number(a, keys[k], ia), y = vl_test_json_number(b, keys[k], ib);
     if (!(x == y || (isnan(x) && isnan(y))))

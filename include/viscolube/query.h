@@ -48,7 +48,7 @@ typedef struct {
   int geometry;
   double load_n_per_m, radius_m;
   double load_n, radius_y_m; /* a point contact's; 0 by default (no default load) */
-  double sigma_s_pa; /* solid shear stress; 0 switches the effect off */
+  double sigma_s_pa;         /* solid shear stress; 0 switches the effect off */
   /* sigma_s_pa was chosen by the caller; false (the default): the stored
    * pair's law of compound, surface and fluid when one exists, else
    * sigma_s_pa */

@@ -50,13 +50,13 @@ typedef struct {
   char compound[VL_NAME_MAX];
   char surface[VL_NAME_MAX]; /* "" = smooth */
   char fluid[VL_NAME_MAX];   /* "" = dry */
-  int geometry;           /* vl_geometry: the study's [contact] geometry (all tasks alike) */
-  double load_n_per_m;    /* a cylinder's (0 for a point contact) */
-  double load_n;          /* a ball's or an ellipsoid's total load, N (0 for a cylinder) */
-  double radius_m;        /* a cylinder's or a ball's; an ellipsoid's Rx ([contact] radii_m) */
-  double radius_y_m;      /* an ellipsoid's Ry (a ball: radius_m; a cylinder: 0) */
-  double temperature_c; /* NAN: materials at their reference temperatures */
-  int line;             /* the row of cases (0 for a grid) */
+  int geometry;              /* vl_geometry: the study's [contact] geometry (all tasks alike) */
+  double load_n_per_m;       /* a cylinder's (0 for a point contact) */
+  double load_n;             /* a ball's or an ellipsoid's total load, N (0 for a cylinder) */
+  double radius_m;           /* a cylinder's or a ball's; an ellipsoid's Rx ([contact] radii_m) */
+  double radius_y_m;         /* an ellipsoid's Ry (a ball: radius_m; a cylinder: 0) */
+  double temperature_c;      /* NAN: materials at their reference temperatures */
+  int line;                  /* the row of cases (0 for a grid) */
 } vl_study_task;
 
 typedef struct vl_study vl_study;

@@ -116,7 +116,6 @@ static void common_given(vl_cli_parser *p, conditions *c, const common_rules *r)
   c->cutoff_given = vl_cli_find(p, "--film-cutoff")->given;
 }
 
-
 /* Parses argv by p (its table: the common options and the command's);
  * -1 to go on, else the exit status (0 after the usage on --help). */
 static int parse_command(vl_cli_parser *p, int argc, char **argv, conditions *c,
@@ -253,7 +252,8 @@ static int geometry_options(const char *cmd, conditions *c) {
     return 0;
   }
   c->q.geometry = c->geometry;
-  if (c->geometry == VL_GEOMETRY_ELLIPSOID) c->q.radius_m = c->radii[0], c->q.radius_y_m = c->radii[1];
+  if (c->geometry == VL_GEOMETRY_ELLIPSOID)
+    c->q.radius_m = c->radii[0], c->q.radius_y_m = c->radii[1];
   return 1;
 }
 
@@ -651,8 +651,9 @@ static int compare_check(compare_args *a) {
     return 2;
   }
   if (!a->c.q.fluid && (a->from_given || a->axis_v0eta)) {
-    fprintf(stderr, "viscolube compare: %s: a dry contact (no --fluid) has no v0 eta: give the "
-                    "range in m/s (--from-speed, --to-speed) on the speed axis\n",
+    fprintf(stderr,
+            "viscolube compare: %s: a dry contact (no --fluid) has no v0 eta: give the "
+            "range in m/s (--from-speed, --to-speed) on the speed axis\n",
             a->from_given ? "--from/--to" : "--axis v0eta");
     return 2;
   }
@@ -909,8 +910,8 @@ static int point_subtitle(const compare_args *a, const char *eta, const char *ra
     snprintf(materials + m, sizeof materials - (size_t)m, "in %s (η = %s Pa s) · ", q->fluid, eta);
   if (q->geometry == VL_GEOMETRY_BALL)
     return snprintf(buf, size, "%sball R = %s mm · W = %s N", materials, radius, load);
-  return snprintf(buf, size, "%sellipsoid Rx = %s mm, Ry = %s mm · W = %s N", materials, radius,
-                  ry, load);
+  return snprintf(buf, size, "%sellipsoid Rx = %s mm, Ry = %s mm · W = %s N", materials, radius, ry,
+                  load);
 }
 
 /* The conditions of the figures' subtitle: surface, fluid, load, radius,

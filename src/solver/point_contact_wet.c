@@ -73,11 +73,18 @@ static void wet_report(const vl_point_contact *c, const vl_point_ehl_result *r, 
   if (c->cfg.roughness) { /* the line contact's regimes (results.h) */
     pt->u_min_over_h_rms = r->h_min_m / vl_persson_hrms(c->cfg.roughness);
     pt->regime = vl_regime_of(c->cfg.eta_pa_s > 0.0, pt->fluid_load_fraction, pt->u_min_over_h_rms);
+    /* the line contact's check (assumptions.c): Persson's table ends at
+     * 1e-3 h_rms; below, and at u <= 0, its continuation stands for full
+     * contact */
+    if (pt->u_min_over_h_rms < 1e-3)
+      snprintf(pt->warnings, sizeof pt->warnings,
+               "u_min = %.3g h_rms below the Persson table (1e-3 h_rms)", pt->u_min_over_h_rms);
   }
   vl_ball_result *ball = &pt->ball;
-  /* rough: the real contact area (where the asperities touch) */
+  /* rough: the real contact area (where the asperities touch) and the
+   * nominal contact's extents (docs/POINT_CONTACT.md section 10) */
   ball->contact_area_m2 = r->real_area_m2;
-  ball->contact_length_m = 0.0, ball->contact_breadth_m = 0.0;
+  ball->contact_length_m = r->contact_length_m, ball->contact_breadth_m = r->contact_breadth_m;
   ball->y_min_film_m = r->y_min_m, ball->y_peak_m = r->y_pmax_m;
   ball->cells_in_contact = 0;
   ball->cells_per_a0 = c->cfg.cells_per_a0;

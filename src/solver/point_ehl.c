@@ -66,6 +66,10 @@ static const double ZONE_Y[1][2] = {{0.3, 1.1}};
  * 9-44 when it converges) */
 #define DRY_START_ITERATIONS 50
 
+/* A rough contact's nominal extents: where the asperities' pressure
+ * exceeds this share of its peak. */
+#define NOMINAL_SHARE 0.01
+
 /* Stencil of a row: at most 6 cells whose film enters it. */
 #define STENCIL 8
 
@@ -78,8 +82,9 @@ typedef struct {
   double *f;       /* undeformed gap (X^2 + Y^2)/2 */
   double *H, *g;   /* film and conductance H^3 of the last evaluation */
   double lambda;
-  double v0_m_s; /* the speed */
-  double *row;   /* a Jacobian row (n + 1) */
+  double load_share; /* the load solved for, per W (1; less on a path to it) */
+  double v0_m_s;     /* the speed */
+  double *row;       /* a Jacobian row (n + 1) */
   /* per cell, of the last evaluation: the film carried by the entrainment
    * (H; rough: the mean film u + h_rms phi_s) and the derivatives of it and
    * of g with respect to H; the fluid pressure (y itself when smooth) */
@@ -342,8 +347,11 @@ static void rough_cell(ehl *e, size_t k, double q) {
   double us = e->us_m, u = e->H[k] * us, dsdu;
   double s = vl_persson_pressure(e->roughness, u, &dsdu);
   e->Pc[k] = e->sfac * s, e->dPc[k] = e->sfac * dsdu * us;
+  if (e->dry) { /* the asperities carry q (to the solver's tolerance) */
+    e->pf[k] = 0.0;
+    return;
+  }
   e->pf[k] = q - e->Pc[k];
-  if (e->dry) return;
   vl_flow_factor_values v, d;
   double up = fmax(u, 0.0), on = u > 0.0 ? 1.0 : 0.0, u3 = up * up * up;
   vl_flow_factors_eval_table(e->flow_factors, e->flow_table, up, e->hrms_m, &v, &d);
@@ -517,7 +525,7 @@ static double load_row(const ehl *e, const double *P) {
   double s = 0.0;
   for (size_t k = 0; k < e->n; k++)
     s += P[k] * e->dx[k / e->ny] * e->dy[k % e->ny];
-  return s * 3.0 / M_PI - 1.0;
+  return s * 3.0 / M_PI - e->load_share;
 }
 
 /* Fischer-Burmeister: a + b - sqrt(a^2 + b^2) = 0 iff a, b >= 0 and
@@ -837,6 +845,22 @@ static void energy(const ehl *e, const vl_point_ehl_config *cfg, const double *y
   res->dissipation_w = e->roughness ? NAN : 2.0 * visc, res->hysteresis_w = 2.0 * hyst;
 }
 
+/* The nominal contact of a rough state (e evaluated): the extents of the
+ * cells whose asperity pressure exceeds NOMINAL_SHARE of its peak. */
+static void nominal_extents(const ehl *e, double a, vl_point_ehl_result *res) {
+  res->contact_length_m = res->contact_breadth_m = 0.0;
+  if (!e->roughness) return;
+  double peak = 0.0, x0 = INFINITY, x1 = -INFINITY, y1 = 0.0;
+  for (size_t k = 0; k < e->n; k++)
+    peak = fmax(peak, e->Pc[k]);
+  for (size_t k = 0; k < e->n; k++) {
+    if (!(e->Pc[k] > NOMINAL_SHARE * peak)) continue;
+    size_t i = k / e->ny, j = k % e->ny;
+    x0 = fmin(x0, e->xf[i]), x1 = fmax(x1, e->xf[i + 1]), y1 = fmax(y1, e->yf[j + 1]);
+  }
+  if (x1 > x0) res->contact_length_m = (x1 - x0) * a, res->contact_breadth_m = 2.0 * y1 * a;
+}
+
 /* Figures of the converged (or last) state y into res. */
 static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, double a, double p0,
                    vl_point_ehl_result *res) {
@@ -875,6 +899,7 @@ static void report(ehl *e, const vl_point_ehl_config *cfg, const double *y, doub
       pois += -0.5 * v.phi_fp * u * dpdx * dA;
     }
   }
+  nominal_extents(e, a, res);
   res->x_centroid_m = 2.0 * (spx + scx) / W;
   res->h_centroid_m = axis_film_at(e, res->x_centroid_m / a) * us;
   size_t kmax = 0;
@@ -988,9 +1013,9 @@ static void hertz_start(ehl *e, double *yd, double unit, double lift, double tai
 /* A rough contact's mean separation (a^2/R) where the asperities alone
  * carry the Hertz peak of a contact of radius unit: the start's film at
  * the centre when the fluid carries little (0 when smooth). */
-static double asperity_lift(const ehl *e, double unit) {
+static double asperity_lift(const ehl *e, double unit, double share) {
   if (!e->roughness) return 0.0;
-  return vl_persson_separation(e->roughness, 1.0 / (unit * unit * e->sfac)) / e->us_m;
+  return vl_persson_separation(e->roughness, share / (unit * unit * e->sfac)) / e->us_m;
 }
 
 /* KINSOL's objects for one solve. */
@@ -1057,17 +1082,17 @@ static bool kin_run(ehl_kin *k, ehl *e, double tol, long *nni, double *fnorm) {
   return flag >= 0 && *fnorm <= tol;
 }
 
-/* From the state at e->lambda (converged) to lambda, down or up, by
- * steps of a factor up to 4 (grown 1.5x after a success, its square root
- * after a failure, given up below 1.02). */
-static bool continue_to(ehl_kin *k, ehl *e, double lambda, double tol, vl_point_ehl_result *res,
-                        double *fnorm) {
+/* From the state at *param (e->lambda or e->load_share; converged) to
+ * target, down or up, by steps of a factor up to 4 (grown 1.5x after a
+ * success, its square root after a failure, given up below 1.02). */
+static bool continue_to(ehl_kin *k, ehl *e, double *param, double target, double tol,
+                        vl_point_ehl_result *res, double *fnorm) {
   double ratio = 4.0;
-  bool down = e->lambda > lambda;
+  bool down = *param > target;
   N_VScale(1.0, k->y, k->y0);
-  while (down ? e->lambda > lambda : e->lambda < lambda) {
-    double from = e->lambda;
-    e->lambda = down ? fmax(lambda, e->lambda / ratio) : fmin(lambda, e->lambda * ratio);
+  while (down ? *param > target : *param < target) {
+    double from = *param;
+    *param = down ? fmax(target, *param / ratio) : fmin(target, *param * ratio);
     /* with a line search: full steps close the film (measured) */
     bool step_ok = kin_run(k, e, tol, &res->iterations, fnorm);
     res->continuation_steps++;
@@ -1076,12 +1101,35 @@ static bool continue_to(ehl_kin *k, ehl *e, double lambda, double tol, vl_point_
       ratio = fmin(4.0, ratio * 1.5);
     } else {
       N_VScale(1.0, k->y0, k->y);
-      e->lambda = from;
+      *param = from;
       ratio = sqrt(ratio);
       if (ratio < 1.02) return false;
     }
   }
   return true;
+}
+
+/* The dry rough contact from the Hertz start in k->y, else from a lighter
+ * load (W/8^j: the asperities further apart, Persson's law less steep)
+ * continued up to W. */
+static bool dry_rough(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg, vl_point_ehl_result *res,
+                      double *fnorm) {
+  double *yd = N_VGetArrayPointer(k->y);
+  bool ok = kin_run(k, e, cfg->tolerance, &res->iterations, fnorm);
+  KINSetNumMaxIters(k->kmem, DRY_START_ITERATIONS);
+  for (int j = 1; j <= 6 && !ok; j++) {
+    e->load_share = pow(8.0, -j);
+    double unit = cfg->unit * cbrt(e->load_share); /* Hertz's radius at that load */
+    hertz_start(e, yd, unit, asperity_lift(e, unit, e->load_share), 0.0);
+    for (size_t l = 0; l < e->n; l++)
+      yd[l] *= e->load_share;
+    ok = kin_run(k, e, cfg->tolerance, &res->iterations, fnorm);
+  }
+  KINSetNumMaxIters(k->kmem, cfg->max_iterations);
+  if (ok && e->load_share < 1.0)
+    ok = continue_to(k, e, &e->load_share, 1.0, cfg->tolerance, res, fnorm);
+  e->load_share = 1.0;
+  return ok;
 }
 
 /* A rough lubricated contact from the dry one (its state in k->y): the
@@ -1091,7 +1139,7 @@ static bool rough_from_dry(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
                            vl_point_ehl_result *res, double *fnorm) {
   double lambda = e->lambda, tol = cfg->tolerance;
   e->dry = true;
-  bool ok = kin_run(k, e, tol, &res->iterations, fnorm);
+  bool ok = dry_rough(k, e, cfg, res, fnorm);
   e->dry = false;
   if (!ok) return false;
   N_Vector dry = N_VClone(k->y);
@@ -1106,7 +1154,7 @@ static bool rough_from_dry(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
   }
   KINSetNumMaxIters(k->kmem, cfg->max_iterations);
   N_VDestroy(dry);
-  if (ok && e->lambda < lambda) ok = continue_to(k, e, lambda, tol, res, fnorm);
+  if (ok && e->lambda < lambda) ok = continue_to(k, e, &e->lambda, lambda, tol, res, fnorm);
   e->lambda = lambda;
   return ok;
 }
@@ -1143,9 +1191,9 @@ static bool solve_paths(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
    * dry start then a poor one */
   bool near = start && (start->v0_m_s == cfg->v0_m_s || !e->roughness || cfg->rubber.n_terms == 0);
   if (near && map_run(k, e, cfg, start, sc, res, fnorm)) return true;
-  double lift = asperity_lift(e, cfg->unit);
+  double lift = asperity_lift(e, cfg->unit, 1.0);
   hertz_start(e, yd, cfg->unit, lift, 0.0);
-  if (e->dry) return kin_run(k, e, tol, &res->iterations, fnorm); /* the asperities alone */
+  if (e->dry) return dry_rough(k, e, cfg, res, fnorm); /* the asperities alone */
   if (e->roughness) {
     /* the dry rough contact (the fluid's share 0, the limit of slow
      * sliding), then the film from it */
@@ -1167,7 +1215,7 @@ static bool solve_paths(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
     ok = kin_run(k, e, tol, &res->iterations, fnorm);
   }
   KINSetNumMaxIters(k->kmem, cfg->max_iterations);
-  if (ok && e->lambda > lambda) ok = continue_to(k, e, lambda, tol, res, fnorm);
+  if (ok && e->lambda > lambda) ok = continue_to(k, e, &e->lambda, lambda, tol, res, fnorm);
   e->lambda = lambda;
   return ok;
 }
@@ -1186,6 +1234,7 @@ vl_status vl_point_ehl_solve(const vl_point_ehl_config *cfg, const vl_point_ehl_
   if (st != VL_OK) return st;
   e.lambda = 6.0 * cfg->eta_pa_s * cfg->v0_m_s * R * R / (a * a * a * p0);
   e.v0_m_s = cfg->v0_m_s;
+  e.load_share = 1.0;
   res->nx = e.nx, res->ny = e.ny;
   res->t_influence_s = now_s() - t0;
   t0 = now_s();

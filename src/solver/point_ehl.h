@@ -70,8 +70,11 @@ typedef struct {
   double load_error;       /* (\int p dA - W)/W */
   double residual;         /* max norm of the scaled residual at the end */
   double mu_Rf, mu_Sf_couette, mu_Sf_poiseuille, mu_Sf;
-  double mu_Rc, mu_Sc;                 /* the asperities' (rough; 0 when smooth) */
-  double real_area_m2;                 /* the real contact area, both halves (rough) */
+  double mu_Rc, mu_Sc; /* the asperities' (rough; 0 when smooth) */
+  double real_area_m2; /* the real contact area, both halves (rough) */
+  /* the nominal contact's extents (rough): along x and across (both
+   * halves), where the asperities' pressure exceeds 1 % of its peak */
+  double contact_length_m, contact_breadth_m;
   double fluid_load_fraction;          /* \int p_f / W (1 when smooth) */
   double e_abs_pa;                     /* the asperity modulus |Er(v0/a)| (rough) */
   double x_centroid_m;                 /* pressure centroid */

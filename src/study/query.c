@@ -64,8 +64,7 @@ static const char *geometry_trouble(const vl_query *q) {
   if (g == VL_GEOMETRY_ELLIPSOID && !positive(q->radius_y_m))
     return "radius_y_m: needs a positive number (an ellipsoid's radius across the sliding "
            "direction)";
-  if (g != VL_GEOMETRY_ELLIPSOID && q->radius_y_m != 0.0)
-    return "radius_y_m: an ellipsoid's only";
+  if (g != VL_GEOMETRY_ELLIPSOID && q->radius_y_m != 0.0) return "radius_y_m: an ellipsoid's only";
   if (g != VL_GEOMETRY_CYLINDER && q->grid)
     return "grid: a line contact's cells (a point contact's are planned per point)";
   return NULL;

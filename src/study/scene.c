@@ -131,10 +131,10 @@ typedef struct {
   const char *path;
   vl_error *err;
   vl_status status;
-  int line;              /* line being parsed (counted by our reader) */
-  int err_line;          /* line of the error in status (0 if none) */
-  const char *cursor;    /* reader position in the text */
-  int key_line[K_COUNT]; /* where each key was set; 0 = not in the file */
+  int line;               /* line being parsed (counted by our reader) */
+  int err_line;           /* line of the error in status (0 if none) */
+  const char *cursor;     /* reader position in the text */
+  int key_line[K_COUNT];  /* where each key was set; 0 = not in the file */
   const char *failed_key; /* the key check_fail named (NULL: none) */
 } parse_state;
 

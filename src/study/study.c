@@ -620,8 +620,8 @@ static char *task_text(const vl_study *s, const vl_study_task *t) {
                   "[contact]\nradius_m = %.17g\nload_n_per_m = %.17g\n", t->radius_m,
                   t->load_n_per_m);
   else if (t->geometry == VL_GEOMETRY_BALL)
-    n += snprintf(tail + n, sizeof tail - (size_t)n, "[contact]\nradius_m = %.17g\nload_n = %.17g\n",
-                  t->radius_m, t->load_n);
+    n += snprintf(tail + n, sizeof tail - (size_t)n,
+                  "[contact]\nradius_m = %.17g\nload_n = %.17g\n", t->radius_m, t->load_n);
   else /* an ellipsoid's radii are the study's [contact] radii_m */
     n += snprintf(tail + n, sizeof tail - (size_t)n, "[contact]\nload_n = %.17g\n", t->load_n);
   if (!isnan(t->temperature_c))

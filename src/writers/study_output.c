@@ -262,8 +262,7 @@ vl_status vl_study_write_results(const vl_study *s, const char *out_dir, vl_stud
   }
   const vl_study_task *first = vl_study_task_at(s, 0);
   const char *factors = factor_columns(first ? first->geometry : VL_GEOMETRY_CYLINDER);
-  fprintf(tab.f, "task,%s,points,converged,failed,above_target,seconds,status,message\n",
-          factors);
+  fprintf(tab.f, "task,%s,points,converged,failed,above_target,seconds,status,message\n", factors);
   bool header = false;
   vl_status st = VL_OK;
   for (size_t i = 0; st == VL_OK && i < vl_study_n_tasks(s); i++) {
