@@ -987,6 +987,9 @@ static bool start_from_map(ehl *e, double *yd, const vl_point_ehl_map *from, dou
   }
   free(xs);
   yd[n] = from->h0_m / us;
+  if (e->roughness)
+    return true; /* the asperities hold the film open; a lift
+                  * would take their pressure off by orders */
   double hfrom = INFINITY;
   for (size_t k = 0; k < fx * fy; k++)
     hfrom = fmin(hfrom, from->u_m[k] / us);
@@ -1133,8 +1136,10 @@ static bool dry_rough(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg, vl_poi
 }
 
 /* A rough lubricated contact from the dry one (its state in k->y): the
- * film at once, else at a slower entrainment (lambda / 8^j: the fluid's
- * share falls towards the dry limit) continued up to lambda. */
+ * film at once, else at a slower entrainment (lambda / 8^j, j <= 3: the
+ * fluid's share falls towards the dry limit; slower still, the Reynolds
+ * rows' Poiseuille terms swamp the Couette and Newton fares no better)
+ * continued up to lambda. */
 static bool rough_from_dry(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
                            vl_point_ehl_result *res, double *fnorm) {
   double lambda = e->lambda, tol = cfg->tolerance;
@@ -1147,7 +1152,7 @@ static bool rough_from_dry(ehl_kin *k, ehl *e, const vl_point_ehl_config *cfg,
   N_VScale(1.0, k->y, dry);
   KINSetNumMaxIters(k->kmem, DRY_START_ITERATIONS);
   ok = false;
-  for (int j = 0; j <= 8 && !ok; j++) {
+  for (int j = 0; j <= 3 && !ok; j++) {
     e->lambda = lambda / pow(8.0, j);
     N_VScale(1.0, dry, k->y);
     ok = kin_run(k, e, tol, &res->iterations, fnorm);
