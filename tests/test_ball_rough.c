@@ -19,6 +19,7 @@
 /* cmocka.h needs the four above first (own block: not re-sorted) */
 #include <cmocka.h>
 
+#include "vl_test_scenes.h"
 #include "vl_test_util.h"
 
 #include <math.h>
@@ -61,14 +62,8 @@ static double persson_law(void *user, double u, double *dpdu) {
   return l->er * s;
 }
 
-static vl_persson *surface(double hrms, vl_psd *psd) {
-  vl_error err;
-  vl_persson *tab = NULL;
-  if (vl_psd_init_self_affine(psd, 0.8, 2e5, 7.8e9, hrms, &err) != VL_OK ||
-      vl_persson_build(psd, 0, &tab, &err) != VL_OK)
-    fail_msg("surface h_rms %g: %s", hrms, err.msg);
-  return tab;
-}
+/* The paper-like self-affine surface (H 0.8, q0 2e5, q1 7.8e9 1/m) of h_rms. */
+static vl_persson *surface(double hrms, vl_psd *psd) { return vl_test_paper_surface(hrms, psd); }
 
 /* The dry rough elastic ball on two grids against the axisymmetric
  * oracle on 240 rings over 1.6 a (the 2-D domain's shortest reach). */
