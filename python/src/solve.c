@@ -208,11 +208,11 @@ static int parse_geometry(const char *name, int *g) {
 }
 
 static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x) {
-  static char *kwlist[] = {
-      "compound",   "surface",       "fluid",        "load_n_per_m",  "radius_m",
-      "sigma_s_pa", "temperature_c", "flow_factors", "film_cutoff_m", "grid",
-      "speed_m_s",  "v_from",        "v_to",         "points",        "geometry",
-      "load_n",     "radius_y_m",    "in_speed",     "target_error",  NULL};
+  static char *kwlist[] = {"compound",      "surface",    "fluid",         "load_n_per_m",
+                           "radius_m",      "sigma_s_pa", "temperature_c", "flow_factors",
+                           "film_cutoff_m", "grid",       "speed_m_s",     "v_from",
+                           "v_to",          "points",     "geometry",      "load_n",
+                           "radius_y_m",    "in_speed",   "target_error",  NULL};
   const char *ff = NULL, *geometry = NULL;
   Py_ssize_t grid = 0;
   vl_query_defaults(q);
@@ -221,10 +221,9 @@ static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x
   /* surface and fluid None: a point contact's smooth or dry body */
   if (!PyArg_ParseTupleAndKeywords(args, kw, "szz|ddddzdndddnzddpd", kwlist, &q->compound,
                                    &q->surface, &q->fluid, &q->load_n_per_m, &q->radius_m,
-                                   &q->sigma_s_pa, &q->temperature_c, &ff, &q->film_cutoff_m,
-                                   &grid, &x->speed_m_s, &x->v_from, &x->v_to, &x->points,
-                                   &geometry, &q->load_n, &q->radius_y_m, &x->in_speed,
-                                   &q->target_error))
+                                   &q->sigma_s_pa, &q->temperature_c, &ff, &q->film_cutoff_m, &grid,
+                                   &x->speed_m_s, &x->v_from, &x->v_to, &x->points, &geometry,
+                                   &q->load_n, &q->radius_y_m, &x->in_speed, &q->target_error))
     return -1;
   if (parse_geometry(geometry, &q->geometry) < 0) return -1;
   vl_error err = {{0}};
@@ -236,9 +235,9 @@ static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x
   /* 0 is the library's default; the CLI's range otherwise */
   bool bad_target = q->target_error != 0.0 && !(q->target_error >= 1e-6 && q->target_error <= 0.5);
   if (grid < 0 || x->points < 2 || x->points > 10000 || bad_target) {
-    vl_error_set(&err, grid < 0         ? "grid: must not be negative"
-                       : bad_target     ? "target_error: needs a relative error in [1e-6, 0.5]"
-                                        : "points: needs 2 to 10000");
+    vl_error_set(&err, grid < 0     ? "grid: must not be negative"
+                       : bad_target ? "target_error: needs a relative error in [1e-6, 0.5]"
+                                    : "points: needs 2 to 10000");
     vlpy_raise(VL_EINPUT, &err);
     return -1;
   }
