@@ -88,7 +88,10 @@ UNRELIABLE = ("above_target", "no_estimate")
 class Point(dict):
     """One operating point: the keys of `viscolube friction --json` (the
     columns of curve.csv) and how it was computed (eta_pa_s, a_T, a0_m,
-    hrms_m, flow_factors, film_cutoff_m, temperature_c, points_solved).
+    hrms_m, flow_factors, film_cutoff_m, temperature_c, points_solved);
+    a ball's or an ellipsoid's also geometry, contact_area_m2,
+    contact_length_m, contact_breadth_m, x_min_film_m, y_min_film_m,
+    y_peak_m, cells_in_contact, cells_per_a0 (friction --json's).
     Keys are also attributes; `u_min` is `u_min_m`; `warnings` is a list.
     A point that did not converge has converged False and NaN physics;
     `reliable` is False for it and for a point above its error target or
