@@ -186,35 +186,58 @@ static PyObject *seal_dict(size_t n, const vl_point *pts) {
 /* ---- queries ------------------------------------------------------------- */
 
 /* The arguments every query takes; the rest go to *extra (speed, or the
- * sweep from, to, points). -1 with an exception. */
+ * sweep from, to, points and whether they are speeds). -1 with an
+ * exception. */
 typedef struct {
   double speed_m_s, v_from, v_to;
   Py_ssize_t points;
+  int in_speed; /* v_from, v_to in m/s (else v0 eta, Pa m) */
 } query_extra;
 
+/* The vl_geometry named by name (NULL: a cylinder) into *g; -1 with an
+ * InputError naming the keyword. */
+static int parse_geometry(const char *name, int *g) {
+  *g = VL_GEOMETRY_CYLINDER;
+  for (int k = VL_GEOMETRY_CYLINDER; name && k <= VL_GEOMETRY_ELLIPSOID; k++)
+    if (!strcmp(name, vl_geometry_name(k))) *g = k;
+  if (!name || *g != VL_GEOMETRY_CYLINDER || !strcmp(name, "cylinder")) return 0;
+  vl_error err;
+  vl_error_set(&err, "geometry: expected cylinder, ball or ellipsoid (got '%s')", name);
+  vlpy_raise(VL_EINPUT, &err);
+  return -1;
+}
+
 static int parse_query(PyObject *args, PyObject *kw, vl_query *q, query_extra *x) {
-  static char *kwlist[] = {
-      "compound",   "surface",       "fluid",        "load_n_per_m",  "radius_m",
-      "sigma_s_pa", "temperature_c", "flow_factors", "film_cutoff_m", "grid",
-      "speed_m_s",  "v_from",        "v_to",         "points",        NULL};
-  const char *ff = NULL;
+  static char *kwlist[] = {"compound",      "surface",    "fluid",         "load_n_per_m",
+                           "radius_m",      "sigma_s_pa", "temperature_c", "flow_factors",
+                           "film_cutoff_m", "grid",       "speed_m_s",     "v_from",
+                           "v_to",          "points",     "geometry",      "load_n",
+                           "radius_y_m",    "in_speed",   "target_error",  NULL};
+  const char *ff = NULL, *geometry = NULL;
   Py_ssize_t grid = 0;
   vl_query_defaults(q);
-  *x = (query_extra){NAN, VL_QUERY_FROM_PA_M, VL_QUERY_TO_PA_M, VL_QUERY_POINTS};
+  *x = (query_extra){NAN, VL_QUERY_FROM_PA_M, VL_QUERY_TO_PA_M, VL_QUERY_POINTS, 0};
   q->sigma_s_pa = NAN; /* not given: the stored pair's law, else the default */
-  if (!PyArg_ParseTupleAndKeywords(args, kw, "sss|ddddzdndddn", kwlist, &q->compound, &q->surface,
-                                   &q->fluid, &q->load_n_per_m, &q->radius_m, &q->sigma_s_pa,
-                                   &q->temperature_c, &ff, &q->film_cutoff_m, &grid, &x->speed_m_s,
-                                   &x->v_from, &x->v_to, &x->points))
+  /* surface and fluid None: a point contact's smooth or dry body */
+  if (!PyArg_ParseTupleAndKeywords(args, kw, "szz|ddddzdndddnzddpd", kwlist, &q->compound,
+                                   &q->surface, &q->fluid, &q->load_n_per_m, &q->radius_m,
+                                   &q->sigma_s_pa, &q->temperature_c, &ff, &q->film_cutoff_m, &grid,
+                                   &x->speed_m_s, &x->v_from, &x->v_to, &x->points, &geometry,
+                                   &q->load_n, &q->radius_y_m, &x->in_speed, &q->target_error))
     return -1;
+  if (parse_geometry(geometry, &q->geometry) < 0) return -1;
   vl_error err = {{0}};
   if (ff && vl_flow_factors_parse(ff, &q->flow_factors, &err) != VL_OK) {
     vl_error_prefix(&err, "flow_factors");
     vlpy_raise(VL_EINPUT, &err);
     return -1;
   }
-  if (grid < 0 || x->points < 2 || x->points > 10000) {
-    vl_error_set(&err, grid < 0 ? "grid: must not be negative" : "points: needs 2 to 10000");
+  /* 0 is the library's default; the CLI's range otherwise */
+  bool bad_target = q->target_error != 0.0 && !(q->target_error >= 1e-6 && q->target_error <= 0.5);
+  if (grid < 0 || x->points < 2 || x->points > 10000 || bad_target) {
+    vl_error_set(&err, grid < 0     ? "grid: must not be negative"
+                       : bad_target ? "target_error: needs a relative error in [1e-6, 0.5]"
+                                    : "points: needs 2 to 10000");
     vlpy_raise(VL_EINPUT, &err);
     return -1;
   }
@@ -245,7 +268,13 @@ static PyObject *friction_dict(const vl_query *q, const vl_query_result *r) {
             : PyUnicode_FromString(r->point.warnings);
     if (vlpy_set(d, name, o) < 0) Py_CLEAR(d);
   }
-
+  /* a point contact's keys (friction --json's, run's curve.csv columns):
+   * `geometry` a word, the others numbers (NaN where the CSV is empty) */
+  for (size_t c = 0; d && q->geometry != VL_GEOMETRY_CYLINDER && vl_ball_columns[c]; c++) {
+    PyObject *o = c == 0 ? PyUnicode_FromString(vl_geometry_name(r->point.ball.geometry))
+                         : PyFloat_FromDouble(vl_ball_column_value(&r->point, c));
+    if (vlpy_set(d, vl_ball_columns[c], o) < 0) Py_CLEAR(d);
+  }
   if (d &&
       (vlpy_set_double(d, "eta_pa_s", r->eta_pa_s) || vlpy_set_double(d, "a_T", r->shift_factor) ||
        vlpy_set_double(d, "a0_m", r->a0_m) || vlpy_set_double(d, "hrms_m", r->hrms_m) ||
@@ -286,7 +315,7 @@ PyObject *vlpy_check_query(DatabaseObject *self, PyObject *args, PyObject *kw) {
   vl_status st = vl_query_scene(&q, "compare", sc, &err);
   free(sc);
   if (st == VL_OK) st = vl_db_compound_get(db, q.compound, &probe, &err);
-  if (st == VL_OK) st = vl_db_surface_info(db, q.surface, &surf, &err);
+  if (st == VL_OK && q.surface) st = vl_db_surface_info(db, q.surface, &surf, &err);
   if (st == VL_OK) st = vl_query_check_compound(db, &q, q.compound, &err);
   /* the messages name the material and the temperature already */
   if (st == VL_OK) st = vl_query_fluid_eta(db, &q, &eta, &err);
@@ -535,7 +564,13 @@ PyObject *vlpy_run_query(DatabaseObject *self, PyObject *args, PyObject *kw) {
     vl_error_set(&err, "v_from, v_to: need 0 < v_from < v_to");
     st = VL_EINPUT;
   }
+  if (st == VL_OK && !q.fluid && !x.in_speed) { /* a range in Pa m has no meaning dry */
+    vl_error_set(&err, "v_from, v_to: a dry contact (no fluid) has no v0 eta: give the range "
+                       "in m/s (in_speed)");
+    st = VL_EINPUT;
+  }
   sc->from = x.v_from, sc->to = x.v_to, sc->points = (size_t)x.points;
+  if (x.in_speed) sc->quantity = VL_SWEEP_V0; /* the range in m/s, as compare --from-speed */
   PyObject *ret = st == VL_OK ? run_one(db, sc) : vlpy_raise(st, &err);
   free(sc);
   return ret;

@@ -88,7 +88,10 @@ UNRELIABLE = ("above_target", "no_estimate")
 class Point(dict):
     """One operating point: the keys of `viscolube friction --json` (the
     columns of curve.csv) and how it was computed (eta_pa_s, a_T, a0_m,
-    hrms_m, flow_factors, film_cutoff_m, temperature_c, points_solved).
+    hrms_m, flow_factors, film_cutoff_m, temperature_c, points_solved);
+    a ball's or an ellipsoid's also geometry, contact_area_m2,
+    contact_length_m, contact_breadth_m, x_min_film_m, y_min_film_m,
+    y_peak_m, cells_in_contact, cells_per_a0 (friction --json's).
     Keys are also attributes; `u_min` is `u_min_m`; `warnings` is a list.
     A point that did not converge has converged False and NaN physics;
     `reliable` is False for it and for a point above its error target or
@@ -337,25 +340,89 @@ class Database:
 
     @classmethod
     def _conditions(cls, load, radius, sigma_s, temperature, flow_factors,
-                    film_cutoff, grid):
+                    film_cutoff, grid, target_error=None):
         return cls._given(load_n_per_m=load, radius_m=radius, sigma_s_pa=sigma_s,
                           temperature_c=temperature, flow_factors=flow_factors,
-                          film_cutoff_m=film_cutoff, grid=grid)
+                          film_cutoff_m=film_cutoff, grid=grid, target_error=target_error)
 
-    def friction(self, compound, surface, fluid, speed, load=None, radius=None,
-                 sigma_s=None, temperature=None, flow_factors=None,
-                 film_cutoff=None, grid=None):
+    @classmethod
+    def _body(cls, geometry, surface, fluid, load, load_n, radius, radii, grid,
+              flow_factors, film_cutoff):
+        """The rigid body's keywords for the library: those of a cylinder
+        (load, radius) or of a point contact (geometry, load_n, radius or
+        radii), refused as the command line refuses its options (a missing
+        one TypeError, a misplaced one InputError, naming the keyword)."""
+        if geometry is None:
+            geometry = "cylinder"
+        if not isinstance(geometry, str):
+            raise TypeError("geometry: expected 'cylinder', 'ball' or 'ellipsoid' (got %s)"
+                            % type(geometry).__name__)
+        if geometry not in ("cylinder", "ball", "ellipsoid"):
+            raise _input_error("geometry: expected cylinder, ball or ellipsoid (got '%s')"
+                               % geometry)
+        point = geometry != "cylinder"
+        if not point and (surface is None or fluid is None):
+            raise TypeError("missing %s: a cylinder needs a surface and a fluid (a ball or an "
+                            "ellipsoid may go without: geometry=)"
+                            % ("surface" if surface is None else "fluid"))
+        if not point and load_n is not None:
+            raise _input_error("load_n (a total load, N) is a ball's or an ellipsoid's "
+                               "(geometry=): a cylinder takes load (N/m)")
+        if geometry != "ellipsoid" and radii is not None:
+            raise _input_error("radii is an ellipsoid's: a %s takes radius (m)" % geometry)
+        if not point:
+            return cls._given(load_n_per_m=load, radius_m=radius)
+        if load is not None:
+            raise _input_error("load (N per metre of a cylinder's length) is not a %s's: it "
+                               "takes load_n (N), its total load" % geometry)
+        if load_n is None:
+            raise TypeError("missing load_n (the %s's total load, N)" % geometry)
+        if geometry == "ball" and radius is None:
+            raise TypeError("missing radius (the ball's radius, m)")
+        if geometry == "ellipsoid" and radius is not None:
+            raise _input_error("radius is not an ellipsoid's: it takes radii=(rx, ry) (m, "
+                               "along the sliding direction and across it)")
+        if geometry == "ellipsoid":
+            if radii is None or isinstance(radii, str) or len(radii) != 2:
+                raise TypeError("radii: an ellipsoid needs two radii (rx, ry), m: along the "
+                                "sliding direction and across it")
+            radius, radius_y = (float(r) for r in radii)
+        else:
+            radius_y = None
+        if grid is not None:
+            raise _input_error("grid sets a line contact's cells: a %s's are planned per "
+                               "point (docs/POINT_CONTACT.md)" % geometry)
+        if surface is None and (flow_factors is not None or film_cutoff is not None):
+            raise _input_error("%s applies to a rough contact (surface) only"
+                               % ("flow_factors" if flow_factors is not None else "film_cutoff"))
+        return cls._given(geometry=geometry, load_n=float(load_n), radius_m=float(radius),
+                          radius_y_m=radius_y)
+
+    def friction(self, compound, surface=None, fluid=None, speed=None, load=None,
+                 radius=None, sigma_s=None, temperature=None, flow_factors=None,
+                 film_cutoff=None, grid=None, geometry=None, load_n=None, radii=None,
+                 target_error=None):
         """One operating point, exactly as `viscolube friction`, with its
         defaults (None): speed in m/s, load in N/m (117), radius in m
         (1e-3), sigma_s in Pa (1e6), temperature in C (every material at its
         reference temperature), flow_factors 'persson-emt' (default),
         'patir-cheng' or 'smooth', film_cutoff in m (persson-emt: 1e-9),
-        grid the uniform cells (2928). Returns a Point; a point that does
-        not converge is returned with converged False."""
+        grid the uniform cells (2928), target_error the relative error of
+        mu the point should meet (0.01). geometry 'ball' (radius, load_n: the
+        total load in N) or 'ellipsoid' (radii=(rx, ry) in m along and
+        across the sliding direction, load_n): the point contact of `run`,
+        surface and fluid optional (smooth, dry), no load or grid; its
+        Point has the point contact's keys too (`friction --json`'s).
+        Returns a Point; a point that does not converge is returned with
+        converged False."""
+        if speed is None:
+            raise TypeError("friction(): missing speed (m/s)")
+        body = self._body(geometry, surface, fluid, load, load_n, radius, radii, grid,
+                          flow_factors, film_cutoff)
         raw = self._db.friction(
-            compound, surface, fluid, speed_m_s=speed,
-            **self._conditions(load, radius, sigma_s, temperature,
-                               flow_factors, film_cutoff, grid))
+            compound, surface, fluid, speed_m_s=speed, **body,
+            **self._conditions(None, None, sigma_s, temperature, flow_factors, film_cutoff,
+                               grid, target_error))
         raw["warnings"] = [w for w in raw["warnings"].split(";") if w]
         return Point(raw)
 
@@ -406,21 +473,51 @@ class Database:
             return seals[0]
         return {s.info["fluid"]: s for s in seals}
 
-    def compare(self, compounds, surface, fluid, v_from=None, v_to=None,
+    def compare(self, compounds, surface=None, fluid=None, v_from=None, v_to=None,
                 points=None, load=None, radius=None, sigma_s=None,
                 temperature=None, flow_factors=None, film_cutoff=None,
-                grid=None):
+                grid=None, geometry=None, load_n=None, radii=None,
+                from_speed=None, to_speed=None, target_error=None):
         """Stribeck curves of several compounds, exactly as `viscolube
-        compare`: v0*eta from v_from (1e-12) to v_to (0.1 Pa m), points (45)
-        log-spaced; the other conditions as friction.
+        compare`: v0*eta from v_from (1e-12) to v_to (0.1 Pa m), or the
+        speed from from_speed to to_speed (m/s), points (45) log-spaced;
+        the other conditions as friction (a ball's or an ellipsoid's too:
+        their range must be given, in m/s when dry).
         Every compound is checked before anything is computed. Returns
         {compound: Curve}, each the curve.csv `compare` writes."""
         if isinstance(compounds, str):
             compounds = [compounds]
-        cond = self._conditions(load, radius, sigma_s, temperature,
-                                flow_factors, film_cutoff, grid)
-        sweep = self._given(v_from=v_from, v_to=v_to, points=points)
+        body = self._body(geometry, surface, fluid, load, load_n, radius, radii, grid,
+                          flow_factors, film_cutoff)
+        cond = dict(body, **self._conditions(None, None, sigma_s, temperature,
+                                             flow_factors, film_cutoff, grid, target_error))
+        sweep = self._sweep(geometry, fluid, v_from, v_to, from_speed, to_speed)
+        sweep.update(self._given(points=points))
         for c in compounds:
             self._db.check_query(c, surface, fluid, **cond, **sweep)
         return {c: Curve(self._db.run_query(c, surface, fluid, **cond, **sweep))
                 for c in compounds}
+
+    @classmethod
+    def _sweep(cls, geometry, fluid, v_from, v_to, from_speed, to_speed):
+        """compare's range for the library, refused as the command line
+        refuses --from/--to and --from-speed/--to-speed."""
+        speeds = from_speed is not None or to_speed is not None
+        if speeds and (from_speed is None or to_speed is None):
+            raise TypeError("from_speed and to_speed go together")
+        given = v_from is not None or v_to is not None
+        if speeds and given:
+            raise _input_error("give the range in m/s (from_speed, to_speed) or in v0 eta "
+                               "(v_from, v_to), not both")
+        if fluid is None and given:
+            raise _input_error("v_from/v_to: a dry contact (no fluid) has no v0 eta: give the "
+                               "range in m/s (from_speed, to_speed)")
+        if geometry not in (None, "cylinder") and not speeds and not given:
+            raise TypeError("geometry=%r needs its range: from_speed and to_speed (m/s), or "
+                            "v_from and v_to (v0 eta, Pa m); the default 1e-12 .. 0.1 Pa m is a "
+                            "line contact's (a point contact's point costs seconds)" % geometry)
+        if not speeds:
+            return cls._given(v_from=v_from, v_to=v_to)
+        if not 0 < from_speed < to_speed:
+            raise _input_error("from_speed, to_speed: need 0 < from_speed < to_speed")
+        return dict(v_from=float(from_speed), v_to=float(to_speed), in_speed=True)

@@ -304,7 +304,7 @@ static void friction_usage(FILE *out) {
         "RX,RY along and across the sliding direction, --load-n N): the point contact of\n"
         "`run` (docs/POINT_CONTACT.md), the scene of the same [contact] keys solved on its\n"
         "own cells (no --grid, no --load); --surface and --fluid are optional (smooth, dry;\n"
-        "a rough ball and a lubricated ellipsoid are refused as in a scene). The answer\n"
+        "a rough or lubricated ellipsoid is refused as in a scene). The answer\n"
         "adds the film's minimum and its position, the contact area and extents, and the\n"
         "peak pressure, as run's curve.csv.\n"
         "Exit status: 0 converged, 7 did not converge (iterations and residual on\n"
