@@ -527,9 +527,10 @@ static ball_family fam_dry_ellipsoid = {
 static ball_family fam_wet_ball = {
     .name = "lubricated ball, LHS", .min_rate = 0.95, .min_real_rate = 0.9};
 /* Rough balls, dry and lubricated (docs/POINT_CONTACT.md section 10):
- * measured 21 of 24 points; the three failures one corner, a 0.8 mm ball
- * under 0.066 N on a surface of h_rms 3.9 um (the roughness as large as
- * the elastic approach: the contact spreads beyond its planned domain). */
+ * measured 14 of 16 points (21 of 24 at 3 speeds a corner); the failures
+ * one corner, a 0.8 mm ball under 0.066 N on a surface of h_rms 3.9 um
+ * (the roughness as large as the elastic approach: the contact spreads
+ * beyond its planned domain). */
 static ball_family fam_rough_ball = {
     .name = "rough ball, LHS", .min_rate = 0.85, .min_real_rate = 0.8};
 
@@ -617,12 +618,13 @@ static void test_wet_ball(void **state) {
 }
 
 /* Rough balls: Latin hypercube over (solid x 4, radius, load, viscosity
- * or dry, h_rms, speed shift), N corners of 3 speeds from 1e-4 to 1 m/s
+ * or dry, h_rms, speed shift), N corners at 1e-4 and 1 m/s (3 speeds a
+ * corner cost 45 s of the CI's time)
  * on a self-affine surface (H 0.8, q0 2e5, q1 7.8e9 1/m) of h_rms 10 nm
  * ... 5 um, Patir and Cheng's flow factors, sigma_s 1 MPa. */
 static void test_rough_ball(void **state) {
   (void)state;
-  enum { N = 8, D = 9, NV = 3 };
+  enum { N = 8, D = 9, NV = 2 };
   double u[N * D], v[NV];
   hard_lhs(N, D, 0x5eed4011, u);
   uint64_t rng = 38;
