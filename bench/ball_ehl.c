@@ -33,6 +33,7 @@
  *     (clipped to [1, 3]). "elastic": E 2 MPa, nu 0.5.
  * CPU seconds, one thread (OPENBLAS_NUM_THREADS=1). */
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -142,25 +143,36 @@ static double mu_on(const vl_point_contact_config *base, const vl_point *pt, dou
   return st == VL_OK ? p.mu : NAN;
 }
 
-static int run_estimate(const char *compound, double eta, double target, double radius, double load,
-                        const char *db_path) {
-  char tmp[] = "/tmp/ball_ehl_XXXXXX";
-  vl_db *db = NULL;
-  vl_error err;
+/* The rubber named `compound`: "elastic" (E 2 MPa, nu 0.5), else the
+ * compound of the database at db_path (NULL: a new one in a temporary
+ * folder, from the shipped materials). False (said on stderr) when absent. */
+static bool load_rubber(const char *compound, const char *db_path, vl_prony *rubber) {
+  if (!strcmp(compound, "elastic")) {
+    memset(rubber, 0, sizeof *rubber);
+    rubber->e_inf_pa = 2e6, rubber->nu = 0.5;
+    return true;
+  }
+  char tmp[] = "/tmp/ball_ehl_XXXXXX", p[64];
   if (!db_path) {
-    if (!mkdtemp(tmp)) return 1;
-    static char p[64];
+    if (!mkdtemp(tmp)) return false;
     snprintf(p, sizeof p, "%s/m.db", tmp);
     db_path = p;
   }
+  vl_db *db = NULL;
+  vl_error err;
+  bool ok = vl_db_open(db_path, &db, &err) == VL_OK &&
+            vl_db_compound_get(db, compound, rubber, &err) == VL_OK;
+  if (!ok) fprintf(stderr, "%s\n", err.msg);
+  vl_db_close(db);
+  return ok;
+}
+
+static int run_estimate(const char *compound, double eta, double target, double radius, double load,
+                        const char *db_path) {
+  vl_error err;
   vl_point_contact_config base;
   vl_point_contact_config_defaults(&base);
-  if (vl_db_open(db_path, &db, &err) != VL_OK ||
-      vl_db_compound_get(db, compound, &base.rubber, &err) != VL_OK) {
-    fprintf(stderr, "%s\n", err.msg);
-    return 1;
-  }
-  vl_db_close(db);
+  if (!load_rubber(compound, db_path, &base.rubber)) return 1;
   base.radius_x_m = base.radius_y_m = radius, base.load_n = load, base.eta_pa_s = eta;
   const double v[] = {0.01, 0.03, 0.1, 0.3, 1.0};
   size_t n = sizeof v / sizeof v[0];
@@ -206,23 +218,7 @@ static int run_rough(double hrms, const char *compound, double eta, double radiu
   vl_point_contact_config base;
   vl_point_contact_config_defaults(&base);
   vl_error err;
-  if (!strcmp(compound, "elastic")) {
-    base.rubber.e_inf_pa = 2e6, base.rubber.nu = 0.5;
-  } else {
-    char tmp[] = "/tmp/ball_ehl_XXXXXX", p[64];
-    if (!db_path) {
-      if (!mkdtemp(tmp)) return 1;
-      snprintf(p, sizeof p, "%s/m.db", tmp);
-      db_path = p;
-    }
-    vl_db *db = NULL;
-    if (vl_db_open(db_path, &db, &err) != VL_OK ||
-        vl_db_compound_get(db, compound, &base.rubber, &err) != VL_OK) {
-      fprintf(stderr, "%s\n", err.msg);
-      return 1;
-    }
-    vl_db_close(db);
-  }
+  if (!load_rubber(compound, db_path, &base.rubber)) return 1;
   vl_psd psd;
   vl_persson *tab = NULL;
   if (vl_psd_init_self_affine(&psd, 0.8, 2e5, 7.8e9, hrms, &err) != VL_OK ||

@@ -62,15 +62,12 @@ static double persson_law(void *user, double u, double *dpdu) {
   return l->er * s;
 }
 
-/* The paper-like self-affine surface (H 0.8, q0 2e5, q1 7.8e9 1/m) of h_rms. */
-static vl_persson *surface(double hrms, vl_psd *psd) { return vl_test_paper_surface(hrms, psd); }
-
 /* The dry rough elastic ball on two grids against the axisymmetric
  * oracle on 240 rings over 1.6 a (the 2-D domain's shortest reach). */
 static void dry_rough_matches_axisymmetric(void **state) {
   (void)state;
   vl_psd psd;
-  vl_persson *tab = surface(1e-6, &psd);
+  vl_persson *tab = vl_test_paper_surface(1e-6, &psd);
   vl_point_ehl_config c;
   base_config(&c, tab);
   c.eta_pa_s = 0.0;
@@ -135,7 +132,7 @@ static void dry_rough_matches_axisymmetric(void **state) {
 static void thick_film_is_the_smooth_film(void **state) {
   (void)state;
   vl_psd psd;
-  vl_persson *tab = surface(5e-9, &psd);
+  vl_persson *tab = vl_test_paper_surface(5e-9, &psd);
   vl_point_ehl_config c;
   base_config(&c, tab);
   c.eta_pa_s = 0.1, c.v0_m_s = 1.0;
@@ -162,7 +159,7 @@ static void thick_film_is_the_smooth_film(void **state) {
 static void rough_curve_through_the_api(void **state) {
   (void)state;
   vl_psd psd;
-  vl_persson *tab = surface(1e-6, &psd);
+  vl_persson *tab = vl_test_paper_surface(1e-6, &psd);
   vl_point_contact_config c;
   vl_point_contact_config_defaults(&c);
   c.rubber.e_inf_pa = 2e6, c.rubber.nu = 0.5;

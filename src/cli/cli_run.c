@@ -324,18 +324,21 @@ static vl_status plot_maps(const char *out_dir, vl_simulation *sim, const run_ct
   vl_plot_scales sc = {vl_simulation_a0(sim), vl_simulation_p0(sim), 0.0};
   double ax = 0.0, by = 0.0;
   vl_simulation_hertz_ellipse(sim, &ax, &by);
-  /* dry: the contact pressure; a lubricated smooth ball: the fluid's (the
-   * solids do not touch); a rough lubricated one: both */
-  bool wet = ctx->lubricated, rough = ctx->rough;
-  vl_plot_field fields[3] = {VL_PLOT_FIELD_PC, VL_PLOT_FIELD_PF, VL_PLOT_FIELD_U};
-  const char *names[3] = {"pc", "pf", "u"};
-  const char *kinds[3] = {"Contact pressure", "Fluid pressure", "Separation"};
-  int first = wet && !rough ? 1 : 0; /* the first map drawn */
-  if (!wet) fields[1] = fields[2], names[1] = names[2], kinds[1] = kinds[2];
-  int last = wet ? 3 : 2;
+  /* the contact pressure where the solids touch (dry or rough), the
+   * fluid's where there is one (a lubricated smooth ball: only it), the
+   * separation always */
+  static const vl_plot_field all[3] = {VL_PLOT_FIELD_PC, VL_PLOT_FIELD_PF, VL_PLOT_FIELD_U};
+  static const char *const all_names[3] = {"pc", "pf", "u"};
+  static const char *const all_kinds[3] = {"Contact pressure", "Fluid pressure", "Separation"};
+  const bool drawn[3] = {!ctx->lubricated || ctx->rough, ctx->lubricated, true};
+  vl_plot_field fields[3];
+  const char *names[3], *kinds[3];
+  int nf = 0;
+  for (int q = 0; q < 3; q++)
+    if (drawn[q]) fields[nf] = all[q], names[nf] = all_names[q], kinds[nf++] = all_kinds[q];
   for (size_t k = 0; k < ctx->n_kept; k++) {
     if (!ctx->kept_cells[k]) continue; /* did not converge: no map */
-    for (int u = first; u < last; u++) {
+    for (int u = 0; u < nf; u++) {
       char stem[4200], kind[160], title[1800];
       vl_plot_options opt = *opt_in;
       /* the speed first: a long subject is cut at the figure's edge */

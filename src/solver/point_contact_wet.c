@@ -59,7 +59,7 @@ static void wet_report(const vl_point_contact *c, const vl_point_ehl_result *r, 
   pt->mu_Rc = r->mu_Rc, pt->mu_Sc = r->mu_Sc;
   pt->mu_Rf = r->mu_Rf, pt->mu_Sf = r->mu_Sf;
   pt->mu_Sf_couette = r->mu_Sf_couette, pt->mu_Sf_poiseuille = r->mu_Sf_poiseuille;
-  pt->mu = c->cfg.roughness ? pt->mu_Rc + pt->mu_Rf + pt->mu_Sc + pt->mu_Sf : pt->mu_Rf + pt->mu_Sf;
+  pt->mu = pt->mu_Rc + pt->mu_Rf + pt->mu_Sc + pt->mu_Sf;
   pt->u_min_m = r->h_min_m, pt->x_min_film_m = r->x_min_m;
   pt->u_central_m = r->h_centroid_m;
   pt->x_centroid_m = r->x_centroid_m;

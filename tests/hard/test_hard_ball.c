@@ -534,56 +534,55 @@ static ball_family fam_wet_ball = {
 static ball_family fam_rough_ball = {
     .name = "rough ball, LHS", .min_rate = 0.85, .min_real_rate = 0.8};
 
-/* Dry balls: Latin hypercube over (solid x 4, radius, load, sigma_s on or
- * off, speed shift), N corners of 5 speeds from 1e-9 to 1e3 m/s. */
-static void test_dry_ball(void **state) {
-  (void)state;
-  enum { N = 24, D = 8, NV = 5 };
-  double u[N * D], v[NV];
-  hard_lhs(N, D, 0x5eedba11, u);
-  uint64_t rng = 35;
-  for (size_t i = 0; i < N; i++) {
-    const double *p = u + i * D;
-    double ratio, dec, tau_c;
-    size_t nt;
-    vl_prony r = ball_rubber(p, &rng, &ratio, &nt, &dec, &tau_c);
-    double R = hard_log_between(5e-4, 5e-2, p[4]), W = hard_log_between(0.01, 100.0, p[5]);
-    vl_point_contact_config cfg;
-    ball_base(&cfg, &r, R, R, W, BALL_DRY_CELLS);
-    cfg.sigma_s_pa = p[6] < 0.5 ? 0.0 : 1e5;
-    char label[400];
-    int k = ball_label(label, sizeof label, ratio, nt, dec, tau_c, R, R, W);
-    snprintf(label + k, sizeof label - (size_t)k, ", sigma_s %g Pa", cfg.sigma_s_pa);
-    ball_run_corner(&fam_dry_ball, label, &cfg, ball_speeds(1e-9, 1e3, NV, p[7], v), v);
-  }
-  ball_assert_rate(&fam_dry_ball);
+/* A corner's solid (p[0..3]), radius Rx (p[4]; Ry = ry_over_rx Rx) and
+ * load (p[5]) on `cells` across its relaxed contact into cfg, and its label
+ * (its length returned). */
+static int ball_corner(const double *p, uint64_t *rng, double ry_over_rx, double cells,
+                       vl_point_contact_config *cfg, char *label, size_t cap) {
+  double ratio, dec, tau_c;
+  size_t nt;
+  vl_prony r = ball_rubber(p, rng, &ratio, &nt, &dec, &tau_c);
+  double rx = hard_log_between(5e-4, 5e-2, p[4]), W = hard_log_between(0.01, 100.0, p[5]);
+  ball_base(cfg, &r, rx, rx * ry_over_rx, W, cells);
+  return ball_label(label, cap, ratio, nt, dec, tau_c, rx, rx * ry_over_rx, W);
 }
 
-/* Dry ellipsoids: as the balls, with Ry/Rx log-uniform in 0.1 ... 10 (an
- * ellipse elongated across the sliding or along it), 3 speeds a corner
- * (an ellipsoid's point costs up to 10x a ball's). */
+/* A dry family: Latin hypercube (seed, rng) over (solid x 4, radius, load,
+ * sigma_s on or off, speed shift and, an ellipsoid, Ry/Rx log-uniform in
+ * 0.1 ... 10: an ellipse elongated across the sliding or along it), n
+ * corners of nv speeds from 1e-9 to 1e3 m/s. */
+static void dry_family(ball_family *fam, size_t n, size_t nv, uint64_t seed, uint64_t rng,
+                       bool ellipsoid) {
+  size_t d = ellipsoid ? 9 : 8;
+  double *u = malloc(n * d * sizeof *u), v[8];
+  assert_non_null(u);
+  assert_true(nv <= 8);
+  hard_lhs(n, d, seed, u);
+  for (size_t i = 0; i < n; i++) {
+    const double *p = u + i * d;
+    double ry = ellipsoid ? hard_log_between(0.1, 10.0, p[8]) : 1.0;
+    vl_point_contact_config cfg;
+    char label[400];
+    int k = ball_corner(p, &rng, ry, BALL_DRY_CELLS, &cfg, label, sizeof label);
+    cfg.sigma_s_pa = p[6] < 0.5 ? 0.0 : 1e5;
+    snprintf(label + k, sizeof label - (size_t)k, ", sigma_s %g Pa", cfg.sigma_s_pa);
+    ball_run_corner(fam, label, &cfg, ball_speeds(1e-9, 1e3, nv, p[7], v), v);
+  }
+  free(u);
+  ball_assert_rate(fam);
+}
+
+/* Dry balls: 24 corners of 5 speeds. */
+static void test_dry_ball(void **state) {
+  (void)state;
+  dry_family(&fam_dry_ball, 24, 5, 0x5eedba11, 35, false);
+}
+
+/* Dry ellipsoids: 16 corners of 4 speeds (an ellipsoid's point costs up to
+ * 10x a ball's). */
 static void test_dry_ellipsoid(void **state) {
   (void)state;
-  enum { N = 16, D = 9, NV = 4 };
-  double u[N * D], v[NV];
-  hard_lhs(N, D, 0x5eede111, u);
-  uint64_t rng = 36;
-  for (size_t i = 0; i < N; i++) {
-    const double *p = u + i * D;
-    double ratio, dec, tau_c;
-    size_t nt;
-    vl_prony r = ball_rubber(p, &rng, &ratio, &nt, &dec, &tau_c);
-    double rx = hard_log_between(5e-4, 5e-2, p[4]), W = hard_log_between(0.01, 100.0, p[5]);
-    double ry = rx * hard_log_between(0.1, 10.0, p[8]);
-    vl_point_contact_config cfg;
-    ball_base(&cfg, &r, rx, ry, W, BALL_DRY_CELLS);
-    cfg.sigma_s_pa = p[6] < 0.5 ? 0.0 : 1e5;
-    char label[400];
-    int k = ball_label(label, sizeof label, ratio, nt, dec, tau_c, rx, ry, W);
-    snprintf(label + k, sizeof label - (size_t)k, ", sigma_s %g Pa", cfg.sigma_s_pa);
-    ball_run_corner(&fam_dry_ellipsoid, label, &cfg, ball_speeds(1e-9, 1e3, NV, p[7], v), v);
-  }
-  ball_assert_rate(&fam_dry_ellipsoid);
+  dry_family(&fam_dry_ellipsoid, 16, 4, 0x5eede111, 36, true);
 }
 
 /* Lubricated balls: Latin hypercube over (solid x 4, radius, load,
@@ -598,18 +597,13 @@ static void test_wet_ball(void **state) {
   uint64_t rng = 37;
   for (size_t i = 0; i < N; i++) {
     const double *p = u + i * D;
-    double ratio, dec, tau_c;
-    size_t nt;
-    vl_prony r = ball_rubber(p, &rng, &ratio, &nt, &dec, &tau_c);
-    double R = hard_log_between(5e-4, 5e-2, p[4]), W = hard_log_between(0.01, 100.0, p[5]);
     vl_point_contact_config cfg;
-    ball_base(&cfg, &r, R, R, W, BALL_WET_CELLS);
+    char label[400];
+    int k = ball_corner(p, &rng, 1.0, BALL_WET_CELLS, &cfg, label, sizeof label);
     cfg.eta_pa_s = hard_log_between(1e-3, 1.0, p[6]);
     /* h ~ v0^0.65: the speed of a 10 nm film */
     double lo = pow(1e-8 / ball_film_hd(&cfg, 1.0), 1.0 / 0.65);
     lo = fmin(lo, 1.0);
-    char label[400];
-    int k = ball_label(label, sizeof label, ratio, nt, dec, tau_c, R, R, W);
     snprintf(label + k, sizeof label - (size_t)k, ", eta %.3g Pa s, 10 nm film at %.3g m/s",
              cfg.eta_pa_s, lo);
     ball_run_corner(&fam_wet_ball, label, &cfg, ball_speeds(lo, 10.0, NV, p[7], v), v);
@@ -619,8 +613,8 @@ static void test_wet_ball(void **state) {
 
 /* Rough balls: Latin hypercube over (solid x 4, radius, load, viscosity
  * or dry, h_rms, speed shift), N corners at 1e-4 and 1 m/s (3 speeds a
- * corner cost 45 s of the CI's time)
- * on a self-affine surface (H 0.8, q0 2e5, q1 7.8e9 1/m) of h_rms 10 nm
+ * corner cost 45 s of the CI's time) on a self-affine surface (H 0.8, q0 2e5, q1 7.8e9 1/m) of
+ * h_rms 10 nm
  * ... 5 um, Patir and Cheng's flow factors, sigma_s 1 MPa. */
 static void test_rough_ball(void **state) {
   (void)state;
@@ -630,19 +624,14 @@ static void test_rough_ball(void **state) {
   uint64_t rng = 38;
   for (size_t i = 0; i < N; i++) {
     const double *p = u + i * D;
-    double ratio, dec, tau_c;
-    size_t nt;
-    vl_prony r = ball_rubber(p, &rng, &ratio, &nt, &dec, &tau_c);
-    double R = hard_log_between(5e-4, 5e-2, p[4]), W = hard_log_between(0.01, 100.0, p[5]);
+    vl_point_contact_config cfg;
+    char label[400];
+    int k = ball_corner(p, &rng, 1.0, BALL_WET_CELLS, &cfg, label, sizeof label);
     double hrms = hard_log_between(1e-8, 5e-6, p[7]);
     vl_psd psd;
     vl_persson *tab = vl_test_paper_surface(hrms, &psd);
-    vl_point_contact_config cfg;
-    ball_base(&cfg, &r, R, R, W, BALL_WET_CELLS);
     cfg.eta_pa_s = p[6] < 0.2 ? 0.0 : hard_log_between(1e-3, 1.0, (p[6] - 0.2) / 0.8);
     cfg.roughness = tab, cfg.flow_factors = VL_FLOW_FACTORS_PATIR_CHENG, cfg.sigma_s_pa = 1e6;
-    char label[400];
-    int k = ball_label(label, sizeof label, ratio, nt, dec, tau_c, R, R, W);
     snprintf(label + k, sizeof label - (size_t)k, ", h_rms %.3g m, eta %.3g Pa s", hrms,
              cfg.eta_pa_s);
     ball_run_corner(&fam_rough_ball, label, &cfg, ball_speeds(1e-4, 1.0, NV, p[8], v), v);
